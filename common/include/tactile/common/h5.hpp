@@ -1,0 +1,67 @@
+#pragma once
+// Thin helpers over the HDF5 C++ API shared by the capture and display file formats.
+// Every failure becomes tactile::FormatError with a message naming the file, the object and
+// what is wrong, because H5::Exception is not a std::exception and its messages are cryptic.
+
+#include <H5Cpp.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tactile/common/error.hpp"
+
+namespace tactile::h5 {
+
+// Writes a file atomically: `fill` writes into a temporary file next to `path`, which replaces
+// `path` only when `fill` returns normally. A failed write leaves an existing file untouched.
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(H5::H5File&)>& fill);
+
+// Opens an existing file for reading; throws FormatError if missing or not HDF5.
+H5::H5File open_for_reading(const std::filesystem::path& path);
+
+void write_attr(H5::H5Object& obj, const std::string& name, double value);
+void write_attr(H5::H5Object& obj, const std::string& name, std::int64_t value);
+void write_attr(H5::H5Object& obj, const std::string& name, const std::string& value);
+// Needed so that string literals do not convert to the numeric overloads.
+inline void write_attr(H5::H5Object& obj, const std::string& name, const char* value) {
+  write_attr(obj, name, std::string(value));
+}
+
+// `where` is a human-readable location for messages, e.g. "movie.h5:/deflection_um".
+double read_attr_double(const H5::H5Object& obj, const std::string& name, const std::string& where);
+std::int64_t read_attr_int(const H5::H5Object& obj, const std::string& name,
+                           const std::string& where);
+std::string read_attr_string(const H5::H5Object& obj, const std::string& name,
+                             const std::string& where);
+bool has_attr(const H5::H5Object& obj, const std::string& name);
+
+// Datasets of native numbers with any shape (dims multiply to data.size()).
+void write_dataset(H5::Group& group, const std::string& name, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims);
+void write_dataset(H5::Group& group, const std::string& name, const std::vector<float>& data,
+                   const std::vector<hsize_t>& dims);
+void write_dataset(H5::Group& group, const std::string& name,
+                   const std::vector<std::int32_t>& data, const std::vector<hsize_t>& dims);
+
+// Reads a dataset, checking that it exists, is of the expected number class (float or integer)
+// and rank; returns its dims in `dims`. Throws FormatError naming the problem.
+std::vector<double> read_doubles(const H5::Group& group, const std::string& name,
+                                 std::size_t rank, std::vector<hsize_t>& dims,
+                                 const std::string& where);
+std::vector<float> read_floats(const H5::Group& group, const std::string& name, std::size_t rank,
+                               std::vector<hsize_t>& dims, const std::string& where);
+std::vector<std::int32_t> read_ints(const H5::Group& group, const std::string& name,
+                                    std::size_t rank, std::vector<hsize_t>& dims,
+                                    const std::string& where);
+
+bool has_child(const H5::Group& group, const std::string& name);
+H5::Group open_group(const H5::Group& parent, const std::string& name, const std::string& where);
+
+// Current UTC time as ISO 8601, for provenance attributes.
+std::string utc_now_iso8601();
+
+}  // namespace tactile::h5

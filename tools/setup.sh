@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs every Debian package tactile-movies needs to build, run and test.
+# Idempotent: packages already present are skipped by apt. Run as root on Debian 12.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build ccache clang-format pkg-config git
+  # libraries
+  libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
+  libopencv-dev
+  libhdf5-dev
+  libusb-1.0-0-dev libhidapi-dev
+  libglfw3-dev libgl-dev libimgui-dev
+  libsvm-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  xvfb xauth libgl1-mesa-dri
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "setup: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+echo "setup: installing ${#missing[@]} packages: ${missing[*]}"
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
