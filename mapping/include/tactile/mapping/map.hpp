@@ -1,0 +1,65 @@
+#pragma once
+// Strain movie -> tactile movie, the whole mapping in one call:
+//   1. one StrainField per StrainFrame (strain_field.hpp; the frame's own span, frame-to-frame or
+//      span-k as the strain movie was made);
+//   2. a mapping method turns each field into contactor deflections at the camera frame's time
+//      (methods.hpp), sampled where the placement puts the contactors (placement.hpp);
+//   3. normalisation (gain policy, below);
+//   4. linear resampling from the camera frame times to rate_hz (resample.hpp);
+//   5. clamp to the layout's deflection range and slew-rate limit (limits.hpp).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/capture/strain_movie.hpp"
+#include "tactile/display/tactile_movie.hpp"
+#include "tactile/mapping/limits.hpp"
+#include "tactile/mapping/placement.hpp"
+#include "tactile/mapping/strain_field.hpp"
+
+namespace tactile::mapping {
+
+struct MappingParams {
+  // "proportional" or "integrated" (see methods.hpp).
+  std::string method = "proportional";
+  // Micrometres of deflection per unit strain (for "integrated": per millimetre of pitch, so 1000
+  // reproduces the skin's extension). 1000 um per unit strain = 1 um per 0.1 % strain.
+  double gain_um_per_strain = 1000.0;
+  // "none": deflections are gain * strain as they come. "peak": after the method, every
+  // deflection is rescaled by one factor so that the movie's largest |deflection| equals
+  // peak_fraction of the smaller side of the layout's deflection range (then the gain's magnitude
+  // does not matter).
+  std::string normalisation = "none";
+  double peak_fraction = 1.0;
+  double rate_hz = 700.0;
+  // Where the contactor grid sits on the field; unset = default_placement(movie).
+  std::optional<Placement> placement;
+  double slew_limit_um_per_s = kDefaultSlewLimitUmPerS;
+  StrainFieldOptions field;
+  // Recorded in the provenance; empty = this library's version.
+  std::string program_version;
+};
+
+// Names accepted in MappingParams::method / ::normalisation.
+std::vector<std::string> mapping_method_names();
+std::vector<std::string> normalisation_names();
+
+// Checks the parameters against the layout before any work: unknown method or normalisation,
+// non-positive or non-finite gain, rate, slew limit or scale, peak_fraction outside (0, 1], rate
+// above layout.max_rate_hz, a layout without contactors. Throws std::invalid_argument naming the
+// problem.
+void validate(const MappingParams& params, const display::Layout& layout);
+
+// The parameters as a JSON object (stored in Provenance::mapping_parameters_json). The placement
+// written is the one actually used; normalisation_factor is the factor "peak" applied (1 = none).
+std::string parameters_json(const MappingParams& params, const Placement& placement_used,
+                            double normalisation_factor = 1.0);
+
+// Maps the strain movie onto the layout. Throws std::invalid_argument for bad parameters (see
+// validate), an empty strain movie, or strain frame times that do not increase. Provenance gets
+// method, parameters, source and program version; created_utc is left to the caller.
+display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
+                                       const display::Layout& layout, const MappingParams& params);
+
+}  // namespace tactile::mapping

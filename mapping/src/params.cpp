@@ -1,0 +1,105 @@
+// Mapping parameters: the accepted names, validation before any work, and their JSON record.
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "tactile/mapping/map.hpp"
+
+namespace tactile::mapping {
+namespace {
+
+void require_positive(double value, const char* what) {
+  if (!(value > 0) || !std::isfinite(value)) {
+    throw std::invalid_argument(
+        fmt::format("mapping: {} must be positive and finite, got {}", what, value));
+  }
+}
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+std::vector<std::string> mapping_method_names() {
+  return {"proportional", "integrated"};
+}
+std::vector<std::string> normalisation_names() {
+  return {"none", "peak"};
+}
+
+void validate(const MappingParams& params, const display::Layout& layout) {
+  if (!contains(mapping_method_names(), params.method)) {
+    throw std::invalid_argument(fmt::format("mapping: unknown method '{}' (known: {})",
+                                            params.method,
+                                            fmt::join(mapping_method_names(), ", ")));
+  }
+  if (!contains(normalisation_names(), params.normalisation)) {
+    throw std::invalid_argument(fmt::format("mapping: unknown normalisation '{}' (known: {})",
+                                            params.normalisation,
+                                            fmt::join(normalisation_names(), ", ")));
+  }
+  require_positive(params.gain_um_per_strain, "gain_um_per_strain");
+  require_positive(params.rate_hz, "rate_hz");
+  require_positive(params.slew_limit_um_per_s, "slew_limit_um_per_s");
+  if (!(params.peak_fraction > 0 && params.peak_fraction <= 1)) {
+    throw std::invalid_argument(
+        fmt::format("mapping: peak_fraction must be in (0, 1], got {}", params.peak_fraction));
+  }
+  if (!(params.field.min_triangle_quality >= 0 && params.field.min_triangle_quality < 1)) {
+    throw std::invalid_argument(
+        fmt::format("mapping: min_triangle_quality must be in [0, 1), got {}",
+                    params.field.min_triangle_quality));
+  }
+  if (params.placement) {
+    const auto& p = *params.placement;
+    require_positive(p.scale, "placement scale");
+    if (!std::isfinite(p.centre_x_mm) || !std::isfinite(p.centre_y_mm) ||
+        !std::isfinite(p.rotation_rad)) {
+      throw std::invalid_argument("mapping: placement centre and rotation must be finite");
+    }
+  }
+  if (layout.rows <= 0 || layout.cols <= 0) {
+    throw std::invalid_argument(fmt::format("mapping: layout '{}' has {} x {} contactors",
+                                            layout.name, layout.rows, layout.cols));
+  }
+  require_positive(layout.pitch_x_mm, "layout pitch_x_mm");
+  require_positive(layout.pitch_y_mm, "layout pitch_y_mm");
+  if (!(layout.deflection_min_um <= layout.deflection_max_um)) {
+    throw std::invalid_argument(
+        fmt::format("mapping: layout '{}' deflection range [{}, {}] um is empty", layout.name,
+                    layout.deflection_min_um, layout.deflection_max_um));
+  }
+  if (params.rate_hz > layout.max_rate_hz) {
+    throw std::invalid_argument(
+        fmt::format("mapping: rate {} Hz is above layout '{}' maximum rate {} Hz", params.rate_hz,
+                    layout.name, layout.max_rate_hz));
+  }
+}
+
+std::string parameters_json(const MappingParams& params, const Placement& placement_used,
+                            double normalisation_factor) {
+  nlohmann::json j;
+  j["method"] = params.method;
+  j["gain_um_per_strain"] = params.gain_um_per_strain;
+  j["normalisation"] = params.normalisation;
+  j["peak_fraction"] = params.peak_fraction;
+  j["normalisation_factor"] = normalisation_factor;
+  j["rate_hz"] = params.rate_hz;
+  j["placement"] = {{"centre_x_mm", placement_used.centre_x_mm},
+                    {"centre_y_mm", placement_used.centre_y_mm},
+                    {"rotation_rad", placement_used.rotation_rad},
+                    {"scale", placement_used.scale},
+                    {"auto", !params.placement.has_value()}};
+  j["slew_limit_um_per_s"] = params.slew_limit_um_per_s;
+  j["min_triangle_quality"] = params.field.min_triangle_quality;
+  j["spatial_interpolation"] = "piecewise constant per triangle";
+  j["time_interpolation"] = "linear between camera frames";
+  return j.dump();
+}
+
+}  // namespace tactile::mapping

@@ -1,0 +1,327 @@
+// The whole mapping on synthetic strain movies with analytic strain.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <numbers>
+
+#include "synthetic.hpp"
+#include "tactile/mapping/map.hpp"
+
+namespace tactile::mapping {
+namespace {
+
+using capture::PointMm;
+using testing::grid_layout;
+using testing::GridSpec;
+using ::testing::HasSubstr;
+
+constexpr double kA = 0.01;   // uniform stretch along x
+constexpr double kB = -0.02;  // uniform stretch along y
+
+capture::StrainMovie uniform_movie(std::int32_t frames, double rate_hz = 60.0) {
+  return testing::make_movie(
+      GridSpec{.spacing_mm = 0.5, .jitter_fraction = 0.2},
+      [](double x, double y, double) {
+        return PointMm{kA * x, kB * y};
+      },
+      frames, rate_hz);
+}
+
+// A Gaussian ridge of x-strain, exx = eps * exp(-(x - c)^2 / (2 sigma^2)), travelling along x
+// at speed_mm_per_s from c = start_mm: the displacement is its integral (an erf).
+struct MovingBump {
+  double eps = 0.04;
+  double sigma_mm = 1.0;
+  double start_mm = -4.0;
+  double speed_mm_per_s = 18.0;
+
+  double centre_mm(double t_s) const { return start_mm + speed_mm_per_s * t_s; }
+  double exx(double x_mm, double t_s) const {
+    const double z = (x_mm - centre_mm(t_s)) / sigma_mm;
+    return eps * std::exp(-z * z / 2);
+  }
+  PointMm displacement(double x_mm, double t_s) const {
+    const double z = (x_mm - centre_mm(t_s)) / (sigma_mm * std::numbers::sqrt2);
+    return {eps * sigma_mm * std::sqrt(std::numbers::pi / 2) * std::erf(z), 0.0};
+  }
+};
+
+// 70 Hz camera: every camera frame time is also a 700 Hz display frame time (every 10th).
+capture::StrainMovie bump_movie(const MovingBump& bump) {
+  return testing::make_movie(
+      GridSpec{.spacing_mm = 0.25, .jitter_fraction = 0.15},
+      [bump](double x, double, double t) { return bump.displacement(x, t); }, 70, 70.0);
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const auto n = static_cast<double>(a.size());
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+TEST(MapStrainMovie, ShapeRateDurationAndProvenance) {
+  const auto movie = uniform_movie(10);  // strain frames at 1/60 .. 10/60 s
+  const auto layout = grid_layout(8, 8, 1.0, 1.0);
+  MappingParams params;
+  params.program_version = "9.9.9-test";
+  const auto out = map_strain_movie(movie, layout, params);
+  // 9/60 s spanned at 700 Hz: 105 intervals, 106 frames.
+  EXPECT_EQ(out.frame_count, 106);
+  EXPECT_EQ(out.rate_hz, 700.0);
+  EXPECT_EQ(out.deflection_um.size(), 106u * 64u);
+  EXPECT_NEAR(out.duration_s(), 106.0 / 700.0, 1e-12);
+  EXPECT_EQ(out.layout.rows, 8);
+  EXPECT_EQ(out.layout.name, "test");
+  EXPECT_EQ(out.provenance.mapping_method, "proportional");
+  EXPECT_EQ(out.provenance.source, "synthetic test grid");
+  EXPECT_EQ(out.provenance.program_version, "9.9.9-test");
+  const auto& json = out.provenance.mapping_parameters_json;
+  EXPECT_THAT(json, HasSubstr("\"method\":\"proportional\""));
+  EXPECT_THAT(json, HasSubstr("\"gain_um_per_strain\":1000.0"));
+  EXPECT_THAT(json, HasSubstr("\"centre_x_mm\":5.0"));
+  EXPECT_THAT(json, HasSubstr("\"auto\":true"));
+
+  params.program_version.clear();
+  EXPECT_FALSE(map_strain_movie(movie, layout, params).provenance.program_version.empty());
+}
+
+TEST(MapStrainMovie, ProportionalFollowsTheStrainAlongTheDeflectionAxis) {
+  const auto movie = uniform_movie(6);
+  MappingParams params;                      // gain 1000 um per unit strain
+  const double tol_um = 1000 * 2 * kB * kB;  // small-strain linearisation error
+  auto out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0), params);
+  for (const float d : out.deflection_um) ASSERT_NEAR(d, 1000 * kA, tol_um);
+
+  out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0, display::DeflectionAxis::y), params);
+  for (const float d : out.deflection_um) ASSERT_NEAR(d, 1000 * kB, tol_um);
+
+  // The grid turned a quarter: the layout's x axis now lies along the field's y.
+  params.placement =
+      Placement{.centre_x_mm = 5, .centre_y_mm = 5, .rotation_rad = std::numbers::pi / 2};
+  out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0), params);
+  for (const float d : out.deflection_um) ASSERT_NEAR(d, 1000 * kB, tol_um);
+}
+
+TEST(MapStrainMovie, ContactorsOutsideTheMeasuredRegionStayNeutral) {
+  const auto movie = uniform_movie(3);
+  MappingParams params;
+  params.placement = Placement{.centre_x_mm = 0.0, .centre_y_mm = 5.0};  // on the left edge
+  const auto layout = grid_layout(4, 4, 1.0, 1.0);  // columns at x = -1.5, -0.5, 0.5, 1.5
+  const auto out = map_strain_movie(movie, layout, params);
+  for (std::int32_t r = 0; r < 4; ++r) {
+    EXPECT_EQ(out.frame(2)[static_cast<std::size_t>(r * 4 + 0)], 0.0f);
+    EXPECT_EQ(out.frame(2)[static_cast<std::size_t>(r * 4 + 1)], 0.0f);
+    EXPECT_NEAR(out.frame(2)[static_cast<std::size_t>(r * 4 + 3)], 1000 * kA, 1.0);
+  }
+}
+
+TEST(MapStrainMovie, ProportionalTracksAMovingStrainBump) {
+  const MovingBump bump;
+  const auto movie = bump_movie(bump);
+  const auto layout = grid_layout(8, 8, 1.0, 1.0);
+  const auto out = map_strain_movie(movie, layout, MappingParams{});
+  ASSERT_EQ(out.frame_count, 691);  // 69/70 s at 700 Hz
+
+  std::vector<double> mapped, expected;
+  double max_error_um = 0;
+  std::vector<double> activity;  // RMS deflection per display frame
+  for (std::int32_t f = 0; f < out.frame_count; ++f) {
+    const auto frame = out.frame(f);
+    double sum = 0;
+    for (const float d : frame) sum += d * d;
+    activity.push_back(std::sqrt(sum / static_cast<double>(frame.size())));
+    if (f % 10 != 0) continue;  // camera frame times only: there the analytic value is exact
+    const double t_s = movie.frames[static_cast<std::size_t>(f / 10)].t_s;
+    for (std::int32_t c = 0; c < 8; ++c) {
+      const double x_mm = 5.0 - 3.5 + c;
+      const double want = 1000 * bump.exx(x_mm, t_s);
+      for (std::int32_t r = 0; r < 8; ++r) {
+        const double got = frame[static_cast<std::size_t>(r * 8 + c)];
+        mapped.push_back(got);
+        expected.push_back(want);
+        max_error_um = std::max(max_error_um, std::abs(got - want));
+      }
+    }
+  }
+  // Piecewise-constant triangles 0.25 mm across on a bump of 1 mm sigma: a few um at most.
+  EXPECT_GT(correlation(mapped, expected), 0.98);
+  EXPECT_LT(max_error_um, 8.0);
+
+  // The bump enters from the left, crosses the grid and leaves: activity rises and falls.
+  const auto peak = std::max_element(activity.begin(), activity.end());
+  EXPECT_GT(*peak, 10.0);
+  EXPECT_LT(activity.front(), 0.05 * *peak);
+  EXPECT_LT(activity.back(), 0.05 * *peak);
+  // Each column of contactors peaks when the bump's centre passes over it.
+  for (std::int32_t c = 0; c < 8; ++c) {
+    std::int32_t best = 0;
+    for (std::int32_t f = 1; f < out.frame_count; ++f) {
+      if (out.frame(f)[static_cast<std::size_t>(c)] >
+          out.frame(best)[static_cast<std::size_t>(c)]) {
+        best = f;
+      }
+    }
+    const double x_mm = 5.0 - 3.5 + c;
+    const double passes_s = (x_mm - bump.start_mm) / bump.speed_mm_per_s;
+    EXPECT_NEAR(movie.frames[0].t_s + best / 700.0, passes_s, 0.02) << "column " << c;
+  }
+}
+
+TEST(MapStrainMovie, IntegratedReproducesTheExtensionBetweenContactors) {
+  const auto layout = grid_layout(6, 8, 1.0, 1.0);
+  MappingParams params;
+  params.method = "integrated";
+  // Uniform stretch: every row is the same zero-mean ramp of 1000 * kA * pitch per contactor.
+  auto out = map_strain_movie(uniform_movie(4), layout, params);
+  for (std::int32_t r = 0; r < 6; ++r) {
+    for (std::int32_t c = 0; c < 8; ++c) {
+      EXPECT_NEAR(out.frame(3)[static_cast<std::size_t>(r * 8 + c)], 1000 * kA * (c - 3.5), 0.1);
+    }
+  }
+  // Along y, the ramp runs down the columns.
+  out = map_strain_movie(uniform_movie(4), grid_layout(5, 8, 1.0, 1.2, display::DeflectionAxis::y),
+                         params);
+  for (std::int32_t r = 0; r < 5; ++r) {
+    EXPECT_NEAR(out.frame(3)[static_cast<std::size_t>(r * 8 + 5)], 1000 * kB * 1.2 * (r - 2), 0.2);
+  }
+
+  // A moving bump: neighbouring differences follow the strain between the two contactors.
+  MovingBump bump;
+  bump.eps = 0.02;  // its integral (50 um) then fits the +/-50 um range, zero-mean
+  const auto movie = bump_movie(bump);
+  out = map_strain_movie(movie, layout, params);
+  std::vector<double> got, want;
+  for (std::int32_t f = 0; f < out.frame_count; f += 10) {
+    const double t_s = movie.frames[static_cast<std::size_t>(f / 10)].t_s;
+    const auto frame = out.frame(f);
+    for (std::int32_t r = 0; r < 6; ++r) {
+      double mean = 0;
+      for (std::int32_t c = 0; c < 8; ++c) mean += frame[static_cast<std::size_t>(r * 8 + c)] / 8;
+      EXPECT_NEAR(mean, 0.0, 1e-3);
+      for (std::int32_t c = 0; c + 1 < 8; ++c) {
+        got.push_back(frame[static_cast<std::size_t>(r * 8 + c + 1)] -
+                      frame[static_cast<std::size_t>(r * 8 + c)]);
+        want.push_back(1000 * bump.exx(5.0 - 3.5 + c + 0.5, t_s));
+      }
+    }
+  }
+  EXPECT_GT(correlation(got, want), 0.98);
+}
+
+TEST(MapStrainMovie, ClampAndSlewLimitHold) {
+  const auto movie = uniform_movie(5);
+  const auto layout = grid_layout(4, 4, 1.0, 1.0);
+  MappingParams params;
+  params.gain_um_per_strain = 20000;  // 200 um wanted, 50 allowed
+  auto out = map_strain_movie(movie, layout, params);
+  for (const float d : out.deflection_um) {
+    ASSERT_LE(d, 50.0f);
+    ASSERT_GE(d, -50.0f);
+  }
+  EXPECT_EQ(out.frame(out.frame_count - 1)[0], 50.0f);
+
+  params.gain_um_per_strain = 1000;  // 10 um wanted
+  params.slew_limit_um_per_s = 700;  // 1 um per frame
+  out = map_strain_movie(movie, layout, params);
+  for (std::int32_t f = 0; f < 30; ++f) {
+    EXPECT_NEAR(out.frame(f)[5], std::min(f + 1.0, 1000 * kA), 0.05) << f;
+  }
+}
+
+TEST(MapStrainMovie, PeakNormalisationScalesTheLargestDeflectionToTheRange) {
+  MappingParams params;
+  params.normalisation = "peak";
+  params.peak_fraction = 0.8;
+  params.gain_um_per_strain = 3;  // irrelevant under "peak"
+  const auto out = map_strain_movie(uniform_movie(4), grid_layout(4, 4, 1.0, 1.0), params);
+  float peak = 0;
+  for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
+  EXPECT_NEAR(peak, 40.0, 1e-3);
+  EXPECT_THAT(out.provenance.mapping_parameters_json, HasSubstr("\"normalisation\":\"peak\""));
+}
+
+TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
+  const auto movie = uniform_movie(3);
+  auto layout = grid_layout(4, 4, 1.0, 1.0);
+  layout.max_rate_hz = 700;
+  const auto fails_with = [&](const MappingParams& params, const capture::StrainMovie& m,
+                              const std::string& text) {
+    try {
+      (void)map_strain_movie(m, layout, params);
+      ADD_FAILURE() << "no exception, expected: " << text;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(text));
+    }
+  };
+  MappingParams p;
+  p.method = "telepathy";
+  fails_with(p, movie, "unknown method 'telepathy'");
+  p = {};
+  p.rate_hz = 1000;
+  fails_with(p, movie, "above layout 'test' maximum rate 700");
+  p = {};
+  p.rate_hz = 0;
+  fails_with(p, movie, "rate_hz must be positive");
+  p = {};
+  p.gain_um_per_strain = -5;
+  fails_with(p, movie, "gain_um_per_strain must be positive");
+  p = {};
+  p.gain_um_per_strain = 0;
+  fails_with(p, movie, "gain_um_per_strain must be positive");
+  p = {};
+  p.normalisation = "loud";
+  fails_with(p, movie, "unknown normalisation 'loud'");
+  p = {};
+  p.peak_fraction = 1.5;
+  fails_with(p, movie, "peak_fraction");
+  p = {};
+  p.slew_limit_um_per_s = 0;
+  fails_with(p, movie, "slew_limit_um_per_s");
+  p = {};
+  p.placement = Placement{.scale = 0};
+  fails_with(p, movie, "placement scale");
+  fails_with(MappingParams{}, capture::StrainMovie{}, "no strain frames");
+  auto backwards = movie;
+  backwards.frames[2].t_s = backwards.frames[1].t_s;
+  fails_with(MappingParams{}, backwards, "does not follow");
+  layout.rows = 0;
+  fails_with(MappingParams{}, movie, "0 x 4 contactors");
+}
+
+TEST(MapStrainMovie, SpeedOfA180FrameMovieOnTenByTen) {
+  // About 500 landmarks per frame (22 x 23 grid), 180 frames at 60 Hz, like the demo scene.
+  const MovingBump bump{.eps = 0.05, .sigma_mm = 1.5, .start_mm = -3, .speed_mm_per_s = 5};
+  const auto movie = testing::make_movie(
+      GridSpec{.width_mm = 10.5, .height_mm = 11.0, .spacing_mm = 0.5, .jitter_fraction = 0.2},
+      [bump](double x, double, double t) { return bump.displacement(x, t); }, 180, 60.0);
+  ASSERT_EQ(movie.frames[0].points_from.size(), 22u * 23u);
+  const auto layout = grid_layout(10, 10, 1.0, 1.0);
+  for (const char* method : {"proportional", "integrated"}) {
+    MappingParams params;
+    params.method = method;
+    const auto start = std::chrono::steady_clock::now();
+    const auto out = map_strain_movie(movie, layout, params);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "[ timing ] " << method << ": 180 strain frames x " << 22 * 23
+              << " points -> 10x10 at 700 Hz (" << out.frame_count << " frames): " << ms << " ms\n";
+    EXPECT_EQ(out.frame_count, 2089);  // 179/60 s at 700 Hz: 2088.3 periods
+    RecordProperty(std::string(method) + "_ms", std::to_string(ms));
+    EXPECT_LT(ms, 2000.0);  // generous for sanitizer builds; Release is far below
+  }
+}
+
+}  // namespace
+}  // namespace tactile::mapping
