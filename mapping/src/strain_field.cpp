@@ -5,7 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
-#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "tactile/mapping/strain_field.hpp"
 
@@ -19,7 +20,9 @@ std::uint64_t edge_key(std::int32_t a, std::int32_t b) {
 }
 
 double distance_mm(const capture::TrackedPoint& a, const capture::TrackedPoint& b) {
-  return std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
+  const double dx = b.x_mm - a.x_mm;
+  const double dy = b.y_mm - a.y_mm;
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 TriangleBins make_bins(const std::vector<FieldTriangle>& triangles) {
@@ -96,10 +99,21 @@ StrainField build_strain_field(const capture::StrainFrame& frame,
         fmt::format("strain frame {}->{}: {} points_to for {} points_from (must match)",
                     frame.frame_from, frame.frame_to, to.size(), from.size()));
   }
-  std::unordered_map<std::uint64_t, double> rel_change;
-  rel_change.reserve(frame.edges.size() * 2);
-  for (const auto& e : frame.edges)
-    rel_change.emplace(edge_key(e.track_a, e.track_b), e.rel_change);
+  // A sorted vector searched by bisection: cheaper to build than a hash map for the few thousand
+  // edges of a frame, and the build dominates.
+  std::vector<std::pair<std::uint64_t, double>> rel_change;
+  rel_change.reserve(frame.edges.size());
+  for (const auto& e : frame.edges) {
+    rel_change.emplace_back(edge_key(e.track_a, e.track_b), e.rel_change);
+  }
+  std::sort(rel_change.begin(), rel_change.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  const auto find_change = [&](std::uint64_t key) -> const double* {
+    const auto it =
+        std::lower_bound(rel_change.begin(), rel_change.end(), key,
+                         [](const auto& entry, std::uint64_t k) { return entry.first < k; });
+    return it != rel_change.end() && it->first == key ? &it->second : nullptr;
+  };
 
   StrainField field;
   field.t_s = frame.t_s;
@@ -121,9 +135,9 @@ StrainField build_strain_field(const capture::StrainFrame& frame,
     for (std::size_t k = 0; k < 3 && known; ++k) {
       const auto ia = static_cast<std::size_t>(tri.point_index[k]);
       const auto ib = static_cast<std::size_t>(tri.point_index[(k + 1) % 3]);
-      const auto it = rel_change.find(edge_key(from[ia].track_id, from[ib].track_id));
-      if (it != rel_change.end()) {
-        change[k] = it->second;
+      if (const double* known_change =
+              find_change(edge_key(from[ia].track_id, from[ib].track_id))) {
+        change[k] = *known_change;
       } else if (!to.empty() && distance_mm(from[ia], from[ib]) > 0) {
         // The edge list is the measurement; positions are the fallback for a writer that
         // stored triangles without every edge.

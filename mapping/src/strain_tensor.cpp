@@ -29,8 +29,9 @@ double triangle_quality(const std::array<capture::PointMm, 3>& p) {
 std::optional<StrainTensor> triangle_strain(const std::array<capture::PointMm, 3>& p,
                                             const std::array<double, 3>& rel_change,
                                             double min_quality) {
-  // The quality test also rejects NaN coordinates (the comparison fails).
-  if (!(triangle_quality(p) >= min_quality) || !(triangle_quality(p) > 0)) return std::nullopt;
+  // The quality test also rejects NaN coordinates (the comparisons fail).
+  const double quality = triangle_quality(p);
+  if (!(quality >= min_quality) || !(quality > 0)) return std::nullopt;
   Eigen::Matrix3d a;
   Eigen::Vector3d b;
   for (int i = 0; i < 3; ++i) {
@@ -38,7 +39,7 @@ std::optional<StrainTensor> triangle_strain(const std::array<capture::PointMm, 3
     const auto& to = p[static_cast<std::size_t>((i + 1) % 3)];
     const double dx = to.x_mm - from.x_mm;
     const double dy = to.y_mm - from.y_mm;
-    const double length = std::hypot(dx, dy);
+    const double length = std::sqrt(dx * dx + dy * dy);
     const double nx = dx / length;
     const double ny = dy / length;
     // n^T E n = exx nx^2 + eyy ny^2 + 2 exy nx ny.

@@ -7,9 +7,10 @@
 
 namespace tactile::mapping {
 
-// Half the +/-50 um STReSS range per 700 Hz frame. Placeholder until the firmware's limit is fixed
-// (issue 5); the two must stay identical.
-inline constexpr double kDefaultSlewLimitUmPerS = 35000.0;
+// 20 mm/s: a full 100 um swing of a STReSS contactor takes 5 ms (3.5 frames at 700 Hz). The same
+// value as display::EmulatedDeviceOptions::max_slew_um_per_s, i.e. what the emulated firmware
+// enforces by default; the two must stay identical (issue 5: one source for both).
+inline constexpr double kDefaultSlewLimitUmPerS = 20000.0;
 
 // Clamps every deflection to [layout.deflection_min_um, layout.deflection_max_um], then limits how
 // far each contactor may move between consecutive frames to slew_limit_um_per_s / rate_hz. The
