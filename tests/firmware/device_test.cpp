@@ -115,7 +115,7 @@ TEST(Device, MalformedFramesAreCountedByReasonAndNeverPlayed) {
   b.back() ^= 1;
   bad.push_back(b);  // checksum
   b = Device::bytes(101, filled(poison));
-  b.pop_back();
+  b.resize(b.size() - 1);
   bad.push_back(b);  // length
   b = Device::bytes(102, filled(poison));
   b[1] = 'X';

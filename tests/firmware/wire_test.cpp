@@ -86,8 +86,7 @@ TEST(Wire, EachMalformationHasItsOwnCode) {
   const auto good = encode(5, values);
   EXPECT_EQ(decode(good), TFW_OK);
 
-  auto truncated = good;
-  truncated.pop_back();
+  const std::vector<std::uint8_t> truncated(good.begin(), good.end() - 1);
   EXPECT_EQ(decode(truncated), TFW_ERR_BAD_LENGTH);
   EXPECT_EQ(decode({good.begin(), good.begin() + 10}), TFW_ERR_BAD_LENGTH);
   auto longer = good;

@@ -32,9 +32,9 @@ struct Layout {
 // How a movie was made; stored with it so every file says where it came from.
 struct Provenance {
   std::string program_version;
-  std::string created_utc;       // ISO 8601
-  std::string source;            // e.g. the strain movie it was mapped from
-  std::string mapping_method;    // e.g. "proportional"
+  std::string created_utc;     // ISO 8601
+  std::string source;          // e.g. the strain movie it was mapped from
+  std::string mapping_method;  // e.g. "proportional"
   std::string mapping_parameters_json;
 };
 

@@ -1,0 +1,34 @@
+#pragma once
+// Finding attached displays on USB.
+//
+// USB identity: vendor 0x1209 (pid.codes, the open-source hardware vendor ID) with product
+// 0x0001, the pid.codes *test* PID, until the project is allocated a PID of its own.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tactile::display {
+
+inline constexpr std::uint16_t kUsbVendorId = 0x1209;
+inline constexpr std::uint16_t kUsbProductId = 0x0001;
+
+struct DeviceDescription {
+  std::string backend;  // "libusb" (vendor interface) or "hidapi" (HID interface)
+  std::uint16_t vendor_id = 0;
+  std::uint16_t product_id = 0;
+  std::uint8_t bus = 0;      // libusb only
+  std::uint8_t address = 0;  // libusb only
+  std::string path;          // hidapi device path, or "bus:address" for libusb
+  std::string manufacturer;  // empty when the device could not be opened to read strings
+  std::string product;
+  std::string serial;
+  bool accessible = false;  // false: found but not openable (permissions: see the udev rules)
+};
+
+// Lists every attached device with the project's vendor/product ID, through libusb and
+// through hidapi (a display exposing both interfaces appears once per back end). Returns an
+// empty list when none is attached or when the system has no USB at all.
+std::vector<DeviceDescription> list_usb_devices();
+
+}  // namespace tactile::display

@@ -1,0 +1,58 @@
+#pragma once
+// A display emulated in-process: the real firmware core (firmware/src) behind the Transport
+// interface, ticking on a simulated clock (tests, fast rendering) or a real one (live viewing).
+// Every output frame the firmware writes is recorded, so what a caller sees is exactly what
+// the device would do to the skin, clamps, slew limits and watchdog included.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "tactile/display/tactile_movie.hpp"
+#include "tactile/display/transport.hpp"
+
+namespace tactile::display {
+
+enum class EmulatedClock { simulated, real_time };
+
+struct EmulatedDeviceOptions {
+  Layout layout = stress_layout();
+  // Assumption: 20 mm/s lets a contactor cross the whole +-50 um STReSS range in 5 ms, fast
+  // enough for any strain-derived movie yet a real limit on step inputs.
+  double max_slew_um_per_s = 20000;
+  double watchdog_timeout_s = 0.005;
+  EmulatedClock clock = EmulatedClock::simulated;
+  bool record_outputs = true;
+  std::string serial = "EMU-0001";
+};
+
+class EmulatedDevice final : public Transport {
+ public:
+  // Throws std::invalid_argument when the options do not make a valid firmware configuration.
+  explicit EmulatedDevice(const EmulatedDeviceOptions& options = {});
+  ~EmulatedDevice() override;
+  EmulatedDevice(const EmulatedDevice&) = delete;
+  EmulatedDevice& operator=(const EmulatedDevice&) = delete;
+
+  DeviceInfo info() override;
+  void start(double rate_hz) override;
+  void stop() override;
+  bool send_frame(std::span<const std::uint8_t> frame) override;
+  DeviceStatus status() override;
+  void wait(std::chrono::nanoseconds duration) override;
+
+  // Device time since construction (simulated or real).
+  double now_s() const;
+  // Outputs recorded since the last start(): one frame of rows x cols deflections (um) per
+  // tick, row-major, at the rate given to start().
+  TactileMovie recording() const;
+  std::int64_t recorded_ticks() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tactile::display

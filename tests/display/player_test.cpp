@@ -1,0 +1,217 @@
+// Streaming through the emulated device: pacing, ordering, limits, checks against the device.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tactile/display/emulated_device.hpp"
+#include "tactile/display/frame_codec.hpp"
+#include "tactile/display/player.hpp"
+#include "test_movies.hpp"
+
+namespace tactile::display {
+namespace {
+
+using ::testing::HasSubstr;
+
+EmulatedDeviceOptions device_for(const Layout& layout) {
+  EmulatedDeviceOptions o;
+  o.layout = layout;
+  return o;
+}
+
+// Plays `movie` in simulated time and checks that the device output is the movie, frame by
+// frame, in order: output tick ramp_in + f must equal frame f (quantised to 0.1 um).
+void expect_played_exactly(const TactileMovie& movie) {
+  EmulatedDevice device(device_for(movie.layout));
+  PlayOptions options;
+  const PlaybackReport r = play_movie(movie, device, options);
+  const std::int64_t ramp_in = r.ramp_frames / 2;
+  EXPECT_EQ(r.movie_frames, movie.frame_count);
+  EXPECT_EQ(ramp_in, std::lround(options.ramp_s * movie.rate_hz));
+  EXPECT_EQ(r.frames_sent, r.movie_frames + r.ramp_frames);
+  EXPECT_EQ(r.frames_played, r.frames_sent);
+  EXPECT_EQ(r.underruns, 0);
+  EXPECT_EQ(r.malformed, 0);
+  EXPECT_EQ(r.clamped_samples, 0);
+  EXPECT_EQ(r.slew_limited_samples, 0);
+  // Device-paced: the FIFO stayed near half full once filled.
+  const auto capacity = device.info().fifo_capacity_frames;
+  EXPECT_GE(r.min_fifo_fill, capacity / 2 - 2);
+  EXPECT_LE(r.max_fifo_fill, capacity / 2 + 1);
+  EXPECT_NEAR(r.duration_s, static_cast<double>(r.frames_sent) / movie.rate_hz, 1e-9);
+  const TactileMovie out = device.recording();
+  ASSERT_EQ(out.frame_count, r.frames_sent);
+  for (std::int32_t f = 0; f < movie.frame_count; ++f) {
+    const auto want = movie.frame(f);
+    const auto got = out.frame(static_cast<std::int32_t>(ramp_in + f));
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      ASSERT_NEAR(got[i], want[i], 0.05 + 1e-4) << "frame " << f << " contactor " << i;
+    }
+  }
+  // The ramps start and end at neutral.
+  const auto first = out.frame(0);
+  const auto last = out.frame(out.frame_count - 1);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_LE(std::abs(first[i]), std::abs(movie.frame(0)[i]) * 0.01 + 0.1);
+    EXPECT_EQ(last[i], 0.0f);
+  }
+}
+
+TEST(Player, StressAt700HzPlaysEveryFrameInOrder) {
+  expect_played_exactly(testing::sine_movie(stress_layout(), 700, 2100, 45));  // 3 s
+}
+
+TEST(Player, LateroAt1kHzPlaysEveryFrameInOrder) {
+  expect_played_exactly(testing::sine_movie(latero_layout(), 1000, 3000, 90));  // 3 s
+}
+
+TEST(Player, SixtySecondsAt1kHzWithoutUnderrunInSimulatedTime) {
+  Layout layout = stress_layout();  // 100 contactors, as issue 4 asks
+  layout.max_rate_hz = 1000;
+  EmulatedDeviceOptions o = device_for(layout);
+  o.record_outputs = false;
+  EmulatedDevice device(o);
+  const PlaybackReport r = play_movie(testing::sine_movie(layout, 1000, 60000, 40), device);
+  EXPECT_EQ(r.frames_played, r.frames_sent);
+  EXPECT_EQ(r.frames_sent, 60000 + r.ramp_frames);
+  EXPECT_EQ(r.underruns, 0);
+  EXPECT_EQ(r.overflows, 0);
+  EXPECT_LT(r.wall_s, 5.0);  // simulated time runs far faster than real time
+}
+
+TEST(Player, OutOfRangeValuesAreClampedByTheFirmwareWhenAllowed) {
+  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 700, 80);  // +-80 > +-50
+  EmulatedDevice device(device_for(movie.layout));
+  PlayOptions options;
+  options.allow_out_of_range = true;
+  const PlaybackReport r = play_movie(movie, device, options);
+  EXPECT_GT(r.clamped_samples, 0);
+  EXPECT_EQ(r.frames_played, r.frames_sent);
+  const TactileMovie out = device.recording();
+  const auto ramp_in = r.ramp_frames / 2;
+  int clamped = 0, exact = 0;
+  for (std::int32_t f = 0; f < movie.frame_count; ++f) {
+    const auto want = movie.frame(f);
+    const auto got = out.frame(static_cast<std::int32_t>(ramp_in + f));
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      const float expected = std::clamp(want[i], -50.0f, 50.0f);
+      ASSERT_NEAR(got[i], expected, 0.05 + 1e-4) << "frame " << f << " contactor " << i;
+      (std::abs(want[i]) > 50 ? clamped : exact)++;
+    }
+  }
+  EXPECT_GT(clamped, 1000);  // both cases really occurred
+  EXPECT_GT(exact, 1000);
+}
+
+TEST(Player, SlewLimitShapesAStep) {
+  // A 0 -> 40 um step: the firmware limits it to 20 mm/s = 20 um per tick at 1 kHz.
+  Layout layout = latero_layout();
+  TactileMovie movie = testing::sine_movie(layout, 1000, 20, 0);
+  for (std::int32_t f = 10; f < 20; ++f) {
+    for (float& v : movie.frame(f)) v = 40;
+  }
+  PlayOptions options;
+  options.ramp_s = 0;
+  PlaybackReport r;
+  const TactileMovie out = render_through_device(movie, device_for(layout), options, &r);
+  EXPECT_GT(r.slew_limited_samples, 0);
+  EXPECT_FLOAT_EQ(out.frame(9)[0], 0);
+  EXPECT_FLOAT_EQ(out.frame(10)[0], 20);
+  EXPECT_FLOAT_EQ(out.frame(11)[0], 40);
+}
+
+void expect_refused(const TactileMovie& movie, const EmulatedDeviceOptions& o,
+                    const std::string& words) {
+  EmulatedDevice device(o);
+  try {
+    play_movie(movie, device);
+    FAIL() << "played; expected a refusal about " << words;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr(words));
+  }
+  EXPECT_EQ(device.status().frames_received, 0u);  // refused before anything was sent
+}
+
+TEST(Player, RefusesMoviesTheDeviceCannotPlay) {
+  const auto stress = device_for(stress_layout());
+  expect_refused(testing::sine_movie(latero_layout(), 700, 10, 10), stress,
+                 "is 8 x 8 contactors but device");
+  expect_refused(testing::sine_movie(stress2_layout(), 1000, 10, 10), device_for(latero_layout()),
+                 "pitch 1.2 x 1.4 mm");
+  expect_refused(testing::sine_movie(stress_layout(), 1000, 10, 10), stress,
+                 "rate 1000 Hz exceeds the device maximum 700 Hz");
+  expect_refused(testing::sine_movie(stress_layout(), 699.5, 10, 10), stress,
+                 "not a whole number of hertz");
+  expect_refused(testing::sine_movie(stress_layout(), 700, 10, 60), stress,
+                 "outside the device range [-50, 50] um");
+}
+
+TEST(Player, RealTimeClockPlaysAtTheDeviceRate) {
+  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 140, 30);  // 0.2 s
+  EmulatedDeviceOptions o = device_for(movie.layout);
+  o.clock = EmulatedClock::real_time;
+  EmulatedDevice device(o);
+  const PlaybackReport r = play_movie(movie, device);
+  EXPECT_EQ(r.frames_played, r.frames_sent);
+  const double expected_s = static_cast<double>(r.frames_sent) / 700;  // 0.3 s with ramps
+  EXPECT_GT(r.wall_s, expected_s * 0.9);
+  EXPECT_LT(r.wall_s, expected_s + 0.5);
+  // Half a FIFO (32 frames = 46 ms) absorbs ordinary scheduling delays.
+  EXPECT_EQ(r.underruns, 0);
+}
+
+TEST(EmulatedDevice, CountsMalformedFramesAndNeverPlaysThem) {
+  EmulatedDevice device(device_for(stress_layout()));
+  device.start(700);
+  std::vector<float> frame(100, 5);
+  auto good = encode_frame(frame, 0);
+  std::vector<float> poison(100, 44);
+  auto bad_crc = encode_frame(poison, 1);
+  bad_crc[20] ^= 0xFF;
+  auto short_frame = encode_frame(poison, 1);
+  short_frame.resize(short_frame.size() - 2);
+  auto repeated = encode_frame(poison, 0);
+  EXPECT_TRUE(device.send_frame(good));
+  EXPECT_TRUE(device.send_frame(bad_crc));  // delivered; the device is the judge
+  EXPECT_TRUE(device.send_frame(short_frame));
+  EXPECT_TRUE(device.send_frame(repeated));
+  device.wait(std::chrono::milliseconds(50));
+  const DeviceStatus s = device.status();
+  EXPECT_EQ(s.frames_played, 1u);
+  EXPECT_EQ(s.malformed, 3u);
+  EXPECT_EQ(s.rejected_by_reason.at("bad_checksum"), 1u);
+  EXPECT_EQ(s.rejected_by_reason.at("bad_length"), 1u);
+  EXPECT_EQ(s.rejected_by_reason.at("bad_sequence"), 1u);
+  const TactileMovie out = device.recording();
+  for (float v : out.deflection_um) EXPECT_LE(v, 5.0f);
+}
+
+TEST(EmulatedDevice, SimulatedClockRunsOneTickPerPeriod) {
+  EmulatedDevice device(device_for(stress_layout()));
+  device.start(700);
+  // 1/700 s rounded up to whole nanoseconds: every wait covers exactly one more tick.
+  const std::chrono::nanoseconds period(1'000'000'000 / 700 + 1);
+  for (std::uint64_t i = 1; i <= 700; ++i) {
+    device.wait(period);
+    ASSERT_EQ(device.status().ticks, i);
+  }
+  EXPECT_NEAR(device.now_s(), 1.0, 1e-5);
+}
+
+TEST(EmulatedDevice, WatchdogBringsTheOutputsHome) {
+  EmulatedDevice device(device_for(latero_layout()));
+  device.start(1000);
+  std::vector<float> frame(64, 90);
+  for (std::uint32_t s = 0; s < 10; ++s) ASSERT_TRUE(device.send_frame(encode_frame(frame, s)));
+  device.wait(std::chrono::milliseconds(30));  // 10 frames, then 20 ms of silence
+  const TactileMovie out = device.recording();
+  ASSERT_EQ(out.frame_count, 30);
+  EXPECT_FLOAT_EQ(out.frame(9)[0], 90);
+  EXPECT_FLOAT_EQ(out.frame(29)[0], 0);
+  EXPECT_EQ(device.status().watchdog_trips, 1u);
+}
+
+}  // namespace
+}  // namespace tactile::display
