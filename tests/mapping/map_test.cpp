@@ -220,6 +220,40 @@ TEST(MapStrainMovie, IntegratedReproducesTheExtensionBetweenContactors) {
   EXPECT_GT(correlation(got, want), 0.98);
 }
 
+TEST(MapStrainMovie, IntegratedLeavesUnmeasuredContactorsNeutral) {
+  // One row of 12 at 1 mm from x = -0.25 to 10.75 mm on a 10 mm field: the midpoints from 0.25 to
+  // 9.25 mm are measured, 10.25 is not, so contactors 0..10 form one zero-mean run and
+  // contactor 11 has no measured neighbour.
+  MappingParams params;
+  params.method = "integrated";
+  params.placement = Placement{.centre_x_mm = 5.25, .centre_y_mm = 5.0};
+  const auto out = map_strain_movie(uniform_movie(3), grid_layout(1, 12, 1.0, 1.0), params);
+  const auto last = out.frame(out.frame_count - 1);
+  for (std::size_t c = 0; c <= 10; ++c) {
+    EXPECT_NEAR(last[c], 1000 * kA * (static_cast<double>(c) - 5.0), 0.2) << c;
+  }
+  EXPECT_EQ(last[11], 0.0f);
+}
+
+TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
+  const auto movie = bump_movie(MovingBump{});
+  for (const char* name : {"stress", "stress2", "latero"}) {
+    const auto layout = display::layout_by_name(name);
+    for (const char* method : {"proportional", "integrated"}) {
+      MappingParams params;
+      params.method = method;
+      const auto out = map_strain_movie(movie, layout, params);
+      EXPECT_EQ(out.layout.name, name);
+      EXPECT_EQ(out.frame_count, 691);
+      EXPECT_NO_THROW(display::validate(out)) << name << " " << method;
+      float peak = 0;
+      for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
+      EXPECT_GT(peak, 5.0f) << name << " " << method;
+      EXPECT_LE(peak, static_cast<float>(layout.deflection_max_um));
+    }
+  }
+}
+
 TEST(MapStrainMovie, ClampAndSlewLimitHold) {
   const auto movie = uniform_movie(5);
   const auto layout = grid_layout(4, 4, 1.0, 1.0);
