@@ -1,0 +1,37 @@
+#pragma once
+// Landmarks of one prism fingerprint image: sweat pores and valley minutiae (the first paper's
+// feature extraction; docs/capture-models.md explains each step).
+
+#include <filesystem>
+#include <vector>
+
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/strain_movie.hpp"
+
+namespace tactile::capture {
+
+struct FeatureParams {
+  double smoothing_sigma_mm = 0.015;  // Gaussian pre-smoothing (about one camera pixel)
+  double local_window_mm = 2.0;       // local mean / variance window (paper: about 2 mm)
+  // Background (no contact): low local contrast and a local mean above the image's mean.
+  double background_max_std = 12.0;  // grey levels
+  double background_min_mean_ratio = 1.0;
+  // Pores: 4-connected bright blobs inside ridges.
+  double pore_min_area_mm2 = 0.003;  // below this a blob is noise
+  double pore_max_area_mm2 = 0.2;    // the paper's bound
+  double pore_max_extent_mm = 0.3;   // ours: rejects short valley fragments the area bound passes
+  double pore_min_fill = 0.45;       // blob area / bounding-box area, rejects thin fragments
+  bool find_minutiae = true;
+  double minutia_min_separation_mm = 0.25;  // closer minutiae are repair artefacts: drop both
+  double border_margin_mm = 0.25;  // no features this close to the image edge or background
+};
+
+// px_per_mm converts the millimetre parameters to pixels.
+std::vector<Feature> extract_features(const GrayImage& image, double px_per_mm,
+                                      const FeatureParams& params = {});
+
+// CSV with header type,x_px,y_px,x_mm,y_mm,orientation_rad.
+void write_features_csv(const std::filesystem::path& path, const std::vector<Feature>& features,
+                        const Calibration& calibration);
+
+}  // namespace tactile::capture

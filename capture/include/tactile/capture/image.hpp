@@ -1,0 +1,36 @@
+#pragma once
+// 8-bit grey images as plain data, so that OpenCV stays out of the public headers.
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace tactile::capture {
+
+struct GrayImage {
+  int width_px = 0;
+  int height_px = 0;
+  std::vector<std::uint8_t> pixels;  // row-major, width_px * height_px bytes
+
+  std::uint8_t at(int x_px, int y_px) const {
+    return pixels[static_cast<std::size_t>(y_px) * static_cast<std::size_t>(width_px) +
+                  static_cast<std::size_t>(x_px)];
+  }
+};
+
+// Reads any image file OpenCV can decode, converted to grey. Throws tactile::FormatError naming
+// the file if it is missing, empty or not an image.
+GrayImage read_image(const std::filesystem::path& path);
+
+// Writes a PNG; throws std::runtime_error naming the file on failure.
+void write_png(const std::filesystem::path& path, const GrayImage& image);
+
+// Image files (.png .jpg .jpeg .bmp .tif .tiff, any case) in `dir`, sorted by name.
+// Throws tactile::FormatError if `dir` is not a directory or holds no image.
+std::vector<std::filesystem::path> list_frames(const std::filesystem::path& dir);
+
+// All frames of `dir` in name order. Throws tactile::FormatError naming the first file whose
+// size differs from the first frame's.
+std::vector<GrayImage> read_frames(const std::filesystem::path& dir);
+
+}  // namespace tactile::capture

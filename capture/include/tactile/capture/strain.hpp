@@ -1,0 +1,46 @@
+#pragma once
+// Skin strain from tracked landmarks: Delaunay triangulation of the landmarks tracked from one
+// frame into a later one, and the relative length change of each edge.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tactile/capture/features.hpp"
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/strain_movie.hpp"
+#include "tactile/capture/track.hpp"
+
+namespace tactile::capture {
+
+struct CaptureParams {
+  FeatureParams features;
+  double match_radius_mm = 0.3;
+  int min_track_frames = 30;
+  int max_gap_frames = 2;
+  int smoothing_half_window = 3;
+  int span_frames = 1;  // strain between frame i and frame i + span_frames
+  // Edges longer than this multiple of the frame's median edge are hull slivers, not skin.
+  double max_edge_ratio = 3.0;
+};
+
+// Triangulates `from` (millimetre positions) and measures each edge at `to` (same order and
+// track ids). Edges longer than max_edge_ratio x the median are dropped, and with them the
+// triangles they bound. Fills edges and triangles; the caller sets frames and points.
+void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector<TrackedPoint>& to,
+                        double max_edge_ratio, std::vector<StrainEdge>& edges,
+                        std::vector<StrainTriangle>& triangles);
+
+// Strain movie from tracks already made: one StrainFrame per frame pair (i, i + span).
+StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_frame_count,
+                               const Calibration& calibration, double frame_rate_hz,
+                               int span_frames, double max_edge_ratio);
+
+// The whole pipeline: extract -> match and track -> strain. `progress` is called with the stage
+// name ("extract", "track", "strain") and counts.
+StrainMovie measure_strain(
+    const std::vector<GrayImage>& frames, const Calibration& calibration, double frame_rate_hz,
+    const CaptureParams& params = {},
+    const std::function<void(const std::string& stage, int done, int total)>& progress = {});
+
+}  // namespace tactile::capture

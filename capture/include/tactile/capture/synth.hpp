@@ -1,0 +1,89 @@
+#pragma once
+// Synthetic prism (FTIR) fingerprint sequences with exact ground truth: a fingertip slides over
+// flat glass or over a Gaussian bump or hole, filmed by a camera fixed to the glass.
+// The model and its assumptions are written in docs/capture-models.md.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/strain_movie.hpp"
+
+namespace tactile::capture {
+
+struct SceneSpec {
+  std::string scene = "bump";      // "bump" | "hole" | "flat-slide"
+  double speed_mm_per_s = 2.4;     // finger speed along +x over the glass
+  double feature_height_mm = 0.5;  // bump height or hole depth
+  double feature_width_mm = 3.0;   // full width at half maximum of the Gaussian profile
+  int frame_count = 180;
+  double frame_rate_hz = 60.0;
+  int width_px = 640;
+  int height_px = 484;
+  double field_width_mm = 10.3;
+  double field_height_mm = 10.9;
+  // Fingertip contact patch (ellipse semi-axes); it moves with the finger.
+  double contact_semi_x_mm = 4.8;
+  double contact_semi_y_mm = 5.6;
+  // Peak lateral skin displacement per mm of feature height (dimensionless skin compliance).
+  double displacement_per_height = 0.4;
+  double ridge_period_mm = 0.45;
+  double pore_spacing_mm = 0.55;  // mean distance between pores along a ridge
+  double pore_min_diameter_mm = 0.088;
+  double pore_max_diameter_mm = 0.220;
+  double minutiae_per_mm2 = 0.08;
+  double blur_sigma_px = 0.9;
+  double noise_sigma = 2.0;  // grey levels
+  std::uint64_t seed = 1;
+};
+
+// A landmark as rendered in one frame.
+struct TruthLandmark {
+  std::int32_t id = 0;  // the same material landmark keeps its id in every frame
+  FeatureType type = FeatureType::pore;
+  std::int32_t frame = 0;
+  double x_px = 0;
+  double y_px = 0;
+  double x_mm = 0;
+  double y_mm = 0;
+  double diameter_mm = 0;  // pores only
+};
+
+struct SyntheticSequence {
+  SceneSpec spec;
+  Calibration calibration;  // the true px -> mm mapping of the synthetic camera
+  std::vector<GrayImage> frames;
+  GrayImage dot_grid;                    // 0.5 mm dot grid seen through the same camera
+  std::vector<TruthLandmark> landmarks;  // every landmark in contact and in view, every frame
+};
+
+// Throws std::invalid_argument naming the first bad field.
+void validate(const SceneSpec& spec);
+
+// Exact skin kinematics of the scene. Image-plane millimetres (origin at the top-left pixel
+// centre) and skin (material) millimetres, which coincide with the image plane at frame 0 away
+// from the feature.
+PointMm skin_to_image(const SceneSpec& spec, PointMm skin, int frame);
+PointMm image_to_skin(const SceneSpec& spec, PointMm image, int frame);
+
+// True relative length change of the skin segment whose ends are at image positions a_from and
+// b_from in frame_from, when seen again in frame_to: (|b'-a'| - |b-a|) / |b-a|.
+double true_rel_change(const SceneSpec& spec, PointMm a_from, PointMm b_from, int frame_from,
+                       int frame_to);
+
+// Whether the skin at this image position touches the glass (and so is imaged) in `frame`.
+bool in_contact(const SceneSpec& spec, PointMm image, int frame);
+
+// The true calibration of the synthetic camera.
+Calibration true_calibration(const SceneSpec& spec);
+
+SyntheticSequence render_sequence(const SceneSpec& spec,
+                                  const std::function<void(int done, int total)>& progress = {});
+
+// Writes frame_000.png ..., dot_grid.png, landmarks.csv and scene.json (spec + calibration).
+void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence);
+
+}  // namespace tactile::capture

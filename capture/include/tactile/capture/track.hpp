@@ -1,0 +1,39 @@
+#pragma once
+// Frame-to-frame matching of landmarks and their trajectories.
+
+#include <cstdint>
+#include <vector>
+
+#include "tactile/capture/strain_movie.hpp"
+
+namespace tactile::capture {
+
+struct TrackParams {
+  double match_radius_mm = 0.3;   // search radius around the predicted position
+  int min_track_frames = 30;      // shorter trajectories are rejected (paper: about 30)
+  int max_gap_frames = 2;         // a landmark may be missed this many frames in a row
+  int smoothing_half_window = 3;  // local quadratic fit over 2h+1 frames; 0 = no smoothing
+};
+
+// One landmark's trajectory: a position for every frame from first_frame on (frames where it
+// was missed are interpolated).
+struct Track {
+  std::int32_t id = 0;
+  FeatureType type = FeatureType::pore;
+  std::int32_t first_frame = 0;
+  std::vector<double> x_px;
+  std::vector<double> y_px;
+
+  std::int32_t last_frame() const {
+    return first_frame + static_cast<std::int32_t>(x_px.size()) - 1;
+  }
+};
+
+// Matches consecutive frames (same type, within match_radius_mm of the position predicted from
+// the previous displacement, one-to-one, greedy by confidence = 1 - distance / radius, lowered
+// by orientation disagreement for endings), links matches into tracks, drops short tracks and
+// smooths the rest. Kept tracks are numbered 0.. in order of first frame.
+std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
+                                  const Calibration& calibration, const TrackParams& params = {});
+
+}  // namespace tactile::capture

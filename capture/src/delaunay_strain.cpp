@@ -1,0 +1,86 @@
+// The only translation unit that includes CGAL (it is template-heavy; one file keeps builds fast).
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include "tactile/capture/strain.hpp"
+
+namespace tactile::capture {
+
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, Kernel>;
+using DataStructure =
+    CGAL::Triangulation_data_structure_2<VertexBase, CGAL::Triangulation_face_base_2<Kernel>>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, DataStructure>;
+}  // namespace
+
+void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector<TrackedPoint>& to,
+                        double max_edge_ratio, std::vector<StrainEdge>& edges,
+                        std::vector<StrainTriangle>& triangles) {
+  if (from.size() != to.size()) {
+    throw std::invalid_argument("triangulate_strain: from and to differ in size");
+  }
+  edges.clear();
+  triangles.clear();
+  if (from.size() < 3) return;
+  std::vector<std::pair<Kernel::Point_2, std::int32_t>> points;
+  points.reserve(from.size());
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    points.emplace_back(Kernel::Point_2(from[i].x_mm, from[i].y_mm), static_cast<std::int32_t>(i));
+  }
+  Delaunay dt(points.begin(), points.end());
+
+  struct Raw {
+    std::int32_t a, b;
+    double length_from;
+  };
+  std::vector<Raw> raw;
+  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+    const auto face = e->first;
+    const int i = e->second;
+    std::int32_t a = face->vertex(Delaunay::cw(i))->info();
+    std::int32_t b = face->vertex(Delaunay::ccw(i))->info();
+    if (a > b) std::swap(a, b);
+    const auto& pa = from[static_cast<std::size_t>(a)];
+    const auto& pb = from[static_cast<std::size_t>(b)];
+    raw.push_back({a, b, std::hypot(pb.x_mm - pa.x_mm, pb.y_mm - pa.y_mm)});
+  }
+  if (raw.empty()) return;  // all points collinear or coincident
+  std::vector<double> lengths;
+  for (const auto& r : raw) lengths.push_back(r.length_from);
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<long>(lengths.size() / 2),
+                   lengths.end());
+  const double bound = max_edge_ratio * lengths[lengths.size() / 2];
+
+  std::map<std::pair<std::int32_t, std::int32_t>, bool> kept;
+  for (const auto& r : raw) {
+    const bool keep = r.length_from <= bound && r.length_from > 0;
+    kept[{r.a, r.b}] = keep;
+    if (!keep) continue;
+    const auto& qa = to[static_cast<std::size_t>(r.a)];
+    const auto& qb = to[static_cast<std::size_t>(r.b)];
+    const double length_to = std::hypot(qb.x_mm - qa.x_mm, qb.y_mm - qa.y_mm);
+    edges.push_back({from[static_cast<std::size_t>(r.a)].track_id,
+                     from[static_cast<std::size_t>(r.b)].track_id, r.length_from, length_to,
+                     (length_to - r.length_from) / r.length_from});
+  }
+  auto edge_kept = [&](std::int32_t a, std::int32_t b) {
+    const auto it = kept.find({std::min(a, b), std::max(a, b)});
+    return it != kept.end() && it->second;
+  };
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    const std::int32_t a = f->vertex(0)->info();
+    const std::int32_t b = f->vertex(1)->info();
+    const std::int32_t c = f->vertex(2)->info();
+    if (edge_kept(a, b) && edge_kept(b, c) && edge_kept(c, a)) triangles.push_back({{a, b, c}});
+  }
+}
+
+}  // namespace tactile::capture

@@ -1,0 +1,183 @@
+#include "tactile/capture/features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+
+#include "cv_image.hpp"
+#include "tactile/common/csv.hpp"
+#include "thinning.hpp"
+
+namespace tactile::capture {
+
+namespace {
+
+int odd_at_least_3(double v) {
+  return std::max(3, static_cast<int>(std::lround(v)) | 1);
+}
+
+struct Prepared {
+  cv::Mat smooth;      // CV_32F
+  cv::Mat mean;        // CV_32F local mean
+  cv::Mat bright;      // CV_8U 0/1: above local mean (valleys, pores, background)
+  cv::Mat foreground;  // CV_8U 0/1: print in contact, away from borders
+};
+
+Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) {
+  Prepared r;
+  gray.convertTo(r.smooth, CV_32F);
+  const double sigma = p.smoothing_sigma_mm * px_per_mm;
+  if (sigma > 0.1) cv::GaussianBlur(r.smooth, r.smooth, cv::Size(0, 0), sigma);
+  const int window = odd_at_least_3(p.local_window_mm * px_per_mm);
+  cv::blur(r.smooth, r.mean, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
+  cv::Mat sq, mean_sq;
+  cv::multiply(r.smooth, r.smooth, sq);
+  cv::blur(sq, mean_sq, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
+  cv::Mat var = mean_sq - r.mean.mul(r.mean);
+  const double global_mean = cv::mean(r.smooth)[0];
+  cv::Mat background = (var < p.background_max_std * p.background_max_std) &
+                       (r.mean > p.background_min_mean_ratio * global_mean);
+  // Keep features away from the background and the image edge, where the local mean is biased.
+  const int margin = std::max(1, static_cast<int>(std::lround(p.border_margin_mm * px_per_mm)));
+  cv::Mat grown;
+  cv::dilate(
+      background, grown,
+      cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * margin + 1, 2 * margin + 1)));
+  r.foreground = cv::Mat::zeros(gray.size(), CV_8U);
+  const cv::Rect inner(margin, margin, std::max(0, gray.cols - 2 * margin),
+                       std::max(0, gray.rows - 2 * margin));
+  r.foreground(inner).setTo(1);
+  r.foreground.setTo(0, grown);
+  r.bright = (r.smooth > r.mean) / 255;
+  return r;
+}
+
+void find_pores(const Prepared& r, double px_per_mm, const FeatureParams& p, cv::Mat& pore_mask,
+                std::vector<Feature>& out) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(r.bright, labels, stats, centroids, 4, CV_32S);
+  const double px2_per_mm2 = px_per_mm * px_per_mm;
+  const double max_extent = p.pore_max_extent_mm * px_per_mm;
+  std::vector<char> is_pore(static_cast<std::size_t>(n), 0);
+  for (int i = 1; i < n; ++i) {
+    const double area = stats.at<int>(i, cv::CC_STAT_AREA);
+    const double w = stats.at<int>(i, cv::CC_STAT_WIDTH);
+    const double h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+    if (area < p.pore_min_area_mm2 * px2_per_mm2 || area > p.pore_max_area_mm2 * px2_per_mm2) {
+      continue;
+    }
+    if (std::max(w, h) > max_extent || area < p.pore_min_fill * w * h) continue;
+    is_pore[static_cast<std::size_t>(i)] = 1;
+  }
+  // Grey-level centre of mass, weighted by brightness above the local mean.
+  std::vector<cv::Vec3d> sums(static_cast<std::size_t>(n), cv::Vec3d(0, 0, 0));
+  pore_mask = cv::Mat::zeros(r.bright.size(), CV_8U);
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* lrow = labels.ptr<int>(y);
+    const float* srow = r.smooth.ptr<float>(y);
+    const float* mrow = r.mean.ptr<float>(y);
+    std::uint8_t* prow = pore_mask.ptr<std::uint8_t>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      const int l = lrow[x];
+      if (!is_pore[static_cast<std::size_t>(l)]) continue;
+      prow[x] = 1;
+      const double w = srow[x] - mrow[x];
+      sums[static_cast<std::size_t>(l)] += cv::Vec3d(w * x, w * y, w);
+    }
+  }
+  for (int i = 1; i < n; ++i) {
+    const auto& s = sums[static_cast<std::size_t>(i)];
+    if (!is_pore[static_cast<std::size_t>(i)] || s[2] <= 0) continue;
+    const double x = s[0] / s[2];
+    const double y = s[1] / s[2];
+    if (!r.foreground.at<std::uint8_t>(static_cast<int>(std::lround(y)),
+                                       static_cast<int>(std::lround(x)))) {
+      continue;
+    }
+    out.push_back({FeatureType::pore, x, y, 0.0});
+  }
+}
+
+// Valley skeleton pixels with one 8-neighbour end a valley; three or more fork it.
+void find_minutiae(const Prepared& r, const cv::Mat& pore_mask, double px_per_mm,
+                   const FeatureParams& p, std::vector<Feature>& out) {
+  cv::Mat valley = r.bright.clone();
+  valley.setTo(0, pore_mask);
+  cv::Mat skeleton = zhang_suen_thinning(valley);
+  std::vector<Feature> found;
+  cv::Mat fork = cv::Mat::zeros(skeleton.size(), CV_8U);
+  for (int y = 1; y < skeleton.rows - 1; ++y) {
+    for (int x = 1; x < skeleton.cols - 1; ++x) {
+      if (!skeleton.at<std::uint8_t>(y, x) || !r.foreground.at<std::uint8_t>(y, x)) continue;
+      int count = 0;
+      double dx = 0, dy = 0;
+      for (int v = -1; v <= 1; ++v) {
+        for (int u = -1; u <= 1; ++u) {
+          if ((u || v) && skeleton.at<std::uint8_t>(y + v, x + u)) {
+            ++count;
+            dx += u;
+            dy += v;
+          }
+        }
+      }
+      if (count == 1) {
+        // The ending points away from the valley it terminates.
+        found.push_back({FeatureType::ending, double(x), double(y), std::atan2(-dy, -dx)});
+      } else if (count >= 3) {
+        fork.at<std::uint8_t>(y, x) = 1;
+      }
+    }
+  }
+  // Adjacent fork pixels describe one bifurcation.
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(fork, labels, stats, centroids, 8, CV_32S);
+  for (int i = 1; i < n; ++i) {
+    found.push_back(
+        {FeatureType::bifurcation, centroids.at<double>(i, 0), centroids.at<double>(i, 1), 0.0});
+  }
+  // Over-dense minutiae are spurs, bridges and breaks, not anatomy: drop every member.
+  const double min_sep = p.minutia_min_separation_mm * px_per_mm;
+  std::vector<char> drop(found.size(), 0);
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    for (std::size_t j = i + 1; j < found.size(); ++j) {
+      if (std::hypot(found[i].x_px - found[j].x_px, found[i].y_px - found[j].y_px) < min_sep) {
+        drop[i] = drop[j] = 1;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (!drop[i]) out.push_back(found[i]);
+  }
+}
+
+}  // namespace
+
+std::vector<Feature> extract_features(const GrayImage& image, double px_per_mm,
+                                      const FeatureParams& params) {
+  if (!(px_per_mm > 0)) {
+    throw std::invalid_argument(fmt::format("px_per_mm must be > 0, got {}", px_per_mm));
+  }
+  if (image.width_px < 3 || image.height_px < 3) return {};
+  const Prepared r = prepare(as_mat(image), px_per_mm, params);
+  std::vector<Feature> features;
+  cv::Mat pore_mask;
+  find_pores(r, px_per_mm, params, pore_mask, features);
+  if (params.find_minutiae) find_minutiae(r, pore_mask, px_per_mm, params, features);
+  return features;
+}
+
+void write_features_csv(const std::filesystem::path& path, const std::vector<Feature>& features,
+                        const Calibration& calibration) {
+  auto out = csv::open_with_header(path, "type,x_px,y_px,x_mm,y_mm,orientation_rad");
+  for (const auto& f : features) {
+    const PointMm mm = to_mm(calibration, f.x_px, f.y_px);
+    out << fmt::format("{},{:.4f},{:.4f},{:.5f},{:.5f},{:.5f}\n", feature_type_name(f.type), f.x_px,
+                       f.y_px, mm.x_mm, mm.y_mm, f.orientation_rad);
+  }
+  csv::finish(out, path);
+}
+
+}  // namespace tactile::capture

@@ -1,0 +1,101 @@
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <opencv2/core/utility.hpp>
+
+#include "tactile/capture/strain.hpp"
+
+namespace tactile::capture {
+
+StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_frame_count,
+                               const Calibration& calibration, double frame_rate_hz,
+                               int span_frames, double max_edge_ratio) {
+  if (span_frames < 1) throw std::invalid_argument("span_frames must be >= 1");
+  if (!(frame_rate_hz > 0)) throw std::invalid_argument("frame_rate_hz must be > 0");
+  StrainMovie movie;
+  movie.frame_rate_hz = frame_rate_hz;
+  movie.span_frames = span_frames;
+  movie.camera_frame_count = camera_frame_count;
+  movie.calibration = calibration;
+  const PointMm corner0 = to_mm(calibration, 0, 0);
+  const PointMm corner1 =
+      to_mm(calibration, calibration.image_width_px - 1.0, calibration.image_height_px - 1.0);
+  movie.field_width_mm = std::abs(corner1.x_mm - corner0.x_mm);
+  movie.field_height_mm = std::abs(corner1.y_mm - corner0.y_mm);
+
+  auto point_of = [&](const Track& t, int frame) {
+    const auto k = static_cast<std::size_t>(frame - t.first_frame);
+    const PointMm mm = to_mm(calibration, t.x_px[k], t.y_px[k]);
+    return TrackedPoint{t.id, frame, t.type, t.x_px[k], t.y_px[k], mm.x_mm, mm.y_mm};
+  };
+  for (const auto& t : tracks) {
+    for (int f = t.first_frame; f <= t.last_frame(); ++f) movie.tracks.push_back(point_of(t, f));
+  }
+  for (int from = 0; from + span_frames < camera_frame_count; ++from) {
+    StrainFrame sf;
+    sf.frame_from = from;
+    sf.frame_to = from + span_frames;
+    sf.t_s = sf.frame_to / frame_rate_hz;
+    for (const auto& t : tracks) {
+      if (t.first_frame <= sf.frame_from && t.last_frame() >= sf.frame_to) {
+        sf.points_from.push_back(point_of(t, sf.frame_from));
+        sf.points_to.push_back(point_of(t, sf.frame_to));
+      }
+    }
+    triangulate_strain(sf.points_from, sf.points_to, max_edge_ratio, sf.edges, sf.triangles);
+    movie.frames.push_back(std::move(sf));
+  }
+  return movie;
+}
+
+StrainMovie measure_strain(
+    const std::vector<GrayImage>& frames, const Calibration& calibration, double frame_rate_hz,
+    const CaptureParams& params,
+    const std::function<void(const std::string& stage, int done, int total)>& progress) {
+  if (frames.empty()) throw std::invalid_argument("measure_strain: no frames");
+  if (!(calibration.mm_per_px > 0)) {
+    throw std::invalid_argument("measure_strain: calibration has no positive mm_per_px");
+  }
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    if (frames[i].width_px != frames[0].width_px || frames[i].height_px != frames[0].height_px) {
+      throw std::invalid_argument(fmt::format(
+          "measure_strain: frame {} is {}x{} px, frame 0 is "
+          "{}x{} px",
+          i, frames[i].width_px, frames[i].height_px, frames[0].width_px, frames[0].height_px));
+    }
+  }
+  Calibration cal = calibration;
+  if (cal.image_width_px == 0) cal.image_width_px = frames[0].width_px;
+  if (cal.image_height_px == 0) cal.image_height_px = frames[0].height_px;
+
+  const int n = static_cast<int>(frames.size());
+  const double px_per_mm = 1.0 / cal.mm_per_px;
+  std::vector<std::vector<Feature>> features(frames.size());
+  const int batch = 16;
+  for (int start = 0; start < n; start += batch) {
+    const int end = std::min(n, start + batch);
+    cv::parallel_for_(cv::Range(start, end), [&](const cv::Range& r) {
+      for (int i = r.start; i < r.end; ++i) {
+        features[static_cast<std::size_t>(i)] =
+            extract_features(frames[static_cast<std::size_t>(i)], px_per_mm, params.features);
+      }
+    });
+    if (progress) progress("extract", end, n);
+  }
+
+  TrackParams tp;
+  tp.match_radius_mm = params.match_radius_mm;
+  tp.min_track_frames = params.min_track_frames;
+  tp.max_gap_frames = params.max_gap_frames;
+  tp.smoothing_half_window = params.smoothing_half_window;
+  const std::vector<Track> tracks = track_features(features, cal, tp);
+  if (progress) progress("track", 1, 1);
+
+  StrainMovie movie =
+      strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio);
+  if (progress) progress("strain", 1, 1);
+  return movie;
+}
+
+}  // namespace tactile::capture

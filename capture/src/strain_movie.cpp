@@ -1,0 +1,49 @@
+#include "tactile/capture/strain_movie.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace tactile::capture {
+
+const char* feature_type_name(FeatureType type) {
+  switch (type) {
+    case FeatureType::pore:
+      return "pore";
+    case FeatureType::ending:
+      return "ending";
+    case FeatureType::bifurcation:
+      return "bifurcation";
+  }
+  return "unknown";
+}
+
+FeatureType parse_feature_type(const std::string& name) {
+  if (name == "pore") return FeatureType::pore;
+  if (name == "ending") return FeatureType::ending;
+  if (name == "bifurcation") return FeatureType::bifurcation;
+  throw std::invalid_argument(
+      fmt::format("unknown feature type '{}' (expected pore, ending or bifurcation)", name));
+}
+
+PointMm to_mm(const Calibration& calibration, double x_px, double y_px) {
+  const auto& h = calibration.px_to_mm;
+  const double w = h[6] * x_px + h[7] * y_px + h[8];
+  return {(h[0] * x_px + h[1] * y_px + h[2]) / w, (h[3] * x_px + h[4] * y_px + h[5]) / w};
+}
+
+Calibration uniform_calibration(double px_per_mm, int width_px, int height_px) {
+  if (!(px_per_mm > 0)) {
+    throw std::invalid_argument(fmt::format("px_per_mm must be positive, got {}", px_per_mm));
+  }
+  Calibration c;
+  const double s = 1.0 / px_per_mm;
+  c.px_to_mm = {s, 0, 0, 0, s, 0, 0, 0, 1};
+  c.mm_per_px = s;
+  c.image_width_px = width_px;
+  c.image_height_px = height_px;
+  c.method = fmt::format("px-per-mm {}", px_per_mm);
+  return c;
+}
+
+}  // namespace tactile::capture

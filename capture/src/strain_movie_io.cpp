@@ -1,0 +1,341 @@
+#include "tactile/capture/strain_movie_io.hpp"
+
+#include <algorithm>
+#include <set>
+#include <type_traits>
+#include <unordered_set>
+
+#include <fmt/format.h>
+
+#include "tactile/common/csv.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/common/h5.hpp"
+
+namespace tactile::capture {
+
+namespace {
+
+using Dims = std::vector<hsize_t>;
+
+hsize_t h(std::size_t n) {
+  return static_cast<hsize_t>(n);
+}
+
+void write_points(H5::Group& g, const std::string& prefix, const std::vector<TrackedPoint>& pts,
+                  bool with_identity) {
+  std::vector<std::int32_t> ids, frames, types;
+  std::vector<double> px, mm;
+  for (const auto& p : pts) {
+    ids.push_back(p.track_id);
+    frames.push_back(p.frame);
+    types.push_back(static_cast<std::int32_t>(p.type));
+    px.insert(px.end(), {p.x_px, p.y_px});
+    mm.insert(mm.end(), {p.x_mm, p.y_mm});
+  }
+  if (with_identity) {
+    h5::write_dataset(g, prefix + "track_id", ids, {h(pts.size())});
+    h5::write_dataset(g, prefix + "type", types, {h(pts.size())});
+  }
+  if (prefix.empty()) h5::write_dataset(g, "frame", frames, {h(pts.size())});
+  h5::write_dataset(g, prefix + "position_px", px, {h(pts.size()), 2});
+  h5::write_dataset(g, prefix + "position_mm", mm, {h(pts.size()), 2});
+}
+
+}  // namespace
+
+void write_strain_movie(const std::filesystem::path& path, const StrainMovie& movie) {
+  h5::write_file_atomically(path, [&](H5::H5File& file) {
+    H5::Group root = file.openGroup("/");
+    h5::write_attr(root, "format", kStrainMovieFormat);
+    h5::write_attr(root, "format_version", std::int64_t{kStrainMovieFormatVersion});
+    h5::write_attr(root, "frame_rate_hz", movie.frame_rate_hz);
+    h5::write_attr(root, "span_frames", std::int64_t{movie.span_frames});
+    h5::write_attr(root, "camera_frame_count", std::int64_t{movie.camera_frame_count});
+    h5::write_attr(root, "field_width_mm", movie.field_width_mm);
+    h5::write_attr(root, "field_height_mm", movie.field_height_mm);
+    h5::write_attr(root, "units", "position: mm (and px); time: s; rel_change: dimensionless");
+    h5::write_attr(root, "feature_types", "0=pore,1=ending,2=bifurcation");
+    h5::write_attr(root, "source", movie.source);
+    h5::write_attr(root, "program_version", movie.program_version);
+    h5::write_attr(root, "created_utc", h5::utc_now_iso8601());
+
+    H5::Group cal = file.createGroup("/calibration");
+    const Calibration& c = movie.calibration;
+    h5::write_dataset(cal, "px_to_mm", std::vector<double>(c.px_to_mm.begin(), c.px_to_mm.end()),
+                      {3, 3});
+    h5::write_attr(cal, "mm_per_px", c.mm_per_px);
+    h5::write_attr(cal, "image_width_px", std::int64_t{c.image_width_px});
+    h5::write_attr(cal, "image_height_px", std::int64_t{c.image_height_px});
+    h5::write_attr(cal, "method", c.method);
+
+    H5::Group tracks = file.createGroup("/tracks");
+    write_points(tracks, "", movie.tracks, true);
+
+    H5::Group frames = file.createGroup("/frames");
+    std::vector<std::int32_t> from, to, point_off{0}, edge_off{0}, tri_off{0};
+    std::vector<double> t_s;
+    std::vector<TrackedPoint> pf, pt;
+    std::vector<std::int32_t> edge_tracks, tri_points;
+    std::vector<double> edge_lengths, edge_rel;
+    for (const auto& f : movie.frames) {
+      if (f.points_from.size() != f.points_to.size()) {
+        throw std::invalid_argument(
+            fmt::format("strain frame {}->{}: {} points_from but {} points_to", f.frame_from,
+                        f.frame_to, f.points_from.size(), f.points_to.size()));
+      }
+      from.push_back(f.frame_from);
+      to.push_back(f.frame_to);
+      t_s.push_back(f.t_s);
+      pf.insert(pf.end(), f.points_from.begin(), f.points_from.end());
+      pt.insert(pt.end(), f.points_to.begin(), f.points_to.end());
+      for (const auto& e : f.edges) {
+        edge_tracks.insert(edge_tracks.end(), {e.track_a, e.track_b});
+        edge_lengths.insert(edge_lengths.end(), {e.length_from_mm, e.length_to_mm});
+        edge_rel.push_back(e.rel_change);
+      }
+      for (const auto& t : f.triangles) {
+        tri_points.insert(tri_points.end(), t.point_index.begin(), t.point_index.end());
+      }
+      point_off.push_back(static_cast<std::int32_t>(pf.size()));
+      edge_off.push_back(static_cast<std::int32_t>(edge_rel.size()));
+      tri_off.push_back(static_cast<std::int32_t>(tri_points.size() / 3));
+    }
+    const hsize_t nf = h(movie.frames.size());
+    h5::write_dataset(frames, "frame_from", from, {nf});
+    h5::write_dataset(frames, "frame_to", to, {nf});
+    h5::write_dataset(frames, "t_s", t_s, {nf});
+    h5::write_dataset(frames, "point_offset", point_off, {nf + 1});
+    h5::write_dataset(frames, "edge_offset", edge_off, {nf + 1});
+    h5::write_dataset(frames, "triangle_offset", tri_off, {nf + 1});
+    write_points(frames, "point_", pf, true);
+    std::vector<double> to_px, to_mm_v;
+    for (const auto& p : pt) {
+      to_px.insert(to_px.end(), {p.x_px, p.y_px});
+      to_mm_v.insert(to_mm_v.end(), {p.x_mm, p.y_mm});
+    }
+    h5::write_dataset(frames, "point_to_position_px", to_px, {h(pt.size()), 2});
+    h5::write_dataset(frames, "point_to_position_mm", to_mm_v, {h(pt.size()), 2});
+    h5::write_dataset(frames, "edge_tracks", edge_tracks, {h(edge_rel.size()), 2});
+    h5::write_dataset(frames, "edge_length_mm", edge_lengths, {h(edge_rel.size()), 2});
+    h5::write_dataset(frames, "edge_rel_change", edge_rel, {h(edge_rel.size())});
+    h5::write_dataset(frames, "triangle_points", tri_points, {h(tri_points.size() / 3), 3});
+  });
+}
+
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(const std::filesystem::path& path) : name_(path.string()) {}
+
+  [[noreturn]] void fail(const std::string& object, const std::string& what) const {
+    throw FormatError(fmt::format("{}:{}: {}", name_, object, what));
+  }
+  std::string where(const std::string& object) const { return name_ + ":" + object; }
+
+  // Reads a dataset of `rows` x `cols` (cols = 0 for a vector); rows = -1 accepts any.
+  template <typename T>
+  std::vector<T> read(const H5::Group& g, const std::string& group_name, const std::string& name,
+                      long long rows, hsize_t cols) {
+    Dims dims;
+    const std::size_t rank = cols == 0 ? 1 : 2;
+    const std::string obj = group_name + "/" + name;
+    std::vector<T> data;
+    if constexpr (std::is_same_v<T, double>) {
+      data = h5::read_doubles(g, name, rank, dims, where(obj));
+    } else {
+      data = h5::read_ints(g, name, rank, dims, where(obj));
+    }
+    if (rows >= 0 && dims[0] != static_cast<hsize_t>(rows)) {
+      fail(obj, fmt::format("has {} rows, expected {}", dims[0], rows));
+    }
+    if (cols != 0 && dims[1] != cols)
+      fail(obj, fmt::format("has {} columns, expected {}", dims[1], cols));
+    return data;
+  }
+
+ private:
+  std::string name_;
+};
+
+FeatureType type_from(std::int32_t v, const Reader& r, const std::string& obj, std::size_t i) {
+  if (v < 0 || v > 2) r.fail(obj, fmt::format("entry {} is type {}, expected 0, 1 or 2", i, v));
+  return static_cast<FeatureType>(v);
+}
+
+std::vector<std::int32_t> checked_offsets(Reader& r, const H5::Group& g, const std::string& name,
+                                          std::size_t frames, std::size_t total) {
+  auto off = r.read<std::int32_t>(g, "/frames", name, static_cast<long long>(frames + 1), 0);
+  if (off.front() != 0) r.fail("/frames/" + name, "does not start at 0");
+  for (std::size_t i = 1; i < off.size(); ++i) {
+    if (off[i] < off[i - 1]) r.fail("/frames/" + name, fmt::format("decreases at entry {}", i));
+  }
+  if (static_cast<std::size_t>(off.back()) != total) {
+    r.fail("/frames/" + name,
+           fmt::format("ends at {} but the data it indexes has {} entries", off.back(), total));
+  }
+  return off;
+}
+
+}  // namespace
+
+StrainMovie read_strain_movie(const std::filesystem::path& path) {
+  Reader r(path);
+  H5::H5File file = h5::open_for_reading(path);
+  H5::Group root = h5::open_group(file, "/", r.where("/"));
+  const std::string format = h5::read_attr_string(root, "format", r.where("/"));
+  if (format != kStrainMovieFormat) {
+    r.fail("/", fmt::format("format is '{}', expected '{}'", format, kStrainMovieFormat));
+  }
+  const auto version = h5::read_attr_int(root, "format_version", r.where("/"));
+  if (version != kStrainMovieFormatVersion) {
+    r.fail("/", fmt::format("format_version {} is not supported (this program reads {})", version,
+                            kStrainMovieFormatVersion));
+  }
+  StrainMovie m;
+  m.frame_rate_hz = h5::read_attr_double(root, "frame_rate_hz", r.where("/"));
+  if (!(m.frame_rate_hz > 0)) r.fail("/", "frame_rate_hz must be > 0");
+  const auto span = h5::read_attr_int(root, "span_frames", r.where("/"));
+  if (span < 1 || span > 1000000) r.fail("/", fmt::format("span_frames {} out of range", span));
+  m.span_frames = static_cast<std::int32_t>(span);
+  const auto count = h5::read_attr_int(root, "camera_frame_count", r.where("/"));
+  if (count < 0 || count > 100000000) {
+    r.fail("/", fmt::format("camera_frame_count {} out of range", count));
+  }
+  m.camera_frame_count = static_cast<std::int32_t>(count);
+  m.field_width_mm = h5::read_attr_double(root, "field_width_mm", r.where("/"));
+  m.field_height_mm = h5::read_attr_double(root, "field_height_mm", r.where("/"));
+  m.source = h5::read_attr_string(root, "source", r.where("/"));
+  m.program_version = h5::read_attr_string(root, "program_version", r.where("/"));
+
+  H5::Group cal = h5::open_group(root, "calibration", r.where("/calibration"));
+  const auto hm = r.read<double>(cal, "/calibration", "px_to_mm", 3, 3);
+  std::copy(hm.begin(), hm.end(), m.calibration.px_to_mm.begin());
+  m.calibration.mm_per_px = h5::read_attr_double(cal, "mm_per_px", r.where("/calibration"));
+  m.calibration.image_width_px =
+      static_cast<int>(h5::read_attr_int(cal, "image_width_px", r.where("/calibration")));
+  m.calibration.image_height_px =
+      static_cast<int>(h5::read_attr_int(cal, "image_height_px", r.where("/calibration")));
+  m.calibration.method = h5::read_attr_string(cal, "method", r.where("/calibration"));
+
+  H5::Group tg = h5::open_group(root, "tracks", r.where("/tracks"));
+  const auto ids = r.read<std::int32_t>(tg, "/tracks", "track_id", -1, 0);
+  const auto n = static_cast<long long>(ids.size());
+  const auto tframes = r.read<std::int32_t>(tg, "/tracks", "frame", n, 0);
+  const auto ttypes = r.read<std::int32_t>(tg, "/tracks", "type", n, 0);
+  const auto tpx = r.read<double>(tg, "/tracks", "position_px", n, 2);
+  const auto tmm = r.read<double>(tg, "/tracks", "position_mm", n, 2);
+  std::unordered_set<std::int32_t> known_tracks;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (tframes[i] < 0 || tframes[i] >= m.camera_frame_count) {
+      r.fail("/tracks/frame", fmt::format("entry {} is frame {}, outside 0..{}", i, tframes[i],
+                                          m.camera_frame_count - 1));
+    }
+    m.tracks.push_back({ids[i], tframes[i], type_from(ttypes[i], r, "/tracks/type", i), tpx[2 * i],
+                        tpx[2 * i + 1], tmm[2 * i], tmm[2 * i + 1]});
+    known_tracks.insert(ids[i]);
+  }
+
+  H5::Group fg = h5::open_group(root, "frames", r.where("/frames"));
+  const auto from = r.read<std::int32_t>(fg, "/frames", "frame_from", -1, 0);
+  const auto nf = static_cast<long long>(from.size());
+  const auto to = r.read<std::int32_t>(fg, "/frames", "frame_to", nf, 0);
+  const auto t_s = r.read<double>(fg, "/frames", "t_s", nf, 0);
+  const auto pid = r.read<std::int32_t>(fg, "/frames", "point_track_id", -1, 0);
+  const auto np = static_cast<long long>(pid.size());
+  const auto ptype = r.read<std::int32_t>(fg, "/frames", "point_type", np, 0);
+  const auto pfpx = r.read<double>(fg, "/frames", "point_position_px", np, 2);
+  const auto pfmm = r.read<double>(fg, "/frames", "point_position_mm", np, 2);
+  const auto ptpx = r.read<double>(fg, "/frames", "point_to_position_px", np, 2);
+  const auto ptmm = r.read<double>(fg, "/frames", "point_to_position_mm", np, 2);
+  const auto erel = r.read<double>(fg, "/frames", "edge_rel_change", -1, 0);
+  const auto ne = static_cast<long long>(erel.size());
+  const auto etracks = r.read<std::int32_t>(fg, "/frames", "edge_tracks", ne, 2);
+  const auto elen = r.read<double>(fg, "/frames", "edge_length_mm", ne, 2);
+  const auto tri = r.read<std::int32_t>(fg, "/frames", "triangle_points", -1, 3);
+  const auto poff = checked_offsets(r, fg, "point_offset", from.size(), pid.size());
+  const auto eoff = checked_offsets(r, fg, "edge_offset", from.size(), erel.size());
+  const auto toff = checked_offsets(r, fg, "triangle_offset", from.size(), tri.size() / 3);
+
+  for (std::size_t f = 0; f < from.size(); ++f) {
+    StrainFrame sf;
+    sf.frame_from = from[f];
+    sf.frame_to = to[f];
+    sf.t_s = t_s[f];
+    if (sf.frame_to - sf.frame_from != m.span_frames) {
+      r.fail("/frames", fmt::format("strain frame {} goes from frame {} to {}, but span_frames is "
+                                    "{}",
+                                    f, sf.frame_from, sf.frame_to, m.span_frames));
+    }
+    std::set<std::int32_t> in_frame;
+    for (auto i = static_cast<std::size_t>(poff[f]); i < static_cast<std::size_t>(poff[f + 1]);
+         ++i) {
+      if (!known_tracks.count(pid[i])) {
+        r.fail("/frames/point_track_id",
+               fmt::format("point {} of strain frame {} names track {}, which is not in /tracks", i,
+                           f, pid[i]));
+      }
+      const FeatureType type = type_from(ptype[i], r, "/frames/point_type", i);
+      sf.points_from.push_back({pid[i], sf.frame_from, type, pfpx[2 * i], pfpx[2 * i + 1],
+                                pfmm[2 * i], pfmm[2 * i + 1]});
+      sf.points_to.push_back(
+          {pid[i], sf.frame_to, type, ptpx[2 * i], ptpx[2 * i + 1], ptmm[2 * i], ptmm[2 * i + 1]});
+      in_frame.insert(pid[i]);
+    }
+    for (auto i = static_cast<std::size_t>(eoff[f]); i < static_cast<std::size_t>(eoff[f + 1]);
+         ++i) {
+      const std::int32_t a = etracks[2 * i];
+      const std::int32_t b = etracks[2 * i + 1];
+      for (std::int32_t t : {a, b}) {
+        if (!known_tracks.count(t)) {
+          r.fail("/frames/edge_tracks",
+                 fmt::format("edge {} names track {}, which does not exist in /tracks", i, t));
+        }
+        if (!in_frame.count(t)) {
+          r.fail("/frames/edge_tracks",
+                 fmt::format("edge {} names track {}, which is not a point of strain frame {}", i,
+                             t, f));
+        }
+      }
+      sf.edges.push_back({a, b, elen[2 * i], elen[2 * i + 1], erel[i]});
+    }
+    const auto npts = static_cast<std::int32_t>(sf.points_from.size());
+    for (auto i = static_cast<std::size_t>(toff[f]); i < static_cast<std::size_t>(toff[f + 1]);
+         ++i) {
+      StrainTriangle t{{tri[3 * i], tri[3 * i + 1], tri[3 * i + 2]}};
+      for (std::int32_t k : t.point_index) {
+        if (k < 0 || k >= npts) {
+          r.fail("/frames/triangle_points",
+                 fmt::format("triangle {} uses point {}, but strain frame {} has {} points", i, k,
+                             f, npts));
+        }
+      }
+      sf.triangles.push_back(t);
+    }
+    m.frames.push_back(std::move(sf));
+  }
+  return m;
+}
+
+void export_strain_csv(const std::filesystem::path& dir, const StrainMovie& movie) {
+  std::filesystem::create_directories(dir);
+  const auto tracks_path = dir / "tracks.csv";
+  auto t = csv::open_with_header(tracks_path, "track_id,frame,type,x_px,y_px,x_mm,y_mm");
+  for (const auto& p : movie.tracks) {
+    t << fmt::format("{},{},{},{:.4f},{:.4f},{:.6f},{:.6f}\n", p.track_id, p.frame,
+                     feature_type_name(p.type), p.x_px, p.y_px, p.x_mm, p.y_mm);
+  }
+  csv::finish(t, tracks_path);
+  const auto edges_path = dir / "edges.csv";
+  auto e = csv::open_with_header(
+      edges_path, "frame_from,frame_to,track_a,track_b,length_from_mm,length_to_mm,rel_change");
+  for (const auto& f : movie.frames) {
+    for (const auto& edge : f.edges) {
+      e << fmt::format("{},{},{},{},{:.6f},{:.6f},{:.7f}\n", f.frame_from, f.frame_to, edge.track_a,
+                       edge.track_b, edge.length_from_mm, edge.length_to_mm, edge.rel_change);
+    }
+  }
+  csv::finish(e, edges_path);
+}
+
+}  // namespace tactile::capture

@@ -1,0 +1,168 @@
+#include "tactile/capture/track.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+namespace tactile::capture {
+
+namespace {
+
+struct Active {
+  std::size_t track;  // index into `all`
+  PointMm last_mm;
+  PointMm velocity_mm;  // per frame
+  int last_frame;
+  double orientation;
+  bool has_velocity;
+};
+
+struct Candidate {
+  double confidence;
+  std::size_t active;
+  std::size_t feature;
+};
+
+// Least-squares quadratic through the positions within +-h frames, evaluated at the centre; it
+// keeps constant-acceleration motion unbiased while averaging localisation noise.
+std::vector<double> smooth(const std::vector<double>& v, int h) {
+  if (h <= 0 || v.size() < 3) return v;
+  const int n = static_cast<int>(v.size());
+  std::vector<double> out(v.size());
+  for (int i = 0; i < n; ++i) {
+    const int lo = std::max(0, i - h);
+    const int hi = std::min(n - 1, i + h);
+    Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+    for (int k = lo; k <= hi; ++k) {
+      const double t = k - i;
+      const Eigen::Vector3d a(1, t, t * t);
+      ata += a * a.transpose();
+      atb += a * v[static_cast<std::size_t>(k)];
+    }
+    const int count = hi - lo + 1;
+    if (count < 3) {
+      out[static_cast<std::size_t>(i)] = atb[0] / count;
+    } else {
+      out[static_cast<std::size_t>(i)] = ata.ldlt().solve(atb)[0];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
+                                  const Calibration& calibration, const TrackParams& params) {
+  if (!(params.match_radius_mm > 0)) throw std::invalid_argument("match_radius_mm must be > 0");
+  if (params.min_track_frames < 2) throw std::invalid_argument("min_track_frames must be >= 2");
+  if (params.max_gap_frames < 0) throw std::invalid_argument("max_gap_frames must be >= 0");
+
+  std::vector<Track> all;
+  std::vector<Active> active;
+  PointMm global_velocity{0, 0};  // median motion of the last matched frame: seeds new tracks
+  const double radius = params.match_radius_mm;
+
+  auto start_track = [&](const Feature& f, int frame) {
+    Track t;
+    t.type = f.type;
+    t.first_frame = frame;
+    t.x_px.push_back(f.x_px);
+    t.y_px.push_back(f.y_px);
+    all.push_back(std::move(t));
+    active.push_back({all.size() - 1,
+                      to_mm(calibration, f.x_px, f.y_px),
+                      {0, 0},
+                      frame,
+                      f.orientation_rad,
+                      false});
+  };
+
+  for (int frame = 0; frame < static_cast<int>(features_per_frame.size()); ++frame) {
+    const auto& feats = features_per_frame[static_cast<std::size_t>(frame)];
+    std::vector<PointMm> feat_mm;
+    feat_mm.reserve(feats.size());
+    for (const auto& f : feats) feat_mm.push_back(to_mm(calibration, f.x_px, f.y_px));
+
+    std::vector<Candidate> candidates;
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      const Active& act = active[a];
+      const Track& t = all[act.track];
+      const int steps = frame - act.last_frame;
+      const PointMm v = act.has_velocity ? act.velocity_mm : global_velocity;
+      const PointMm pred{act.last_mm.x_mm + v.x_mm * steps, act.last_mm.y_mm + v.y_mm * steps};
+      for (std::size_t k = 0; k < feats.size(); ++k) {
+        if (feats[k].type != t.type) continue;
+        const double d = std::hypot(feat_mm[k].x_mm - pred.x_mm, feat_mm[k].y_mm - pred.y_mm);
+        if (d >= radius) continue;
+        double confidence = 1 - d / radius;
+        if (t.type == FeatureType::ending) {
+          confidence *= 0.5 * (1 + std::cos(feats[k].orientation_rad - act.orientation));
+        }
+        if (confidence > 0) candidates.push_back({confidence, a, k});
+      }
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& l, const Candidate& r) { return l.confidence > r.confidence; });
+    std::vector<char> active_used(active.size(), 0);
+    std::vector<char> feature_used(feats.size(), 0);
+    std::vector<double> vx, vy;
+    for (const auto& c : candidates) {
+      if (active_used[c.active] || feature_used[c.feature]) continue;
+      active_used[c.active] = feature_used[c.feature] = 1;
+      Active& act = active[c.active];
+      Track& t = all[act.track];
+      const int steps = frame - act.last_frame;
+      const Feature& f = feats[c.feature];
+      // Missed frames in between: linear interpolation.
+      const double x0 = t.x_px.back();
+      const double y0 = t.y_px.back();
+      for (int s = 1; s < steps; ++s) {
+        t.x_px.push_back(x0 + (f.x_px - x0) * s / steps);
+        t.y_px.push_back(y0 + (f.y_px - y0) * s / steps);
+      }
+      t.x_px.push_back(f.x_px);
+      t.y_px.push_back(f.y_px);
+      const PointMm now = feat_mm[c.feature];
+      act.velocity_mm = {(now.x_mm - act.last_mm.x_mm) / steps,
+                         (now.y_mm - act.last_mm.y_mm) / steps};
+      act.has_velocity = true;
+      act.last_mm = now;
+      act.last_frame = frame;
+      act.orientation = f.orientation_rad;
+      vx.push_back(act.velocity_mm.x_mm);
+      vy.push_back(act.velocity_mm.y_mm);
+    }
+    if (!vx.empty()) {
+      std::nth_element(vx.begin(), vx.begin() + static_cast<long>(vx.size() / 2), vx.end());
+      std::nth_element(vy.begin(), vy.begin() + static_cast<long>(vy.size() / 2), vy.end());
+      global_velocity = {vx[vx.size() / 2], vy[vy.size() / 2]};
+    }
+    // Retire tracks missed for too long, then start tracks for unmatched features.
+    std::vector<Active> kept;
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      if (frame - active[a].last_frame <= params.max_gap_frames) kept.push_back(active[a]);
+    }
+    active = std::move(kept);
+    for (std::size_t k = 0; k < feats.size(); ++k) {
+      if (!feature_used[k]) start_track(feats[k], frame);
+    }
+  }
+
+  std::vector<Track> result;
+  for (auto& t : all) {
+    if (static_cast<int>(t.x_px.size()) < params.min_track_frames) continue;
+    t.x_px = smooth(t.x_px, params.smoothing_half_window);
+    t.y_px = smooth(t.y_px, params.smoothing_half_window);
+    result.push_back(std::move(t));
+  }
+  std::stable_sort(result.begin(), result.end(),
+                   [](const Track& a, const Track& b) { return a.first_frame < b.first_frame; });
+  for (std::size_t i = 0; i < result.size(); ++i) result[i].id = static_cast<std::int32_t>(i);
+  return result;
+}
+
+}  // namespace tactile::capture
