@@ -1,0 +1,38 @@
+#pragma once
+// Numbers that describe a tactile movie at a glance (printed by `tactile play` when headless).
+
+#include <string>
+#include <vector>
+
+#include "tactile/display/tactile_movie.hpp"
+
+namespace tactile::display {
+
+struct MovieSummary {
+  std::string layout_name;
+  std::int32_t rows = 0;
+  std::int32_t cols = 0;
+  double rate_hz = 0;
+  std::int32_t frame_count = 0;
+  double duration_s = 0;
+  double peak_deflection_um = 0;  // largest |deflection| of any contactor in any frame
+  double rms_deflection_um = 0;   // over all contactors and frames
+  double peak_frame_rms_um = 0;   // largest per-frame RMS, and when it occurs
+  double peak_frame_t_s = 0;
+  // Fraction of samples at or beyond the layout's deflection limits (within 0.05 um, half a
+  // wire unit): how much the mapping leaned on the clamp.
+  double saturated_fraction = 0;
+  double activity_window_s = 0.1;
+  std::vector<double> activity_rms_um;  // RMS deflection per consecutive 0.1 s window
+};
+
+// RMS deflection over the contactors of each frame.
+std::vector<double> frame_rms_um(const TactileMovie& movie);
+
+// Throws std::invalid_argument for an invalid movie (see validate()).
+MovieSummary summarize(const TactileMovie& movie);
+
+// Several lines of human-readable text, ending in a newline.
+std::string format_summary(const MovieSummary& summary);
+
+}  // namespace tactile::display
