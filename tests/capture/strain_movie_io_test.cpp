@@ -1,0 +1,223 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/common/h5.hpp"
+#include "test_util.hpp"
+
+namespace tactile::capture {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TempDir;
+
+StrainMovie sample_movie() {
+  StrainMovie m;
+  m.frame_rate_hz = 60;
+  m.span_frames = 2;
+  m.camera_frame_count = 5;
+  m.field_width_mm = 10.3;
+  m.field_height_mm = 10.9;
+  m.calibration = uniform_calibration(62.5, 640, 484);
+  m.calibration.px_to_mm[6] = 1e-6;  // a perspective term must survive too
+  m.source = "unit test";
+  m.program_version = "0.1.0-test";
+  for (std::int32_t id = 0; id < 4; ++id) {
+    for (std::int32_t f = 0; f < 5; ++f) {
+      m.tracks.push_back({id, f, id == 3 ? FeatureType::bifurcation : FeatureType::pore,
+                          10.0 * id + f, 5.0 * id, 0.16 * id + 0.01 * f, 0.08 * id});
+    }
+  }
+  for (std::int32_t f = 0; f + 2 < 5; ++f) {
+    StrainFrame sf;
+    sf.frame_from = f;
+    sf.frame_to = f + 2;
+    sf.t_s = (f + 2) / 60.0;
+    for (std::int32_t id = 0; id < (f == 1 ? 3 : 4); ++id) {
+      const auto& a = m.tracks[static_cast<std::size_t>(id * 5 + f)];
+      const auto& b = m.tracks[static_cast<std::size_t>(id * 5 + f + 2)];
+      sf.points_from.push_back(a);
+      sf.points_to.push_back(b);
+    }
+    sf.edges.push_back({0, 1, 0.2, 0.21, 0.05});
+    sf.edges.push_back({1, 2, 0.3, 0.27, -0.1});
+    sf.triangles.push_back({{0, 1, 2}});
+    m.frames.push_back(sf);
+  }
+  return m;
+}
+
+void expect_same_point(const TrackedPoint& a, const TrackedPoint& b) {
+  EXPECT_EQ(a.track_id, b.track_id);
+  EXPECT_EQ(a.frame, b.frame);
+  EXPECT_EQ(a.type, b.type);
+  EXPECT_EQ(a.x_px, b.x_px);
+  EXPECT_EQ(a.y_px, b.y_px);
+  EXPECT_EQ(a.x_mm, b.x_mm);
+  EXPECT_EQ(a.y_mm, b.y_mm);
+}
+
+TEST(StrainMovieIo, RoundTripKeepsEveryValue) {
+  TempDir dir;
+  const StrainMovie m = sample_movie();
+  write_strain_movie(dir.path() / "m.h5", m);
+  const StrainMovie r = read_strain_movie(dir.path() / "m.h5");
+  EXPECT_EQ(r.frame_rate_hz, m.frame_rate_hz);
+  EXPECT_EQ(r.span_frames, m.span_frames);
+  EXPECT_EQ(r.camera_frame_count, m.camera_frame_count);
+  EXPECT_EQ(r.field_width_mm, m.field_width_mm);
+  EXPECT_EQ(r.field_height_mm, m.field_height_mm);
+  EXPECT_EQ(r.calibration.px_to_mm, m.calibration.px_to_mm);
+  EXPECT_EQ(r.calibration.mm_per_px, m.calibration.mm_per_px);
+  EXPECT_EQ(r.calibration.image_width_px, 640);
+  EXPECT_EQ(r.calibration.method, m.calibration.method);
+  EXPECT_EQ(r.source, m.source);
+  EXPECT_EQ(r.program_version, m.program_version);
+  ASSERT_EQ(r.tracks.size(), m.tracks.size());
+  for (std::size_t i = 0; i < m.tracks.size(); ++i) expect_same_point(r.tracks[i], m.tracks[i]);
+  ASSERT_EQ(r.frames.size(), m.frames.size());
+  for (std::size_t f = 0; f < m.frames.size(); ++f) {
+    const auto& a = r.frames[f];
+    const auto& b = m.frames[f];
+    EXPECT_EQ(a.frame_from, b.frame_from);
+    EXPECT_EQ(a.frame_to, b.frame_to);
+    EXPECT_EQ(a.t_s, b.t_s);
+    ASSERT_EQ(a.points_from.size(), b.points_from.size());
+    for (std::size_t i = 0; i < a.points_from.size(); ++i) {
+      expect_same_point(a.points_from[i], b.points_from[i]);
+      expect_same_point(a.points_to[i], b.points_to[i]);
+    }
+    ASSERT_EQ(a.edges.size(), b.edges.size());
+    for (std::size_t i = 0; i < a.edges.size(); ++i) {
+      EXPECT_EQ(a.edges[i].track_a, b.edges[i].track_a);
+      EXPECT_EQ(a.edges[i].track_b, b.edges[i].track_b);
+      EXPECT_EQ(a.edges[i].length_from_mm, b.edges[i].length_from_mm);
+      EXPECT_EQ(a.edges[i].length_to_mm, b.edges[i].length_to_mm);
+      EXPECT_EQ(a.edges[i].rel_change, b.edges[i].rel_change);
+    }
+    ASSERT_EQ(a.triangles.size(), b.triangles.size());
+    EXPECT_EQ(a.triangles[0].point_index, b.triangles[0].point_index);
+  }
+}
+
+TEST(StrainMovieIo, EmptyMovieRoundTrips) {
+  TempDir dir;
+  StrainMovie m;
+  m.calibration = uniform_calibration(50, 64, 48);
+  write_strain_movie(dir.path() / "e.h5", m);
+  const StrainMovie r = read_strain_movie(dir.path() / "e.h5");
+  EXPECT_TRUE(r.tracks.empty());
+  EXPECT_TRUE(r.frames.empty());
+}
+
+TEST(StrainMovieIo, CsvExportHasTheDocumentedHeaders) {
+  TempDir dir;
+  export_strain_csv(dir.path() / "csv", sample_movie());
+  std::ifstream t(dir.path() / "csv" / "tracks.csv");
+  std::string line;
+  std::getline(t, line);
+  EXPECT_EQ(line, "track_id,frame,type,x_px,y_px,x_mm,y_mm");
+  std::getline(t, line);
+  EXPECT_EQ(line, "0,0,pore,0.0000,0.0000,0.000000,0.000000");
+  std::ifstream e(dir.path() / "csv" / "edges.csv");
+  std::getline(e, line);
+  EXPECT_EQ(line, "frame_from,frame_to,track_a,track_b,length_from_mm,length_to_mm,rel_change");
+  std::getline(e, line);
+  EXPECT_EQ(line, "0,2,0,1,0.200000,0.210000,0.0500000");
+  int rows = 1;
+  for (; std::getline(e, line);) ++rows;
+  EXPECT_EQ(rows, 6);
+}
+
+std::string read_error(const std::filesystem::path& p) {
+  try {
+    read_strain_movie(p);
+  } catch (const FormatError& e) {
+    return e.what();
+  }
+  return "no FormatError";
+}
+
+TEST(StrainMovieIo, MissingEmptyTruncatedAndTextFilesAreFormatErrors) {
+  TempDir dir;
+  EXPECT_THAT(read_error(dir.path() / "absent.h5"), HasSubstr("absent.h5"));
+  std::ofstream(dir.path() / "empty.h5").close();
+  EXPECT_THAT(read_error(dir.path() / "empty.h5"), HasSubstr("empty.h5"));
+  std::ofstream(dir.path() / "text.h5") << "frame,x\n1,2\n";
+  EXPECT_THAT(read_error(dir.path() / "text.h5"), HasSubstr("text.h5"));
+  write_strain_movie(dir.path() / "full.h5", sample_movie());
+  const auto size = std::filesystem::file_size(dir.path() / "full.h5");
+  std::filesystem::copy_file(dir.path() / "full.h5", dir.path() / "cut.h5");
+  std::filesystem::resize_file(dir.path() / "cut.h5", size / 2);
+  EXPECT_THAT(read_error(dir.path() / "cut.h5"), HasSubstr("cut.h5"));
+}
+
+// Rewrites one dataset of a valid file, then expects the reader to name the problem.
+class Tampered : public ::testing::Test {
+ protected:
+  void SetUp() override { write_strain_movie(path(), sample_movie()); }
+  std::filesystem::path path() const { return dir_.path() / "m.h5"; }
+  template <typename T>
+  void replace(const std::string& group, const std::string& name, const std::vector<T>& data,
+               const std::vector<hsize_t>& dims) {
+    H5::H5File f(path().string(), H5F_ACC_RDWR);
+    H5::Group g = f.openGroup(group);
+    g.unlink(name);
+    h5::write_dataset(g, name, data, dims);
+  }
+  TempDir dir_;
+};
+
+TEST_F(Tampered, OtherFormatIsNamed) {
+  {
+    H5::H5File f(path().string(), H5F_ACC_RDWR);
+    H5::Group root = f.openGroup("/");
+    root.removeAttr("format");
+    h5::write_attr(root, "format", "tactile-movie");
+  }
+  EXPECT_THAT(read_error(path()), HasSubstr("format is 'tactile-movie'"));
+}
+
+TEST_F(Tampered, MissingGroupIsNamed) {
+  {
+    H5::H5File f(path().string(), H5F_ACC_RDWR);
+    f.unlink("/tracks");
+  }
+  EXPECT_THAT(read_error(path()), HasSubstr("tracks"));
+}
+
+TEST_F(Tampered, FloatWhereIntegersBelongIsNamed) {
+  replace<double>("/frames", "frame_from", {0, 1, 2}, {3});
+  EXPECT_THAT(read_error(path()), HasSubstr("frame_from"));
+}
+
+TEST_F(Tampered, WrongRankIsNamed) {
+  replace<double>("/tracks", "position_mm", std::vector<double>(40, 0.0), {40});
+  EXPECT_THAT(read_error(path()), HasSubstr("position_mm"));
+}
+
+TEST_F(Tampered, InconsistentLengthIsNamed) {
+  replace<std::int32_t>("/tracks", "frame", std::vector<std::int32_t>(19, 0), {19});
+  EXPECT_THAT(read_error(path()), HasSubstr("/tracks/frame: has 19 rows, expected 20"));
+}
+
+TEST_F(Tampered, EdgeNamingAMissingTrackIsNamed) {
+  replace<std::int32_t>("/frames", "edge_tracks", {0, 1, 1, 2, 0, 1, 1, 2, 0, 1, 1, 77}, {6, 2});
+  EXPECT_THAT(read_error(path()), HasSubstr("edge 5 names track 77, which does not exist"));
+}
+
+TEST_F(Tampered, BadOffsetsAreNamed) {
+  replace<std::int32_t>("/frames", "edge_offset", {0, 2, 1, 6}, {4});
+  EXPECT_THAT(read_error(path()), HasSubstr("edge_offset: decreases"));
+}
+
+TEST_F(Tampered, TriangleOutsideItsFrameIsNamed) {
+  replace<std::int32_t>("/frames", "triangle_points", {0, 1, 2, 0, 1, 3, 0, 1, 2}, {3, 3});
+  EXPECT_THAT(read_error(path()), HasSubstr("triangle 1 uses point 3"));
+}
+
+}  // namespace
+}  // namespace tactile::capture
