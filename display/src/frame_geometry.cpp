@@ -58,6 +58,21 @@ std::vector<ContactorShape> frame_shapes(const Layout& layout, std::span<const f
   return shapes;
 }
 
+ViewTransform fit_view(const Layout& l, double magnification, int width_px, int height_px) {
+  const double reach_mm = magnification *
+                          std::max(std::abs(l.deflection_min_um), std::abs(l.deflection_max_um)) /
+                          1000.0;
+  const double w_mm = (l.cols - 1) * l.pitch_x_mm + l.contactor_width_mm +
+                      (l.axis == DeflectionAxis::x ? 2 * reach_mm : 0);
+  const double h_mm = (l.rows - 1) * l.pitch_y_mm + l.contactor_height_mm +
+                      (l.axis == DeflectionAxis::y ? 2 * reach_mm : 0);
+  ViewTransform t;
+  t.px_per_mm = 0.88 * std::min(width_px / w_mm, height_px / h_mm);
+  t.origin_x_px = (width_px - (l.cols - 1) * l.pitch_x_mm * t.px_per_mm) / 2;
+  t.origin_y_px = (height_px - (l.rows - 1) * l.pitch_y_mm * t.px_per_mm) / 2;
+  return t;
+}
+
 std::array<std::uint8_t, 3> strain_colour(double strain, double full_scale) {
   const double t = full_scale > 0 ? std::clamp(strain / full_scale, -1.0, 1.0) : 0.0;
   // White fades to saturated red (stretch) or blue (compression).

@@ -31,34 +31,12 @@ void text(cv::Mat& img, const std::string& s, cv::Point at, double scale = 0.4,
   cv::putText(img, s, at, kFont, scale, colour, 1, cv::LINE_AA);
 }
 
-// Maps the array (plus the largest displacement) into a square panel with a margin.
-struct PanelScale {
-  double px_per_mm = 1;
-  double origin_x = 0;  // pixel position of rest centre (0, 0)
-  double origin_y = 0;
-};
-
-PanelScale panel_scale(const Layout& l, double magnification, int panel_px) {
-  const double reach_mm = magnification *
-                          std::max(std::abs(l.deflection_min_um), std::abs(l.deflection_max_um)) /
-                          1000.0;
-  const double w_mm = (l.cols - 1) * l.pitch_x_mm + l.contactor_width_mm +
-                      (l.axis == DeflectionAxis::x ? 2 * reach_mm : 0);
-  const double h_mm = (l.rows - 1) * l.pitch_y_mm + l.contactor_height_mm +
-                      (l.axis == DeflectionAxis::y ? 2 * reach_mm : 0);
-  PanelScale s;
-  const double usable = panel_px * 0.88;
-  s.px_per_mm = usable / std::max(w_mm, h_mm);
-  s.origin_x = (panel_px - (l.cols - 1) * l.pitch_x_mm * s.px_per_mm) / 2;
-  s.origin_y = (panel_px - (l.rows - 1) * l.pitch_y_mm * s.px_per_mm) / 2;
-  return s;
-}
-
 void draw_panel(cv::Mat& panel, const Layout& layout, std::span<const float> frame,
                 double magnification, double strain_scale) {
-  const PanelScale s = panel_scale(layout, magnification, panel.cols);
+  const ViewTransform s = fit_view(layout, magnification, panel.cols, panel.rows);
   for (const ContactorShape& c : frame_shapes(layout, frame, magnification)) {
-    const cv::Point2d centre(s.origin_x + c.x_mm * s.px_per_mm, s.origin_y + c.y_mm * s.px_per_mm);
+    const cv::Point2d centre(s.origin_x_px + c.x_mm * s.px_per_mm,
+                             s.origin_y_px + c.y_mm * s.px_per_mm);
     const cv::Point2d half(c.width_mm * s.px_per_mm / 2, c.height_mm * s.px_per_mm / 2);
     const cv::Rect box(cv::Point(static_cast<int>(std::lround(centre.x - half.x)),
                                  static_cast<int>(std::lround(centre.y - half.y))),
@@ -67,8 +45,8 @@ void draw_panel(cv::Mat& panel, const Layout& layout, std::span<const float> fra
     cv::rectangle(panel, box, bgr(strain_colour(c.strain, strain_scale)), cv::FILLED);
     cv::rectangle(panel, box, kBlack, 1);
     // The rest position as a small grey cross, so displacement is visible in a still image.
-    const cv::Point rest(static_cast<int>(std::lround(s.origin_x + c.rest_x_mm * s.px_per_mm)),
-                         static_cast<int>(std::lround(s.origin_y + c.rest_y_mm * s.px_per_mm)));
+    const cv::Point rest(static_cast<int>(std::lround(s.origin_x_px + c.rest_x_mm * s.px_per_mm)),
+                         static_cast<int>(std::lround(s.origin_y_px + c.rest_y_mm * s.px_per_mm)));
     cv::drawMarker(panel, rest, kGrey, cv::MARKER_CROSS, 5, 1);
   }
 }
@@ -96,7 +74,7 @@ void draw_header(cv::Mat& header, const TactileMovie& movie, double magnificatio
   // magnification, so the reader can judge every displacement against the full range.
   const double range_um =
       std::max(std::abs(movie.layout.deflection_min_um), std::abs(movie.layout.deflection_max_um));
-  const PanelScale s = panel_scale(movie.layout, magnification, panel_px);
+  const ViewTransform s = fit_view(movie.layout, magnification, panel_px, panel_px);
   const int len =
       std::max(2, static_cast<int>(std::lround(range_um * magnification / 1000.0 * s.px_per_mm)));
   const int sx = header.cols - len - 190;

@@ -35,6 +35,16 @@ double auto_magnification(const Layout& layout);
 std::vector<ContactorShape> frame_shapes(const Layout& layout, std::span<const float> frame_um,
                                          double magnification);
 
+// Placement of the array in a w x h pixel area (y down): pixel = origin + mm * px_per_mm,
+// where mm are the ContactorShape coordinates. Leaves room for the largest displacement of
+// the layout's range at `magnification` and a 6 % margin on every side.
+struct ViewTransform {
+  double px_per_mm = 1;
+  double origin_x_px = 0;  // where the rest centre of contactor (0, 0) lands
+  double origin_y_px = 0;
+};
+ViewTransform fit_view(const Layout& layout, double magnification, int width_px, int height_px);
+
 // Diverging colour map: blue for compression, white for none, red for stretch, saturating
 // at |strain| = full_scale. Returns {r, g, b}.
 std::array<std::uint8_t, 3> strain_colour(double strain, double full_scale);
