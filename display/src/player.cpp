@@ -186,6 +186,21 @@ PlaybackReport play_movie(const TactileMovie& movie, Transport& transport,
   return report;
 }
 
+std::string format_playback_report(const PlaybackReport& r) {
+  std::string out;
+  out += fmt::format("frames      {} sent ({} movie + {} ramp), {} played at {} Hz\n",
+                     r.frames_sent, r.movie_frames, r.ramp_frames, r.frames_played, r.rate_hz);
+  out += fmt::format("timing      {:.3f} s on the device, {:.3f} s wall clock\n", r.duration_s,
+                     r.wall_s);
+  out += fmt::format("device fifo {}..{} frames while streaming; {} underruns, {} overflows\n",
+                     r.min_fifo_fill, r.max_fifo_fill, r.underruns, r.overflows);
+  out += fmt::format(
+      "safety      {} malformed frames, {} clamped samples, {} slew-limited, "
+      "{} watchdog trips\n",
+      r.malformed, r.clamped_samples, r.slew_limited_samples, r.watchdog_trips);
+  return out;
+}
+
 TactileMovie render_through_device(const TactileMovie& movie, EmulatedDeviceOptions device,
                                    const PlayOptions& options, PlaybackReport* report) {
   device.clock = EmulatedClock::simulated;

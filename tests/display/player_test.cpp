@@ -2,6 +2,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -79,6 +81,10 @@ TEST(Player, SixtySecondsAt1kHzWithoutUnderrunInSimulatedTime) {
   EXPECT_EQ(r.underruns, 0);
   EXPECT_EQ(r.overflows, 0);
   EXPECT_LT(r.wall_s, 5.0);  // simulated time runs far faster than real time
+  const std::string text = format_playback_report(r);
+  EXPECT_THAT(text, HasSubstr(fmt::format("{} sent (60000 movie + {} ramp)", r.frames_sent,
+                                          r.ramp_frames)));
+  EXPECT_THAT(text, HasSubstr("0 underruns"));
 }
 
 TEST(Player, OutOfRangeValuesAreClampedByTheFirmwareWhenAllowed) {

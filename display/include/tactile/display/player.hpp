@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <string>
 
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/tactile_movie.hpp"
@@ -54,6 +55,9 @@ void check_movie_against_device(const TactileMovie& movie, const DeviceInfo& dev
 // and reports the device's counters. Throws TransportError when the link fails or stalls.
 PlaybackReport play_movie(const TactileMovie& movie, Transport& transport,
                           const PlayOptions& options = {});
+
+// Several lines of text for people: frames sent/played, underruns, malformed, clamped, times.
+std::string format_playback_report(const PlaybackReport& report);
 
 // Plays the movie into a simulated-clock emulated device and returns what the firmware output
 // (ramps included): what the viewer shows. `device.clock` is forced to simulated.
