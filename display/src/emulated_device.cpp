@@ -170,11 +170,12 @@ bool EmulatedDevice::send_frame(std::span<const std::uint8_t> frame) {
 
 DeviceStatus EmulatedDevice::status() {
   tfw_status s{};
+  DeviceStatus d;
   {
     std::lock_guard lock(impl_->mutex);
     tfw_device_status(&impl_->device, &s);
+    d.rate_hz = impl_->recording_rate_hz;
   }
-  DeviceStatus d;
   d.frames_received = s.frames_received;
   d.frames_played = s.frames_played;
   d.malformed = s.malformed_total;
@@ -195,7 +196,6 @@ DeviceStatus EmulatedDevice::status() {
   d.fifo_capacity = s.fifo_capacity;
   d.started = s.state != TFW_STATE_STOPPED;
   d.streaming = s.state == TFW_STATE_STREAMING;
-  d.rate_hz = impl_->recording_rate_hz;
   return d;
 }
 
