@@ -221,3 +221,63 @@ TEST(EmulatedDevice, WatchdogBringsTheOutputsHome) {
 
 }  // namespace
 }  // namespace tactile::display
+
+namespace tactile::display {
+namespace {
+
+// Wraps a simulated-clock device and, once, lets `hiccup` of device time pass while the host
+// is "busy" (as if the host process had been descheduled).
+class HiccupTransport final : public Transport {
+ public:
+  HiccupTransport(EmulatedDevice& device, int at_wait, std::chrono::milliseconds hiccup)
+      : device_(device), at_wait_(at_wait), hiccup_(hiccup) {}
+  DeviceInfo info() override { return device_.info(); }
+  void start(double rate_hz) override { device_.start(rate_hz); }
+  void stop() override { device_.stop(); }
+  bool send_frame(std::span<const std::uint8_t> f) override { return device_.send_frame(f); }
+  DeviceStatus status() override { return device_.status(); }
+  void wait(std::chrono::nanoseconds d) override {
+    device_.wait(++waits_ == at_wait_ ? std::chrono::nanoseconds(hiccup_) : d);
+  }
+
+ private:
+  EmulatedDevice& device_;
+  int waits_ = 0;
+  int at_wait_;
+  std::chrono::milliseconds hiccup_;
+};
+
+PlaybackReport play_with_hiccup(std::chrono::milliseconds hiccup) {
+  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 1400, 30);
+  EmulatedDevice device(device_for(movie.layout));
+  HiccupTransport link(device, 1000, hiccup);
+  return play_movie(movie, link);
+}
+
+TEST(Player, HostHiccupShorterThanHalfTheFifoCostsNothing) {
+  // Half of the 64-frame FIFO at 700 Hz is 45.7 ms of frames queued.
+  const PlaybackReport ok = play_with_hiccup(std::chrono::milliseconds(40));
+  EXPECT_EQ(ok.underruns, 0);
+  EXPECT_EQ(ok.frames_played, ok.frames_sent);
+  const PlaybackReport late = play_with_hiccup(std::chrono::milliseconds(60));
+  EXPECT_GT(late.underruns, 0);  // the FIFO ran dry: counted, not hidden
+  EXPECT_LT(late.underruns, 60 * 700 / 1000);
+  EXPECT_EQ(late.frames_played, late.frames_sent);  // and nothing was lost
+}
+
+TEST(Player, LoopsRepeatTheMovieBetweenOneRampInAndOneRampOut) {
+  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 70, 20);
+  PlayOptions o;
+  o.loops = 3;
+  PlaybackReport r;
+  const TactileMovie out = render_through_device(movie, device_for(movie.layout), o, &r);
+  EXPECT_EQ(r.movie_frames, 210);
+  EXPECT_EQ(r.frames_played, 210 + r.ramp_frames);
+  const auto ramp_in = static_cast<std::int32_t>(r.ramp_frames / 2);
+  for (std::int32_t f = 0; f < 210; ++f) {
+    ASSERT_NEAR(out.frame(ramp_in + f)[17], movie.frame(f % 70)[17], 0.051) << f;
+  }
+}
+
+}  // namespace
+}  // namespace tactile::display

@@ -299,3 +299,39 @@ TEST(Device, HardwareCallbackSeesEveryTick) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Device, RandomBytesAndCorruptedFramesNeverPlay) {
+  // Random garbage and single-byte corruptions of valid frames: every one must be rejected
+  // (a CRC-32 catches all single-byte errors) and nothing but the valid frames may play.
+  Device d;
+  std::mt19937 rng(1234);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::uint32_t seq = 0;
+  std::uint32_t accepted = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<std::uint8_t> b;
+    if (trial % 2 == 0) {
+      b.resize(rng() % 400);
+      for (auto& x : b) x = static_cast<std::uint8_t>(byte(rng));
+    } else {
+      b = Device::bytes(seq + 1, filled(777));
+      const std::size_t at = rng() % b.size();
+      b[at] = static_cast<std::uint8_t>(b[at] ^ (1 + rng() % 255));
+    }
+    accepted += tfw_device_receive(d.dev.get(), b.data(), b.size()) == TFW_OK;
+    if (trial % 10 == 0) {
+      ASSERT_EQ(d.send(++seq, filled(static_cast<std::int16_t>(trial % 400))), TFW_OK);
+    }
+    const auto out = d.tick();
+    // Valid frames stay below 400 units; a played corrupted frame would pull towards 500.
+    for (auto v : out) ASSERT_LT(v, 400) << "corrupted frame played at trial " << trial;
+  }
+  EXPECT_EQ(accepted, 0u);
+  const auto st = d.status();
+  EXPECT_EQ(st.frames_received, 200u);
+  EXPECT_EQ(st.malformed_total, 2000u);
+}
+
+}  // namespace
