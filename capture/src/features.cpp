@@ -20,10 +20,11 @@ int odd_at_least_3(double v) {
 }
 
 struct Prepared {
-  cv::Mat smooth;      // CV_32F
-  cv::Mat mean;        // CV_32F local mean
-  cv::Mat bright;      // CV_8U 0/1: above local mean (valleys, pores, background)
-  cv::Mat foreground;  // CV_8U 0/1: print in contact, away from borders
+  cv::Mat smooth;           // CV_32F
+  cv::Mat mean;             // CV_32F local mean
+  cv::Mat bright;           // CV_8U 0/1: above local mean (valleys, pores, background)
+  cv::Mat foreground;       // CV_8U 0/1: print in contact, away from borders
+  cv::Mat near_background;  // CV_8U: background grown by half the border margin
 };
 
 Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) {
@@ -33,13 +34,16 @@ Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) 
   if (sigma > 0.1) cv::GaussianBlur(r.smooth, r.smooth, cv::Size(0, 0), sigma);
   const int window = odd_at_least_3(p.local_window_mm * px_per_mm);
   cv::blur(r.smooth, r.mean, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
-  cv::Mat sq, mean_sq;
+  const int bg_window = odd_at_least_3(p.background_window_mm * px_per_mm);
+  cv::Mat sq, bg_mean, bg_mean_sq;
   cv::multiply(r.smooth, r.smooth, sq);
-  cv::blur(sq, mean_sq, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
-  cv::Mat var = mean_sq - r.mean.mul(r.mean);
+  cv::blur(r.smooth, bg_mean, cv::Size(bg_window, bg_window), cv::Point(-1, -1),
+           cv::BORDER_REFLECT);
+  cv::blur(sq, bg_mean_sq, cv::Size(bg_window, bg_window), cv::Point(-1, -1), cv::BORDER_REFLECT);
+  cv::Mat var = bg_mean_sq - bg_mean.mul(bg_mean);
   const double global_mean = cv::mean(r.smooth)[0];
   cv::Mat background = (var < p.background_max_std * p.background_max_std) &
-                       (r.mean > p.background_min_mean_ratio * global_mean);
+                       (bg_mean > p.background_min_mean_ratio * global_mean);
   // Keep features away from the background and the image edge, where the local mean is biased.
   const int margin = std::max(1, static_cast<int>(std::lround(p.border_margin_mm * px_per_mm)));
   cv::Mat grown;
@@ -51,6 +55,9 @@ Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) 
                        std::max(0, gray.rows - 2 * margin));
   r.foreground(inner).setTo(1);
   r.foreground.setTo(0, grown);
+  const int half = std::max(1, margin / 2);
+  cv::dilate(background, r.near_background,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * half + 1, 2 * half + 1)));
   r.bright = (r.smooth > r.mean) / 255;
   return r;
 }
@@ -101,32 +108,41 @@ void find_pores(const Prepared& r, double px_per_mm, const FeatureParams& p, cv:
   }
 }
 
-// Valley skeleton pixels with one 8-neighbour end a valley; three or more fork it.
+// Valley skeleton pixels where one branch meets end a valley; three or more branches fork it.
 void find_minutiae(const Prepared& r, const cv::Mat& pore_mask, double px_per_mm,
                    const FeatureParams& p, std::vector<Feature>& out) {
   cv::Mat valley = r.bright.clone();
   valley.setTo(0, pore_mask);
+  // Cut valleys where the print meets the background, so that they end there (and those ends
+  // fall inside the border margin) instead of forking into the background's own skeleton.
+  valley.setTo(0, r.near_background);
   cv::Mat skeleton = zhang_suen_thinning(valley);
   std::vector<Feature> found;
   cv::Mat fork = cv::Mat::zeros(skeleton.size(), CV_8U);
   for (int y = 1; y < skeleton.rows - 1; ++y) {
     for (int x = 1; x < skeleton.cols - 1; ++x) {
       if (!skeleton.at<std::uint8_t>(y, x) || !r.foreground.at<std::uint8_t>(y, x)) continue;
-      int count = 0;
+      // Crossing number (0->1 transitions around the ring of 8 neighbours) rather than the
+      // paper's plain neighbour count: on a thinned staircase a valley pixel can have three
+      // neighbours without any fork, which made every diagonal valley a "bifurcation".
+      static constexpr int kRing[8][2] = {{1, 0},  {1, 1},   {0, 1},  {-1, 1},
+                                          {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+      int crossings = 0;
       double dx = 0, dy = 0;
-      for (int v = -1; v <= 1; ++v) {
-        for (int u = -1; u <= 1; ++u) {
-          if ((u || v) && skeleton.at<std::uint8_t>(y + v, x + u)) {
-            ++count;
-            dx += u;
-            dy += v;
-          }
+      for (int k = 0; k < 8; ++k) {
+        const bool on = skeleton.at<std::uint8_t>(y + kRing[k][1], x + kRing[k][0]) != 0;
+        const bool next =
+            skeleton.at<std::uint8_t>(y + kRing[(k + 1) % 8][1], x + kRing[(k + 1) % 8][0]) != 0;
+        crossings += (!on && next) ? 1 : 0;
+        if (on) {
+          dx += kRing[k][0];
+          dy += kRing[k][1];
         }
       }
-      if (count == 1) {
+      if (crossings == 1) {
         // The ending points away from the valley it terminates.
         found.push_back({FeatureType::ending, double(x), double(y), std::atan2(-dy, -dx)});
-      } else if (count >= 3) {
+      } else if (crossings >= 3) {
         fork.at<std::uint8_t>(y, x) = 1;
       }
     }

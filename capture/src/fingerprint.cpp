@@ -147,7 +147,7 @@ FingerprintTexture render_fingerprint(const SceneSpec& spec, double min_x_mm, do
     const double y = uy(rng);
     if (std::hypot(x - whorl.x_mm, y - whorl.y_mm) < 1.5) continue;
     bool crowded = false;
-    for (const auto& s : field.spirals) crowded |= std::hypot(x - s.x_mm, y - s.y_mm) < 1.2;
+    for (const auto& s : field.spirals) crowded |= std::hypot(x - s.x_mm, y - s.y_mm) < 1.0;
     if (crowded) continue;
     field.spirals.push_back({x, y, field.spirals.size() % 2 == 0 ? 1.0 : -1.0});
     minutia_types.push_back(unit(rng) < 0.5 ? FeatureType::ending : FeatureType::bifurcation);
@@ -176,7 +176,7 @@ FingerprintTexture render_fingerprint(const SceneSpec& spec, double min_x_mm, do
       const double y = min_y_mm + r / texels_per_mm;
       for (int c = 0; c < cols; ++c) {
         const double x = min_x_mm + c / texels_per_mm;
-        const double ridge = smoothstep(-0.35, 0.15, std::cos(field(x, y)));
+        const double ridge = smoothstep(-0.6, -0.1, std::cos(field(x, y)));
         row[c] = static_cast<float>(kValley + (kRidge - kValley) * ridge);
       }
     }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 
 #include "tactile/capture/features.hpp"
@@ -42,8 +43,9 @@ TEST(Features, FindsOneDiskPoreAtItsSubPixelCentre) {
 }
 
 // Against the renderer's ground truth: detected pores are real (within 0.1 mm of a true pore),
-// most true pores are found, and their positions are sub-pixel. Thresholds: measured 64 % recall,
-// 0 false, 0.12 px RMS on this frame; the assertions leave margin for platform differences only.
+// most true pores are found, and their positions are sub-pixel. Measured for this frame:
+// see the printed figures; the paper's rule misses pores that touch a valley (they merge with
+// it), so recall is well below 100 % by design of this first version.
 TEST(Features, PoresOnASyntheticFrameMatchTheGroundTruth) {
   SceneSpec spec;
   spec.frame_count = 1;
@@ -72,6 +74,8 @@ TEST(Features, PoresOnASyntheticFrameMatchTheGroundTruth) {
       best = std::min(best, std::hypot(f.x_px - lm.x_px, f.y_px - lm.y_px));
     false_pores += best >= tol_px;
   }
+  std::printf("pores: %d true, %d found, %d false, RMS %.3f px\n", truth, hit, false_pores,
+              std::sqrt(se / hit));
   ASSERT_GT(truth, 100);
   EXPECT_GT(hit, truth / 2) << hit << " of " << truth;
   EXPECT_LT(false_pores, static_cast<int>(found.size()) / 20 + 1);

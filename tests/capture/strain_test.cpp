@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "tactile/capture/strain.hpp"
@@ -138,6 +139,8 @@ class BumpPipeline : public ::testing::Test {
     e.median_points = counts[counts.size() / 2];
     e.rms_error = std::sqrt(se / static_cast<double>(e.edges));
     e.rms_truth = std::sqrt(st / static_cast<double>(e.edges));
+    std::printf("span %d: %ld edges, RMS error %.5f, RMS true strain %.5f, median %d points\n",
+                span, e.edges, e.rms_error, e.rms_truth, e.median_points);
     return e;
   }
   static SceneSpec* spec_;

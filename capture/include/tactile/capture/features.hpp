@@ -13,7 +13,9 @@ namespace tactile::capture {
 struct FeatureParams {
   double smoothing_sigma_mm = 0.015;  // Gaussian pre-smoothing (about one camera pixel)
   double local_window_mm = 2.0;       // local mean / variance window (paper: about 2 mm)
-  // Background (no contact): low local contrast and a local mean above the image's mean.
+  // Background (no contact): low local contrast and a local mean above the image's mean,
+  // measured over about one ridge period so that the print's edge does not count as contrast.
+  double background_window_mm = 0.6;
   double background_max_std = 12.0;  // grey levels
   double background_min_mean_ratio = 1.0;
   // Pores: 4-connected bright blobs inside ridges.
@@ -22,7 +24,7 @@ struct FeatureParams {
   double pore_max_extent_mm = 0.3;   // ours: rejects short valley fragments the area bound passes
   double pore_min_fill = 0.45;       // blob area / bounding-box area, rejects thin fragments
   bool find_minutiae = true;
-  double minutia_min_separation_mm = 0.25;  // closer minutiae are repair artefacts: drop both
+  double minutia_min_separation_mm = 0.35;  // closer minutiae are repair artefacts: drop both
   double border_margin_mm = 0.25;  // no features this close to the image edge or background
 };
 

@@ -34,7 +34,7 @@ struct SceneSpec {
   double pore_spacing_mm = 0.55;  // mean distance between pores along a ridge
   double pore_min_diameter_mm = 0.088;
   double pore_max_diameter_mm = 0.220;
-  double minutiae_per_mm2 = 0.08;
+  double minutiae_per_mm2 = 0.15;
   double blur_sigma_px = 0.9;
   double noise_sigma = 2.0;  // grey levels
   std::uint64_t seed = 1;
