@@ -10,7 +10,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "tactile/display/control_codec.hpp"
 #include "tactile/display/frame_codec.hpp"
+#include "tactile_fw/control.h"
 #include "tactile_fw/device.h"
 
 namespace tactile::display {
@@ -33,8 +35,11 @@ tfw_config make_config(const EmulatedDeviceOptions& o) {
   tfw_config c{};
   c.rows = static_cast<std::uint16_t>(l.rows);
   c.cols = static_cast<std::uint16_t>(l.cols);
-  c.pitch_x_um = static_cast<std::uint16_t>(std::lround(l.pitch_x_mm * 1000));
-  c.pitch_y_um = static_cast<std::uint16_t>(std::lround(l.pitch_y_mm * 1000));
+  c.pitch_x_nm = static_cast<std::uint32_t>(std::lround(l.pitch_x_mm * 1e6));
+  c.pitch_y_nm = static_cast<std::uint32_t>(std::lround(l.pitch_y_mm * 1e6));
+  c.contactor_width_nm = static_cast<std::uint32_t>(std::lround(l.contactor_width_mm * 1e6));
+  c.contactor_height_nm = static_cast<std::uint32_t>(std::lround(l.contactor_height_mm * 1e6));
+  c.axis = l.axis == DeflectionAxis::x ? 0 : 1;
   c.deflection_min = to_wire_units(static_cast<float>(l.deflection_min_um));
   c.deflection_max = to_wire_units(static_cast<float>(l.deflection_max_um));
   c.max_slew_per_s =
@@ -125,22 +130,15 @@ EmulatedDevice::~EmulatedDevice() {
 }
 
 DeviceInfo EmulatedDevice::info() {
-  DeviceInfo d;
-  d.backend = "emulated";
-  d.name = "emulated " + impl_->options.layout.name + " display";
-  d.serial = impl_->options.serial;
-  d.firmware_version = TFW_FIRMWARE_VERSION;
-  d.protocol_version = TFW_PROTOCOL_VERSION;
-  d.layout = impl_->options.layout;
-  std::lock_guard lock(impl_->mutex);
-  const tfw_config& c = impl_->device.config;
-  // Report the limits the firmware really enforces (after conversion to wire units).
-  d.layout.deflection_min_um = from_wire_units(c.deflection_min);
-  d.layout.deflection_max_um = from_wire_units(c.deflection_max);
-  d.max_slew_um_per_s = static_cast<double>(c.max_slew_per_s) / TFW_UNITS_PER_UM;
-  d.watchdog_timeout_s = c.watchdog_timeout_ms / 1000.0;
-  d.fifo_capacity_frames = TFW_FIFO_CAPACITY;
-  return d;
+  // Through the same reply bytes a USB device sends, so the host decoding is exercised too.
+  std::uint8_t reply[TFW_INFO_BYTES];
+  {
+    std::lock_guard lock(impl_->mutex);
+    tfw_encode_info(&impl_->device, reply, sizeof reply);
+  }
+  return decode_device_info(reply, "emulated",
+                            "emulated " + impl_->options.layout.name + " display",
+                            impl_->options.serial, impl_->options.layout.name);
 }
 
 void EmulatedDevice::start(double rate_hz) {
@@ -169,34 +167,12 @@ bool EmulatedDevice::send_frame(std::span<const std::uint8_t> frame) {
 }
 
 DeviceStatus EmulatedDevice::status() {
-  tfw_status s{};
-  DeviceStatus d;
+  std::uint8_t reply[TFW_STATUS_BYTES];
   {
     std::lock_guard lock(impl_->mutex);
-    tfw_device_status(&impl_->device, &s);
-    d.rate_hz = impl_->recording_rate_hz;
+    tfw_encode_status(&impl_->device, reply, sizeof reply);
   }
-  d.frames_received = s.frames_received;
-  d.frames_played = s.frames_played;
-  d.malformed = s.malformed_total;
-  for (int r = 1; r < TFW_RESULT_COUNT; ++r) {
-    if (s.rejected[r] != 0) {
-      d.rejected_by_reason[tfw_result_name(static_cast<tfw_result>(r))] = s.rejected[r];
-    }
-  }
-  d.overflows = s.overflows;
-  d.underruns = s.underruns;
-  d.sequence_gaps = s.sequence_gaps;
-  d.clamped_samples = s.clamped_samples;
-  d.slew_limited_samples = s.slew_limited_samples;
-  d.watchdog_trips = s.watchdog_trips;
-  d.ticks = s.ticks;
-  d.last_sequence_played = s.last_sequence_played;
-  d.fifo_fill = s.fifo_fill;
-  d.fifo_capacity = s.fifo_capacity;
-  d.started = s.state != TFW_STATE_STOPPED;
-  d.streaming = s.state == TFW_STATE_STREAMING;
-  return d;
+  return decode_device_status(reply);
 }
 
 void EmulatedDevice::wait(std::chrono::nanoseconds duration) {

@@ -9,6 +9,10 @@ tfw_config_result tfw_config_check(const tfw_config* config) {
   if (config->rows == 0 || config->cols == 0 || count > TFW_MAX_CONTACTORS) {
     return TFW_CONFIG_BAD_SIZE;
   }
+  if (config->pitch_x_nm == 0 || config->pitch_y_nm == 0 || config->contactor_width_nm == 0 ||
+      config->contactor_height_nm == 0 || config->axis > 1) {
+    return TFW_CONFIG_BAD_SIZE;
+  }
   if (config->deflection_min > 0 || config->deflection_max < 0 ||
       config->deflection_min >= config->deflection_max) {
     return TFW_CONFIG_BAD_RANGE;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tactile/display/control_codec.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/player.hpp"
@@ -277,6 +278,43 @@ TEST(Player, LoopsRepeatTheMovieBetweenOneRampInAndOneRampOut) {
   for (std::int32_t f = 0; f < 210; ++f) {
     ASSERT_NEAR(out.frame(ramp_in + f)[17], movie.frame(f % 70)[17], 0.051) << f;
   }
+}
+
+}  // namespace
+}  // namespace tactile::display
+
+namespace tactile::display {
+namespace {
+
+TEST(EmulatedDevice, ReportsItsGeometryThroughTheControlReply) {
+  Layout l = latero_layout();
+  l.axis = DeflectionAxis::y;
+  EmulatedDevice device(device_for(l));
+  const DeviceInfo info = device.info();
+  EXPECT_EQ(info.backend, "emulated");
+  EXPECT_EQ(info.layout.name, "latero");
+  EXPECT_EQ(info.layout.rows, 8);
+  EXPECT_DOUBLE_EQ(info.layout.pitch_y_mm, 1.6125);  // exact through nanometres
+  EXPECT_DOUBLE_EQ(info.layout.contactor_height_mm, 1.4);
+  EXPECT_EQ(info.layout.axis, DeflectionAxis::y);
+  EXPECT_DOUBLE_EQ(info.layout.deflection_max_um, 100);
+  EXPECT_DOUBLE_EQ(info.layout.max_rate_hz, 1000);
+  EXPECT_DOUBLE_EQ(info.max_slew_um_per_s, 20000);
+  EXPECT_DOUBLE_EQ(info.watchdog_timeout_s, 0.005);
+  EXPECT_EQ(info.fifo_capacity_frames, 64u);
+  EXPECT_FALSE(info.firmware_version.empty());
+}
+
+TEST(ControlCodec, MalformedRepliesAreTransportErrors) {
+  const std::vector<std::uint8_t> short_reply(10, 1);
+  try {
+    decode_device_info(short_reply, "libusb", "bench display", "S1", "stress");
+    FAIL() << "accepted";
+  } catch (const TransportError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bench display"));
+    EXPECT_THAT(e.what(), HasSubstr("bad_length"));
+  }
+  EXPECT_THROW(decode_device_status(short_reply), TransportError);
 }
 
 }  // namespace

@@ -17,8 +17,10 @@ tfw_config stress_config() {
   tfw_config c{};
   c.rows = 10;
   c.cols = 10;
-  c.pitch_x_um = 1000;
-  c.pitch_y_um = 1000;
+  c.pitch_x_nm = 1000000;
+  c.pitch_y_nm = 1000000;
+  c.contactor_width_nm = 500000;
+  c.contactor_height_nm = 500000;
   c.deflection_min = -500;
   c.deflection_max = 500;
   c.max_slew_per_s = 100000;

@@ -32,8 +32,13 @@ extern "C" {
 typedef struct {
   uint16_t rows;
   uint16_t cols;
-  uint16_t pitch_x_um; /* geometry, reported to the host in device information */
-  uint16_t pitch_y_um;
+  /* Geometry, reported to the host in device information. Nanometres because pitches such
+   * as the Latero's 1.6125 mm are not whole micrometres. */
+  uint32_t pitch_x_nm;
+  uint32_t pitch_y_nm;
+  uint32_t contactor_width_nm;
+  uint32_t contactor_height_nm;
+  uint8_t axis;           /* deflection direction: 0 = x (along a row), 1 = y */
   int16_t deflection_min; /* wire units (0.1 um) */
   int16_t deflection_max;
   uint32_t max_slew_per_s; /* wire units per second; per tick = max_slew_per_s / rate_hz */
@@ -51,7 +56,8 @@ typedef enum {
 
 typedef enum {
   TFW_CONFIG_OK = 0,
-  TFW_CONFIG_BAD_SIZE = 1,  /* rows or cols 0, or rows * cols > TFW_MAX_CONTACTORS */
+  TFW_CONFIG_BAD_SIZE = 1,  /* rows or cols 0, rows * cols > TFW_MAX_CONTACTORS, a zero
+                               pitch or contactor size, or an axis other than 0 or 1 */
   TFW_CONFIG_BAD_RANGE = 2, /* deflection_min > 0 or deflection_max < 0 or min >= max */
   TFW_CONFIG_BAD_SLEW = 3,  /* slew limit below one unit per tick */
   TFW_CONFIG_BAD_RATE = 4,  /* rate 0 or above max_rate_hz */
