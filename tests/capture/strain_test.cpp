@@ -149,13 +149,16 @@ class BumpPipeline : public ::testing::Test {
 SceneSpec* BumpPipeline::spec_ = nullptr;
 SyntheticSequence* BumpPipeline::sequence_ = nullptr;
 
-// Consecutive frames: the target is RMS <= 0.005; we hold the first version to it.
+// Consecutive frames: the target is RMS <= 0.005. Between consecutive frames the true
+// strain itself is only ~0.0014 RMS, so reporting zero strain would meet that target; the error
+// must also be well below the true strain (measured 0.0005, i.e. 0.38 x the truth).
 TEST_F(BumpPipeline, ConsecutiveFrameStrainErrorIsBelowHalfAPercent) {
   const Errors e = run(1);
   RecordProperty("rms_error", std::to_string(e.rms_error));
   EXPECT_GT(e.edges, 1000);
   EXPECT_LT(e.rms_error, 0.005);
-  EXPECT_GE(e.median_points, 60);
+  EXPECT_LT(e.rms_error, 0.6 * e.rms_truth);
+  EXPECT_GE(e.median_points, 100);
 }
 
 // Over 10 frames the true strain (~1.4 % RMS) must stand well above the error: the measurement
