@@ -10,6 +10,16 @@ namespace tactile::mapping {
 
 Placement default_placement(const capture::StrainMovie& movie) {
   Placement placement;
+  const auto& cal = movie.calibration;
+  if (cal.image_width_px > 0 && cal.image_height_px > 0) {
+    // The image centre through the calibration: the same as half the field size when the
+    // calibration's origin is the image corner, and still right when it is not.
+    const auto centre =
+        capture::to_mm(cal, (cal.image_width_px - 1) / 2.0, (cal.image_height_px - 1) / 2.0);
+    placement.centre_x_mm = centre.x_mm;
+    placement.centre_y_mm = centre.y_mm;
+    return placement;
+  }
   if (movie.field_width_mm > 0 && movie.field_height_mm > 0) {
     placement.centre_x_mm = movie.field_width_mm / 2;
     placement.centre_y_mm = movie.field_height_mm / 2;

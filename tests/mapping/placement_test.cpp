@@ -29,6 +29,19 @@ TEST(Placement, DefaultCentresThePhysicalSizeGridOnTheField) {
   EXPECT_DOUBLE_EQ(last.y_mm, 5.45 + 4.5);
 }
 
+TEST(Placement, DefaultFollowsTheCalibrationsOrigin) {
+  capture::StrainMovie movie;
+  // 640 x 484 px at 0.016 mm/px with the origin moved to (-2, 1) mm.
+  movie.calibration.px_to_mm = {0.016, 0, -2.0, 0, 0.016, 1.0, 0, 0, 1};
+  movie.calibration.image_width_px = 640;
+  movie.calibration.image_height_px = 484;
+  movie.field_width_mm = 639 * 0.016;
+  movie.field_height_mm = 483 * 0.016;
+  const auto p = default_placement(movie);
+  EXPECT_NEAR(p.centre_x_mm, -2.0 + 319.5 * 0.016, 1e-12);
+  EXPECT_NEAR(p.centre_y_mm, 1.0 + 241.5 * 0.016, 1e-12);
+}
+
 TEST(Placement, DefaultWithoutFieldSizeUsesTheTrackedPoints) {
   capture::StrainMovie movie;
   movie.tracks = {{0, 0, {}, 0, 0, 1.0, 2.0}, {1, 0, {}, 0, 0, 5.0, 4.0}};

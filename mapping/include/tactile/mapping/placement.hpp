@@ -22,8 +22,11 @@ struct Placement {
   double scale = 1;  // field millimetres per layout millimetre
 };
 
-// Centred on the field of view (field_width_mm / 2, field_height_mm / 2) at physical size. When the
-// movie does not state its field size, centred on the bounding box of its tracked points instead.
+// Centred on the field of view at physical size: on the image centre mapped through the movie's
+// calibration when it states an image size (for a calibration with its origin at the image corner
+// that is (field_width_mm / 2, field_height_mm / 2)); else on (field_width_mm / 2,
+// field_height_mm / 2); else, when the movie states no field size, on the bounding box of its
+// tracked points.
 Placement default_placement(const capture::StrainMovie& movie);
 
 // Field position of contactor (row, col). The grid centre is the midpoint between the corner
