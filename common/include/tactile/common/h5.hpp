@@ -44,14 +44,13 @@ void write_dataset(H5::Group& group, const std::string& name, const std::vector<
                    const std::vector<hsize_t>& dims);
 void write_dataset(H5::Group& group, const std::string& name, const std::vector<float>& data,
                    const std::vector<hsize_t>& dims);
-void write_dataset(H5::Group& group, const std::string& name,
-                   const std::vector<std::int32_t>& data, const std::vector<hsize_t>& dims);
+void write_dataset(H5::Group& group, const std::string& name, const std::vector<std::int32_t>& data,
+                   const std::vector<hsize_t>& dims);
 
 // Reads a dataset, checking that it exists, is of the expected number class (float or integer)
 // and rank; returns its dims in `dims`. Throws FormatError naming the problem.
-std::vector<double> read_doubles(const H5::Group& group, const std::string& name,
-                                 std::size_t rank, std::vector<hsize_t>& dims,
-                                 const std::string& where);
+std::vector<double> read_doubles(const H5::Group& group, const std::string& name, std::size_t rank,
+                                 std::vector<hsize_t>& dims, const std::string& where);
 std::vector<float> read_floats(const H5::Group& group, const std::string& name, std::size_t rank,
                                std::vector<hsize_t>& dims, const std::string& where);
 std::vector<std::int32_t> read_ints(const H5::Group& group, const std::string& name,

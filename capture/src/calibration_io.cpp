@@ -1,0 +1,85 @@
+#include "tactile/capture/calibration_io.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tactile/common/error.hpp"
+
+namespace tactile::capture {
+
+void write_calibration_json(const std::filesystem::path& path, const Calibration& calibration) {
+  nlohmann::json j;
+  j["format"] = "tactile-calibration";
+  j["format_version"] = 1;
+  j["px_to_mm"] = calibration.px_to_mm;
+  j["mm_per_px"] = calibration.mm_per_px;
+  j["image_width_px"] = calibration.image_width_px;
+  j["image_height_px"] = calibration.image_height_px;
+  j["method"] = calibration.method;
+  std::ofstream out(path);
+  out << j.dump(2) << '\n';
+  out.flush();
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+}
+
+namespace {
+template <typename T>
+T field(const nlohmann::json& j, const char* name, const std::string& where) {
+  if (!j.contains(name)) throw FormatError(fmt::format("{}: field '{}' is missing", where, name));
+  try {
+    return j.at(name).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw FormatError(fmt::format("{}: field '{}' has the wrong type", where, name));
+  }
+}
+}  // namespace
+
+Calibration read_calibration_json(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open calibration file", where));
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::parse_error& e) {
+    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
+  }
+  if (!j.is_object()) throw FormatError(fmt::format("{}: expected a JSON object", where));
+  if (field<std::string>(j, "format", where) != "tactile-calibration") {
+    throw FormatError(fmt::format("{}: 'format' is not tactile-calibration", where));
+  }
+  Calibration c;
+  const auto h = field<std::vector<double>>(j, "px_to_mm", where);
+  if (h.size() != 9) {
+    throw FormatError(
+        fmt::format("{}: 'px_to_mm' must hold 9 numbers (3x3), found {}", where, h.size()));
+  }
+  std::copy(h.begin(), h.end(), c.px_to_mm.begin());
+  c.mm_per_px = field<double>(j, "mm_per_px", where);
+  c.image_width_px = field<int>(j, "image_width_px", where);
+  c.image_height_px = field<int>(j, "image_height_px", where);
+  c.method = j.value("method", std::string("unknown"));
+
+  for (double v : h) {
+    if (!std::isfinite(v)) throw FormatError(fmt::format("{}: 'px_to_mm' is not finite", where));
+  }
+  const double det = h[0] * (h[4] * h[8] - h[5] * h[7]) - h[1] * (h[3] * h[8] - h[5] * h[6]) +
+                     h[2] * (h[3] * h[7] - h[4] * h[6]);
+  if (std::abs(det) < 1e-15) {
+    throw FormatError(fmt::format("{}: 'px_to_mm' is singular", where));
+  }
+  // A fingertip camera sees roughly 5-50 mm; anything far outside is a wrong calibration.
+  if (!(c.mm_per_px > 1e-4 && c.mm_per_px < 1.0)) {
+    throw FormatError(fmt::format(
+        "{}: mm_per_px = {} is implausible (expected 0.0001-1 mm per pixel)", where, c.mm_per_px));
+  }
+  if (c.image_width_px <= 0 || c.image_height_px <= 0) {
+    throw FormatError(fmt::format("{}: image size must be positive", where));
+  }
+  return c;
+}
+
+}  // namespace tactile::capture

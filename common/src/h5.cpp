@@ -1,0 +1,276 @@
+#include "tactile/common/h5.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <system_error>
+
+namespace tactile::h5 {
+namespace {
+
+// HDF5 prints its own error stack to stderr on every failure; our FormatError says it better.
+void silence_hdf5() {
+  H5::Exception::dontPrint();
+}
+
+std::string describe(const H5::Exception& e) {
+  return e.getDetailMsg().empty() ? std::string("HDF5 error") : e.getDetailMsg();
+}
+
+template <typename T>
+const H5::PredType& native_type();
+template <>
+const H5::PredType& native_type<double>() {
+  return H5::PredType::NATIVE_DOUBLE;
+}
+template <>
+const H5::PredType& native_type<float>() {
+  return H5::PredType::NATIVE_FLOAT;
+}
+template <>
+const H5::PredType& native_type<std::int32_t>() {
+  return H5::PredType::NATIVE_INT32;
+}
+
+template <typename T>
+void write_any(H5::Group& group, const std::string& name, const std::vector<T>& data,
+               const std::vector<hsize_t>& dims) {
+  hsize_t count = 1;
+  for (hsize_t d : dims) count *= d;
+  if (count != data.size()) {
+    throw std::logic_error(
+        fmt::format("dataset {}: {} values do not fill the shape", name, data.size()));
+  }
+  H5::DataSpace space(static_cast<int>(dims.size()), dims.data());
+  H5::DSetCreatPropList props;
+  // Compress large datasets: movies are mostly smooth and compress several-fold.
+  if (count >= 4096 && !dims.empty()) {
+    std::vector<hsize_t> chunk(dims);
+    chunk[0] = std::min<hsize_t>(
+        dims[0], std::max<hsize_t>(1, 65536 / std::max<hsize_t>(1, count / dims[0])));
+    for (auto& c : chunk) c = std::max<hsize_t>(c, 1);
+    props.setChunk(static_cast<int>(chunk.size()), chunk.data());
+    props.setDeflate(4);
+  }
+  H5::DataSet ds = group.createDataSet(name, native_type<T>(), space, props);
+  if (count > 0) ds.write(data.data(), native_type<T>());
+}
+
+template <typename T>
+std::vector<T> read_any(const H5::Group& group, const std::string& name, std::size_t rank,
+                        std::vector<hsize_t>& dims, const std::string& where, H5T_class_t want) {
+  const std::string loc = fmt::format("{}/{}", where, name);
+  if (!has_child(group, name)) throw FormatError(fmt::format("{}: dataset is missing", loc));
+  try {
+    H5::DataSet ds = group.openDataSet(name);
+    if (ds.getTypeClass() != want) {
+      throw FormatError(fmt::format("{}: expected {} values, found another type", loc,
+                                    want == H5T_FLOAT ? "floating-point" : "integer"));
+    }
+    H5::DataSpace space = ds.getSpace();
+    const int file_rank = space.getSimpleExtentNdims();
+    if (file_rank < 0 || static_cast<std::size_t>(file_rank) != rank) {
+      throw FormatError(
+          fmt::format("{}: expected {} dimension(s), found {}", loc, rank, file_rank));
+    }
+    dims.assign(rank, 0);
+    if (rank > 0) space.getSimpleExtentDims(dims.data());
+    hsize_t count = 1;
+    for (hsize_t d : dims) count *= d;
+    std::vector<T> out(count);
+    if (count > 0) ds.read(out.data(), native_type<T>());
+    return out;
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: cannot read ({})", loc, describe(e)));
+  }
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(H5::H5File&)>& fill) {
+  silence_hdf5();
+  const std::filesystem::path tmp = path.string() + ".partial";
+  try {
+    {
+      H5::H5File file(tmp.string(), H5F_ACC_TRUNC);
+      fill(file);
+      file.close();
+    }
+    std::filesystem::rename(tmp, path);
+  } catch (const H5::Exception& e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), describe(e)));
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+}
+
+H5::H5File open_for_reading(const std::filesystem::path& path) {
+  silence_hdf5();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw FormatError(fmt::format("{}: no such file", path.string()));
+  }
+  if (std::filesystem::file_size(path, ec) == 0) {
+    throw FormatError(fmt::format("{}: file is empty", path.string()));
+  }
+  try {
+    if (!H5::H5File::isHdf5(path.string())) {
+      throw FormatError(fmt::format("{}: not an HDF5 file", path.string()));
+    }
+    return H5::H5File(path.string(), H5F_ACC_RDONLY);
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: cannot open as HDF5 (truncated or damaged?): {}",
+                                  path.string(), describe(e)));
+  }
+}
+
+void write_attr(H5::H5Object& obj, const std::string& name, double value) {
+  H5::Attribute a = obj.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace());
+  a.write(H5::PredType::NATIVE_DOUBLE, &value);
+}
+
+void write_attr(H5::H5Object& obj, const std::string& name, std::int64_t value) {
+  H5::Attribute a = obj.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace());
+  a.write(H5::PredType::NATIVE_INT64, &value);
+}
+
+void write_attr(H5::H5Object& obj, const std::string& name, const std::string& value) {
+  // Variable-length UTF-8 strings read as plain strings in h5py and MATLAB.
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  type.setCset(H5T_CSET_UTF8);
+  H5::Attribute a = obj.createAttribute(name, type, H5::DataSpace());
+  a.write(type, value);
+}
+
+bool has_attr(const H5::H5Object& obj, const std::string& name) {
+  return obj.attrExists(name);
+}
+
+namespace {
+H5::Attribute open_attr(const H5::H5Object& obj, const std::string& name,
+                        const std::string& where) {
+  if (!obj.attrExists(name)) {
+    throw FormatError(fmt::format("{}: attribute '{}' is missing", where, name));
+  }
+  return obj.openAttribute(name);
+}
+
+void require_scalar(const H5::Attribute& a, const std::string& name, const std::string& where) {
+  if (a.getSpace().getSimpleExtentNpoints() != 1) {
+    throw FormatError(fmt::format("{}: attribute '{}' must be a single value", where, name));
+  }
+}
+}  // namespace
+
+double read_attr_double(const H5::H5Object& obj, const std::string& name,
+                        const std::string& where) {
+  try {
+    H5::Attribute a = open_attr(obj, name, where);
+    const H5T_class_t cls = a.getTypeClass();
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
+      throw FormatError(fmt::format("{}: attribute '{}' must be a number", where, name));
+    }
+    require_scalar(a, name, where);
+    double v = 0;
+    a.read(H5::PredType::NATIVE_DOUBLE, &v);
+    return v;
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
+  }
+}
+
+std::int64_t read_attr_int(const H5::H5Object& obj, const std::string& name,
+                           const std::string& where) {
+  try {
+    H5::Attribute a = open_attr(obj, name, where);
+    if (a.getTypeClass() != H5T_INTEGER) {
+      throw FormatError(fmt::format("{}: attribute '{}' must be an integer", where, name));
+    }
+    require_scalar(a, name, where);
+    std::int64_t v = 0;
+    a.read(H5::PredType::NATIVE_INT64, &v);
+    return v;
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
+  }
+}
+
+std::string read_attr_string(const H5::H5Object& obj, const std::string& name,
+                             const std::string& where) {
+  try {
+    H5::Attribute a = open_attr(obj, name, where);
+    if (a.getTypeClass() != H5T_STRING) {
+      throw FormatError(fmt::format("{}: attribute '{}' must be a string", where, name));
+    }
+    require_scalar(a, name, where);
+    std::string v;
+    a.read(a.getStrType(), v);
+    return v;
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
+  }
+}
+
+void write_dataset(H5::Group& group, const std::string& name, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims) {
+  write_any(group, name, data, dims);
+}
+void write_dataset(H5::Group& group, const std::string& name, const std::vector<float>& data,
+                   const std::vector<hsize_t>& dims) {
+  write_any(group, name, data, dims);
+}
+void write_dataset(H5::Group& group, const std::string& name, const std::vector<std::int32_t>& data,
+                   const std::vector<hsize_t>& dims) {
+  write_any(group, name, data, dims);
+}
+
+std::vector<double> read_doubles(const H5::Group& group, const std::string& name, std::size_t rank,
+                                 std::vector<hsize_t>& dims, const std::string& where) {
+  return read_any<double>(group, name, rank, dims, where, H5T_FLOAT);
+}
+std::vector<float> read_floats(const H5::Group& group, const std::string& name, std::size_t rank,
+                               std::vector<hsize_t>& dims, const std::string& where) {
+  return read_any<float>(group, name, rank, dims, where, H5T_FLOAT);
+}
+std::vector<std::int32_t> read_ints(const H5::Group& group, const std::string& name,
+                                    std::size_t rank, std::vector<hsize_t>& dims,
+                                    const std::string& where) {
+  return read_any<std::int32_t>(group, name, rank, dims, where, H5T_INTEGER);
+}
+
+bool has_child(const H5::Group& group, const std::string& name) {
+  try {
+    return group.nameExists(name);
+  } catch (const H5::Exception&) {
+    return false;
+  }
+}
+
+H5::Group open_group(const H5::Group& parent, const std::string& name, const std::string& where) {
+  if (!has_child(parent, name)) {
+    throw FormatError(fmt::format("{}: group '{}' is missing", where, name));
+  }
+  try {
+    return parent.openGroup(name);
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: '{}' is not a group ({})", where, name, describe(e)));
+  }
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace tactile::h5

@@ -1,0 +1,36 @@
+#include "tactile/common/csv.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+TEST(Csv, WritesHeaderThenRows) {
+  const fs::path p = fs::temp_directory_path() / "tactile_csv_test.csv";
+  auto out = tactile::csv::open_with_header(p, "a,b");
+  out << "1,2\n";
+  tactile::csv::finish(out, p);
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  EXPECT_EQ(s.str(), "a,b\n1,2\n");
+  fs::remove(p);
+}
+
+TEST(Csv, UnwritablePathIsNamed) {
+  try {
+    tactile::csv::open_with_header("/nonexistent-dir/x.csv", "a");
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.csv"), std::string::npos);
+  }
+}
+
+TEST(Csv, DiskFullIsReported) {
+  // /dev/full accepts the open and fails every write, like a full disk.
+  auto out = tactile::csv::open_with_header("/dev/full", "a,b");
+  for (int i = 0; i < 10000; ++i) out << "1,2\n";
+  EXPECT_THROW(tactile::csv::finish(out, "/dev/full"), std::runtime_error);
+}

@@ -1,0 +1,135 @@
+#include "tactile/common/h5.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+namespace {
+
+class H5Test : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("tactile_h5_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+void write_sample(const fs::path& path) {
+  tactile::h5::write_file_atomically(path, [](H5::H5File& f) {
+    tactile::h5::write_attr(f, "rate_hz", 700.0);
+    tactile::h5::write_attr(f, "count", std::int64_t{42});
+    tactile::h5::write_attr(f, "name", "stress");
+    tactile::h5::write_dataset(f, "values", std::vector<double>{1, 2, 3, 4, 5, 6}, {2, 3});
+    tactile::h5::write_dataset(f, "ids", std::vector<std::int32_t>{7, 8}, {2});
+  });
+}
+
+template <typename Fn>
+std::string error_of(Fn&& fn) {
+  try {
+    fn();
+  } catch (const tactile::FormatError& e) {
+    return e.what();
+  }
+  return "<no FormatError>";
+}
+
+}  // namespace
+
+TEST_F(H5Test, AttributesAndDatasetsRoundTrip) {
+  const fs::path p = dir_ / "a.h5";
+  write_sample(p);
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  EXPECT_DOUBLE_EQ(tactile::h5::read_attr_double(f, "rate_hz", "a"), 700.0);
+  EXPECT_EQ(tactile::h5::read_attr_int(f, "count", "a"), 42);
+  EXPECT_EQ(tactile::h5::read_attr_string(f, "name", "a"), "stress");
+  std::vector<hsize_t> dims;
+  EXPECT_EQ(tactile::h5::read_doubles(f, "values", 2, dims, "a"),
+            (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(dims, (std::vector<hsize_t>{2, 3}));
+  EXPECT_EQ(tactile::h5::read_ints(f, "ids", 1, dims, "a"), (std::vector<std::int32_t>{7, 8}));
+}
+
+TEST_F(H5Test, MissingEmptyAndNonHdf5FilesAreNamed) {
+  EXPECT_THAT(error_of([&] { tactile::h5::open_for_reading(dir_ / "nope.h5"); }),
+              HasSubstr("no such file"));
+  std::ofstream(dir_ / "empty.h5").close();
+  EXPECT_THAT(error_of([&] { tactile::h5::open_for_reading(dir_ / "empty.h5"); }),
+              HasSubstr("empty"));
+  std::ofstream(dir_ / "text.h5") << "frame,t_s\n0,0\n";
+  EXPECT_THAT(error_of([&] { tactile::h5::open_for_reading(dir_ / "text.h5"); }),
+              HasSubstr("not an HDF5 file"));
+}
+
+TEST_F(H5Test, TruncatedFileIsAClearError) {
+  const fs::path p = dir_ / "t.h5";
+  write_sample(p);
+  fs::resize_file(p, fs::file_size(p) / 2);
+  const std::string msg = error_of([&] {
+    H5::H5File f = tactile::h5::open_for_reading(p);
+    std::vector<hsize_t> dims;
+    tactile::h5::read_doubles(f, "values", 2, dims, "t");
+  });
+  EXPECT_THAT(msg, HasSubstr("t"));
+  EXPECT_NE(msg, "<no FormatError>");
+}
+
+TEST_F(H5Test, WrongTypeRankAndMissingObjectsAreNamed) {
+  const fs::path p = dir_ / "w.h5";
+  write_sample(p);
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  std::vector<hsize_t> dims;
+  EXPECT_THAT(error_of([&] { tactile::h5::read_ints(f, "values", 2, dims, "w"); }),
+              HasSubstr("expected integer"));
+  EXPECT_THAT(error_of([&] { tactile::h5::read_doubles(f, "values", 3, dims, "w"); }),
+              HasSubstr("expected 3 dimension(s), found 2"));
+  EXPECT_THAT(error_of([&] { tactile::h5::read_doubles(f, "absent", 1, dims, "w"); }),
+              HasSubstr("w/absent: dataset is missing"));
+  EXPECT_THAT(error_of([&] { tactile::h5::read_attr_string(f, "rate_hz", "w"); }),
+              HasSubstr("'rate_hz' must be a string"));
+  EXPECT_THAT(error_of([&] { tactile::h5::read_attr_int(f, "rate_hz", "w"); }),
+              HasSubstr("must be an integer"));
+  EXPECT_THAT(error_of([&] { tactile::h5::read_attr_double(f, "name", "w"); }),
+              HasSubstr("must be a number"));
+  EXPECT_THAT(error_of([&] { tactile::h5::read_attr_double(f, "absent", "w"); }),
+              HasSubstr("'absent' is missing"));
+  EXPECT_THAT(error_of([&] { tactile::h5::open_group(f, "values", "w"); }),
+              HasSubstr("not a group"));
+}
+
+TEST_F(H5Test, FailedWriteKeepsTheExistingFile) {
+  const fs::path p = dir_ / "keep.h5";
+  write_sample(p);
+  const auto size_before = fs::file_size(p);
+  EXPECT_THROW(tactile::h5::write_file_atomically(
+                   p, [](H5::H5File&) { throw std::runtime_error("mapping failed"); }),
+               std::runtime_error);
+  ASSERT_TRUE(fs::exists(p));
+  EXPECT_EQ(fs::file_size(p), size_before);
+  EXPECT_FALSE(fs::exists(dir_ / "keep.h5.partial"));
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  EXPECT_EQ(tactile::h5::read_attr_int(f, "count", "keep"), 42);
+}
+
+TEST_F(H5Test, LargeDatasetsAreCompressedAndExact) {
+  std::vector<float> big(100 * 2100);
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<float>(i % 97) * 0.5f;
+  const fs::path p = dir_ / "big.h5";
+  tactile::h5::write_file_atomically(p, [&](H5::H5File& f) {
+    tactile::h5::write_dataset(f, "d", big, {2100, 10, 10});
+  });
+  EXPECT_LT(fs::file_size(p), big.size() * sizeof(float));
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  std::vector<hsize_t> dims;
+  EXPECT_EQ(tactile::h5::read_floats(f, "d", 3, dims, "big"), big);
+}

@@ -1,0 +1,129 @@
+// The command line as a user meets it: help, wrong usage (exit 2), bad files (exit 1), with a
+// message that names the problem, and never a crash.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run.hpp"
+
+namespace fs = std::filesystem;
+using tactile::test::run_tactile;
+using ::testing::HasSubstr;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("tactile_cli_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+TEST(Cli, HelpListsEverySubcommand) {
+  const auto r = run_tactile("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* cmd : {"demo", "synth", "calibrate", "features", "capture", "map", "play",
+                          "view", "devices", "info"}) {
+    EXPECT_THAT(r.output, HasSubstr(cmd)) << cmd;
+  }
+}
+
+TEST(Cli, SubcommandHelpExplainsOptions) {
+  const auto r = run_tactile("capture --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("--px-per-mm"));
+  EXPECT_THAT(r.output, HasSubstr("--span"));
+}
+
+TEST(Cli, NoSubcommandIsUsageError) {
+  const auto r = run_tactile("");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("subcommand"));
+}
+
+TEST(Cli, UnknownSubcommandIsUsageError) {
+  const auto r = run_tactile("frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("frobnicate"));
+}
+
+TEST(Cli, MissingRequiredArgumentIsNamed) {
+  const auto r = run_tactile("map");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("STRAIN_H5"));
+}
+
+TEST(Cli, BadOptionValueIsNamed) {
+  const fs::path d = scratch("badvalue");
+  const auto r = run_tactile("demo --out " + d.string() + " --frames many");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--frames"));
+  const auto r2 = run_tactile("synth " + d.string() + " --scene volcano");
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_THAT(r2.output, HasSubstr("volcano"));
+}
+
+TEST(Cli, CaptureNeedsACalibration) {
+  const fs::path d = scratch("nocalib");
+  const auto r = run_tactile("capture " + d.string() + " --out " + (d / "s.h5").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--px-per-mm"));
+}
+
+TEST(Cli, CalibAndScaleTogetherIsUsageError) {
+  const fs::path d = scratch("both");
+  std::ofstream(d / "c.json") << "{}";
+  const auto r = run_tactile("features " + (d / "c.json").string() + " --calib " +
+                             (d / "c.json").string() + " --px-per-mm 40");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("excludes"));
+}
+
+TEST(Cli, MissingFileIsNamed) {
+  const auto r = run_tactile("info /nonexistent/movie.h5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("/nonexistent/movie.h5"));
+}
+
+TEST(Cli, NonHdf5MovieIsAClearError) {
+  const fs::path d = scratch("nonhdf5");
+  std::ofstream(d / "movie.h5") << "this is not a movie\n";
+  for (const std::string cmd : {"play --headless", "info", "view"}) {
+    const auto r = run_tactile(cmd + " " + (d / "movie.h5").string());
+    EXPECT_EQ(r.exit_code, 1) << cmd << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("not an HDF5 file")) << cmd;
+  }
+}
+
+TEST(Cli, NonImageIsAClearError) {
+  const fs::path d = scratch("nonimage");
+  std::ofstream(d / "finger.png") << "PNG? no.\n";
+  const auto r = run_tactile("features " + (d / "finger.png").string() + " --px-per-mm 47");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("finger.png"));
+}
+
+TEST(Cli, BadCalibrationFileIsNamed) {
+  const fs::path d = scratch("badcalib");
+  std::ofstream(d / "calib.json") << R"({"format": "tactile-calibration", "px_to_mm": [1, 2]})";
+  std::ofstream(d / "finger.png") << "x";
+  const auto r = run_tactile("features " + (d / "finger.png").string() + " --calib " +
+                             (d / "calib.json").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("calib.json"));
+}
+
+TEST(Cli, StrainMovieGivenToPlayIsAClearError) {
+  // A strain movie is HDF5 too, but the wrong kind: the player must say so, not crash.
+  const fs::path d = scratch("wrongkind");
+  const auto synth = run_tactile("demo --headless --frames 40 --out " + d.string() + " --keep");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const auto r = run_tactile("play --headless " + (d / "strain.h5").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("strain.h5"));
+}

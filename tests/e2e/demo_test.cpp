@@ -1,0 +1,129 @@
+// The main job, end to end: `tactile demo --headless` on the built-in scene, then its files are
+// read back and checked against what the scene implies.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+
+#include "run.hpp"
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/display/movie_io.hpp"
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+namespace {
+
+class DemoTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    out_ = new fs::path(fs::temp_directory_path() / "tactile_e2e_demo");
+    fs::remove_all(*out_);
+    result_ = new tactile::test::RunResult(
+        tactile::test::run_tactile("demo --headless --keep --out " + out_->string()));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*out_);
+    delete out_;
+    delete result_;
+  }
+  static fs::path* out_;
+  static tactile::test::RunResult* result_;
+};
+fs::path* DemoTest::out_ = nullptr;
+tactile::test::RunResult* DemoTest::result_ = nullptr;
+
+// Root-mean-square deflection of each frame.
+std::vector<double> activity(const tactile::display::TactileMovie& m) {
+  std::vector<double> a(static_cast<std::size_t>(m.frame_count));
+  for (std::int32_t f = 0; f < m.frame_count; ++f) {
+    double s = 0;
+    for (float d : m.frame(f)) s += static_cast<double>(d) * d;
+    a[static_cast<std::size_t>(f)] = std::sqrt(s / m.layout.contactor_count());
+  }
+  return a;
+}
+
+double mean(const std::vector<double>& v, std::size_t from, std::size_t to) {
+  return std::accumulate(v.begin() + static_cast<std::ptrdiff_t>(from),
+                         v.begin() + static_cast<std::ptrdiff_t>(to), 0.0) /
+         static_cast<double>(to - from);
+}
+
+}  // namespace
+
+TEST_F(DemoTest, RunsHeadlessAndSaysWhatItDid) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->output;
+  EXPECT_THAT(result_->output, HasSubstr("headless"));
+  EXPECT_THAT(result_->output, HasSubstr("preview"));
+}
+
+TEST_F(DemoTest, WritesEveryFileAskedFor) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->output;
+  for (const char* f :
+       {"strain.h5", "movie.h5", "preview.png", "calibration.json", "frames/frame_000.png",
+        "frames/dot_grid.png", "csv/tracks.csv", "csv/edges.csv", "csv/movie.csv"}) {
+    EXPECT_TRUE(fs::exists(*out_ / f)) << f;
+  }
+  const tactile::capture::GrayImage preview = tactile::capture::read_image(*out_ / "preview.png");
+  EXPECT_GT(preview.width_px, 200);
+  EXPECT_GT(preview.height_px, 100);
+}
+
+TEST_F(DemoTest, StrainMovieCoversTheScene) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->output;
+  const auto strain = tactile::capture::read_strain_movie(*out_ / "strain.h5");
+  EXPECT_DOUBLE_EQ(strain.frame_rate_hz, 60.0);
+  // 180 camera frames at span 1 give at most 179 frame pairs.
+  EXPECT_GE(strain.frames.size(), 150u);
+  EXPECT_LE(strain.frames.size(), 179u);
+  std::size_t edges = 0;
+  for (const auto& f : strain.frames) edges += f.edges.size();
+  EXPECT_GT(edges / strain.frames.size(), 100u) << "too few tracked edges per frame";
+}
+
+TEST_F(DemoTest, MovieHasTheStressShapeRateAndDuration) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->output;
+  const auto movie = tactile::display::read_tactile_movie(*out_ / "movie.h5");
+  EXPECT_EQ(movie.layout.name, "stress");
+  EXPECT_EQ(movie.layout.rows, 10);
+  EXPECT_EQ(movie.layout.cols, 10);
+  EXPECT_DOUBLE_EQ(movie.rate_hz, 700.0);
+  // 180 frames at 60 Hz span 3 s; the strain exists between the first and last frame pair.
+  EXPECT_GT(movie.duration_s(), 2.5);
+  EXPECT_LE(movie.duration_s(), 3.01);
+  EXPECT_EQ(movie.deflection_um.size(), static_cast<std::size_t>(movie.frame_count) * 100u);
+  EXPECT_THAT(movie.provenance.mapping_method, ::testing::Not(::testing::IsEmpty()));
+  EXPECT_THAT(movie.provenance.source, HasSubstr("strain.h5"));
+}
+
+TEST_F(DemoTest, ActivityRisesAndFallsAsTheBumpPasses) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->output;
+  const auto movie = tactile::display::read_tactile_movie(*out_ / "movie.h5");
+  const std::vector<double> a = activity(movie);
+  const std::size_t n = a.size();
+  ASSERT_GT(n, 100u);
+  const std::size_t tenth = n / 10;
+  const double start = mean(a, 0, tenth);
+  const double end = mean(a, n - tenth, n);
+  // Peak of the activity smoothed over a tenth of the movie.
+  double peak = 0;
+  std::size_t peak_at = 0;
+  for (std::size_t i = 0; i + tenth <= n; ++i) {
+    const double m = mean(a, i, i + tenth);
+    if (m > peak) {
+      peak = m;
+      peak_at = i + tenth / 2;
+    }
+  }
+  EXPECT_GT(peak, 1.0) << "the bump should move contactors by more than a micrometre";
+  EXPECT_GT(peak_at, n / 5);
+  EXPECT_LT(peak_at, n - n / 5);
+  EXPECT_LT(start, 0.5 * peak);
+  EXPECT_LT(end, 0.5 * peak);
+}

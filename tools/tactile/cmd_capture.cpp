@@ -1,0 +1,184 @@
+// `tactile calibrate`, `tactile features` and `tactile capture`: the camera side of the pipeline.
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "command.hpp"
+#include "progress.hpp"
+#include "tactile/capture/calibrate.hpp"
+#include "tactile/capture/calibration_io.hpp"
+#include "tactile/capture/features.hpp"
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/capture/strain.hpp"
+#include "tactile/common/version.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+// --calib FILE or --px-per-mm P, exactly one (see require_calibration).
+capture::Calibration calibration_from(const std::optional<fs::path>& calib_file,
+                                      std::optional<double> px_per_mm, int width_px,
+                                      int height_px) {
+  if (calib_file) return capture::read_calibration_json(*calib_file);
+  return capture::uniform_calibration(px_per_mm.value(), width_px, height_px);
+}
+
+void add_calibration_options(CLI::App& sub, std::optional<fs::path>& calib_file,
+                             std::optional<double>& px_per_mm) {
+  auto* c = sub.add_option("--calib", calib_file, "Calibration JSON from `tactile calibrate`")
+                ->check(CLI::ExistingFile);
+  auto* p = sub.add_option("--px-per-mm", px_per_mm,
+                           "Uniform scale instead of a calibration file (pixels per millimetre)")
+                ->check(CLI::PositiveNumber);
+  c->excludes(p);
+}
+
+// Runs at parse time so that a missing choice is a usage error (exit 2), not a failed run.
+void require_calibration(const std::optional<fs::path>& calib_file,
+                         const std::optional<double>& px_per_mm) {
+  if (!calib_file && !px_per_mm) {
+    throw CLI::RequiredError("one of --calib FILE or --px-per-mm P");
+  }
+}
+
+}  // namespace
+
+void add_calibrate(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path image;
+    double spacing_mm = 0.5;
+    fs::path out = "calibration.json";
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "calibrate",
+      "Calibrate the camera from an image of the dot grid (0.5 mm pitch by default): the\n"
+      "pixel-to-millimetre homography (perspective of the prism) and the mean scale.");
+  sub->add_option("DOT_GRID_IMAGE", opt->image, "Image of the dot grid")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--spacing-mm", opt->spacing_mm, "Dot spacing in mm")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--out", opt->out, "Calibration file to write (JSON)")->capture_default_str();
+  sub->callback([opt, &action] {
+    action = [opt] {
+      const capture::GrayImage image = capture::read_image(opt->image);
+      const capture::Calibration c = capture::calibrate_dot_grid(image, opt->spacing_mm);
+      capture::write_calibration_json(opt->out, c);
+      fmt::print("calibrate: {:.2f} px/mm ({:.4f} mm/px) over {} x {} px, {} -> {}\n",
+                 1.0 / c.mm_per_px, c.mm_per_px, c.image_width_px, c.image_height_px, c.method,
+                 opt->out.string());
+      return 0;
+    };
+  });
+}
+
+void add_features(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path image;
+    std::optional<fs::path> calib;
+    std::optional<double> px_per_mm;
+    std::optional<fs::path> csv;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "features",
+      "Find skin landmarks (sweat pores, valley endings, bifurcations) in one image, as in the\n"
+      "first paper. Prints counts; --csv writes type,x_px,y_px,x_mm,y_mm,orientation_rad.");
+  sub->add_option("IMAGE", opt->image, "Fingerprint image (ridges dark, valleys bright)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add_calibration_options(*sub, opt->calib, opt->px_per_mm);
+  sub->add_option("--csv", opt->csv, "Write the features to this CSV file");
+  sub->callback([opt, &action] {
+    require_calibration(opt->calib, opt->px_per_mm);
+    action = [opt] {
+      const capture::GrayImage image = capture::read_image(opt->image);
+      const capture::Calibration c =
+          calibration_from(opt->calib, opt->px_per_mm, image.width_px, image.height_px);
+      const auto features = capture::extract_features(image, 1.0 / c.mm_per_px);
+      int counts[3] = {0, 0, 0};
+      for (const auto& f : features) ++counts[static_cast<int>(f.type)];
+      fmt::print("features: {} pores, {} endings, {} bifurcations in {}\n", counts[0], counts[1],
+                 counts[2], opt->image.string());
+      if (opt->csv) {
+        capture::write_features_csv(*opt->csv, features, c);
+        fmt::print("features: wrote {}\n", opt->csv->string());
+      }
+      return 0;
+    };
+  });
+}
+
+void add_capture(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path image_dir;
+    std::optional<fs::path> calib;
+    std::optional<double> px_per_mm;
+    fs::path out;
+    std::optional<fs::path> csv_dir;
+    int span = 1;
+    double rate_hz = 60;
+    int min_track_frames = 30;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "capture",
+      "Measure skin strain from a sequence of fingerprint images (the image files of IMAGE_DIR\n"
+      "in name order): extract landmarks, match and track them, triangulate (Delaunay) and\n"
+      "write each edge's relative length change between frames i and i+span.");
+  sub->add_option("IMAGE_DIR", opt->image_dir, "Folder of frames")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  add_calibration_options(*sub, opt->calib, opt->px_per_mm);
+  sub->add_option("--out", opt->out, "Strain movie to write (HDF5)")->required();
+  sub->add_option("--csv", opt->csv_dir, "Also write tracks.csv and edges.csv into this folder");
+  sub->add_option("--span", opt->span, "Frames between the two ends of each strain measurement")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  sub->add_option("--rate-hz", opt->rate_hz, "Camera frame rate")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  sub->callback([opt, &action] {
+    require_calibration(opt->calib, opt->px_per_mm);
+    action = [opt] {
+      Progress progress;
+      const auto frames = capture::read_frames(opt->image_dir);
+      const capture::Calibration c =
+          calibration_from(opt->calib, opt->px_per_mm, frames[0].width_px, frames[0].height_px);
+      capture::CaptureParams params;
+      params.span_frames = opt->span;
+      params.min_track_frames = opt->min_track_frames;
+      const auto t0 = std::chrono::steady_clock::now();
+      capture::StrainMovie movie = capture::measure_strain(
+          frames, c, opt->rate_hz, params,
+          [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
+      progress.finish();
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      movie.source = opt->image_dir.string();
+      movie.program_version = kVersion;
+      capture::write_strain_movie(opt->out, movie);
+      fmt::print("capture: {} frames in {:.2f} s ({:.0f} frames/s), {} strain frames -> {}\n",
+                 frames.size(), s, frames.size() / s, movie.frames.size(), opt->out.string());
+      if (opt->csv_dir) {
+        fs::create_directories(*opt->csv_dir);
+        capture::export_strain_csv(*opt->csv_dir, movie);
+        fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", opt->csv_dir->string());
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,82 @@
+// `tactile map`: strain movie -> tactile movie on a contactor layout.
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "command.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/h5.hpp"
+#include "tactile/common/version.hpp"
+#include "tactile/display/movie_io.hpp"
+#include "tactile/mapping/map.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+void add_map(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path strain;
+    fs::path out;
+    std::string layout = "stress";
+    mapping::MappingParams params;
+    std::optional<fs::path> csv;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "map",
+      "Map a strain movie (from `tactile capture`) onto a contactor layout: sample the strain\n"
+      "at each contactor, turn it into deflections with the chosen method, resample to the\n"
+      "display rate, clamp and slew-limit as the firmware will.");
+  sub->add_option("STRAIN_H5", opt->strain, "Strain movie (HDF5)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", opt->out, "Tactile movie to write (HDF5)")->required();
+  sub->add_option("--layout", opt->layout, "Contactor layout: stress, stress2 or latero")
+      ->check(CLI::IsMember({"stress", "stress2", "latero"}))
+      ->capture_default_str();
+  sub->add_option("--method", opt->params.method, "Mapping method")
+      ->check(CLI::IsMember(mapping::mapping_method_names()))
+      ->capture_default_str();
+  sub->add_option("--gain", opt->params.gain_um_per_strain,
+                  "Micrometres of deflection per unit strain")
+      ->capture_default_str();
+  sub->add_option("--normalise", opt->params.normalisation,
+                  "none: gain as given; peak: scale so the largest deflection fills the range")
+      ->check(CLI::IsMember(mapping::normalisation_names()))
+      ->capture_default_str();
+  sub->add_option("--rate-hz", opt->params.rate_hz, "Display frame rate")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
+  sub->callback([opt, &action] {
+    action = [opt] {
+      const display::Layout layout = display::layout_by_name(opt->layout);
+      mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
+      const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);
+      const auto t0 = std::chrono::steady_clock::now();
+      opt->params.program_version = kVersion;
+      display::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt->params);
+      const double ms =
+          1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      movie.provenance.source = opt->strain.string();
+      movie.provenance.created_utc = h5::utc_now_iso8601();
+      display::write_tactile_movie(opt->out, movie);
+      fmt::print(
+          "map: {} strain frames -> {} frames of {} x {} at {:g} Hz ({:.2f} s) in {:.1f} ms -> "
+          "{}\n",
+          strain.frames.size(), movie.frame_count, layout.rows, layout.cols, movie.rate_hz,
+          movie.duration_s(), ms, opt->out.string());
+      if (opt->csv) {
+        display::export_tactile_csv(*opt->csv, movie);
+        fmt::print("map: wrote {}\n", opt->csv->string());
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,128 @@
+// `tactile play`, `tactile view`, `tactile devices`, `tactile info`: the display side.
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "command.hpp"
+#include "playback.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/h5.hpp"
+#include "tactile/display/devices.hpp"
+#include "tactile/display/movie_io.hpp"
+#include "tactile/display/preview.hpp"
+#include "tactile/display/summary.hpp"
+#include "tactile/display/viewer.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+void add_play(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path movie;
+    PlayChoice choice;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "play",
+      "Play a tactile movie: on an attached display; with none, in the emulator window; with no\n"
+      "screen either, headless into the emulated device (firmware limits applied), writing a\n"
+      "preview image strip and printing a summary.");
+  sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_flag("--headless", opt->choice.headless, "Play into the emulated device, no window");
+  sub->add_option("--preview", opt->choice.preview_png, "Preview image written when headless")
+      ->capture_default_str();
+  sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  sub->callback([opt, &action] {
+    action = [opt] { return play_anywhere(display::read_tactile_movie(opt->movie), opt->choice); };
+  });
+}
+
+void add_view(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path movie;
+    display::ViewerOptions viewer;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "view",
+      "Open the emulator window: contactors drawn at their rest positions, displaced by their\n"
+      "deflection (magnified) and coloured by the stretch between neighbours, as the emulated\n"
+      "device outputs them. Keys: space play/pause, arrows step, L loop, Esc quit.");
+  sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_flag("--loop", opt->viewer.loop, "Loop the movie");
+  sub->callback([opt, &action] {
+    action = [opt] {
+      const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      if (!display::screen_available()) {
+        throw std::runtime_error(
+            "no screen (DISPLAY is unset or cannot be opened); use `tactile play --headless` for "
+            "a preview image instead");
+      }
+      display::run_viewer(movie, opt->viewer);
+      return 0;
+    };
+  });
+}
+
+void add_devices(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand(
+      "devices", "List attached tactile displays (USB vendor/product 1209:0001) and their state.");
+  sub->callback([&action] {
+    action = [] {
+      const auto devices = display::list_usb_devices();
+      if (devices.empty()) {
+        fmt::print("devices: none attached (looking for USB {:04x}:{:04x})\n",
+                   display::kUsbVendorId, display::kUsbProductId);
+        return 0;
+      }
+      for (const auto& d : devices) {
+        fmt::print("{:<7} {:04x}:{:04x} {:<12} {} {} {}{}\n", d.backend, d.vendor_id, d.product_id,
+                   d.path, d.manufacturer, d.product, d.serial,
+                   d.accessible ? "" : "  (no permission: install the udev rules)");
+      }
+      return 0;
+    };
+  });
+}
+
+void add_info(CLI::App& app, Action& action) {
+  auto file = std::make_shared<fs::path>();
+  CLI::App* sub = app.add_subcommand("info", "Describe a strain movie or tactile movie file.");
+  sub->add_option("FILE_H5", *file, "Strain or tactile movie (HDF5)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->callback([file, &action] {
+    action = [file] {
+      const std::string kind = [&] {
+        H5::H5File f = h5::open_for_reading(*file);
+        return h5::read_attr_string(f, "format", file->string());
+      }();
+      if (kind == "tactile-strain-movie") {
+        const capture::StrainMovie m = capture::read_strain_movie(*file);
+        std::size_t edges = 0;
+        for (const auto& f : m.frames) edges += f.edges.size();
+        fmt::print(
+            "{}: strain movie, {} camera frames at {:g} Hz, span {}, {} strain frames, "
+            "{:.0f} edges per frame, field {:.2f} x {:.2f} mm, calibration: {}, source: {}\n",
+            file->string(), m.camera_frame_count, m.frame_rate_hz, m.span_frames, m.frames.size(),
+            m.frames.empty() ? 0.0 : static_cast<double>(edges) / m.frames.size(), m.field_width_mm,
+            m.field_height_mm, m.calibration.method, m.source);
+        return 0;
+      }
+      const display::TactileMovie movie = display::read_tactile_movie(*file);
+      fmt::print("{}: tactile movie, {}\n", file->string(), movie.provenance.mapping_method);
+      fmt::print("{}", display::format_summary(display::summarize(movie)));
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,25 @@
+#pragma once
+// How subcommands plug into the `tactile` program: each add_* function registers its options on
+// a CLI11 subcommand and, when that subcommand is chosen, stores the work to run in `action`.
+// Parsing and running are separate so that usage errors (exit 2) never start any work.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace tactile::cli {
+
+using Action = std::function<int()>;
+
+void add_demo(CLI::App& app, Action& action);
+void add_synth(CLI::App& app, Action& action);
+void add_calibrate(CLI::App& app, Action& action);
+void add_features(CLI::App& app, Action& action);
+void add_capture(CLI::App& app, Action& action);
+void add_map(CLI::App& app, Action& action);
+void add_play(CLI::App& app, Action& action);
+void add_view(CLI::App& app, Action& action);
+void add_devices(CLI::App& app, Action& action);
+void add_info(CLI::App& app, Action& action);
+
+}  // namespace tactile::cli

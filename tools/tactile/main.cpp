@@ -1,0 +1,56 @@
+// The `tactile` command line: one program, one subcommand per job (DESIGN.md section 2).
+// Exit codes: 0 success, 1 the work failed (bad file, device error), 2 wrong usage.
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "command.hpp"
+#include "tactile/common/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "tactile: turn measured skin strain into tactile movies and play them on a\n"
+      "lateral-skin-stretch display (STReSS family), or in an emulator window.\n"
+      "Start with `tactile demo`; every subcommand has --help."};
+  app.set_version_flag("--version", std::string("tactile ") + tactile::kVersion);
+  app.require_subcommand(1);
+  app.fallthrough(false);
+
+  tactile::cli::Action action;
+  tactile::cli::add_demo(app, action);
+  tactile::cli::add_synth(app, action);
+  tactile::cli::add_calibrate(app, action);
+  tactile::cli::add_features(app, action);
+  tactile::cli::add_capture(app, action);
+  tactile::cli::add_map(app, action);
+  tactile::cli::add_play(app, action);
+  tactile::cli::add_view(app, action);
+  tactile::cli::add_devices(app, action);
+  tactile::cli::add_info(app, action);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "tactile: error: {}\nRun `tactile --help` or `tactile <command> --help`.\n",
+               e.what());
+    return 2;
+  }
+
+  if (!action) return 2;  // unreachable: require_subcommand(1) guarantees a command ran
+  try {
+    return action();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "tactile {}: error: {}\n", app.get_subcommands().front()->get_name(),
+               e.what());
+    return 1;
+  }
+}

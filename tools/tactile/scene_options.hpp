@@ -1,0 +1,33 @@
+#pragma once
+// Scene options shared by `tactile synth` and `tactile demo`.
+
+#include <CLI/CLI.hpp>
+
+#include "tactile/capture/synth.hpp"
+
+namespace tactile::cli {
+
+inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
+  sub.add_option("--scene", spec.scene, "Scene: bump, hole or flat-slide")
+      ->check(CLI::IsMember({"bump", "hole", "flat-slide"}))
+      ->capture_default_str();
+  sub.add_option("--frames", spec.frame_count, "Number of camera frames")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  sub.add_option("--speed", spec.speed_mm_per_s, "Sliding speed in mm/s")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  sub.add_option("--height", spec.feature_height_mm, "Bump height / hole depth in mm")
+      ->check(CLI::Range(0.0, 5.0))
+      ->capture_default_str();
+  sub.add_option("--width", spec.feature_width_mm, "Bump / hole width (FWHM) in mm")
+      ->check(CLI::Range(0.1, 50.0))
+      ->capture_default_str();
+  sub.add_option("--noise", spec.noise_sigma, "Camera noise, grey levels (sigma)")
+      ->check(CLI::Range(0.0, 128.0))
+      ->capture_default_str();
+  sub.add_option("--seed", spec.seed, "Random seed (same seed, same images)")
+      ->capture_default_str();
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs what is needed, builds, and runs every test:
+#   1. release build, all CTest labels (unit, e2e, ...);
+#   2. debug build with address + undefined-behaviour sanitizers, all labels again.
+# Set TACTILE_SKIP_ASAN=1 to run only the first (quicker while developing).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/setup.sh
+jobs=$(nproc)
+
+echo "== release build and tests"
+cmake --preset release >/dev/null
+cmake --build --preset release -j"$jobs"
+ctest --preset release -j"$jobs"
+
+if [[ "${TACTILE_SKIP_ASAN:-0}" != 1 ]]; then
+  echo "== sanitizer (address, undefined) build and tests"
+  cmake --preset asan >/dev/null
+  cmake --build --preset asan -j"$jobs"
+  ctest --preset asan -j"$jobs"
+fi
