@@ -32,6 +32,27 @@ double peak_target_um(const display::Layout& layout, double fraction) {
   return fraction * side;
 }
 
+double peak_magnitude_um(const std::vector<double>& values) {
+  double peak_um = 0;
+  for (const double v : values) peak_um = std::max(peak_um, std::abs(v));
+  return peak_um;
+}
+
+// 99th percentile of the non-neutral |deflections|: one badly tracked triangle then cannot shrink
+// the whole movie, at the price of clamping the top percent. Masked contactors (exactly 0) are
+// left out so a mostly unmeasured grid does not inflate the gain.
+double p99_magnitude_um(const std::vector<double>& values) {
+  std::vector<double> magnitude;
+  magnitude.reserve(values.size());
+  for (const double v : values) {
+    if (v != 0) magnitude.push_back(std::abs(v));
+  }
+  if (magnitude.empty()) return 0;
+  const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(magnitude.size() - 1));
+  std::nth_element(magnitude.begin(), magnitude.begin() + k, magnitude.end());
+  return magnitude[static_cast<std::size_t>(k)];
+}
+
 }  // namespace
 
 display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
@@ -64,11 +85,11 @@ display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
   }
 
   double factor = 1.0;
-  if (params.normalisation == "peak") {
-    double peak_um = 0;
-    for (const double v : camera.values) peak_um = std::max(peak_um, std::abs(v));
+  if (params.normalisation != "none") {
+    const double reference_um = params.normalisation == "peak" ? peak_magnitude_um(camera.values)
+                                                               : p99_magnitude_um(camera.values);
     // An all-neutral movie stays neutral rather than dividing by zero.
-    if (peak_um > 0) factor = peak_target_um(layout, params.peak_fraction) / peak_um;
+    if (reference_um > 0) factor = peak_target_um(layout, params.peak_fraction) / reference_um;
     for (double& v : camera.values) v *= factor;
   }
 

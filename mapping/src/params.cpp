@@ -29,7 +29,7 @@ std::vector<std::string> mapping_method_names() {
   return {"proportional", "integrated"};
 }
 std::vector<std::string> normalisation_names() {
-  return {"none", "peak"};
+  return {"none", "peak", "p99"};
 }
 
 void validate(const MappingParams& params, const display::Layout& layout) {

@@ -29,7 +29,9 @@ struct MappingParams {
   // "none": deflections are gain * strain as they come. "peak": after the method, every
   // deflection is rescaled by one factor so that the movie's largest |deflection| equals
   // peak_fraction of the smaller side of the layout's deflection range (then the gain's magnitude
-  // does not matter).
+  // does not matter). "p99": the same with the 99th percentile of the non-zero |deflections| in
+  // place of the largest, so that a few outliers of a noisy measurement do not shrink the whole
+  // movie (the top percent then clamps).
   std::string normalisation = "none";
   double peak_fraction = 1.0;
   double rate_hz = 700.0;
@@ -52,7 +54,8 @@ std::vector<std::string> normalisation_names();
 void validate(const MappingParams& params, const display::Layout& layout);
 
 // The parameters as a JSON object (stored in Provenance::mapping_parameters_json). The placement
-// written is the one actually used; normalisation_factor is the factor "peak" applied (1 = none).
+// written is the one actually used; normalisation_factor is the factor "peak" or "p99" applied
+// (1 = none).
 std::string parameters_json(const MappingParams& params, const Placement& placement_used,
                             double normalisation_factor = 1.0);
 
