@@ -46,18 +46,21 @@ Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) 
                        (bg_mean > p.background_min_mean_ratio * global_mean);
   // Keep features away from the background and the image edge, where the local mean is biased.
   const int margin = std::max(1, static_cast<int>(std::lround(p.border_margin_mm * px_per_mm)));
-  cv::Mat grown;
-  cv::dilate(
-      background, grown,
-      cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * margin + 1, 2 * margin + 1)));
+  // Square dilations via box filters: O(1) per pixel whatever the margin.
+  auto grow = [&](int radius) {
+    cv::Mat spread;
+    cv::boxFilter(background, spread, CV_32F, cv::Size(2 * radius + 1, 2 * radius + 1),
+                  cv::Point(-1, -1), false, cv::BORDER_REPLICATE);
+    return cv::Mat(spread > 0);
+  };
+  const cv::Mat grown = grow(margin);
   r.foreground = cv::Mat::zeros(gray.size(), CV_8U);
   const cv::Rect inner(margin, margin, std::max(0, gray.cols - 2 * margin),
                        std::max(0, gray.rows - 2 * margin));
   r.foreground(inner).setTo(1);
   r.foreground.setTo(0, grown);
   const int half = std::max(1, margin / 2);
-  cv::dilate(background, r.near_background,
-             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * half + 1, 2 * half + 1)));
+  r.near_background = grow(half);
   r.bright = (r.smooth > r.mean) / 255;
   return r;
 }
