@@ -65,6 +65,13 @@ StrainMovie measure_strain(
           i, frames[i].width_px, frames[i].height_px, frames[0].width_px, frames[0].height_px));
     }
   }
+  if ((calibration.image_width_px != 0 && calibration.image_width_px != frames[0].width_px) ||
+      (calibration.image_height_px != 0 && calibration.image_height_px != frames[0].height_px)) {
+    throw std::invalid_argument(fmt::format(
+        "measure_strain: the calibration is for {}x{} px images but the frames are {}x{} px",
+        calibration.image_width_px, calibration.image_height_px, frames[0].width_px,
+        frames[0].height_px));
+  }
   Calibration cal = calibration;
   if (cal.image_width_px == 0) cal.image_width_px = frames[0].width_px;
   if (cal.image_height_px == 0) cal.image_height_px = frames[0].height_px;

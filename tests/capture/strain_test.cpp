@@ -223,6 +223,45 @@ TEST(Pipeline, RejectsBadInputsClearly) {
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("frame 1")));
 }
 
+TEST(Pipeline, CalibrationForAnotherImageSizeIsRejected) {
+  std::vector<GrayImage> frames(3, GrayImage{64, 48, std::vector<std::uint8_t>(64 * 48, 100)});
+  EXPECT_THAT([&] { measure_strain(frames, uniform_calibration(60, 640, 484), 60.0); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("calibration is for 640x484 px images but the frames are "
+                                       "64x48 px")));
+}
+
+// The hole scene through the same pipeline: consecutive-frame error well below the true strain.
+TEST(Pipeline, HoleSceneStrainBeatsTheTruthSignal) {
+  SceneSpec spec;
+  spec.scene = "hole";
+  spec.frame_count = 40;
+  const auto seq = render_sequence(spec);
+  CaptureParams p;
+  p.min_track_frames = 20;
+  p.span_frames = 5;
+  const StrainMovie movie = measure_strain(seq.frames, seq.calibration, spec.frame_rate_hz, p);
+  double se = 0, st = 0;
+  long n = 0;
+  for (const auto& f : movie.frames) {
+    std::map<std::int32_t, TrackedPoint> at;
+    for (const auto& pt : f.points_from) at[pt.track_id] = pt;
+    for (const auto& e : f.edges) {
+      const auto& a = at.at(e.track_a);
+      const auto& b = at.at(e.track_b);
+      const double truth =
+          true_rel_change(spec, {a.x_mm, a.y_mm}, {b.x_mm, b.y_mm}, f.frame_from, f.frame_to);
+      se += (e.rel_change - truth) * (e.rel_change - truth);
+      st += truth * truth;
+      ++n;
+    }
+  }
+  ASSERT_GT(n, 1000);
+  std::printf("hole, span 5: RMS error %.5f, RMS true %.5f over %ld edges\n",
+              std::sqrt(se / double(n)), std::sqrt(st / double(n)), n);
+  EXPECT_LT(std::sqrt(se / double(n)), 0.4 * std::sqrt(st / double(n)));
+}
+
 TEST(Pipeline, NoContactGivesAnEmptyButWellFormedMovie) {
   std::vector<GrayImage> blank(40, GrayImage{64, 48, std::vector<std::uint8_t>(64 * 48, 230)});
   const StrainMovie m = measure_strain(blank, uniform_calibration(60, 64, 48), 60.0);
