@@ -85,9 +85,10 @@ struct StrainMovie {
   double field_width_mm = 0;
   double field_height_mm = 0;
   Calibration calibration;
-  std::string source;            // what the frames came from (folder, scene name)
-  std::string program_version;   // tactile version that wrote it
-  std::vector<TrackedPoint> tracks;  // every smoothed point of every kept track, by track then frame
+  std::string source;           // what the frames came from (folder, scene name)
+  std::string program_version;  // tactile version that wrote it
+  // Every smoothed point of every kept track, ordered by track, then frame.
+  std::vector<TrackedPoint> tracks;
   std::vector<StrainFrame> frames;
 };
 
