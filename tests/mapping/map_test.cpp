@@ -23,9 +23,10 @@ using ::testing::HasSubstr;
 constexpr double kA = 0.01;   // uniform stretch along x
 constexpr double kB = -0.02;  // uniform stretch along y
 
-capture::StrainMovie uniform_movie(std::int32_t frames, double rate_hz = 60.0) {
+capture::StrainMovie uniform_movie(std::int32_t frames, double rate_hz = 60.0,
+                                   double spacing_mm = 0.5) {
   return testing::make_movie(
-      GridSpec{.spacing_mm = 0.5, .jitter_fraction = 0.2},
+      GridSpec{.spacing_mm = spacing_mm, .jitter_fraction = 0.2},
       [](double x, double y, double) {
         return PointMm{kA * x, kB * y};
       },
@@ -241,7 +242,7 @@ TEST(MapStrainMovie, IntegratedLeavesUnmeasuredContactorsNeutral) {
 }
 
 TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
-  const auto movie = bump_movie(MovingBump{}, 0.5);
+  const auto movie = bump_movie(MovingBump{}, 0.7);
   for (const char* name : {"stress", "stress2", "latero"}) {
     const auto layout = display::layout_by_name(name);
     for (const char* method : {"proportional", "integrated"}) {
@@ -295,9 +296,9 @@ TEST(MapStrainMovie, P99NormalisationIgnoresRareOutliers) {
   // 120 strain frames of uniform 1 % stretch, one of them replaced by a 20 % outlier: 16 of the
   // 1920 values (0.8 %), above the 99th percentile. "p99" scales the 1 % to the target and lets
   // the outlier clamp; "peak" would scale everything to the outlier.
-  auto movie = uniform_movie(120);
+  auto movie = uniform_movie(120, 60.0, 1.0);
   movie.frames[60] = testing::make_frame(
-      GridSpec{.spacing_mm = 0.5},
+      GridSpec{.spacing_mm = 1.0},
       [](double x, double, double) {
         return PointMm{0.2 * x, 0.0};
       },
