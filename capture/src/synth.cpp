@@ -162,7 +162,9 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
   for (std::size_t i = 0; i < sequence.frames.size(); ++i) {
     write_png(dir / fmt::format("frame_{:03d}.png", i), sequence.frames[i]);
   }
-  write_png(dir / "dot_grid.png", sequence.dot_grid);
+  // The dot grid goes in its own folder so that `tactile capture DIR` sees only the frames.
+  std::filesystem::create_directories(dir / "calibration");
+  write_png(dir / "calibration" / "dot_grid.png", sequence.dot_grid);
 
   const auto csv_path = dir / "landmarks.csv";
   auto out = csv::open_with_header(csv_path, "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm");
@@ -206,6 +208,7 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
                       {"method", c.method}};
   j["frames"] = fmt::format("frame_000.png .. frame_{:03d}.png",
                             sequence.frames.empty() ? 0 : sequence.frames.size() - 1);
+  j["dot_grid"] = "calibration/dot_grid.png";
   const auto json_path = dir / "scene.json";
   std::ofstream js(json_path);
   js << j.dump(2) << "\n";

@@ -101,7 +101,7 @@ TEST(Synth, WriteSequenceWritesFramesGroundTruthAndScene) {
   write_sequence(dir.path(), seq);
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "frame_000.png"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "frame_003.png"));
-  EXPECT_TRUE(std::filesystem::exists(dir.path() / "dot_grid.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "calibration" / "dot_grid.png"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "scene.json"));
   std::ifstream csv(dir.path() / "landmarks.csv");
   std::string header;

@@ -7,9 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numeric>
+#include <sstream>
 
-#include "run.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/display/movie_io.hpp"
@@ -19,24 +20,20 @@ using ::testing::HasSubstr;
 
 namespace {
 
+// The fixture e2e.demo (tests/CMakeLists.txt) ran `tactile demo --headless --keep --out DIR`
+// and saved what it printed to DIR.log.
 class DemoTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    out_ = new fs::path(fs::temp_directory_path() / "tactile_e2e_demo");
-    fs::remove_all(*out_);
-    result_ = new tactile::test::RunResult(
-        tactile::test::run_tactile("demo --headless --keep --out " + out_->string()));
+  void SetUp() override {
+    std::ifstream log(out_.string() + ".log");
+    ASSERT_TRUE(log) << "the e2e.demo fixture did not run (ctest runs it first)";
+    std::stringstream s;
+    s << log.rdbuf();
+    output_ = s.str();
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*out_);
-    delete out_;
-    delete result_;
-  }
-  static fs::path* out_;
-  static tactile::test::RunResult* result_;
+  const fs::path out_ = TACTILE_E2E_DEMO_DIR;
+  std::string output_;
 };
-fs::path* DemoTest::out_ = nullptr;
-tactile::test::RunResult* DemoTest::result_ = nullptr;
 
 // Root-mean-square deflection of each frame.
 std::vector<double> activity(const tactile::display::TactileMovie& m) {
@@ -58,26 +55,23 @@ double mean(const std::vector<double>& v, std::size_t from, std::size_t to) {
 }  // namespace
 
 TEST_F(DemoTest, RunsHeadlessAndSaysWhatItDid) {
-  ASSERT_EQ(result_->exit_code, 0) << result_->output;
-  EXPECT_THAT(result_->output, HasSubstr("headless"));
-  EXPECT_THAT(result_->output, HasSubstr("preview"));
+  EXPECT_THAT(output_, HasSubstr("headless"));
+  EXPECT_THAT(output_, HasSubstr("preview"));
 }
 
 TEST_F(DemoTest, WritesEveryFileAskedFor) {
-  ASSERT_EQ(result_->exit_code, 0) << result_->output;
   for (const char* f :
        {"strain.h5", "movie.h5", "preview.png", "calibration.json", "frames/frame_000.png",
-        "frames/dot_grid.png", "csv/tracks.csv", "csv/edges.csv", "csv/movie.csv"}) {
-    EXPECT_TRUE(fs::exists(*out_ / f)) << f;
+        "frames/calibration/dot_grid.png", "csv/tracks.csv", "csv/edges.csv", "csv/movie.csv"}) {
+    EXPECT_TRUE(fs::exists(out_ / f)) << f;
   }
-  const tactile::capture::GrayImage preview = tactile::capture::read_image(*out_ / "preview.png");
+  const tactile::capture::GrayImage preview = tactile::capture::read_image(out_ / "preview.png");
   EXPECT_GT(preview.width_px, 200);
   EXPECT_GT(preview.height_px, 100);
 }
 
 TEST_F(DemoTest, StrainMovieCoversTheScene) {
-  ASSERT_EQ(result_->exit_code, 0) << result_->output;
-  const auto strain = tactile::capture::read_strain_movie(*out_ / "strain.h5");
+  const auto strain = tactile::capture::read_strain_movie(out_ / "strain.h5");
   EXPECT_DOUBLE_EQ(strain.frame_rate_hz, 60.0);
   // 180 camera frames at span 1 give at most 179 frame pairs.
   EXPECT_GE(strain.frames.size(), 150u);
@@ -88,8 +82,7 @@ TEST_F(DemoTest, StrainMovieCoversTheScene) {
 }
 
 TEST_F(DemoTest, MovieHasTheStressShapeRateAndDuration) {
-  ASSERT_EQ(result_->exit_code, 0) << result_->output;
-  const auto movie = tactile::display::read_tactile_movie(*out_ / "movie.h5");
+  const auto movie = tactile::display::read_tactile_movie(out_ / "movie.h5");
   EXPECT_EQ(movie.layout.name, "stress");
   EXPECT_EQ(movie.layout.rows, 10);
   EXPECT_EQ(movie.layout.cols, 10);
@@ -103,8 +96,7 @@ TEST_F(DemoTest, MovieHasTheStressShapeRateAndDuration) {
 }
 
 TEST_F(DemoTest, ActivityRisesAndFallsAsTheBumpPasses) {
-  ASSERT_EQ(result_->exit_code, 0) << result_->output;
-  const auto movie = tactile::display::read_tactile_movie(*out_ / "movie.h5");
+  const auto movie = tactile::display::read_tactile_movie(out_ / "movie.h5");
   const std::vector<double> a = activity(movie);
   const std::size_t n = a.size();
   ASSERT_GT(n, 100u);
@@ -121,9 +113,14 @@ TEST_F(DemoTest, ActivityRisesAndFallsAsTheBumpPasses) {
       peak_at = i + tenth / 2;
     }
   }
+  // The scene's finger path is centred on the bump and the bump's push on the skin follows the
+  // contact pressure, sqrt(1 - r^2) over the contact ellipse (docs/capture-models.md): with the
+  // bump 3.6 mm from the patch centre at either end of the slide (semi-axis 4.8 mm) its effect
+  // there is sqrt(1 - 0.75^2) = 0.66 of the effect at the middle. Measured activity must show
+  // that hump: peak in the middle part of the movie, both ends clearly lower.
   EXPECT_GT(peak, 1.0) << "the bump should move contactors by more than a micrometre";
   EXPECT_GT(peak_at, n / 5);
   EXPECT_LT(peak_at, n - n / 5);
-  EXPECT_LT(start, 0.5 * peak);
-  EXPECT_LT(end, 0.5 * peak);
+  EXPECT_LT(start, 0.8 * peak);
+  EXPECT_LT(end, 0.8 * peak);
 }

@@ -22,7 +22,7 @@ bool is_background(std::array<std::uint8_t, 3> c) {
 }
 
 TEST(Viewer, DrawsAKnownPatternAtTheContactorPositions) {
-  if (!screen_available()) GTEST_SKIP() << "no screen (set DISPLAY, e.g. under xvfb-run)";
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
   // Frame 1: uniform stretch along x, every contactor 4 um per column further right.
   TactileMovie m = testing::sine_movie(stress_layout(), 700, 2, 0);
   for (int r = 0; r < 10; ++r) {
@@ -56,7 +56,7 @@ TEST(Viewer, DrawsAKnownPatternAtTheContactorPositions) {
 }
 
 TEST(Viewer, ShowsTheFirmwareClampNotTheRawMovie) {
-  if (!screen_available()) GTEST_SKIP() << "no screen (set DISPLAY, e.g. under xvfb-run)";
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
   // Every contactor asked for +80 um; the STReSS firmware clamps at +50 um. Uniform
   // deflection means no strain: white contactors.
   TactileMovie m = testing::sine_movie(stress_layout(), 700, 20, 0);

@@ -13,8 +13,8 @@
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
-#include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/strain.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/version.hpp"
 
 namespace tactile::cli {
@@ -22,11 +22,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// --calib FILE or --px-per-mm P, exactly one (see require_calibration).
-capture::Calibration calibration_from(const std::optional<fs::path>& calib_file,
-                                      std::optional<double> px_per_mm, int width_px,
-                                      int height_px) {
+// --calib FILE or --px-per-mm P, exactly one (see require_calibration). A calibration file is
+// read before any image so that a bad file fails at once, before heavy work.
+std::optional<capture::Calibration> calibration_file(const std::optional<fs::path>& calib_file) {
   if (calib_file) return capture::read_calibration_json(*calib_file);
+  return std::nullopt;
+}
+
+capture::Calibration calibration_for(const std::optional<capture::Calibration>& from_file,
+                                     std::optional<double> px_per_mm, int width_px, int height_px) {
+  if (from_file) return *from_file;
   return capture::uniform_calibration(px_per_mm.value(), width_px, height_px);
 }
 
@@ -101,9 +106,10 @@ void add_features(CLI::App& app, Action& action) {
   sub->callback([opt, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
     action = [opt] {
+      const auto from_file = calibration_file(opt->calib);
       const capture::GrayImage image = capture::read_image(opt->image);
       const capture::Calibration c =
-          calibration_from(opt->calib, opt->px_per_mm, image.width_px, image.height_px);
+          calibration_for(from_file, opt->px_per_mm, image.width_px, image.height_px);
       const auto features = capture::extract_features(image, 1.0 / c.mm_per_px);
       int counts[3] = {0, 0, 0};
       for (const auto& f : features) ++counts[static_cast<int>(f.type)];
@@ -154,9 +160,10 @@ void add_capture(CLI::App& app, Action& action) {
     require_calibration(opt->calib, opt->px_per_mm);
     action = [opt] {
       Progress progress;
+      const auto from_file = calibration_file(opt->calib);
       const auto frames = capture::read_frames(opt->image_dir);
       const capture::Calibration c =
-          calibration_from(opt->calib, opt->px_per_mm, frames[0].width_px, frames[0].height_px);
+          calibration_for(from_file, opt->px_per_mm, frames[0].width_px, frames[0].height_px);
       capture::CaptureParams params;
       params.span_frames = opt->span;
       params.min_track_frames = opt->min_track_frames;

@@ -98,12 +98,11 @@ int run_demo(DemoOptions& opt) {
     for (const auto& p : strain.tracks) max_id = std::max(max_id, p.track_id);
     return static_cast<std::size_t>(max_id + 1);
   }();
-  timer.report(3, "capture",
-               fmt::format("{} tracks, {} strain frames, {:.0f} edges per frame", tracks,
-                           strain.frames.size(),
-                           strain.frames.empty()
-                               ? 0.0
-                               : static_cast<double>(edges) / strain.frames.size()));
+  timer.report(
+      3, "capture",
+      fmt::format("{} tracks, {} strain frames, {:.0f} edges per frame", tracks,
+                  strain.frames.size(),
+                  strain.frames.empty() ? 0.0 : static_cast<double>(edges) / strain.frames.size()));
   const fs::path strain_path = opt.out / "strain.h5";
   capture::write_strain_movie(strain_path, strain);
   if (opt.keep) {
@@ -115,10 +114,10 @@ int run_demo(DemoOptions& opt) {
   display::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt.mapping);
   movie.provenance.source = strain_path.string();
   movie.provenance.created_utc = h5::utc_now_iso8601();
-  timer.report(4, "map",
-               fmt::format("{} frames of {} x {} ({}) at {:g} Hz, {}", movie.frame_count,
-                           layout.rows, layout.cols, layout.name, movie.rate_hz,
-                           opt.mapping.method));
+  timer.report(
+      4, "map",
+      fmt::format("{} frames of {} x {} ({}) at {:g} Hz, {}", movie.frame_count, layout.rows,
+                  layout.cols, layout.name, movie.rate_hz, opt.mapping.method));
   const fs::path movie_path = opt.out / "movie.h5";
   display::write_tactile_movie(movie_path, movie);
   if (opt.keep) display::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);

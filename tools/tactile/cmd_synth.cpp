@@ -22,7 +22,7 @@ void add_synth(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand(
       "synth",
       "Render a synthetic prism (FTIR) fingerprint sequence with exact ground truth.\n"
-      "Writes frame_NNN.png, dot_grid.png (0.5 mm calibration grid through the same camera),\n"
+      "Writes frame_NNN.png, calibration/dot_grid.png (0.5 mm grid through the same camera),\n"
       "landmarks.csv (true position of every landmark in every frame) and scene.json.");
   sub->add_option("OUT_DIR", opt->out_dir, "Folder to write into (created if missing)")->required();
   add_scene_options(*sub, opt->spec);

@@ -31,6 +31,15 @@ int main(int argc, char** argv) {
   tactile::cli::add_devices(app, action);
   tactile::cli::add_info(app, action);
 
+  // CLI11 reports an unknown first word as a missing subcommand; name it instead.
+  const auto is_command = [&app](const std::string& word) {
+    return !app.get_subcommands([&word](CLI::App* sub) { return sub->check_name(word); }).empty();
+  };
+  if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
+    fmt::print(stderr, "tactile: error: unknown command '{}'\nRun `tactile --help` for the list.\n",
+               argv[1]);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

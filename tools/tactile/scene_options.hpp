@@ -23,6 +23,10 @@ inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
   sub.add_option("--width", spec.feature_width_mm, "Bump / hole width (FWHM) in mm")
       ->check(CLI::Range(0.1, 50.0))
       ->capture_default_str();
+  sub.add_option("--contact-semi-x", spec.contact_semi_x_mm,
+                 "Half-width of the fingertip contact patch along the slide, mm")
+      ->check(CLI::Range(0.5, 20.0))
+      ->capture_default_str();
   sub.add_option("--noise", spec.noise_sigma, "Camera noise, grey levels (sigma)")
       ->check(CLI::Range(0.0, 128.0))
       ->capture_default_str();

@@ -83,7 +83,8 @@ Calibration true_calibration(const SceneSpec& spec);
 SyntheticSequence render_sequence(const SceneSpec& spec,
                                   const std::function<void(int done, int total)>& progress = {});
 
-// Writes frame_000.png ..., dot_grid.png, landmarks.csv and scene.json (spec + calibration).
+// Writes frame_000.png ..., calibration/dot_grid.png, landmarks.csv and scene.json (spec +
+// calibration). Only the frames are images at the top level, so DIR is a valid capture input.
 void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence);
 
 }  // namespace tactile::capture
