@@ -16,6 +16,12 @@ packages=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
+  # firmware on an emulated Cortex-M4, USB tests against fake devices, fuzzing
+  gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
+  umockdev libumockdev-dev
+  clang libclang-rt-14-dev
+  # golden check of the classifiers against WEKA itself
+  weka default-jre-headless
 )
 
 missing=()
