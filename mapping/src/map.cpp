@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
+#include <thread>
 
 #include "tactile/common/version.hpp"
 #include "tactile/mapping/methods.hpp"
@@ -55,8 +57,13 @@ double p99_magnitude_um(const std::vector<double>& values) {
 
 }  // namespace
 
-display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
-                                       const display::Layout& layout, const MappingParams& params) {
+capture::StrainMovie strain_source(const capture::StrainMovie& movie, const MappingParams& params) {
+  if (params.strain == "accumulated") return accumulate_along_tracks(movie, params.accumulate);
+  return movie;
+}
+
+MappingResult map_strain_frames(const capture::StrainMovie& movie, const display::Layout& layout,
+                                const MappingParams& params) {
   validate(params, layout);
   if (movie.frames.empty()) {
     throw std::invalid_argument(
@@ -74,14 +81,35 @@ display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
   const MethodFrame method = method_by_name(params.method);
 
   TimedFrames camera;
+  const auto n = static_cast<std::size_t>(layout.contactor_count());
   camera.values_per_frame = layout.contactor_count();
-  camera.t_s.reserve(movie.frames.size());
-  camera.values.reserve(movie.frames.size() * static_cast<std::size_t>(layout.contactor_count()));
-  for (const auto& frame : movie.frames) {
-    const auto field = build_strain_field(frame, params.field);
-    const auto deflection_um = method(field, layout, placement, params.gain_um_per_strain);
-    camera.t_s.push_back(frame.t_s);
-    camera.values.insert(camera.values.end(), deflection_um.begin(), deflection_um.end());
+  camera.t_s.resize(movie.frames.size());
+  camera.values.resize(movie.frames.size() * n);
+  // Frames are independent: each worker builds its own fields and writes its own rows.
+  const auto worker_count = static_cast<std::size_t>(
+      std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
+                 static_cast<int>(std::max<std::size_t>(movie.frames.size() / 16, 1))));
+  std::vector<std::exception_ptr> errors(worker_count);
+  const auto work = [&](std::size_t w) {
+    try {
+      for (std::size_t k = w; k < movie.frames.size(); k += worker_count) {
+        const auto field = build_strain_field(movie.frames[k], params.field);
+        const auto deflection_um = method(field, layout, placement, params.gain_um_per_strain);
+        camera.t_s[k] = movie.frames[k].t_s;
+        std::copy(deflection_um.begin(), deflection_um.end(),
+                  camera.values.begin() + static_cast<std::ptrdiff_t>(k * n));
+      }
+    } catch (...) {
+      errors[w] = std::current_exception();
+    }
+  };
+  {
+    std::vector<std::jthread> threads;
+    for (std::size_t w = 1; w < worker_count; ++w) threads.emplace_back(work, w);
+    work(0);
+  }
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
   }
 
   double factor = 1.0;
@@ -105,7 +133,22 @@ display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
   out.provenance.source = movie.source;
   out.provenance.mapping_method = params.method;
   out.provenance.mapping_parameters_json = parameters_json(params, placement, factor);
-  return apply_limits(std::move(out), params.slew_limit_um_per_s);
+  MappingResult result;
+  result.movie = apply_limits(std::move(out), params.slew_limit_um_per_s);
+  result.placement = placement;
+  result.normalisation_factor = factor;
+  result.um_per_strain = params.gain_um_per_strain * factor;
+  return result;
+}
+
+display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
+                                       const display::Layout& layout, const MappingParams& params) {
+  validate(params, layout);
+  if (params.strain == "accumulated") {
+    return map_strain_frames(accumulate_along_tracks(movie, params.accumulate), layout, params)
+        .movie;
+  }
+  return map_strain_frames(movie, layout, params).movie;
 }
 
 }  // namespace tactile::mapping

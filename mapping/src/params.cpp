@@ -31,6 +31,9 @@ std::vector<std::string> mapping_method_names() {
 std::vector<std::string> normalisation_names() {
   return {"none", "peak", "p99"};
 }
+std::vector<std::string> strain_names() {
+  return {"per-frame", "accumulated"};
+}
 
 void validate(const MappingParams& params, const display::Layout& layout) {
   if (!contains(mapping_method_names(), params.method)) {
@@ -43,6 +46,11 @@ void validate(const MappingParams& params, const display::Layout& layout) {
                                             params.normalisation,
                                             fmt::join(normalisation_names(), ", ")));
   }
+  if (!contains(strain_names(), params.strain)) {
+    throw std::invalid_argument(fmt::format("mapping: unknown strain '{}' (known: {})",
+                                            params.strain, fmt::join(strain_names(), ", ")));
+  }
+  require_positive(params.accumulate.max_edge_ratio, "accumulate max_edge_ratio");
   require_positive(params.gain_um_per_strain, "gain_um_per_strain");
   require_positive(params.rate_hz, "rate_hz");
   require_positive(params.slew_limit_um_per_s, "slew_limit_um_per_s");
@@ -90,6 +98,11 @@ std::string parameters_json(const MappingParams& params, const Placement& placem
   j["peak_fraction"] = params.peak_fraction;
   j["normalisation_factor"] = normalisation_factor;
   j["rate_hz"] = params.rate_hz;
+  j["strain"] = params.strain;
+  if (params.strain == "accumulated") {
+    j["reference_frame"] = params.accumulate.reference_frame;
+    j["max_edge_ratio"] = params.accumulate.max_edge_ratio;
+  }
   j["placement"] = {{"centre_x_mm", placement_used.centre_x_mm},
                     {"centre_y_mm", placement_used.centre_y_mm},
                     {"rotation_rad", placement_used.rotation_rad},

@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <vector>
 
 #include "tactile/capture/synth.hpp"
+#include "tactile/mapping/fidelity.hpp"
+#include "tactile/mapping/ground_truth.hpp"
 #include "tactile/mapping/map.hpp"
 
 namespace tactile::mapping {
@@ -16,52 +19,8 @@ namespace {
 
 using capture::PointMm;
 
-// Ground-truth strain movie: a material grid of skin points (spacing h_mm) seen at each pair of
-// consecutive frames, kept where the skin touches the glass in both, triangulated on the grid.
 capture::StrainMovie ground_truth_movie(const capture::SceneSpec& spec, double h_mm) {
-  capture::StrainMovie movie;
-  movie.frame_rate_hz = spec.frame_rate_hz;
-  movie.camera_frame_count = spec.frame_count;
-  movie.field_width_mm = spec.field_width_mm;
-  movie.field_height_mm = spec.field_height_mm;
-  movie.calibration = capture::true_calibration(spec);
-  movie.source = "ground truth: synthetic bump scene";
-  const double slide_mm = spec.speed_mm_per_s * spec.frame_count / spec.frame_rate_hz;
-  const int nx = static_cast<int>((spec.field_width_mm + slide_mm + 2) / h_mm) + 1;
-  const int ny = static_cast<int>((spec.field_height_mm + 2) / h_mm) + 1;
-  for (int f = 0; f + 1 < spec.frame_count; ++f) {
-    capture::StrainFrame sf;
-    sf.frame_from = f;
-    sf.frame_to = f + 1;
-    sf.t_s = (f + 1) / spec.frame_rate_hz;
-    std::vector<int> index(static_cast<std::size_t>(nx * ny), -1);
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        const PointMm skin{-slide_mm - 1 + i * h_mm, -1 + j * h_mm};
-        const auto a = capture::skin_to_image(spec, skin, f);
-        const auto b = capture::skin_to_image(spec, skin, f + 1);
-        if (a.x_mm < 0 || a.x_mm > spec.field_width_mm || a.y_mm < 0 ||
-            a.y_mm > spec.field_height_mm || !capture::in_contact(spec, a, f) ||
-            !capture::in_contact(spec, b, f + 1)) {
-          continue;
-        }
-        const int id = j * nx + i;
-        index[static_cast<std::size_t>(id)] = static_cast<int>(sf.points_from.size());
-        sf.points_from.push_back({id, f, {}, 0, 0, a.x_mm, a.y_mm});
-        sf.points_to.push_back({id, f + 1, {}, 0, 0, b.x_mm, b.y_mm});
-      }
-    }
-    const auto at = [&](int i, int j) { return index[static_cast<std::size_t>(j * nx + i)]; };
-    for (int j = 0; j + 1 < ny; ++j) {
-      for (int i = 0; i + 1 < nx; ++i) {
-        const int p = at(i, j), q = at(i + 1, j), r = at(i + 1, j + 1), s = at(i, j + 1);
-        if (p >= 0 && q >= 0 && r >= 0) sf.triangles.push_back({{p, q, r}});
-        if (p >= 0 && r >= 0 && s >= 0) sf.triangles.push_back({{p, r, s}});
-      }
-    }
-    movie.frames.push_back(std::move(sf));  // no edges: the field measures them from positions
-  }
-  return movie;
+  return ground_truth_strain_movie(spec, h_mm);
 }
 
 double correlation(const std::vector<double>& a, const std::vector<double>& b) {
@@ -154,6 +113,72 @@ TEST(GroundTruthBump, ProportionalFollowsTheLocalSourceStrain) {
   std::cout << "[ result ] ground-truth bump, proportional: correlation " << rho << " over "
             << got.size() << " contactors\n";
   EXPECT_GE(rho, 0.9);
+}
+
+// Accumulated strain along the tracks (Lagrangian): contactor pair (a, b) sits where the skin was
+// in the reference frame, so the truth is the skin's extension from frame 0 to the frame shown.
+TEST(GroundTruthBump, AccumulatedAlongTracksReproducesTheStrainFromTheReferenceFrame) {
+  capture::SceneSpec spec;
+  spec.frame_count = 45;
+  const auto movie = ground_truth_movie(spec, 0.3);
+  display::Layout layout;
+  layout.name = "stress";
+  layout.rows = 10;
+  layout.cols = 10;
+  layout.deflection_min_um = -400;  // room for the larger accumulated strain: no saturation
+  layout.deflection_max_um = 400;
+  MappingParams params;
+  params.method = "integrated";
+  params.strain = "accumulated";
+  params.accumulate.reference_frame = 0;
+  params.rate_hz = 60;
+  params.slew_limit_um_per_s = 1e7;  // compare the method, not the limits
+  const auto source = strain_source(movie, params);
+  ASSERT_EQ(source.frames.size(), 44u);
+  EXPECT_EQ(source.frames.back().frame_from, 0);
+  EXPECT_EQ(source.frames.back().frame_to, 44);
+  const auto result = map_strain_frames(source, layout, params);
+  const auto& out = result.movie;
+  ASSERT_EQ(out.frame_count, 44);
+  std::vector<double> got, want;
+  double biggest = 0;
+  for (std::int32_t f = 0; f < out.frame_count; ++f) {
+    const auto frame = out.frame(f);
+    const int frame_to = f + 1;
+    for (std::int32_t r = 0; r < 10; ++r) {
+      for (std::int32_t c = 0; c + 1 < 10; ++c) {
+        const auto a = contactor_position_mm(layout, result.placement, r, c);
+        const auto b = contactor_position_mm(layout, result.placement, r, c + 1);
+        // Skin that was under both contactors at frame 0 and still touches the glass.
+        if (!capture::in_contact(spec, a, 0) || !capture::in_contact(spec, b, 0)) continue;
+        const auto a_now =
+            capture::skin_to_image(spec, capture::image_to_skin(spec, a, 0), frame_to);
+        const auto b_now =
+            capture::skin_to_image(spec, capture::image_to_skin(spec, b, 0), frame_to);
+        if (!capture::in_contact(spec, a_now, frame_to) ||
+            !capture::in_contact(spec, b_now, frame_to)) {
+          continue;
+        }
+        const double rel = capture::true_rel_change(spec, a, b, 0, frame_to);
+        biggest = std::max(biggest, std::abs(rel));
+        got.push_back(frame[static_cast<std::size_t>(r * 10 + c + 1)] -
+                      frame[static_cast<std::size_t>(r * 10 + c)]);
+        want.push_back(1000 * rel * layout.pitch_x_mm);
+      }
+    }
+  }
+  ASSERT_GT(got.size(), 1000u);
+  const double rho = correlation(got, want);
+  std::cout << "[ result ] ground-truth bump, accumulated along tracks, integrated: correlation "
+            << rho << " over " << got.size() << " pairs (largest true strain " << biggest << ")\n";
+  EXPECT_GE(rho, 0.95);
+  // The fidelity metric measures the same thing against the (accumulated) source field.
+  const auto m =
+      fidelity(out, source, result.placement, result.um_per_strain, params.slew_limit_um_per_s);
+  std::cout << "[ result ] fidelity: correlation " << m.strain_correlation << ", RMS error "
+            << m.strain_rms_error << " (source RMS " << m.source_strain_rms << ")\n";
+  EXPECT_GE(m.strain_correlation, 0.95);
+  EXPECT_LT(m.strain_rms_error, 0.3 * m.source_strain_rms);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #pragma once
 // Strain movie -> tactile movie, the whole mapping in one call:
-//   1. one StrainField per StrainFrame (strain_field.hpp; the frame's own span, frame-to-frame or
-//      span-k as the strain movie was made);
+//   0. strain "per-frame" takes the StrainFrames as the capture made them (frame-to-frame or
+//      span-k); strain "accumulated" first turns the tracks into strain from a reference frame
+//      (accumulate.hpp, Lagrangian);
+//   1. one StrainField per StrainFrame (strain_field.hpp);
 //   2. a mapping method turns each field into contactor deflections at the camera frame's time
 //      (methods.hpp), sampled where the placement puts the contactors (placement.hpp);
 //   3. normalisation (gain policy, below);
@@ -14,6 +16,7 @@
 
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/display/tactile_movie.hpp"
+#include "tactile/mapping/accumulate.hpp"
 #include "tactile/mapping/limits.hpp"
 #include "tactile/mapping/placement.hpp"
 #include "tactile/mapping/strain_field.hpp"
@@ -35,6 +38,10 @@ struct MappingParams {
   std::string normalisation = "none";
   double peak_fraction = 1.0;
   double rate_hz = 700.0;
+  // "per-frame": the strain movie's own StrainFrames. "accumulated": strain from
+  // accumulate.reference_frame to each later frame along the tracks (accumulate.hpp).
+  std::string strain = "per-frame";
+  AccumulateOptions accumulate;
   // Where the contactor grid sits on the field; unset = default_placement(movie).
   std::optional<Placement> placement;
   double slew_limit_um_per_s = kDefaultSlewLimitUmPerS;
@@ -43,9 +50,10 @@ struct MappingParams {
   std::string program_version;
 };
 
-// Names accepted in MappingParams::method / ::normalisation.
+// Names accepted in MappingParams::method / ::normalisation / ::strain.
 std::vector<std::string> mapping_method_names();
 std::vector<std::string> normalisation_names();
+std::vector<std::string> strain_names();
 
 // Checks the parameters against the layout before any work: unknown method or normalisation,
 // non-positive or non-finite gain, rate, slew limit or scale, peak_fraction outside (0, 1], rate
@@ -59,9 +67,28 @@ void validate(const MappingParams& params, const display::Layout& layout);
 std::string parameters_json(const MappingParams& params, const Placement& placement_used,
                             double normalisation_factor = 1.0);
 
-// Maps the strain movie onto the layout. Throws std::invalid_argument for bad parameters (see
-// validate), an empty strain movie, or strain frame times that do not increase. Provenance gets
-// method, parameters, source and program version; created_utc is left to the caller.
+struct MappingResult {
+  display::TactileMovie movie;
+  Placement placement;              // the one used (params.placement or the default)
+  double normalisation_factor = 1;  // applied by "peak" / "p99"; 1 for "none"
+  // Deflection difference per unit strain per mm of pitch actually used by "integrated", and
+  // deflection per unit strain for "proportional": gain_um_per_strain * normalisation_factor.
+  double um_per_strain = 0;
+};
+
+// The strain movie the mapping reads for these parameters: `movie` itself for strain
+// "per-frame", accumulate_along_tracks(movie, params.accumulate) for "accumulated".
+capture::StrainMovie strain_source(const capture::StrainMovie& movie, const MappingParams& params);
+
+// Maps the StrainFrames of `source` as they are (params.strain is only recorded: pass the
+// movie strain_source() returned), and says what placement and scale it used.
+MappingResult map_strain_frames(const capture::StrainMovie& source, const display::Layout& layout,
+                                const MappingParams& params);
+
+// Maps the strain movie onto the layout: map_strain_frames(strain_source(movie, params), ...).
+// Throws std::invalid_argument for bad parameters (see validate), an empty strain movie, or strain
+// frame times that do not increase. Provenance gets method, parameters, source and program version;
+// created_utc is left to the caller.
 display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
                                        const display::Layout& layout, const MappingParams& params);
 

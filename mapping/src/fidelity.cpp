@@ -1,0 +1,132 @@
+// Fidelity metrics of a mapped movie against its source strain.
+
+#include "tactile/mapping/fidelity.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "tactile/mapping/methods.hpp"
+
+namespace tactile::mapping {
+namespace {
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const auto n = static_cast<double>(a.size());
+  if (a.size() < 2) return 0;
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= n;
+  mb /= n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  if (!(saa > 0) || !(sbb > 0)) return 0;
+  return sab / std::sqrt(saa * sbb);
+}
+
+}  // namespace
+
+FidelityMetrics fidelity(const display::TactileMovie& movie, const capture::StrainMovie& source,
+                         const Placement& placement, double um_per_strain,
+                         double slew_limit_um_per_s, const StrainFieldOptions& field_options) {
+  if (!(um_per_strain > 0) || !std::isfinite(um_per_strain)) {
+    throw std::invalid_argument(
+        fmt::format("fidelity: um_per_strain {} must be positive", um_per_strain));
+  }
+  display::validate(movie);
+  const auto& layout = movie.layout;
+  const auto n = static_cast<std::size_t>(layout.contactor_count());
+  const auto frames = static_cast<std::size_t>(movie.frame_count);
+  FidelityMetrics m;
+
+  const bool along_x = layout.axis == display::DeflectionAxis::x;
+  const double pitch_mm = along_x ? layout.pitch_x_mm : layout.pitch_y_mm;
+  const auto dir = deflection_direction(layout, placement);
+  const auto positions = contactor_positions_mm(layout, placement);
+  struct Pair {
+    std::size_t a, b;
+    double x_mm, y_mm;
+  };
+  std::vector<Pair> pairs;
+  for (std::int32_t r = 0; r < layout.rows; ++r) {
+    for (std::int32_t c = 0; c < layout.cols; ++c) {
+      const std::int32_t r2 = along_x ? r : r + 1;
+      const std::int32_t c2 = along_x ? c + 1 : c;
+      if (r2 >= layout.rows || c2 >= layout.cols) continue;
+      const auto a = static_cast<std::size_t>(r * layout.cols + c);
+      const auto b = static_cast<std::size_t>(r2 * layout.cols + c2);
+      pairs.push_back({a, b, (positions[a].x_mm + positions[b].x_mm) / 2,
+                       (positions[a].y_mm + positions[b].y_mm) / 2});
+    }
+  }
+  std::vector<double> imposed, wanted;
+  if (frames > 0 && !source.frames.empty()) {
+    const double t0 = source.frames.front().t_s;
+    for (const auto& sf : source.frames) {
+      const double index = std::round((sf.t_s - t0) * movie.rate_hz);
+      if (index < 0 || index >= static_cast<double>(frames)) continue;
+      const auto frame = movie.frame(static_cast<std::int32_t>(index));
+      const auto field = build_strain_field(sf, field_options);
+      for (const auto& p : pairs) {
+        const auto e = sample(field, p.x_mm, p.y_mm);
+        if (!e) continue;
+        wanted.push_back(normal_strain(*e, dir.x_mm, dir.y_mm));
+        imposed.push_back((frame[p.b] - frame[p.a]) / (pitch_mm * um_per_strain));
+      }
+    }
+  }
+  m.compared_pairs = static_cast<std::int64_t>(imposed.size());
+  if (!imposed.empty()) {
+    double se = 0, ss = 0;
+    for (std::size_t i = 0; i < imposed.size(); ++i) {
+      se += (imposed[i] - wanted[i]) * (imposed[i] - wanted[i]);
+      ss += wanted[i] * wanted[i];
+    }
+    m.strain_rms_error = std::sqrt(se / static_cast<double>(imposed.size()));
+    m.source_strain_rms = std::sqrt(ss / static_cast<double>(imposed.size()));
+    m.strain_correlation = pearson(imposed, wanted);
+  }
+
+  if (frames > 0 && n > 0) {
+    constexpr double kTolUm = 1e-3;
+    const double lo = layout.deflection_min_um;
+    const double hi = layout.deflection_max_um;
+    const double step_um = slew_limit_um_per_s / movie.rate_hz;
+    std::size_t saturated = 0, slewed = 0, steps = 0, accels = 0;
+    double acc2 = 0, d2 = 0;
+    for (std::size_t f = 0; f < frames; ++f) {
+      for (std::size_t j = 0; j < n; ++j) {
+        const double d = movie.deflection_um[f * n + j];
+        d2 += d * d;
+        if ((lo != 0 && std::abs(d - lo) <= kTolUm) || (hi != 0 && std::abs(d - hi) <= kTolUm)) {
+          ++saturated;
+        }
+        if (f >= 1) {
+          ++steps;
+          if (std::abs(d - movie.deflection_um[(f - 1) * n + j]) >= step_um - kTolUm) ++slewed;
+        }
+        if (f >= 2) {
+          const double a = (d - 2.0 * movie.deflection_um[(f - 1) * n + j] +
+                            movie.deflection_um[(f - 2) * n + j]) *
+                           movie.rate_hz * movie.rate_hz;
+          acc2 += a * a;
+          ++accels;
+        }
+      }
+    }
+    m.saturated_fraction = static_cast<double>(saturated) / static_cast<double>(frames * n);
+    m.rms_deflection_um = std::sqrt(d2 / static_cast<double>(frames * n));
+    if (steps > 0)
+      m.slew_limited_fraction = static_cast<double>(slewed) / static_cast<double>(steps);
+    if (accels > 0) m.rms_acceleration_um_per_s2 = std::sqrt(acc2 / static_cast<double>(accels));
+  }
+  return m;
+}
+
+}  // namespace tactile::mapping
