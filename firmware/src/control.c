@@ -1,31 +1,9 @@
 /* Device information and status replies; see tactile_fw/control.h. */
 #include "tactile_fw/control.h"
 
+#include "le_bytes.h"
+
 #include <string.h>
-
-static void put_u16(uint8_t* p, uint16_t v) {
-  p[0] = (uint8_t)(v & 0xFFu);
-  p[1] = (uint8_t)(v >> 8);
-}
-
-static void put_u32(uint8_t* p, uint32_t v) {
-  put_u16(p, (uint16_t)(v & 0xFFFFu));
-  put_u16(p + 2, (uint16_t)(v >> 16));
-}
-
-static uint16_t get_u16(const uint8_t* p) {
-  return (uint16_t)(p[0] | (p[1] << 8));
-}
-
-static uint32_t get_u32(const uint8_t* p) {
-  return (uint32_t)get_u16(p) | ((uint32_t)get_u16(p + 2) << 16);
-}
-
-/* See wire.c: two's complement by arithmetic for portability. */
-static int16_t get_i16(const uint8_t* p) {
-  const int32_t v = (int32_t)get_u16(p);
-  return (int16_t)(v >= 0x8000 ? v - 0x10000 : v);
-}
 
 size_t tfw_encode_info(const tfw_device* dev, uint8_t* out, size_t capacity) {
   if (capacity < TFW_INFO_BYTES) return 0;
@@ -33,18 +11,18 @@ size_t tfw_encode_info(const tfw_device* dev, uint8_t* out, size_t capacity) {
   memset(out, 0, TFW_INFO_BYTES);
   out[0] = (uint8_t)TFW_PROTOCOL_VERSION;
   out[1] = c->axis;
-  put_u16(out + 2, c->rows);
-  put_u16(out + 4, c->cols);
-  put_u16(out + 6, (uint16_t)c->deflection_min);
-  put_u16(out + 8, (uint16_t)c->deflection_max);
-  put_u16(out + 10, c->max_rate_hz);
-  put_u32(out + 12, c->pitch_x_nm);
-  put_u32(out + 16, c->pitch_y_nm);
-  put_u32(out + 20, c->contactor_width_nm);
-  put_u32(out + 24, c->contactor_height_nm);
-  put_u32(out + 28, c->max_slew_per_s);
-  put_u16(out + 32, c->watchdog_timeout_ms);
-  put_u16(out + 34, (uint16_t)TFW_FIFO_CAPACITY);
+  tfw_put_u16(out + 2, c->rows);
+  tfw_put_u16(out + 4, c->cols);
+  tfw_put_u16(out + 6, (uint16_t)c->deflection_min);
+  tfw_put_u16(out + 8, (uint16_t)c->deflection_max);
+  tfw_put_u16(out + 10, c->max_rate_hz);
+  tfw_put_u32(out + 12, c->pitch_x_nm);
+  tfw_put_u32(out + 16, c->pitch_y_nm);
+  tfw_put_u32(out + 20, c->contactor_width_nm);
+  tfw_put_u32(out + 24, c->contactor_height_nm);
+  tfw_put_u32(out + 28, c->max_slew_per_s);
+  tfw_put_u16(out + 32, c->watchdog_timeout_ms);
+  tfw_put_u16(out + 34, (uint16_t)TFW_FIFO_CAPACITY);
   const char* version = TFW_FIRMWARE_VERSION;
   for (size_t i = 0; i < TFW_VERSION_CHARS && version[i] != '\0'; ++i) {
     out[36 + i] = (uint8_t)version[i];
@@ -58,17 +36,17 @@ size_t tfw_encode_status(const tfw_device* dev, uint8_t* out, size_t capacity) {
   tfw_device_status(dev, &s);
   memset(out, 0, TFW_STATUS_BYTES);
   out[0] = s.state;
-  put_u16(out + 2, s.fifo_fill);
-  put_u16(out + 4, s.fifo_capacity);
-  put_u16(out + 6, dev->config.rate_hz);
+  tfw_put_u16(out + 2, s.fifo_fill);
+  tfw_put_u16(out + 4, s.fifo_capacity);
+  tfw_put_u16(out + 6, dev->config.rate_hz);
   const uint32_t counters[] = {
       s.frames_received, s.frames_played, s.malformed_total,     s.overflows,
       s.underruns,       s.sequence_gaps, s.clamped_samples,     s.slew_limited_samples,
       s.watchdog_trips,  s.ticks,         s.last_sequence_played};
   for (size_t i = 0; i < sizeof counters / sizeof counters[0]; ++i) {
-    put_u32(out + 8 + 4 * i, counters[i]);
+    tfw_put_u32(out + 8 + 4 * i, counters[i]);
   }
-  for (size_t r = 0; r < TFW_RESULT_COUNT; ++r) put_u32(out + 52 + 4 * r, s.rejected[r]);
+  for (size_t r = 0; r < TFW_RESULT_COUNT; ++r) tfw_put_u32(out + 52 + 4 * r, s.rejected[r]);
   return TFW_STATUS_BYTES;
 }
 
@@ -79,19 +57,19 @@ tfw_result tfw_decode_info(const uint8_t* bytes, size_t len, tfw_device_info* in
   info->protocol_version = bytes[0];
   tfw_config* c = &info->config;
   c->axis = bytes[1];
-  c->rows = get_u16(bytes + 2);
-  c->cols = get_u16(bytes + 4);
-  c->deflection_min = get_i16(bytes + 6);
-  c->deflection_max = get_i16(bytes + 8);
-  c->max_rate_hz = get_u16(bytes + 10);
+  c->rows = tfw_get_u16(bytes + 2);
+  c->cols = tfw_get_u16(bytes + 4);
+  c->deflection_min = tfw_get_i16(bytes + 6);
+  c->deflection_max = tfw_get_i16(bytes + 8);
+  c->max_rate_hz = tfw_get_u16(bytes + 10);
   c->rate_hz = c->max_rate_hz;
-  c->pitch_x_nm = get_u32(bytes + 12);
-  c->pitch_y_nm = get_u32(bytes + 16);
-  c->contactor_width_nm = get_u32(bytes + 20);
-  c->contactor_height_nm = get_u32(bytes + 24);
-  c->max_slew_per_s = get_u32(bytes + 28);
-  c->watchdog_timeout_ms = get_u16(bytes + 32);
-  info->fifo_capacity = get_u16(bytes + 34);
+  c->pitch_x_nm = tfw_get_u32(bytes + 12);
+  c->pitch_y_nm = tfw_get_u32(bytes + 16);
+  c->contactor_width_nm = tfw_get_u32(bytes + 20);
+  c->contactor_height_nm = tfw_get_u32(bytes + 24);
+  c->max_slew_per_s = tfw_get_u32(bytes + 28);
+  c->watchdog_timeout_ms = tfw_get_u16(bytes + 32);
+  info->fifo_capacity = tfw_get_u16(bytes + 34);
   for (size_t i = 0; i < TFW_VERSION_CHARS; ++i) {
     info->firmware_version[i] = (char)bytes[36 + i];
   }
@@ -104,16 +82,41 @@ tfw_result tfw_decode_status(const uint8_t* bytes, size_t len, tfw_status_report
   memset(report, 0, sizeof *report);
   tfw_status* s = &report->status;
   s->state = bytes[0];
-  s->fifo_fill = get_u16(bytes + 2);
-  s->fifo_capacity = get_u16(bytes + 4);
-  report->rate_hz = get_u16(bytes + 6);
+  s->fifo_fill = tfw_get_u16(bytes + 2);
+  s->fifo_capacity = tfw_get_u16(bytes + 4);
+  report->rate_hz = tfw_get_u16(bytes + 6);
   uint32_t* counters[] = {
       &s->frames_received, &s->frames_played, &s->malformed_total,     &s->overflows,
       &s->underruns,       &s->sequence_gaps, &s->clamped_samples,     &s->slew_limited_samples,
       &s->watchdog_trips,  &s->ticks,         &s->last_sequence_played};
   for (size_t i = 0; i < sizeof counters / sizeof counters[0]; ++i) {
-    *counters[i] = get_u32(bytes + 8 + 4 * i);
+    *counters[i] = tfw_get_u32(bytes + 8 + 4 * i);
   }
-  for (size_t r = 0; r < TFW_RESULT_COUNT; ++r) s->rejected[r] = get_u32(bytes + 52 + 4 * r);
+  for (size_t r = 0; r < TFW_RESULT_COUNT; ++r) s->rejected[r] = tfw_get_u32(bytes + 52 + 4 * r);
+  return TFW_OK;
+}
+
+size_t tfw_encode_fill(const tfw_device* dev, uint8_t* out, size_t capacity) {
+  if (capacity < TFW_FILL_BYTES) return 0;
+  tfw_status s;
+  tfw_device_status(dev, &s);
+  memset(out, 0, TFW_FILL_BYTES);
+  out[0] = s.state;
+  tfw_put_u16(out + 2, s.fifo_fill);
+  tfw_put_u16(out + 4, s.fifo_capacity);
+  tfw_put_u16(out + 6, dev->config.rate_hz);
+  tfw_put_u32(out + 8, s.frames_played);
+  tfw_put_u32(out + 12, s.underruns);
+  return TFW_FILL_BYTES;
+}
+
+tfw_result tfw_decode_fill(const uint8_t* bytes, size_t len, tfw_fill_report* report) {
+  if (len != TFW_FILL_BYTES) return TFW_ERR_BAD_LENGTH;
+  report->state = bytes[0];
+  report->fifo_fill = tfw_get_u16(bytes + 2);
+  report->fifo_capacity = tfw_get_u16(bytes + 4);
+  report->rate_hz = tfw_get_u16(bytes + 6);
+  report->frames_played = tfw_get_u32(bytes + 8);
+  report->underruns = tfw_get_u32(bytes + 12);
   return TFW_OK;
 }

@@ -63,6 +63,9 @@ tfw_config_result tfw_device_init(tfw_device* dev, const tfw_config* config, con
   const tfw_config_result check = tfw_config_check(config);
   if (check != TFW_CONFIG_OK) return check;
   dev->config = *config;
+  dev->hard_deflection_min = config->deflection_min;
+  dev->hard_deflection_max = config->deflection_max;
+  dev->hard_max_slew_per_s = config->max_slew_per_s;
   if (hw != NULL) {
     dev->hw = *hw;
   } else {
@@ -90,6 +93,23 @@ tfw_config_result tfw_device_start(tfw_device* dev, uint16_t rate_hz) {
   reset_counters(dev);
   dev->have_sequence = 0;
   dev->state = TFW_STATE_IDLE;
+  return TFW_CONFIG_OK;
+}
+
+tfw_config_result tfw_device_set_limits(tfw_device* dev, int16_t deflection_min,
+                                        int16_t deflection_max, uint32_t max_slew_per_s) {
+  if (deflection_min < dev->hard_deflection_min || deflection_max > dev->hard_deflection_max ||
+      deflection_min > 0 || deflection_max < 0 || deflection_min >= deflection_max) {
+    return TFW_CONFIG_BAD_RANGE;
+  }
+  /* Same floor as tfw_config_check: at least one unit per tick at the highest rate. */
+  if (max_slew_per_s > dev->hard_max_slew_per_s || max_slew_per_s < dev->config.max_rate_hz) {
+    return TFW_CONFIG_BAD_SLEW;
+  }
+  dev->config.deflection_min = deflection_min;
+  dev->config.deflection_max = deflection_max;
+  dev->config.max_slew_per_s = max_slew_per_s;
+  apply_rate(dev, dev->config.rate_hz);
   return TFW_CONFIG_OK;
 }
 

@@ -1,32 +1,7 @@
 /* Frame encoding and decoding; see tactile_fw/wire.h for the layout. */
 #include "tactile_fw/wire.h"
 
-static void put_u16(uint8_t* p, uint16_t v) {
-  p[0] = (uint8_t)(v & 0xFFu);
-  p[1] = (uint8_t)(v >> 8);
-}
-
-static void put_u32(uint8_t* p, uint32_t v) {
-  p[0] = (uint8_t)(v & 0xFFu);
-  p[1] = (uint8_t)((v >> 8) & 0xFFu);
-  p[2] = (uint8_t)((v >> 16) & 0xFFu);
-  p[3] = (uint8_t)(v >> 24);
-}
-
-static uint16_t get_u16(const uint8_t* p) {
-  return (uint16_t)(p[0] | (p[1] << 8));
-}
-
-/* Two's complement by arithmetic, because converting an out-of-range value to a signed type is
- * implementation-defined in C11. */
-static int16_t get_i16(const uint8_t* p) {
-  const int32_t v = (int32_t)get_u16(p);
-  return (int16_t)(v >= 0x8000 ? v - 0x10000 : v);
-}
-
-static uint32_t get_u32(const uint8_t* p) {
-  return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
-}
+#include "le_bytes.h"
 
 const char* tfw_result_name(tfw_result result) {
   switch (result) {
@@ -74,16 +49,16 @@ tfw_result tfw_encode_frame(uint32_t sequence, uint8_t flags, const int16_t* def
   if ((flags & ~TFW_KNOWN_FLAGS) != 0) return TFW_ERR_BAD_VERSION;
   const size_t total = TFW_FRAME_BYTES(contactor_count);
   if (out_capacity < total) return TFW_ERR_BUFFER_TOO_SMALL;
-  put_u32(out, TFW_MAGIC);
+  tfw_put_u32(out, TFW_MAGIC);
   out[4] = (uint8_t)TFW_PROTOCOL_VERSION;
   out[5] = flags;
-  put_u16(out + 6, contactor_count);
-  put_u32(out + 8, sequence);
+  tfw_put_u16(out + 6, contactor_count);
+  tfw_put_u32(out + 8, sequence);
   for (uint16_t i = 0; i < contactor_count; ++i) {
-    put_u16(out + TFW_HEADER_BYTES + 2u * i, (uint16_t)deflection[i]);
+    tfw_put_u16(out + TFW_HEADER_BYTES + 2u * i, (uint16_t)deflection[i]);
   }
   const size_t body = TFW_HEADER_BYTES + 2u * (size_t)contactor_count;
-  put_u32(out + body, tfw_crc32(out, body));
+  tfw_put_u32(out + body, tfw_crc32(out, body));
   *out_len = total;
   return TFW_OK;
 }
@@ -91,26 +66,26 @@ tfw_result tfw_encode_frame(uint32_t sequence, uint8_t flags, const int16_t* def
 tfw_result tfw_decode_frame(const uint8_t* bytes, size_t len, tfw_frame_header* header,
                             int16_t* deflection, size_t deflection_capacity) {
   if (len < TFW_FRAME_BYTES(0)) return TFW_ERR_BAD_LENGTH;
-  if (get_u32(bytes) != TFW_MAGIC) return TFW_ERR_BAD_MAGIC;
+  if (tfw_get_u32(bytes) != TFW_MAGIC) return TFW_ERR_BAD_MAGIC;
   const uint8_t version = bytes[4];
   const uint8_t flags = bytes[5];
   if (version != TFW_PROTOCOL_VERSION || (flags & ~TFW_KNOWN_FLAGS) != 0) {
     return TFW_ERR_BAD_VERSION;
   }
-  const uint16_t count = get_u16(bytes + 6);
+  const uint16_t count = tfw_get_u16(bytes + 6);
   /* Length before count: a truncated frame is reported as such even if its count is large. */
   if (len != TFW_FRAME_BYTES(count)) return TFW_ERR_BAD_LENGTH;
   if (count == 0 || count > TFW_MAX_CONTACTORS) return TFW_ERR_BAD_COUNT;
   const size_t body = TFW_HEADER_BYTES + 2u * (size_t)count;
-  if (get_u32(bytes + body) != tfw_crc32(bytes, body)) return TFW_ERR_BAD_CHECKSUM;
+  if (tfw_get_u32(bytes + body) != tfw_crc32(bytes, body)) return TFW_ERR_BAD_CHECKSUM;
   if (deflection != NULL && count > deflection_capacity) return TFW_ERR_BUFFER_TOO_SMALL;
   header->version = version;
   header->flags = flags;
   header->contactor_count = count;
-  header->sequence = get_u32(bytes + 8);
+  header->sequence = tfw_get_u32(bytes + 8);
   if (deflection == NULL) return TFW_OK;
   for (uint16_t i = 0; i < count; ++i) {
-    deflection[i] = get_i16(bytes + TFW_HEADER_BYTES + 2u * i);
+    deflection[i] = tfw_get_i16(bytes + TFW_HEADER_BYTES + 2u * i);
   }
   return TFW_OK;
 }

@@ -21,6 +21,11 @@
  *   24 underruns   28 sequence_gaps   32 clamped_samples   36 slew_limited_samples
  *   40 watchdog_trips   44 ticks   48 last_sequence_played
  *   52 u32 rejected[TFW_RESULT_COUNT] (by tfw_result code)   92 u32 reserved (0)
+ *
+ * Fill report, TFW_FILL_BYTES = 16 (sent unasked on the status IN endpoints so that the host
+ * can pace itself without a control request per frame):
+ *   0 u8 state   1 u8 reserved (0)   2 u16 fifo_fill   4 u16 fifo_capacity   6 u16 rate_hz
+ *   8 u32 frames_played   12 u32 underruns
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -34,6 +39,7 @@ extern "C" {
 #define TFW_INFO_BYTES 48u
 #define TFW_STATUS_BYTES 96u
 #define TFW_VERSION_CHARS 12u
+#define TFW_FILL_BYTES 16u
 
 typedef struct {
   uint8_t protocol_version;
@@ -47,14 +53,25 @@ typedef struct {
   uint16_t rate_hz;
 } tfw_status_report;
 
+typedef struct {
+  uint8_t state; /* tfw_state */
+  uint16_t fifo_fill;
+  uint16_t fifo_capacity;
+  uint16_t rate_hz;
+  uint32_t frames_played;
+  uint32_t underruns;
+} tfw_fill_report;
+
 /* Encoders return the number of bytes written, or 0 when `capacity` is too small. */
 size_t tfw_encode_info(const tfw_device* dev, uint8_t* out, size_t capacity);
 size_t tfw_encode_status(const tfw_device* dev, uint8_t* out, size_t capacity);
+size_t tfw_encode_fill(const tfw_device* dev, uint8_t* out, size_t capacity);
 
 /* Decoders check the length (TFW_ERR_BAD_LENGTH) and, for information, the protocol version
  * (TFW_ERR_BAD_VERSION). */
 tfw_result tfw_decode_info(const uint8_t* bytes, size_t len, tfw_device_info* info);
 tfw_result tfw_decode_status(const uint8_t* bytes, size_t len, tfw_status_report* report);
+tfw_result tfw_decode_fill(const uint8_t* bytes, size_t len, tfw_fill_report* report);
 
 #ifdef __cplusplus
 }

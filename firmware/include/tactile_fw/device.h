@@ -91,6 +91,10 @@ typedef struct {
 
 typedef struct {
   tfw_config config;
+  /* The limits given at init are the hardware's: the host may narrow them, never widen. */
+  int16_t hard_deflection_min;
+  int16_t hard_deflection_max;
+  uint32_t hard_max_slew_per_s;
   tfw_hw hw;
   int16_t slew_per_tick;
   uint32_t watchdog_ticks;
@@ -113,6 +117,12 @@ tfw_config_result tfw_device_init(tfw_device* dev, const tfw_config* config, con
 /* Starts a stream at `rate_hz` (0 keeps the configured rate): resets the counters and the
  * sequence tracking, empties the FIFO. Fails with TFW_CONFIG_BAD_RATE above max_rate_hz. */
 tfw_config_result tfw_device_start(tfw_device* dev, uint16_t rate_hz);
+
+/* Narrows the clamp range and slew limit (the "set limits" request). Limits outside the ones
+ * given at init, an empty range or a range that excludes neutral are refused
+ * (TFW_CONFIG_BAD_RANGE, TFW_CONFIG_BAD_SLEW) and leave the device unchanged. */
+tfw_config_result tfw_device_set_limits(tfw_device* dev, int16_t deflection_min,
+                                        int16_t deflection_max, uint32_t max_slew_per_s);
 
 /* Stops: drops queued frames and ramps every output to neutral at the slew limit. */
 void tfw_device_stop(tfw_device* dev);

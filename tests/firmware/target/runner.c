@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "tactile_fw/device.h"
+#include "tactile_fw/usb.h"
 
 typedef struct {
   const char* name;
@@ -21,6 +22,7 @@ int main(void) {
   /* The device state is the firmware's whole RAM need (the caller owns it, no heap). */
   printf("tfw_device: %u bytes of RAM (FIFO of %u frames)\n", (unsigned)sizeof(tfw_device),
          (unsigned)TFW_FIFO_CAPACITY);
+  printf("tfw_usb: %u bytes of RAM (two frame assembly buffers)\n", (unsigned)sizeof(tfw_usb));
   tfw_check_run total = {0, 0};
   for (unsigned i = 0; i < sizeof suites / sizeof suites[0]; ++i) {
     tfw_check_run run = {0, 0};
