@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cv_image.hpp"
+#include "pore_blobs.hpp"
 #include "tactile/common/csv.hpp"
 #include "thinning.hpp"
 
@@ -20,6 +21,7 @@ int odd_at_least_3(double v) {
 }
 
 struct Prepared {
+  cv::Mat gray;             // CV_32F, unsmoothed
   cv::Mat smooth;           // CV_32F
   cv::Mat mean;             // CV_32F local mean
   cv::Mat bright;           // CV_8U 0/1: above local mean (valleys, pores, background)
@@ -29,7 +31,8 @@ struct Prepared {
 
 Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) {
   Prepared r;
-  gray.convertTo(r.smooth, CV_32F);
+  gray.convertTo(r.gray, CV_32F);
+  r.smooth = r.gray.clone();
   const double sigma = p.smoothing_sigma_mm * px_per_mm;
   if (sigma > 0.1) cv::GaussianBlur(r.smooth, r.smooth, cv::Size(0, 0), sigma);
   const int window = odd_at_least_3(p.local_window_mm * px_per_mm);
@@ -45,7 +48,7 @@ Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) 
   cv::Mat background = (var < p.background_max_std * p.background_max_std) &
                        (bg_mean > p.background_min_mean_ratio * global_mean);
   // Keep features away from the background and the image edge, where the local mean is biased.
-  const int margin = std::max(1, static_cast<int>(std::lround(p.border_margin_mm * px_per_mm)));
+  const int margin = std::max(0, static_cast<int>(std::lround(p.border_margin_mm * px_per_mm)));
   // Square dilations via box filters: O(1) per pixel whatever the margin.
   auto grow = [&](int radius) {
     cv::Mat spread;
@@ -183,7 +186,13 @@ std::vector<Feature> extract_features(const GrayImage& image, double px_per_mm,
   const Prepared r = prepare(as_mat(image), px_per_mm, params);
   std::vector<Feature> features;
   cv::Mat pore_mask;
-  find_pores(r, px_per_mm, params, pore_mask, features);
+  if (params.pore_detector == PoreDetector::ridge_blob) {
+    features = find_ridge_blob_pores(r.gray, r.foreground, px_per_mm, params.ridge_blob);
+    // Blob pores sit inside ridges, never in the bright valleys the minutiae are traced in.
+    pore_mask = cv::Mat::zeros(r.bright.size(), CV_8U);
+  } else {
+    find_pores(r, px_per_mm, params, pore_mask, features);
+  }
   if (params.find_minutiae) find_minutiae(r, pore_mask, px_per_mm, params, features);
   return features;
 }

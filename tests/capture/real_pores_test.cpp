@@ -48,39 +48,83 @@ Score score(const std::vector<Feature>& found, const std::vector<std::array<doub
   return s;
 }
 
-// The paper's pore rule on 15 real 1200 dpi prints with hand-marked pores. This is a baseline,
-// not the goal: issue 3 asks for TDR >= 85 % and FDR <= 15 %. The rule misses every pore that
-// touches a valley (open pores merge into it), hence its low detection rate; what it does
-// detect must be real pores. Measured: 6599 true, 1818 detections, TDR 0.273, FDR 0.009.
-TEST(RealPores, PaperRuleBaselineOnPolyUHrf) {
+struct Print {
+  GrayImage image;
+  std::vector<std::array<double, 2>> truth;  // x_px, y_px (0-based)
+};
+
+std::vector<Print> read_prints() {
   const std::filesystem::path dir =
       std::filesystem::path(TACTILE_SHARED_DATA_DIR) / "polyu-hrf-pores";
-  if (!std::filesystem::exists(dir / "image_01.jpg")) GTEST_SKIP() << "no data in " << dir;
-  constexpr double kPxPerMm = 47.0;
+  std::vector<Print> prints;
+  for (int n = 1; n <= 15; ++n) {
+    char name[32];
+    std::snprintf(name, sizeof name, "image_%02d.jpg", n);
+    Print p{read_image(dir / name), {}};
+    std::snprintf(name, sizeof name, "pores_%02d.txt", n);
+    std::ifstream in(dir / name);
+    for (double row, col; in >> row >> col;) p.truth.push_back({col - 1, row - 1});
+    prints.push_back(std::move(p));
+  }
+  return prints;
+}
+
+constexpr double kPxPerMm = 47.0;
+
+// Scores every print; prints per-image and overall figures.
+std::vector<Score> score_prints(const std::vector<Print>& prints, const FeatureParams& p,
+                                const char* label, Score& total) {
+  std::vector<Score> scores;
+  for (std::size_t i = 0; i < prints.size(); ++i) {
+    const Score s =
+        score(extract_features(prints[i].image, kPxPerMm, p), prints[i].truth, 0.15 * kPxPerMm);
+    std::printf("%s image_%02zu: %d true, %d found, TDR %.3f, FDR %.3f\n", label, i + 1, s.truth,
+                s.found, double(s.matched) / s.truth,
+                1.0 - double(s.matched) / std::max(1, s.found));
+    total.truth += s.truth;
+    total.found += s.found;
+    total.matched += s.matched;
+    scores.push_back(s);
+  }
+  std::printf("%s overall: %d true, %d found, TDR %.3f, FDR %.3f\n", label, total.truth,
+              total.found, double(total.matched) / total.truth,
+              1.0 - double(total.matched) / std::max(1, total.found));
+  return scores;
+}
+
+// The paper's pore rule on 15 real 1200 dpi prints with hand-marked pores: the baseline. It
+// misses every pore that touches a valley (open pores merge into it), hence its low detection
+// rate; what it does detect must be real pores.
+TEST(RealPores, PaperRuleBaselineOnPolyUHrf) {
+  const auto prints = read_prints();
+  for (const auto& p : prints) ASSERT_GT(p.truth.size(), 300u);
   FeatureParams p;
   p.find_minutiae = false;
   p.border_margin_mm = 0.0;  // the ground truth covers the whole image
   Score total;
-  for (int n = 1; n <= 15; ++n) {
-    char name[32];
-    std::snprintf(name, sizeof name, "image_%02d.jpg", n);
-    const GrayImage img = read_image(dir / name);
-    std::snprintf(name, sizeof name, "pores_%02d.txt", n);
-    std::ifstream in(dir / name);
-    std::vector<std::array<double, 2>> truth;
-    for (double row, col; in >> row >> col;) truth.push_back({col - 1, row - 1});
-    ASSERT_GT(truth.size(), 300u) << name;
-    const Score s = score(extract_features(img, kPxPerMm, p), truth, 0.15 * kPxPerMm);
-    total.truth += s.truth;
-    total.found += s.found;
-    total.matched += s.matched;
+  score_prints(prints, p, "paper rule", total);
+  EXPECT_GT(double(total.matched) / total.truth, 0.2);
+  EXPECT_LT(1.0 - double(total.matched) / total.found, 0.05);
+}
+
+// The ridge-restricted blob detector: the issue's target is TDR >= 0.85 and FDR <= 0.15 with
+// one-to-one mutual nearest neighbours within 0.15 mm. Overall it is met; per image the
+// weakest prints (faint pores, image 12's noisy ridges) stay below it, so the per-image bound
+// asserted here is looser.
+TEST(RealPores, RidgeBlobDetectorOnPolyUHrf) {
+  const auto prints = read_prints();
+  FeatureParams p;
+  p.pore_detector = PoreDetector::ridge_blob;
+  p.find_minutiae = false;
+  p.border_margin_mm = 0.0;
+  Score total;
+  const auto scores = score_prints(prints, p, "ridge blob", total);
+  EXPECT_GE(double(total.matched) / total.truth, 0.85);
+  EXPECT_LE(1.0 - double(total.matched) / total.found, 0.15);
+  for (std::size_t i = 0; i < scores.size(); ++i) {
+    EXPECT_GE(double(scores[i].matched) / scores[i].truth, 0.75) << "image " << i + 1;
+    EXPECT_LE(1.0 - double(scores[i].matched) / scores[i].found, 0.25) << "image " << i + 1;
   }
-  const double tdr = double(total.matched) / total.truth;
-  const double fdr = 1.0 - double(total.matched) / std::max(1, total.found);
-  std::printf("PolyU HRF, paper's rule: %d true pores, %d detections, TDR %.3f, FDR %.3f\n",
-              total.truth, total.found, tdr, fdr);
-  EXPECT_GT(tdr, 0.2);
-  EXPECT_LT(fdr, 0.05);
 }
 
 }  // namespace
