@@ -1,0 +1,33 @@
+#pragma once
+// Transports to a display on USB (docs/protocol.md, "USB"): libusb on the vendor interface
+// (bulk OUT frames, asynchronous transfers) and hidapi on the HID interface. Both check every
+// reply and turn every USB failure, an unplugged device included, into a TransportError
+// within `timeout`: no call blocks longer.
+
+#include <chrono>
+#include <memory>
+
+#include "tactile/display/devices.hpp"
+#include "tactile/display/transport.hpp"
+
+namespace tactile::display {
+
+struct UsbTransportOptions {
+  // Longest any USB operation may take before it is reported as failed.
+  std::chrono::milliseconds timeout{1000};
+  // Frames queued in the host controller at once (libusb); more hides host scheduling gaps,
+  // the device's FIFO does the rest.
+  int frames_in_flight = 4;
+};
+
+// Opens `device` (as listed by list_usb_devices()) through its back end ("libusb" or
+// "hidapi") and reads its device information. Throws TransportError naming the device.
+std::unique_ptr<Transport> open_usb_transport(const DeviceDescription& device,
+                                              const UsbTransportOptions& options = {});
+
+std::unique_ptr<Transport> open_libusb_transport(const DeviceDescription& device,
+                                                 const UsbTransportOptions& options = {});
+std::unique_ptr<Transport> open_hidapi_transport(const DeviceDescription& device,
+                                                 const UsbTransportOptions& options = {});
+
+}  // namespace tactile::display

@@ -1,0 +1,10 @@
+# USB transports (libusb, hidapi-libusb) against a fake display on umockdev's fake USB bus
+# (tests/usb): real library code, real firmware behind the fake usbdevfs node. The binary needs
+# umockdev's preload library, so it runs through umockdev-wrapper.
+pkg_check_modules(UMOCKDEV REQUIRED IMPORTED_TARGET umockdev-1.0)
+find_program(TACTILE_UMOCKDEV_WRAPPER umockdev-wrapper REQUIRED)
+
+tactile_add_test_binary(usb_tests usb tactile_display)
+target_link_libraries(usb_tests PRIVATE PkgConfig::UMOCKDEV tactile_firmware)
+add_test(NAME usb.transports COMMAND ${TACTILE_UMOCKDEV_WRAPPER} $<TARGET_FILE:usb_tests>)
+set_tests_properties(usb.transports PROPERTIES LABELS usb TIMEOUT 120)
