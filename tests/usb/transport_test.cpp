@@ -11,6 +11,7 @@
 #include "fake_display.hpp"
 #include "tactile/display/devices.hpp"
 #include "tactile/display/frame_codec.hpp"
+#include "tactile/display/player.hpp"
 #include "tactile/display/usb_transports.hpp"
 
 namespace tactile::display {
@@ -105,6 +106,48 @@ TEST(UsbLibusb, UnplugMidStreamIsAClearErrorWithinBoundedTime) {
   // A generous bound: the point is that it ends (no hang), not how fast.
   EXPECT_LT(seconds, 5.0);
   EXPECT_THROW(t->status(), TransportError);
+}
+
+TEST(UsbLibusb, PluggedBackInTheNextStreamWorks) {
+  {
+    test::FakeDisplay fake;
+    auto t = open_usb_transport(*find("libusb"));
+    t->start(1000);
+    stream(*t, 1, 10);
+    fake.unplug();
+    EXPECT_THROW(stream(*t, 11, 1000), TransportError);
+  }
+  test::FakeDisplay again;
+  const auto device = find("libusb");
+  ASSERT_TRUE(device.has_value());
+  auto t = open_usb_transport(*device);
+  t->start(1000);
+  const auto sent = stream(*t, 1, 20);
+  wait_received(*t, sent.size());
+  EXPECT_EQ(t->status().frames_received, sent.size());
+  EXPECT_EQ(again.bulk_transfers(), sent);
+}
+
+TEST(UsbLibusb, PlayerStreamsAMovieDevicePaced) {
+  test::FakeDisplay fake;
+  auto t = open_usb_transport(*find("libusb"));
+  TactileMovie movie;
+  movie.layout = stress_layout();
+  movie.rate_hz = 700;
+  movie.frame_count = 140;
+  for (std::int32_t f = 0; f < movie.frame_count; ++f) {
+    for (int i = 0; i < 100; ++i)
+      movie.deflection_um.push_back(static_cast<float>((f + i) % 40 - 20));
+  }
+  const PlaybackReport r = play_movie(movie, *t);
+  std::printf("%s", format_playback_report(r).c_str());
+  EXPECT_EQ(r.frames_played, r.frames_sent);
+  EXPECT_EQ(r.frames_sent, r.movie_frames + r.ramp_frames);
+  EXPECT_EQ(r.malformed, 0);
+  // Every frame the player sent crossed the bus as one transfer, in order.
+  const auto transfers = fake.bulk_transfers();
+  ASSERT_EQ(static_cast<std::int64_t>(transfers.size()), r.frames_sent);
+  EXPECT_EQ(transfers.back()[5] & 1, 1);  // the last one is flagged end of stream
 }
 
 TEST(UsbHidapi, EnumeratesOpensAndStreamsTheFramesInReports) {

@@ -7,6 +7,7 @@
 #include "tactile/display/player.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
+#include "tactile/display/usb_transports.hpp"
 #include "tactile/display/viewer.hpp"
 
 namespace tactile::cli {
@@ -37,18 +38,41 @@ int play_headless(const display::TactileMovie& movie, const PlayChoice& choice) 
   return 0;
 }
 
+// The vendor interface (libusb) when the display offers it, else its HID interface: bulk
+// carries every array size at full rate, HID at full speed only small ones (docs/protocol.md).
+const display::DeviceDescription* pick_device(const std::vector<display::DeviceDescription>& all) {
+  for (const char* backend : {"libusb", "hidapi"}) {
+    for (const auto& d : all) {
+      if (d.backend == backend && d.accessible) return &d;
+    }
+  }
+  return nullptr;
+}
+
+int play_on_device(const display::TactileMovie& movie, const PlayChoice& choice,
+                   const display::DeviceDescription& device) {
+  fmt::print("play: streaming to {} {} ({} {})\n",
+             device.product.empty() ? "display" : device.product, device.serial, device.backend,
+             device.path);
+  auto transport = display::open_usb_transport(device);
+  display::PlayOptions options;
+  options.loops = choice.loops;
+  // TransportError (unplugged, refused) propagates: the command fails with its message.
+  const display::PlaybackReport report = display::play_movie(movie, *transport, options);
+  print_report(report);
+  return 0;
+}
+
 }  // namespace
 
 int play_anywhere(const display::TactileMovie& movie, const PlayChoice& choice) {
   if (!choice.headless) {
     const auto devices = display::list_usb_devices();
+    if (const auto* device = pick_device(devices)) return play_on_device(movie, choice, *device);
     if (!devices.empty()) {
-      // Streaming to hardware needs the libusb/hidapi transports (issue 4); until they exist we
-      // say so plainly and fall through to the emulator rather than pretend.
       fmt::print(
-          "play: found {} ({}) but hardware streaming is not implemented yet; using the "
-          "emulator\n",
-          devices.front().product.empty() ? "a display" : devices.front().product,
+          "play: found a display at {} but cannot open it (permissions: install "
+          "display/udev/70-tactile-display.rules, see README); using the emulator\n",
           devices.front().path);
     }
     if (display::screen_available()) {
