@@ -65,6 +65,8 @@ FidelityMetrics fidelity(const display::TactileMovie& movie, const capture::Stra
                        (positions[a].y_mm + positions[b].y_mm) / 2});
     }
   }
+  std::vector<capture::PointMm> needed;
+  for (const auto& p : pairs) needed.push_back({p.x_mm, p.y_mm});
   std::vector<double> imposed, wanted;
   if (frames > 0 && !source.frames.empty()) {
     const double t0 = source.frames.front().t_s;
@@ -72,7 +74,7 @@ FidelityMetrics fidelity(const display::TactileMovie& movie, const capture::Stra
       const double index = std::round((sf.t_s - t0) * movie.rate_hz);
       if (index < 0 || index >= static_cast<double>(frames)) continue;
       const auto frame = movie.frame(static_cast<std::int32_t>(index));
-      const auto field = build_strain_field(sf, field_options);
+      const auto field = build_strain_field(sf, field_options, needed);
       for (const auto& p : pairs) {
         const auto e = sample(field, p.x_mm, p.y_mm);
         if (!e) continue;

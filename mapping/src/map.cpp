@@ -79,6 +79,7 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   }
   const Placement placement = params.placement.value_or(default_placement(movie));
   const MethodFrame method = method_by_name(params.method);
+  const auto needed = sample_points_mm(layout, placement);
 
   TimedFrames camera;
   const auto n = static_cast<std::size_t>(layout.contactor_count());
@@ -93,7 +94,7 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   const auto work = [&](std::size_t w) {
     try {
       for (std::size_t k = w; k < movie.frames.size(); k += worker_count) {
-        const auto field = build_strain_field(movie.frames[k], params.field);
+        const auto field = build_strain_field(movie.frames[k], params.field, needed);
         const auto deflection_um = method(field, layout, placement, params.gain_um_per_strain);
         camera.t_s[k] = movie.frames[k].t_s;
         std::copy(deflection_um.begin(), deflection_um.end(),

@@ -14,6 +14,23 @@ capture::PointMm deflection_direction(const display::Layout& layout, const Place
   return {-s, c};
 }
 
+std::vector<capture::PointMm> sample_points_mm(const display::Layout& layout,
+                                               const Placement& placement) {
+  auto points = contactor_positions_mm(layout, placement);
+  const bool along_x = layout.axis == display::DeflectionAxis::x;
+  const auto cols = static_cast<std::size_t>(layout.cols);
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t r = i / cols, c = i % cols;
+    const bool last = along_x ? c + 1 >= cols : r + 1 >= static_cast<std::size_t>(layout.rows);
+    if (last) continue;
+    const auto& a = points[i];
+    const auto& b = points[along_x ? i + 1 : i + cols];
+    points.push_back({(a.x_mm + b.x_mm) / 2, (a.y_mm + b.y_mm) / 2});
+  }
+  return points;
+}
+
 std::vector<double> proportional_frame(const StrainField& field, const display::Layout& layout,
                                        const Placement& placement, double gain_um_per_strain) {
   const auto n = deflection_direction(layout, placement);

@@ -25,15 +25,26 @@ double distance_mm(const capture::TrackedPoint& a, const capture::TrackedPoint& 
   return std::sqrt(dx * dx + dy * dy);
 }
 
-TriangleBins make_bins(const std::vector<FieldTriangle>& triangles) {
+using Vertices = std::array<capture::PointMm, 3>;
+
+const Vertices& vertices_of(const FieldTriangle& t) {
+  return t.vertex_mm;
+}
+const Vertices& vertices_of(const Vertices& v) {
+  return v;
+}
+
+// Bins over FieldTriangles or bare vertex triples (the geometry-only pass of build_strain_field).
+template <typename Triangle>
+TriangleBins make_bins(const std::vector<Triangle>& triangles) {
   TriangleBins bins;
   if (triangles.empty()) return bins;
-  double x_min = triangles[0].vertex_mm[0].x_mm;
+  double x_min = vertices_of(triangles[0])[0].x_mm;
   double x_max = x_min;
-  double y_min = triangles[0].vertex_mm[0].y_mm;
+  double y_min = vertices_of(triangles[0])[0].y_mm;
   double y_max = y_min;
   for (const auto& t : triangles) {
-    for (const auto& v : t.vertex_mm) {
+    for (const auto& v : vertices_of(t)) {
       x_min = std::min(x_min, v.x_mm);
       x_max = std::max(x_max, v.x_mm);
       y_min = std::min(y_min, v.y_mm);
@@ -60,7 +71,7 @@ TriangleBins make_bins(const std::vector<FieldTriangle>& triangles) {
   std::vector<std::int32_t> counts(total_bins + 1, 0);
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const auto& v = triangles[t].vertex_mm;
+      const auto& v = vertices_of(triangles[t]);
       const double tx0 = std::min({v[0].x_mm, v[1].x_mm, v[2].x_mm});
       const double tx1 = std::max({v[0].x_mm, v[1].x_mm, v[2].x_mm});
       const double ty0 = std::min({v[0].y_mm, v[1].y_mm, v[2].y_mm});
@@ -90,8 +101,8 @@ TriangleBins make_bins(const std::vector<FieldTriangle>& triangles) {
 
 }  // namespace
 
-StrainField build_strain_field(const capture::StrainFrame& frame,
-                               const StrainFieldOptions& options) {
+StrainField build_strain_field(const capture::StrainFrame& frame, const StrainFieldOptions& options,
+                               std::span<const capture::PointMm> only_at) {
   const auto& from = frame.points_from;
   const auto& to = frame.points_to;
   if (!to.empty() && to.size() != from.size()) {
@@ -99,6 +110,34 @@ StrainField build_strain_field(const capture::StrainFrame& frame,
         fmt::format("strain frame {}->{}: {} points_to for {} points_from (must match)",
                     frame.frame_from, frame.frame_to, to.size(), from.size()));
   }
+  std::vector<Vertices> geometry(frame.triangles.size());
+  for (std::size_t t = 0; t < frame.triangles.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto i = frame.triangles[t].point_index[k];
+      if (i < 0 || static_cast<std::size_t>(i) >= from.size()) {
+        throw std::invalid_argument(
+            fmt::format("strain frame {}->{}: triangle point index {} outside the {} points_from",
+                        frame.frame_from, frame.frame_to, i, from.size()));
+      }
+      const auto& p = from[static_cast<std::size_t>(i)];
+      geometry[t][k] = {p.x_mm, p.y_mm};
+    }
+  }
+  // Which triangles to solve: all, or only those holding a requested point (every triangle
+  // holding it, so that a rejected one does not mask a point on its edge with a good one).
+  std::vector<char> wanted(geometry.size(), only_at.empty() ? 1 : 0);
+  if (!only_at.empty()) {
+    const auto geometry_bins = make_bins(geometry);
+    for (const auto& q : only_at) {
+      for_each_candidate(geometry_bins, q.x_mm, q.y_mm, [&](std::int32_t t) {
+        if (triangle_contains(geometry[static_cast<std::size_t>(t)], q.x_mm, q.y_mm)) {
+          wanted[static_cast<std::size_t>(t)] = 1;
+        }
+        return false;
+      });
+    }
+  }
+
   // A sorted vector searched by bisection: cheaper to build than a hash map for the few thousand
   // edges of a frame, and the build dominates.
   std::vector<std::pair<std::uint64_t, double>> rel_change;
@@ -118,18 +157,10 @@ StrainField build_strain_field(const capture::StrainFrame& frame,
   StrainField field;
   field.t_s = frame.t_s;
   field.triangles.reserve(frame.triangles.size());
-  for (const auto& tri : frame.triangles) {
-    std::array<capture::PointMm, 3> vertex{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      const auto i = tri.point_index[k];
-      if (i < 0 || static_cast<std::size_t>(i) >= from.size()) {
-        throw std::invalid_argument(
-            fmt::format("strain frame {}->{}: triangle point index {} outside the {} points_from",
-                        frame.frame_from, frame.frame_to, i, from.size()));
-      }
-      const auto& p = from[static_cast<std::size_t>(i)];
-      vertex[k] = {p.x_mm, p.y_mm};
-    }
+  for (std::size_t t = 0; t < frame.triangles.size(); ++t) {
+    if (!wanted[t]) continue;
+    const auto& tri = frame.triangles[t];
+    const auto& vertex = geometry[t];
     std::array<double, 3> change{};
     bool known = true;
     for (std::size_t k = 0; k < 3 && known; ++k) {

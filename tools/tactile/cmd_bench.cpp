@@ -9,7 +9,7 @@ void add_bench(CLI::App& app, Action& action) {
   CLI::App* bench = app.add_subcommand(
       "bench", "Benchmarks: print throughput and accuracy figures (see each one's --help).");
   bench->require_subcommand(1);
-  (void)action;
+  add_bench_map(*bench, action);
 }
 
 }  // namespace tactile::cli

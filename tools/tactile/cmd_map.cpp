@@ -11,6 +11,7 @@
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/version.hpp"
+#include "tactile/display/layout_json.hpp"
 #include "tactile/display/movie_io.hpp"
 #include "tactile/mapping/map.hpp"
 
@@ -35,8 +36,9 @@ void add_map(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--out", opt->out, "Tactile movie to write (HDF5)")->required();
-  sub->add_option("--layout", opt->layout, "Contactor layout: stress, stress2 or latero")
-      ->check(CLI::IsMember({"stress", "stress2", "latero"}))
+  sub->add_option("--layout", opt->layout,
+                  "Contactor layout: stress, stress2, latero, or a custom layout FILE.json\n"
+                  "(schema in docs/formats.md)")
       ->capture_default_str();
   sub->add_option("--method", opt->params.method, "Mapping method")
       ->check(CLI::IsMember(mapping::mapping_method_names()))
@@ -45,8 +47,17 @@ void add_map(CLI::App& app, Action& action) {
                   "Micrometres of deflection per unit strain")
       ->capture_default_str();
   sub->add_option("--normalise", opt->params.normalisation,
-                  "none: gain as given; peak: scale so the largest deflection fills the range")
+                  "none: gain as given; peak: scale so the largest deflection fills the range;\n"
+                  "p99: the same with the 99th percentile")
       ->check(CLI::IsMember(mapping::normalisation_names()))
+      ->capture_default_str();
+  sub->add_option("--strain", opt->params.strain,
+                  "per-frame: the movie's strain frames as captured; accumulated: strain from\n"
+                  "the reference frame along the tracks (contactors follow the skin)")
+      ->check(CLI::IsMember(mapping::strain_names()))
+      ->capture_default_str();
+  sub->add_option("--reference-frame", opt->params.accumulate.reference_frame,
+                  "Camera frame the accumulated strain starts from (-1: the first)")
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->params.rate_hz, "Display frame rate")
       ->check(CLI::PositiveNumber)
@@ -54,7 +65,7 @@ void add_map(CLI::App& app, Action& action) {
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
   sub->callback([opt, &action] {
     action = [opt] {
-      const display::Layout layout = display::layout_by_name(opt->layout);
+      const display::Layout layout = display::resolve_layout(opt->layout);
       mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
       const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);
       const auto t0 = std::chrono::steady_clock::now();

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_features(app, action);
   tactile::cli::add_capture(app, action);
   tactile::cli::add_map(app, action);
+  tactile::cli::add_experiment(app, action);
   tactile::cli::add_play(app, action);
   tactile::cli::add_view(app, action);
   tactile::cli::add_devices(app, action);

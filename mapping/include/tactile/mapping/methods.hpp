@@ -16,6 +16,11 @@ namespace tactile::mapping {
 // by the placement's rotation).
 capture::PointMm deflection_direction(const display::Layout& layout, const Placement& placement);
 
+// Every field position a method may sample: the contactors and the midpoints between neighbours
+// along the deflection axis. The field needs to be built only there (build_strain_field only_at).
+std::vector<capture::PointMm> sample_points_mm(const display::Layout& layout,
+                                               const Placement& placement);
+
 // "proportional": each contactor deflects by gain_um_per_strain * e_axis, where e_axis is the
 // normal strain along the deflection axis at the contactor's position. Stretch (e > 0) pushes
 // towards +axis. Assumes the skin under one contactor is summarised by its local strain; ignores

@@ -7,9 +7,12 @@
 // tensor of the triangle that contains it. Outside the triangulation (and inside rejected,
 // degenerate triangles) the field is masked: sample() answers std::nullopt.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
@@ -73,10 +76,43 @@ struct StrainField {
 
 // Builds the field of one StrainFrame. Edge rel_change values come from frame.edges (matched by
 // track ids); an edge missing there is measured from points_from/points_to instead, and a triangle
-// with an edge known neither way is rejected. Throws std::invalid_argument for triangle indices
-// outside points_from or points_to not matching points_from.
+// with an edge known neither way is rejected. When `only_at` is not empty, only the triangles
+// containing one of those points are solved and kept: the field is then right at those points
+// (and masked elsewhere), which is all a mapping needs and several times cheaper than the whole
+// triangulation. rejected_triangle_count counts among the triangles considered. Throws
+// std::invalid_argument for triangle indices outside points_from or points_to not matching
+// points_from.
 StrainField build_strain_field(const capture::StrainFrame& frame,
-                               const StrainFieldOptions& options = {});
+                               const StrainFieldOptions& options = {},
+                               std::span<const capture::PointMm> only_at = {});
+
+// Whether (x, y) lies in the triangle (closed, with a relative tolerance of 1e-9 so that points on
+// a shared edge belong to both neighbours).
+bool triangle_contains(const std::array<capture::PointMm, 3>& vertex_mm, double x, double y);
+
+// Calls visit(triangle index) for the triangles whose bounding boxes may hold (x_mm, y_mm), until
+// visit returns true; nothing outside the bins.
+template <typename Visit>
+void for_each_candidate(const TriangleBins& bins, double x_mm, double y_mm, Visit&& visit) {
+  if (bins.bins_x <= 0 || bins.bins_y <= 0 || !std::isfinite(x_mm) || !std::isfinite(y_mm)) {
+    return;
+  }
+  const double fx = (x_mm - bins.x0_mm) / bins.bin_size_mm;
+  const double fy = (y_mm - bins.y0_mm) / bins.bin_size_mm;
+  // A point just past the last bin edge may still lie on the hull; the clamp below catches it,
+  // and anything further out is outside every triangle's bounding box.
+  constexpr double kSlack = 1e-6;
+  if (fx < -kSlack || fy < -kSlack || fx > bins.bins_x + kSlack || fy > bins.bins_y + kSlack) {
+    return;
+  }
+  const auto bx = std::min(static_cast<std::int32_t>(std::max(fx, 0.0)), bins.bins_x - 1);
+  const auto by = std::min(static_cast<std::int32_t>(std::max(fy, 0.0)), bins.bins_y - 1);
+  const auto b = static_cast<std::size_t>(by) * static_cast<std::size_t>(bins.bins_x) +
+                 static_cast<std::size_t>(bx);
+  for (auto i = bins.bin_start[b]; i < bins.bin_start[b + 1]; ++i) {
+    if (visit(bins.triangle_index[static_cast<std::size_t>(i)])) return;
+  }
+}
 
 // The strain at (x_mm, y_mm): the tensor of the containing triangle (piecewise constant), or
 // std::nullopt outside the measured region. Points on a shared edge take either triangle's value.

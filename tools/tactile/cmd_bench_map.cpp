@@ -1,0 +1,90 @@
+// `tactile bench map`: how long the mapping of a demo-sized strain movie takes (issue 5 target:
+// 180 frames of about 500 landmarks onto 10 x 10 at 700 Hz in <= 50 ms).
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <thread>
+
+#include "command.hpp"
+#include "tactile/capture/strain.hpp"
+#include "tactile/display/tactile_movie.hpp"
+#include "tactile/mapping/ground_truth.hpp"
+#include "tactile/mapping/map.hpp"
+
+namespace tactile::cli {
+
+void add_bench_map(CLI::App& bench, Action& action) {
+  struct Options {
+    int repeats = 7;
+    int frames = 180;
+    double spacing_mm = 0.4;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = bench.add_subcommand(
+      "map",
+      "Time the mapping of a synthetic strain movie (the bump scene's exact strain on a\n"
+      "landmark grid, Delaunay-triangulated like a measured movie) onto STReSS 10 x 10 at\n"
+      "700 Hz, for every method; target <= 50 ms per 180-frame movie.");
+  sub->add_option("--repeats", opt->repeats, "Timed repetitions (the median is reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sub->add_option("--frames", opt->frames, "Camera frames of the strain movie")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  sub->add_option("--spacing-mm", opt->spacing_mm, "Landmark spacing (0.4 mm: ~500 per frame)")
+      ->check(CLI::Range(0.1, 5.0))
+      ->capture_default_str();
+  sub->callback([opt, &action] {
+    action = [opt] {
+      capture::SceneSpec spec;
+      spec.frame_count = opt->frames + 1;
+      auto movie = mapping::ground_truth_strain_movie(spec, opt->spacing_mm);
+      // Measured movies come Delaunay-triangulated with an edge list; make this one alike.
+      std::size_t points = 0;
+      for (auto& f : movie.frames) {
+        f.edges.clear();
+        f.triangles.clear();
+        capture::triangulate_strain(f.points_from, f.points_to, 3.0, f.edges, f.triangles);
+        points += f.points_from.size();
+      }
+      const auto layout = display::stress_layout();
+      fmt::print(
+          "bench map: {} strain frames, {:.0f} landmarks and {:.0f} triangles per frame on "
+          "average -> {} {}x{} at 700 Hz; {} hardware threads\n",
+          movie.frames.size(), static_cast<double>(points) / movie.frames.size(),
+          static_cast<double>(movie.frames.front().triangles.size()), layout.name, layout.rows,
+          layout.cols, std::thread::hardware_concurrency());
+      fmt::print("{:<14} {:<12} {:>8} {:>10} {:>10} {:>10}\n", "method", "strain", "frames",
+                 "median ms", "min ms", "max ms");
+      for (const std::string strain : {"per-frame", "accumulated"}) {
+        mapping::MappingParams params;
+        params.strain = strain;
+        const auto source = mapping::strain_source(movie, params);
+        for (const auto& method : mapping::mapping_method_names()) {
+          params.method = method;
+          std::vector<double> ms;
+          std::int32_t frames = 0;
+          for (int r = 0; r < opt->repeats; ++r) {
+            const auto t0 = std::chrono::steady_clock::now();
+            frames = mapping::map_strain_frames(source, layout, params).movie.frame_count;
+            ms.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count());
+          }
+          std::sort(ms.begin(), ms.end());
+          fmt::print("{:<14} {:<12} {:>8} {:>10.1f} {:>10.1f} {:>10.1f}\n", method, strain, frames,
+                     ms[ms.size() / 2], ms.front(), ms.back());
+        }
+      }
+      fmt::print(
+          "(accumulated: time of the mapping after accumulate_along_tracks; target "
+          "<= 50 ms per movie)\n");
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli
