@@ -1,0 +1,41 @@
+#pragma once
+// A simple simulated BioTac-style fingertip (docs/perception-models.md): an elastic pad, locally
+// indented by the plate (Winkler foundation, saturating at the fluid layer's thickness); fluid
+// pressure follows the displaced volume, each electrode's impedance the local indentation
+// around it, and vibration the AC-coupled rate of change of the load plus sliding-friction
+// noise. Output is a SensorRecording in raw counts, like a real recording.
+
+#include <cstdint>
+
+#include "tactile/capture/sensor_recording.hpp"
+#include "tactile/capture/sensor_scene.hpp"
+
+namespace tactile::capture {
+
+struct SensorModel {
+  double pad_radius_x_mm = 15.0;  // curvature of the pad along the finger (distal-proximal)
+  double pad_radius_y_mm = 8.0;   // across the finger (radial-ulnar)
+  double depth_transfer = 0.3;    // fraction of the commanded depth that indents the pad
+  double fluid_layer_mm = 3.0;    // indentation saturates here (skin meets the core)
+  double pressure_baseline = 2000, pressure_per_mm3 = 3.0, pressure_noise = 0.5;
+  double electrode_baseline = 3000, electrode_per_mm = 80.0, electrode_noise = 2.0;
+  double vibration_offset = 2048, vibration_gain = 0.4, vibration_noise = 2.0;
+  double edge_gain = 2000.0;              // skin ringing per mm of slope change per sample
+  double friction_noise_per_unit = 0.02;  // sliding noise per pressure count per mm/s
+  double baseline_spread = 20.0;          // trial-to-trial spread of baselines (counts)
+  double variation_scale = 1.0;           // scales the trial-to-trial variation of the motion
+};
+
+// x (distal +) and y (ulnar +) of the 19 electrodes on the pad, mm from its centre.
+struct PadPoint {
+  double x_mm, y_mm;
+};
+std::array<PadPoint, kElectrodeCount> sensor_electrode_positions();
+
+// Draws the trial-to-trial variation of trial `seed` (deterministic).
+TrialVariation draw_variation(std::uint64_t seed, double scale = 1.0);
+
+SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedure,
+                               std::uint64_t seed, const SensorModel& model = {});
+
+}  // namespace tactile::capture
