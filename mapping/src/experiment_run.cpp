@@ -276,20 +276,34 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
     plots::bar_chart(plots / "saturation.png",
                      fmt::format("{}: fraction of contactor-frames at the range limits", ex.name),
                      "saturated fraction", labels, saturation, colours, legend, 0.0, 1.0, footer);
-    std::vector<std::string> run_labels;
+    // Activity: one plot per source and layout, one line per method and parameter set, so
+    // the lines compared share the same skin and the same contactors.
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> groups;
     for (std::size_t i = 0; i < ex.runs.size(); ++i) {
-      run_labels.push_back(ex.runs[i].id + (ex.runs[i].params.normalisation != "none"
-                                                ? " " + ex.runs[i].params.normalisation
-                                                : ""));
+      groups[{ex.runs[i].source, ex.runs[i].layout}].push_back(i);
     }
-    // Runs may have different rates; the plot uses the first run's period.
-    plots::line_chart(plots / "activity.png",
-                      fmt::format("{}: mean |deflection| over the contactors", ex.name),
-                      "mean |deflection| (um)", run_labels, activity,
-                      1.0 / ex.runs.front().params.rate_hz, footer);
+    for (const auto& [key, members] : groups) {
+      std::vector<std::string> run_labels;
+      std::vector<std::vector<double>> series;
+      for (const auto i : members) {
+        const auto& p = ex.runs[i].params;
+        run_labels.push_back(fmt::format("{} {} {} gain {:g} ({:g} Hz)", p.method, p.strain,
+                                         p.normalisation, p.gain_um_per_strain, p.rate_hz));
+        series.push_back(report.results[i].activity_um);
+      }
+      const auto& first = ex.runs[members.front()];
+      const fs::path file = plots / fmt::format("activity-{}-{}.png", ex.sources[key.first].name,
+                                                ex.layouts[key.second].name);
+      // Runs of one group may differ in rate; the time axis uses the first run's period.
+      plots::line_chart(file,
+                        fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
+                                    ex.sources[key.first].name, ex.layouts[key.second].name),
+                        "mean |deflection| (um)", run_labels, series, 1.0 / first.params.rate_hz,
+                        footer);
+      report.files.push_back(file);
+    }
     report.files.push_back(plots / "correlation.png");
     report.files.push_back(plots / "saturation.png");
-    report.files.push_back(plots / "activity.png");
   }
   report.run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

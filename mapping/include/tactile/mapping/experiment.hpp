@@ -79,9 +79,10 @@ struct ExperimentReport {
 // Prepares the sources and runs every mapping on `threads` workers (0 = all cores), then writes
 // into out_dir (created): experiment.json (the input as given), resolved.json (every run's
 // resolved parameters, layouts and provenance), metrics.csv, movies/<run id>.h5 (if
-// write_movies), plots/correlation.png, plots/saturation.png and plots/activity.png. The same
-// experiment gives the same files, whatever the thread count (up to the creation time).
-// `progress` (optional) is called from worker threads with a short message.
+// write_movies), plots/correlation.png, plots/saturation.png and
+// plots/activity-<source>-<layout>.png. The same experiment gives the same files, whatever the
+// thread count (up to the creation time). `progress` (optional) is called from worker threads with
+// a short message.
 ExperimentReport run_experiment(Experiment experiment, const std::filesystem::path& out_dir,
                                 int threads,
                                 const std::function<void(const std::string&)>& progress = {});
