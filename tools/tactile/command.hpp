@@ -24,5 +24,6 @@ void add_devices(CLI::App& app, Action& action);
 void add_info(CLI::App& app, Action& action);
 void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);
+void add_bench_stream(CLI::App& bench, Action& action);
 
 }  // namespace tactile::cli
