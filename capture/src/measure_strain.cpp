@@ -1,8 +1,11 @@
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include <fmt/format.h>
-#include <opencv2/core/utility.hpp>
 
 #include "tactile/capture/strain.hpp"
 
@@ -79,17 +82,34 @@ StrainMovie measure_strain(
   const int n = static_cast<int>(frames.size());
   const double px_per_mm = 1.0 / cal.mm_per_px;
   std::vector<std::vector<Feature>> features(frames.size());
-  const int batch = 16;
-  for (int start = 0; start < n; start += batch) {
-    const int end = std::min(n, start + batch);
-    cv::parallel_for_(cv::Range(start, end), [&](const cv::Range& r) {
-      for (int i = r.start; i < r.end; ++i) {
+  // Frames are independent: workers take the next frame from a shared counter. Only the
+  // calling thread reports progress (the callback need not be thread-safe).
+  const int threads = std::max(
+      1, std::min(n, params.threads > 0 ? params.threads
+                                        : static_cast<int>(std::thread::hardware_concurrency())));
+  std::atomic<int> next{0};
+  std::atomic<int> done{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&](bool report) {
+    for (int i = next++; i < n; i = next++) {
+      try {
         features[static_cast<std::size_t>(i)] =
             extract_features(frames[static_cast<std::size_t>(i)], px_per_mm, params.features);
+      } catch (...) {
+        const std::lock_guard lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
       }
-    });
-    if (progress) progress("extract", end, n);
-  }
+      ++done;
+      if (report && progress) progress("extract", done.load(), n);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, false);
+  work(true);
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  if (progress) progress("extract", done.load(), n);
 
   TrackParams tp;
   tp.match_radius_mm = params.match_radius_mm;

@@ -39,6 +39,7 @@ void validate(const SceneSpec& spec) {
   }
   if (spec.minutiae_per_mm2 < 0) fail("minutiae_per_mm2 must be >= 0");
   if (spec.blur_sigma_px < 0 || spec.noise_sigma < 0) fail("blur and noise must be >= 0");
+  if (!(spec.contrast > 0 && spec.contrast <= 1.0)) fail("contrast must be in (0, 1]");
   if (std::abs(spec.speed_mm_per_s) > 100) fail("speed_mm_per_s above 100");
   if (std::abs(spec.displacement_per_height) > 2) fail("displacement_per_height above 2");
 }

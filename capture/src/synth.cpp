@@ -40,7 +40,12 @@ cv::Mat illumination_field(int width_px, int height_px) {
 GrayImage expose(const cv::Mat& reflectance, const cv::Mat& illumination, const SceneSpec& spec,
                  std::uint64_t noise_stream) {
   cv::Mat lit;
-  cv::multiply(reflectance, illumination, lit, 255.0);
+  if (spec.contrast != 1.0) {
+    const cv::Mat faded = 0.9 - spec.contrast * (0.9 - reflectance);
+    cv::multiply(faded, illumination, lit, 255.0);
+  } else {
+    cv::multiply(reflectance, illumination, lit, 255.0);
+  }
   if (spec.blur_sigma_px > 0) cv::GaussianBlur(lit, lit, cv::Size(0, 0), spec.blur_sigma_px);
   if (spec.noise_sigma > 0) {
     cv::RNG rng(spec.seed * 0x9E3779B97F4A7C15ULL + noise_stream + 1);
@@ -200,6 +205,7 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
                {"minutiae_per_mm2", s.minutiae_per_mm2},
                {"blur_sigma_px", s.blur_sigma_px},
                {"noise_sigma", s.noise_sigma},
+               {"contrast", s.contrast},
                {"seed", s.seed}};
   j["calibration"] = {{"px_to_mm", c.px_to_mm},
                       {"mm_per_px", c.mm_per_px},

@@ -10,6 +10,7 @@ void add_bench(CLI::App& app, Action& action) {
       "bench", "Benchmarks: print throughput and accuracy figures (see each one's --help).");
   bench->require_subcommand(1);
   add_bench_map(*bench, action);
+  add_bench_capture(*bench, action);
   add_bench_stream(*bench, action);
 }
 

@@ -16,6 +16,7 @@ void add_synth(CLI::App& app, Action& action);
 void add_calibrate(CLI::App& app, Action& action);
 void add_features(CLI::App& app, Action& action);
 void add_capture(CLI::App& app, Action& action);
+void add_evaluate(CLI::App& app, Action& action);
 void add_map(CLI::App& app, Action& action);
 void add_experiment(CLI::App& app, Action& action);
 void add_play(CLI::App& app, Action& action);
@@ -24,6 +25,7 @@ void add_devices(CLI::App& app, Action& action);
 void add_info(CLI::App& app, Action& action);
 void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);
+void add_bench_capture(CLI::App& bench, Action& action);
 void add_bench_stream(CLI::App& bench, Action& action);
 
 }  // namespace tactile::cli

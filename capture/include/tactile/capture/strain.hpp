@@ -31,6 +31,7 @@ struct CaptureParams {
   int span_frames = 1;  // strain between frame i and frame i + span_frames
   // Edges longer than this multiple of the frame's median edge are hull slivers, not skin.
   double max_edge_ratio = 3.0;
+  int threads = 0;  // feature extraction workers (frames in parallel); 0 = one per core
 };
 
 // Triangulates `from` (millimetre positions) and measures each edge at `to` (same order and

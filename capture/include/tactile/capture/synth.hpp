@@ -37,6 +37,9 @@ struct SceneSpec {
   double minutiae_per_mm2 = 0.15;
   double blur_sigma_px = 0.9;
   double noise_sigma = 2.0;  // grey levels
+  // Print contrast: reflectances are pulled towards the no-contact brightness (0.9) by this
+  // factor (1 = the FTIR model's ridges 0.22 / valleys 0.85; smaller = fainter print).
+  double contrast = 1.0;
   std::uint64_t seed = 1;
 };
 

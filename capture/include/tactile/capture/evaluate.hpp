@@ -1,0 +1,61 @@
+#pragma once
+// Accuracy of a measured strain movie against the exact ground truth of a synthetic sequence
+// (`tactile synth` folder: scene.json + landmarks.csv).
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "tactile/capture/strain_movie.hpp"
+#include "tactile/capture/synth.hpp"
+
+namespace tactile::capture {
+
+struct GroundTruth {
+  SceneSpec spec;
+  Calibration calibration;               // the true px -> mm map of the synthetic camera
+  std::vector<TruthLandmark> landmarks;  // every landmark in view and in contact, every frame
+};
+
+// Reads DIR/scene.json and DIR/landmarks.csv. Throws tactile::FormatError naming the file and
+// the problem (missing, not JSON, another format, missing or mistyped fields, bad CSV rows).
+GroundTruth read_ground_truth(const std::filesystem::path& dir);
+
+struct FrameEvaluation {
+  std::int32_t frame_from = 0;
+  std::int32_t frame_to = 0;
+  std::int32_t edges = 0;
+  double rms_error = 0;  // RMS of measured - true relative edge-length change (0 if no edges)
+  double rms_truth = 0;  // RMS of the true relative change on the same edges
+  std::int32_t tracked_points = 0;   // tracked landmarks at frame_from
+  std::int32_t truth_landmarks = 0;  // true landmarks in view and in contact at frame_from
+};
+
+struct Evaluation {
+  std::vector<FrameEvaluation> frames;
+  std::int64_t edges = 0;
+  double rms_error = 0;  // over every edge of every frame
+  double rms_truth = 0;
+  // Localisation: each tracked point against the nearest true landmark of its frame (any type)
+  // within `match_bound_mm`; points with none are counted as unmatched.
+  double match_bound_mm = 0.15;
+  std::int64_t located_points = 0;
+  std::int64_t unmatched_points = 0;
+  double localisation_rms_mm = 0;
+  double median_tracked_points = 0;  // per frame pair (tracked_points)
+  double median_yield = 0;           // per frame: tracked_points / truth_landmarks
+  std::int32_t track_count = 0;
+  double median_track_frames = 0;
+  double mean_track_frames = 0;
+};
+
+// True positions come from each point's pixel position through the true calibration, so a
+// wrong calibration in the movie shows up as strain error. A movie with no frames or no edges
+// gives zero counts (and zero RMS), not an error.
+Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth);
+
+// DIR/evaluation_frames.csv (frame_from,frame_to,edges,rms_error,rms_truth,tracked_points,
+// truth_landmarks) and DIR/evaluation_summary.csv (metric,value); creates DIR.
+void write_evaluation_csv(const std::filesystem::path& dir, const Evaluation& evaluation);
+
+}  // namespace tactile::capture

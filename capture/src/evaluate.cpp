@@ -1,0 +1,144 @@
+#include "tactile/capture/evaluate.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "tactile/common/csv.hpp"
+
+namespace tactile::capture {
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
+  Evaluation ev;
+  std::vector<std::vector<const TruthLandmark*>> by_frame(
+      static_cast<std::size_t>(std::max(0, truth.spec.frame_count)));
+  for (const auto& lm : truth.landmarks) {
+    if (lm.frame >= 0 && lm.frame < truth.spec.frame_count) {
+      by_frame[static_cast<std::size_t>(lm.frame)].push_back(&lm);
+    }
+  }
+  auto true_mm = [&](const TrackedPoint& p) { return to_mm(truth.calibration, p.x_px, p.y_px); };
+
+  double se_all = 0, st_all = 0;
+  std::vector<double> tracked, yields;
+  for (const auto& f : movie.frames) {
+    FrameEvaluation fe;
+    fe.frame_from = f.frame_from;
+    fe.frame_to = f.frame_to;
+    fe.tracked_points = static_cast<std::int32_t>(f.points_from.size());
+    if (f.frame_from >= 0 && f.frame_from < truth.spec.frame_count &&
+        f.frame_to < truth.spec.frame_count) {
+      fe.truth_landmarks =
+          static_cast<std::int32_t>(by_frame[static_cast<std::size_t>(f.frame_from)].size());
+      std::unordered_map<std::int32_t, std::size_t> index;
+      for (std::size_t i = 0; i < f.points_from.size(); ++i) index[f.points_from[i].track_id] = i;
+      double se = 0, st = 0;
+      for (const auto& e : f.edges) {
+        const auto a = index.find(e.track_a);
+        const auto b = index.find(e.track_b);
+        if (a == index.end() || b == index.end()) continue;
+        const double t =
+            true_rel_change(truth.spec, true_mm(f.points_from[a->second]),
+                            true_mm(f.points_from[b->second]), f.frame_from, f.frame_to);
+        se += (e.rel_change - t) * (e.rel_change - t);
+        st += t * t;
+        ++fe.edges;
+      }
+      if (fe.edges > 0) {
+        fe.rms_error = std::sqrt(se / fe.edges);
+        fe.rms_truth = std::sqrt(st / fe.edges);
+      }
+      se_all += se;
+      st_all += st;
+      ev.edges += fe.edges;
+    }
+    tracked.push_back(fe.tracked_points);
+    if (fe.truth_landmarks > 0) yields.push_back(double(fe.tracked_points) / fe.truth_landmarks);
+    ev.frames.push_back(fe);
+  }
+  if (ev.edges > 0) {
+    ev.rms_error = std::sqrt(se_all / static_cast<double>(ev.edges));
+    ev.rms_truth = std::sqrt(st_all / static_cast<double>(ev.edges));
+  }
+  ev.median_tracked_points = median(tracked);
+  ev.median_yield = median(yields);
+
+  // Localisation of every tracked point against the landmarks of its frame.
+  double sd = 0;
+  std::map<std::int32_t, int> lengths;
+  for (const auto& p : movie.tracks) {
+    ++lengths[p.track_id];
+    if (p.frame < 0 || p.frame >= truth.spec.frame_count) {
+      ++ev.unmatched_points;
+      continue;
+    }
+    const PointMm mm = true_mm(p);
+    double best = ev.match_bound_mm;
+    bool found = false;
+    for (const TruthLandmark* lm : by_frame[static_cast<std::size_t>(p.frame)]) {
+      const double d = std::hypot(lm->x_mm - mm.x_mm, lm->y_mm - mm.y_mm);
+      if (d <= best) {
+        best = d;
+        found = true;
+      }
+    }
+    if (found) {
+      sd += best * best;
+      ++ev.located_points;
+    } else {
+      ++ev.unmatched_points;
+    }
+  }
+  if (ev.located_points > 0) {
+    ev.localisation_rms_mm = std::sqrt(sd / static_cast<double>(ev.located_points));
+  }
+  std::vector<double> len;
+  for (const auto& [id, n] : lengths) len.push_back(n);
+  ev.track_count = static_cast<std::int32_t>(len.size());
+  ev.median_track_frames = median(len);
+  double total = 0;
+  for (double l : len) total += l;
+  ev.mean_track_frames = len.empty() ? 0.0 : total / static_cast<double>(len.size());
+  return ev;
+}
+
+void write_evaluation_csv(const std::filesystem::path& dir, const Evaluation& ev) {
+  std::filesystem::create_directories(dir);
+  const auto frames_path = dir / "evaluation_frames.csv";
+  auto out = csv::open_with_header(
+      frames_path, "frame_from,frame_to,edges,rms_error,rms_truth,tracked_points,truth_landmarks");
+  for (const auto& f : ev.frames) {
+    out << fmt::format("{},{},{},{:.6g},{:.6g},{},{}\n", f.frame_from, f.frame_to, f.edges,
+                       f.rms_error, f.rms_truth, f.tracked_points, f.truth_landmarks);
+  }
+  csv::finish(out, frames_path);
+  const auto summary_path = dir / "evaluation_summary.csv";
+  auto s = csv::open_with_header(summary_path, "metric,value");
+  s << fmt::format("edges,{}\n", ev.edges) << fmt::format("rms_error,{:.6g}\n", ev.rms_error)
+    << fmt::format("rms_truth,{:.6g}\n", ev.rms_truth)
+    << fmt::format("localisation_rms_mm,{:.6g}\n", ev.localisation_rms_mm)
+    << fmt::format("located_points,{}\n", ev.located_points)
+    << fmt::format("unmatched_points,{}\n", ev.unmatched_points)
+    << fmt::format("median_tracked_points,{:.6g}\n", ev.median_tracked_points)
+    << fmt::format("median_yield,{:.6g}\n", ev.median_yield)
+    << fmt::format("track_count,{}\n", ev.track_count)
+    << fmt::format("median_track_frames,{:.6g}\n", ev.median_track_frames)
+    << fmt::format("mean_track_frames,{:.6g}\n", ev.mean_track_frames);
+  csv::finish(s, summary_path);
+}
+
+}  // namespace tactile::capture

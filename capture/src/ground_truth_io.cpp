@@ -1,0 +1,115 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tactile/capture/evaluate.hpp"
+#include "tactile/common/error.hpp"
+
+namespace tactile::capture {
+
+namespace {
+
+template <typename T>
+T field(const nlohmann::json& j, const char* name, const std::string& where) {
+  if (!j.is_object() || !j.contains(name)) {
+    throw FormatError(fmt::format("{}: field '{}' is missing", where, name));
+  }
+  try {
+    return j.at(name).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw FormatError(fmt::format("{}: field '{}' has the wrong type", where, name));
+  }
+}
+
+void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
+  const std::string where = path.string();
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open (not a `tactile synth` folder?)", where));
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::parse_error& e) {
+    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
+  }
+  if (!j.is_object() || j.value("format", std::string()) != "tactile-synthetic-scene") {
+    throw FormatError(fmt::format("{}: 'format' is not tactile-synthetic-scene", where));
+  }
+  const auto s = field<nlohmann::json>(j, "spec", where);
+  const std::string w = where + " spec";
+  SceneSpec& spec = gt.spec;
+  spec.scene = field<std::string>(s, "scene", w);
+  spec.speed_mm_per_s = field<double>(s, "speed_mm_per_s", w);
+  spec.feature_height_mm = field<double>(s, "feature_height_mm", w);
+  spec.feature_width_mm = field<double>(s, "feature_width_mm", w);
+  spec.frame_count = field<int>(s, "frame_count", w);
+  spec.frame_rate_hz = field<double>(s, "frame_rate_hz", w);
+  spec.width_px = field<int>(s, "width_px", w);
+  spec.height_px = field<int>(s, "height_px", w);
+  spec.field_width_mm = field<double>(s, "field_width_mm", w);
+  spec.field_height_mm = field<double>(s, "field_height_mm", w);
+  spec.contact_semi_x_mm = field<double>(s, "contact_semi_x_mm", w);
+  spec.contact_semi_y_mm = field<double>(s, "contact_semi_y_mm", w);
+  spec.displacement_per_height = field<double>(s, "displacement_per_height", w);
+  spec.ridge_period_mm = field<double>(s, "ridge_period_mm", w);
+  spec.pore_spacing_mm = field<double>(s, "pore_spacing_mm", w);
+  spec.pore_min_diameter_mm = field<double>(s, "pore_min_diameter_mm", w);
+  spec.pore_max_diameter_mm = field<double>(s, "pore_max_diameter_mm", w);
+  spec.minutiae_per_mm2 = field<double>(s, "minutiae_per_mm2", w);
+  spec.blur_sigma_px = field<double>(s, "blur_sigma_px", w);
+  spec.noise_sigma = field<double>(s, "noise_sigma", w);
+  spec.seed = field<std::uint64_t>(s, "seed", w);
+  spec.contrast = s.contains("contrast") ? field<double>(s, "contrast", w) : 1.0;
+  try {
+    validate(spec);
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", w, e.what()));
+  }
+  // The true calibration follows from the spec; the stored one is for other tools.
+  gt.calibration = true_calibration(spec);
+}
+
+void read_landmarks_csv(const std::filesystem::path& path, GroundTruth& gt) {
+  const std::string where = path.string();
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open", where));
+  std::string line;
+  if (!std::getline(in, line) || line != "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm") {
+    throw FormatError(
+        fmt::format("{}: expected header id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm", where));
+  }
+  for (int row = 2; std::getline(in, line); ++row) {
+    if (line.empty()) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    TruthLandmark lm;
+    std::string type;
+    if (!(fields >> lm.id >> type >> lm.frame >> lm.x_px >> lm.y_px >> lm.x_mm >> lm.y_mm >>
+          lm.diameter_mm)) {
+      throw FormatError(fmt::format("{}: line {} is not 8 numbers/words", where, row));
+    }
+    try {
+      lm.type = parse_feature_type(type);
+    } catch (const std::invalid_argument&) {
+      throw FormatError(fmt::format("{}: line {}: unknown type '{}'", where, row, type));
+    }
+    if (lm.frame < 0 || lm.frame >= gt.spec.frame_count) {
+      throw FormatError(fmt::format("{}: line {}: frame {} outside 0..{}", where, row, lm.frame,
+                                    gt.spec.frame_count - 1));
+    }
+    gt.landmarks.push_back(lm);
+  }
+}
+
+}  // namespace
+
+GroundTruth read_ground_truth(const std::filesystem::path& dir) {
+  GroundTruth gt;
+  read_scene_json(dir / "scene.json", gt);
+  read_landmarks_csv(dir / "landmarks.csv", gt);
+  return gt;
+}
+
+}  // namespace tactile::capture

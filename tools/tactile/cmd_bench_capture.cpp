@@ -1,0 +1,264 @@
+// `tactile bench capture`: throughput and accuracy of the strain measurement on synthetic
+// sequences with exact ground truth, for the landmark pipeline at a few settings and for the
+// Lucas-Kanade and DIS optical-flow baselines (same strain computation): a table, a CSV and the
+// speed-accuracy chart. `--sweeps` pushes noise, blur, contrast, speed, pore size and loss of
+// contact until the pipeline fails and reports where.
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "tactile/capture/baselines.hpp"
+#include "tactile/capture/chart.hpp"
+#include "tactile/capture/evaluate.hpp"
+#include "tactile/capture/strain.hpp"
+#include "tactile/capture/synth.hpp"
+#include "tactile/common/csv.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+using Frames = std::vector<capture::GrayImage>;
+using Method =
+    std::function<capture::StrainMovie(const Frames&, const capture::Calibration&, double rate_hz)>;
+
+struct NamedMethod {
+  std::string name;
+  Method run;
+};
+
+capture::StrainMovie from_tracks(const std::vector<capture::Track>& tracks, const Frames& frames,
+                                 const capture::Calibration& c, double rate_hz) {
+  const capture::CaptureParams defaults;
+  return capture::strain_from_tracks(tracks, static_cast<int>(frames.size()), c, rate_hz, 1,
+                                     defaults.max_edge_ratio);
+}
+
+std::vector<NamedMethod> methods(bool quick) {
+  std::vector<NamedMethod> m;
+  auto pipeline = [](capture::CaptureParams p) {
+    return [p](const Frames& f, const capture::Calibration& c, double rate) {
+      return capture::measure_strain(f, c, rate, p);
+    };
+  };
+  m.push_back({"pores, 2 threads", pipeline({})});
+  capture::CaptureParams one_thread;
+  one_thread.threads = 1;
+  m.push_back({"pores, 1 thread", pipeline(one_thread)});
+  if (!quick) {
+    capture::CaptureParams with_minutiae;
+    with_minutiae.features.find_minutiae = true;
+    m.push_back({"pores + minutiae", pipeline(with_minutiae)});
+    capture::CaptureParams blob;
+    blob.features.pore_detector = capture::PoreDetector::ridge_blob;
+    m.push_back({"pores (ridge blob)", pipeline(blob)});
+  }
+  m.push_back({"Lucas-Kanade", [](const Frames& f, const capture::Calibration& c, double rate) {
+                 return from_tracks(capture::track_lucas_kanade(f, c), f, c, rate);
+               }});
+  m.push_back({"DIS flow", [](const Frames& f, const capture::Calibration& c, double rate) {
+                 return from_tracks(capture::track_dis_flow(f, c), f, c, rate);
+               }});
+  return m;
+}
+
+struct Result {
+  std::string method;
+  std::string scene;
+  int frames = 0;
+  double seconds = 0;
+  capture::Evaluation eval;
+  std::string error;  // a method that throws is a failure, not a crash of the benchmark
+};
+
+Result run(const NamedMethod& m, const capture::SyntheticSequence& seq) {
+  Result r{m.name, seq.spec.scene, static_cast<int>(seq.frames.size()), 0, {}, {}};
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    const capture::StrainMovie movie = m.run(seq.frames, seq.calibration, seq.spec.frame_rate_hz);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.eval = capture::evaluate_strain(movie, {seq.spec, seq.calibration, seq.landmarks});
+  } catch (const std::exception& e) {
+    r.error = e.what();
+  }
+  return r;
+}
+
+// The goals: strain RMS error <= 0.005 and >= 100 tracked landmarks per frame.
+bool passes(const Result& r, double max_rms, double min_points) {
+  return r.error.empty() && r.eval.edges > 0 && r.eval.rms_error <= max_rms &&
+         r.eval.median_tracked_points >= min_points;
+}
+
+void print_row(const Result& r, const std::string& extra = {}) {
+  if (!r.error.empty()) {
+    fmt::print("{:<32} {:<11} {}failed: {}\n", r.method, r.scene, extra, r.error);
+    return;
+  }
+  fmt::print("{:<32} {:<11} {}{:>8.0f} {:>9.5f} {:>9.5f} {:>8.0f} {:>8.4f} {:>7}\n", r.method,
+             r.scene, extra, r.frames / r.seconds, r.eval.rms_error, r.eval.rms_truth,
+             r.eval.median_tracked_points, r.eval.localisation_rms_mm, r.eval.track_count);
+}
+
+struct Sweep {
+  std::string name;
+  std::vector<double> values;
+  std::function<void(capture::SceneSpec&, double)> apply;
+};
+
+std::vector<Sweep> sweeps() {
+  return {
+      {"noise (grey levels)",
+       {2, 4, 8, 12, 16, 24, 32, 48},
+       [](capture::SceneSpec& s, double v) { s.noise_sigma = v; }},
+      {"blur (px)",
+       {0.9, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0},
+       [](capture::SceneSpec& s, double v) { s.blur_sigma_px = v; }},
+      {"contrast",
+       {1.0, 0.6, 0.4, 0.25, 0.15, 0.1, 0.05},
+       [](capture::SceneSpec& s, double v) { s.contrast = v; }},
+      {"speed (mm/s)",
+       {2.4, 5, 10, 20, 30, 40, 60},
+       [](capture::SceneSpec& s, double v) { s.speed_mm_per_s = v; }},
+      {"pore size (x nominal)",
+       {1.0, 0.75, 0.6, 0.5, 0.4, 0.3},
+       [](capture::SceneSpec& s, double v) {
+         s.pore_min_diameter_mm *= v;
+         s.pore_max_diameter_mm *= v;
+       }},
+      {"bump height (mm), loss of contact",
+       {0.5, 1.0, 1.5, 2.0, 2.5, 3.0},
+       [](capture::SceneSpec& s, double v) { s.feature_height_mm = v; }},
+      {"contact patch half-width (mm)",
+       {4.8, 3.5, 2.5, 2.0, 1.5, 1.0},
+       [](capture::SceneSpec& s, double v) { s.contact_semi_x_mm = s.contact_semi_y_mm = v; }},
+  };
+}
+
+}  // namespace
+
+void add_bench_capture(CLI::App& bench, Action& action) {
+  struct Options {
+    int frames = 90;
+    fs::path out = "bench-capture";
+    bool sweeps = false;
+    bool quick = false;
+    double max_rms = 0.005;
+    double min_points = 100;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = bench.add_subcommand(
+      "capture",
+      "Strain measurement on synthetic bump, hole and flat-slide sequences (640 x 484): frames/s\n"
+      "of extract + match + track + strain, and accuracy against the exact ground truth, for the\n"
+      "landmark pipeline and the Lucas-Kanade and DIS baselines. Writes OUT/bench_capture.csv\n"
+      "and OUT/speed_accuracy.png; --sweeps also pushes each image condition until failure\n"
+      "(OUT/sweeps.csv).");
+  sub->add_option("--frames", opt->frames, "Frames per sequence")
+      ->check(CLI::Range(35, 2000))
+      ->capture_default_str();
+  sub->add_option("--out", opt->out, "Output folder")->capture_default_str();
+  sub->add_flag("--sweeps", opt->sweeps, "Also run the stability sweeps (slow)");
+  sub->add_flag("--quick", opt->quick, "Only the default pipeline and the two baselines");
+  sub->add_option("--max-rms", opt->max_rms, "Sweep failure: strain RMS error above this")
+      ->capture_default_str();
+  sub->add_option("--min-points", opt->min_points,
+                  "Sweep failure: median tracked landmarks per frame below this")
+      ->capture_default_str();
+  sub->callback([opt, &action] {
+    action = [opt] {
+      fs::create_directories(opt->out);
+      const auto all = methods(opt->quick);
+      std::vector<Result> results;
+      fmt::print("{:<32} {:<11} {:>8} {:>9} {:>9} {:>8} {:>8} {:>7}\n", "method", "scene",
+                 "frames/s", "rms_err", "rms_true", "points", "loc_mm", "tracks");
+      for (const char* scene : {"bump", "hole", "flat-slide"}) {
+        capture::SceneSpec spec;
+        spec.scene = scene;
+        spec.frame_count = opt->frames;
+        const auto seq = capture::render_sequence(spec);
+        for (const auto& m : all) {
+          results.push_back(run(m, seq));
+          print_row(results.back());
+        }
+      }
+      const auto csv_path = opt->out / "bench_capture.csv";
+      auto csv = csv::open_with_header(
+          csv_path,
+          "method,scene,frames,seconds,frames_per_s,rms_error,rms_truth,edges,"
+          "median_tracked_points,localisation_rms_mm,track_count,median_track_frames,error");
+      std::vector<capture::ChartPoint> points;
+      for (const auto& r : results) {
+        csv << fmt::format(
+            "\"{}\",{},{},{:.4f},{:.1f},{:.6g},{:.6g},{},{:.0f},{:.5f},{},{:.0f},\"{}\"\n",
+            r.method, r.scene, r.frames, r.seconds, r.frames / r.seconds, r.eval.rms_error,
+            r.eval.rms_truth, r.eval.edges, r.eval.median_tracked_points,
+            r.eval.localisation_rms_mm, r.eval.track_count, r.eval.median_track_frames, r.error);
+        if (r.error.empty()) points.push_back({r.method, r.frames / r.seconds, r.eval.rms_error});
+      }
+      csv::finish(csv, csv_path);
+      capture::write_scatter_chart_png(
+          opt->out / "speed_accuracy.png", points,
+          {"Strain from synthetic sequences (bump, hole, flat-slide; 640 x 484)",
+           "frames per second (extract + match + track + strain)", "edge strain RMS error", true,
+           true, 0.005, 300});
+      fmt::print("bench capture: wrote {} and {}\n", csv_path.string(),
+                 (opt->out / "speed_accuracy.png").string());
+
+      if (!opt->sweeps) return 0;
+      const NamedMethod pipeline = all.front();
+      const auto sweep_path = opt->out / "sweeps.csv";
+      auto sw = csv::open_with_header(sweep_path,
+                                      "condition,value,frames_per_s,rms_error,rms_truth,"
+                                      "median_tracked_points,passes");
+      const int sweep_frames = std::min(opt->frames, 60);
+      fmt::print("\nstability sweeps (bump, {} frames; failure: rms error > {} or < {} points)\n",
+                 sweep_frames, opt->max_rms, opt->min_points);
+      for (const auto& s : sweeps()) {
+        double last_ok = -1, failed_at = -1;
+        for (double v : s.values) {
+          capture::SceneSpec spec;
+          spec.frame_count = sweep_frames;
+          s.apply(spec, v);
+          Result r;
+          try {
+            r = run(pipeline, capture::render_sequence(spec));
+          } catch (const std::exception& e) {
+            r.error = e.what();
+          }
+          r.scene = "bump";
+          r.frames = sweep_frames;
+          const bool ok = passes(r, opt->max_rms, opt->min_points);
+          print_row(r, fmt::format("{:<34} {:>6g} ", s.name, v));
+          sw << fmt::format("\"{}\",{},{:.1f},{:.6g},{:.6g},{:.0f},{}\n", s.name, v,
+                            r.seconds > 0 ? r.frames / r.seconds : 0.0, r.eval.rms_error,
+                            r.eval.rms_truth, r.eval.median_tracked_points, ok ? 1 : 0);
+          if (!ok) {
+            failed_at = v;
+            break;
+          }
+          last_ok = v;
+        }
+        if (failed_at >= 0) {
+          fmt::print("  -> {}: works up to {}, fails at {}\n", s.name, last_ok, failed_at);
+        } else {
+          fmt::print("  -> {}: never failed up to {}\n", s.name, s.values.back());
+        }
+      }
+      csv::finish(sw, sweep_path);
+      fmt::print("bench capture: wrote {}\n", sweep_path.string());
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli

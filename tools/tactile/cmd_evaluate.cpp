@@ -1,0 +1,77 @@
+// `tactile evaluate`: a measured strain movie against the ground truth of a `tactile synth`
+// folder (edge-strain error, localisation, yield, track lengths).
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "command.hpp"
+#include "tactile/capture/evaluate.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+void add_evaluate(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path sequence_dir;
+    fs::path strain;
+    std::optional<fs::path> csv_dir;
+    bool per_frame = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "evaluate",
+      "Compare a strain movie (from `tactile capture` on a `tactile synth` folder) with the\n"
+      "folder's exact ground truth: RMS error of each edge's relative length change (overall\n"
+      "and by frame), landmark localisation error, tracked landmarks per frame, track lengths.");
+  sub->add_option("SEQ_DIR", opt->sequence_dir, "Folder written by `tactile synth`")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("STRAIN", opt->strain, "Strain movie (HDF5) measured on that folder")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--csv", opt->csv_dir,
+                  "Write evaluation_frames.csv and evaluation_summary.csv into this folder");
+  sub->add_flag("--per-frame", opt->per_frame, "Print the table for every frame pair");
+  sub->callback([opt, &action] {
+    action = [opt] {
+      const capture::GroundTruth truth = capture::read_ground_truth(opt->sequence_dir);
+      const capture::StrainMovie movie = capture::read_strain_movie(opt->strain);
+      if (movie.camera_frame_count != truth.spec.frame_count) {
+        fmt::print(stderr, "evaluate: warning: the movie has {} camera frames, the sequence {}\n",
+                   movie.camera_frame_count, truth.spec.frame_count);
+      }
+      const capture::Evaluation ev = capture::evaluate_strain(movie, truth);
+      if (opt->per_frame) {
+        fmt::print("{:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8}\n", "from", "to", "edges",
+                   "rms_error", "rms_truth", "tracked", "truth");
+        for (const auto& f : ev.frames) {
+          fmt::print("{:>6} {:>6} {:>6} {:>10.5f} {:>10.5f} {:>8} {:>8}\n", f.frame_from,
+                     f.frame_to, f.edges, f.rms_error, f.rms_truth, f.tracked_points,
+                     f.truth_landmarks);
+        }
+      }
+      fmt::print("evaluate: scene {} ({} frames), {} strain frames, span {}\n", truth.spec.scene,
+                 truth.spec.frame_count, movie.frames.size(), movie.span_frames);
+      fmt::print("  edge strain RMS error      {:.5f}  (true strain RMS {:.5f}, {} edges)\n",
+                 ev.rms_error, ev.rms_truth, ev.edges);
+      fmt::print("  localisation RMS           {:.4f} mm  ({} points within {} mm, {} not)\n",
+                 ev.localisation_rms_mm, ev.located_points, ev.match_bound_mm, ev.unmatched_points);
+      fmt::print("  tracked landmarks / frame  median {:.0f}  (median yield {:.2f} of the true)\n",
+                 ev.median_tracked_points, ev.median_yield);
+      fmt::print("  tracks                     {}  (length median {:.0f}, mean {:.1f} frames)\n",
+                 ev.track_count, ev.median_track_frames, ev.mean_track_frames);
+      if (opt->csv_dir) {
+        capture::write_evaluation_csv(*opt->csv_dir, ev);
+        fmt::print("evaluate: wrote evaluation_frames.csv and evaluation_summary.csv in {}\n",
+                   opt->csv_dir->string());
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli
