@@ -1,0 +1,30 @@
+#pragma once
+// Files of the perception evaluation (docs/formats.md, "Perception results"): Table 2 as CSV
+// (one row per input set and kernel: accuracy, confusion matrix, R^2 and RMS error per
+// curvature), Figure 7 as CSV (every held-out prediction) and as SVG plots (predicted against
+// true signed footprint, one colour per curvature).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tactile/mapping/perception_eval.hpp"
+
+namespace tactile::mapping {
+
+struct TimedCascade {
+  CascadeResult result;
+  double train_test_s = 0;  // training and testing every model of this row
+};
+
+// Every row of Table 2: each input set (all, static, dp, ru, roll) with exponents 1 and 2.
+std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const PerceptionSplit& split);
+
+void write_table2_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
+void write_figure7_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
+void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& result);
+
+// One line per row of Table 2, for the terminal.
+std::string table2_line(const TimedCascade& row);
+
+}  // namespace tactile::mapping

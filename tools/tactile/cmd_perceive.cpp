@@ -1,0 +1,138 @@
+// `tactile perceive`: the perception evaluation of paper 2 on the simulated fingertip sensor
+// (Table 2 and Figure 7), and the same signal analysis on real BioTac-style recordings.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include "command.hpp"
+#include "tactile/capture/sensor_csv.hpp"
+#include "tactile/common/csv.hpp"
+#include "tactile/mapping/perception_report.hpp"
+
+namespace tactile::cli {
+namespace {
+
+constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
+
+// Every *.csv in `dir` with the BioTac header: read, segment, window, HHT; one CSV row each.
+int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::path& out_dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".csv" && e.path().stem().string().ends_with("_bio"))
+      files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty())
+    throw std::runtime_error(fmt::format("{}: no *_bio.csv recordings", dir.string()));
+  mapping::ContactOptions o;
+  o.baseline_at = mapping::ContactOptions::BaselineAt::end;  // they begin in contact
+  o.feature_from_kinematics = false;                         // textures: all contact is feature
+  const auto names = mapping::procedure_input_names(capture::Procedure::distal_proximal);
+  std::string header =
+      "file,rows,duration_s,baseline_pdc,threshold,contact_begin_s,contact_end_s,"
+      "starts_in_contact,peak_pdc";
+  for (const auto& n : names) header += "," + n.substr(3);  // drop the "dp." prefix
+  const auto path = out_dir / "recordings.csv";
+  auto out = csv::open_with_header(path, header);
+  int failed = 0;
+  for (const auto& f : files) {
+    try {
+      const auto r = capture::read_sensor_csv(f);
+      const auto c = mapping::find_contact(r, o);
+      const auto in = mapping::procedure_inputs(r, capture::Procedure::distal_proximal, o);
+      const double peak = *std::max_element(r.pressure.begin(), r.pressure.end());
+      out << fmt::format("{},{},{:.2f},{:.1f},{:.2f},{:.2f},{:.2f},{},{:g}", f.filename().string(),
+                         r.rows(), r.rows() / r.rate_hz, c.baseline_pressure, c.threshold,
+                         c.begin / r.rate_hz, c.end / r.rate_hz, c.starts_in_contact ? 1 : 0, peak);
+      for (double v : in) out << fmt::format(",{:.4g}", v);
+      out << '\n';
+      fmt::print(
+          "{}: {} rows ({:.2f} s), baseline pdc {:.1f} (from the end), contact {:.2f}-{:.2f} s{}, "
+          "peak pdc {:g}; window means pdc {:.1f} / {:.1f}; mean IF of IMF1 {:.0f} Hz (first "
+          "250 ms), {:.0f} Hz (last 250 ms)\n",
+          f.filename().string(), r.rows(), r.rows() / r.rate_hz, c.baseline_pressure,
+          c.begin / r.rate_hz, c.end / r.rate_hz, c.starts_in_contact ? " (starts in contact)" : "",
+          peak, in[0], in[7], in[21], in[22]);
+    } catch (const std::exception& e) {
+      ++failed;
+      fmt::print(stderr, "tactile perceive: {}\n", e.what());
+    }
+  }
+  csv::finish(out, path);
+  fmt::print("perceive: {} of {} recordings analysed -> {}\n", files.size() - failed, files.size(),
+             path.string());
+  return failed ? 1 : 0;
+}
+
+}  // namespace
+
+void add_perceive(CLI::App& app, Action& action) {
+  struct Options {
+    std::filesystem::path out_dir;
+    int trials = 20;
+    std::uint64_t seed = 1;
+    std::filesystem::path recordings;
+    bool export_recordings = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "perceive",
+      "Perception evaluation of paper 2 (Ponce Wong et al.): 48 features x 4 exploratory\n"
+      "procedures on the simulated fingertip sensor, 76 inputs, SVC for the order of curvature\n"
+      "then curvature-specific SVR for the signed footprint (90/10 split per feature).\n"
+      "Writes table2.csv, figure7.csv and figure7_<inputs>_exp<k>.svg. With --recordings DIR,\n"
+      "analyses real BioTac-style recordings instead (recordings.csv).");
+  sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
+  sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
+      ->check(CLI::Range(2, 1000));
+  sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
+  sub->add_option("--recordings", opt->recordings, "Folder of real *_bio.csv recordings")
+      ->check(CLI::ExistingDirectory);
+  sub->add_flag("--export-recordings", opt->export_recordings,
+                "Also write trial 0 of every feature and procedure as BioTac-style CSV");
+  sub->callback([opt, &action] {
+    action = [opt] {
+      std::filesystem::create_directories(opt->out_dir);
+      if (!opt->recordings.empty()) return analyse_recordings(opt->recordings, opt->out_dir);
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto d = mapping::simulate_dataset(opt->trials, opt->seed);
+      const double sim_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      fmt::print(
+          "perceive: {} samples (48 features x {} trials, 4 procedures each), {} inputs, "
+          "simulated and analysed in {:.1f} s\n",
+          d.samples.size(), opt->trials, d.names.size(), sim_s);
+      const auto split = mapping::split_per_block(d);
+      const auto rows = mapping::run_table2(d, split);
+      fmt::print("Table 2 ({} training / {} held-out samples):\n", split.train.size(),
+                 split.test.size());
+      for (const auto& row : rows) fmt::print("  {}\n", mapping::table2_line(row));
+      mapping::write_table2_csv(opt->out_dir / "table2.csv", rows);
+      mapping::write_figure7_csv(opt->out_dir / "figure7.csv", rows);
+      for (const auto& row : rows)
+        mapping::write_figure7_svg(opt->out_dir / fmt::format("figure7_{}_exp{}.svg",
+                                                              row.result.inputs, row.result.degree),
+                                   row.result);
+      if (opt->export_recordings) {
+        const auto dir = opt->out_dir / "recordings";
+        std::filesystem::create_directories(dir);
+        for (const auto& f : capture::paper_features())
+          for (int p = 0; p < capture::kProcedureCount; ++p) {
+            const auto proc = static_cast<capture::Procedure>(p);
+            capture::write_sensor_csv(
+                dir / fmt::format("{}_{:+g}mm_{}_bio.csv",
+                                  kCurvatureNames[static_cast<int>(f.curvature)],
+                                  f.signed_footprint_mm(), capture::procedure_name(proc)),
+                capture::simulate_trial(f, proc, static_cast<std::uint64_t>(p)));
+          }
+      }
+      fmt::print("perceive: table2.csv, figure7.csv and plots -> {}\n", opt->out_dir.string());
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli
