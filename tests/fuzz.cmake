@@ -9,7 +9,8 @@ set(fz_seeder ${fz_dir}/make_seeds)
 file(GLOB fz_fw_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/firmware/src/*.c)
 file(GLOB fz_fw_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/firmware/include/tactile_fw/*.h)
 set(fz_flags -std=c11 -g -O1 -Wall -Wextra -Wpedantic -Werror
-             -I${PROJECT_SOURCE_DIR}/firmware/include)
+             -I${PROJECT_SOURCE_DIR}/firmware/include
+             -I${CMAKE_CURRENT_SOURCE_DIR}/firmware/target)
 add_custom_command(
   OUTPUT ${fz_target} ${fz_seeder}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${fz_dir}
@@ -18,7 +19,8 @@ add_custom_command(
           ${fz_fw_sources} -o ${fz_target}
   COMMAND ${TACTILE_CLANG} ${fz_flags} ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/make_seeds.c
           ${fz_fw_sources} -o ${fz_seeder}
-  DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/frame_fuzz.c ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/make_seeds.c
+  DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/frame_fuzz.c
+          ${CMAKE_CURRENT_SOURCE_DIR}/firmware/target/device_config.h ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/make_seeds.c
           ${fz_fw_sources} ${fz_fw_headers}
   COMMENT "Building the firmware frame fuzzer (clang, libFuzzer + ASan + UBSan)"
   VERBATIM)

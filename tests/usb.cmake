@@ -6,5 +6,6 @@ find_program(TACTILE_UMOCKDEV_WRAPPER umockdev-wrapper REQUIRED)
 
 tactile_add_test_binary(usb_tests usb tactile_display)
 target_link_libraries(usb_tests PRIVATE PkgConfig::UMOCKDEV tactile_firmware)
+target_include_directories(usb_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/firmware/target)
 add_test(NAME usb.transports COMMAND ${TACTILE_UMOCKDEV_WRAPPER} $<TARGET_FILE:usb_tests>)
 set_tests_properties(usb.transports PROPERTIES LABELS usb TIMEOUT 120)

@@ -9,25 +9,14 @@
 #include <vector>
 
 #include "tactile_fw/device.h"
+#include "target/device_config.h"
 
 namespace {
 
-// A STReSS-like device at 1 kHz: +-50 um, 10 um per tick slew, 5 ms watchdog.
+// A STReSS-like device at 1 kHz: +-50 um, 10 um per tick slew, 5 ms watchdog (shared with the
+// C checks that also run on QEMU).
 tfw_config stress_config() {
-  tfw_config c{};
-  c.rows = 10;
-  c.cols = 10;
-  c.pitch_x_nm = 1000000;
-  c.pitch_y_nm = 1000000;
-  c.contactor_width_nm = 500000;
-  c.contactor_height_nm = 500000;
-  c.deflection_min = -500;
-  c.deflection_max = 500;
-  c.max_slew_per_s = 100000;
-  c.rate_hz = 1000;
-  c.max_rate_hz = 1000;
-  c.watchdog_timeout_ms = 5;
-  return c;
+  return tfw_test_stress_config();
 }
 
 struct Device {

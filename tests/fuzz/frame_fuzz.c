@@ -10,24 +10,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "device_config.h" /* tests/firmware/target */
 #include "tactile_fw/device.h"
 #include "tactile_fw/usb.h"
 #include "tactile_fw/wire.h"
 
-/* A 4 x 4 device keeps valid frames short (48 bytes), so mutations often stay valid. */
+/* The checks' test device cut to 4 x 4, so that valid frames are short (48 bytes) and
+ * mutations often stay valid. */
 static tfw_config fuzz_config(void) {
-  tfw_config c;
-  memset(&c, 0, sizeof c);
+  tfw_config c = tfw_test_stress_config();
   c.rows = 4;
   c.cols = 4;
-  c.pitch_x_nm = c.pitch_y_nm = 1000000;
-  c.contactor_width_nm = c.contactor_height_nm = 500000;
-  c.deflection_min = -500;
-  c.deflection_max = 500;
-  c.max_slew_per_s = 100000;
-  c.rate_hz = 1000;
-  c.max_rate_hz = 1000;
-  c.watchdog_timeout_ms = 5;
   return c;
 }
 

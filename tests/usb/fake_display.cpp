@@ -12,28 +12,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "device_config.h"  // tests/firmware/target: the STReSS-like test device
 #include "tactile_fw/usb.h"
 
 namespace tactile::test {
 
 namespace {
-
-tfw_config fake_config() {
-  tfw_config c{};
-  c.rows = 10;
-  c.cols = 10;
-  c.pitch_x_nm = 1000000;
-  c.pitch_y_nm = 1000000;
-  c.contactor_width_nm = 500000;
-  c.contactor_height_nm = 500000;
-  c.deflection_min = -500;
-  c.deflection_max = 500;
-  c.max_slew_per_s = 200000;
-  c.rate_hz = 1000;
-  c.max_rate_hz = 1000;
-  c.watchdog_timeout_ms = 5;
-  return c;
-}
 
 std::string hex(const std::uint8_t* d, std::size_t n) {
   static const char* digits = "0123456789abcdef";
@@ -268,7 +252,7 @@ struct FakeDisplay::Impl {
 
 FakeDisplay::FakeDisplay() : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  const tfw_config config = fake_config();
+  const tfw_config config = tfw_test_stress_config();
   if (tfw_device_init(&m.dev, &config, nullptr) != TFW_CONFIG_OK) {
     throw std::logic_error("fake display: bad firmware configuration");
   }
