@@ -16,6 +16,7 @@
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/display/layout_json.hpp"
+#include "tactile/mapping/profile.hpp"
 
 namespace tactile::mapping {
 namespace {
@@ -280,6 +281,15 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
           run.layout = l;
           run.id = fmt::format("{:03}-{}-{}-{}-{}", ex.runs.size(), source.name, layout.name,
                                method, p.strain);
+          if (p.method == "profile") {
+            if (source.kind == "file") {
+              cx.fail(
+                  fmt::format("run {}: method 'profile' needs a scene, but source '{}' is a "
+                              "file (use a synthetic or ground_truth source)",
+                              run.id, source.name));
+            }
+            p.profile = profile_of_scene(source.scene);
+          }
           try {
             validate(p, layout);
           } catch (const std::invalid_argument& e) {

@@ -22,6 +22,7 @@ using MethodFrame = std::vector<double> (*)(const StrainField&, const display::L
 MethodFrame method_by_name(const std::string& name) {
   if (name == "proportional") return proportional_frame;
   if (name == "integrated") return integrated_frame;
+  if (name == "profile") return nullptr;  // model-driven: no strain field (profile.hpp)
   throw std::invalid_argument(fmt::format("mapping: unknown method '{}'", name));
 }
 
@@ -94,8 +95,11 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   const auto work = [&](std::size_t w) {
     try {
       for (std::size_t k = w; k < movie.frames.size(); k += worker_count) {
-        const auto field = build_strain_field(movie.frames[k], params.field, needed);
-        const auto deflection_um = method(field, layout, placement, params.gain_um_per_strain);
+        const auto deflection_um =
+            method ? method(build_strain_field(movie.frames[k], params.field, needed), layout,
+                            placement, params.gain_um_per_strain)
+                   : profile_frame(*params.profile, layout, movie.frames[k].t_s,
+                                   params.gain_um_per_strain);
         camera.t_s[k] = movie.frames[k].t_s;
         std::copy(deflection_um.begin(), deflection_um.end(),
                   camera.values.begin() + static_cast<std::ptrdiff_t>(k * n));

@@ -26,7 +26,7 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 }  // namespace
 
 std::vector<std::string> mapping_method_names() {
-  return {"proportional", "integrated"};
+  return {"proportional", "integrated", "profile"};
 }
 std::vector<std::string> normalisation_names() {
   return {"none", "peak", "p99"};
@@ -49,6 +49,15 @@ void validate(const MappingParams& params, const display::Layout& layout) {
   if (!contains(strain_names(), params.strain)) {
     throw std::invalid_argument(fmt::format("mapping: unknown strain '{}' (known: {})",
                                             params.strain, fmt::join(strain_names(), ", ")));
+  }
+  if (params.method == "profile") {
+    if (!params.profile) {
+      throw std::invalid_argument(
+          "mapping: method 'profile' needs a surface profile (a synthetic or ground-truth scene "
+          "in an experiment)");
+    }
+    profile_height_mm(*params.profile, 0, 0);  // throws on a bad shape or width
+    require_positive(params.profile->height_mm + 1.0, "profile height_mm + 1");
   }
   require_positive(params.accumulate.max_edge_ratio, "accumulate max_edge_ratio");
   require_positive(params.gain_um_per_strain, "gain_um_per_strain");
@@ -109,6 +118,17 @@ std::string parameters_json(const MappingParams& params, const Placement& placem
                     {"scale", placement_used.scale},
                     {"auto", !params.placement.has_value()}};
   j["slew_limit_um_per_s"] = params.slew_limit_um_per_s;
+  if (params.method == "profile" && params.profile) {
+    const auto& p = *params.profile;
+    j["profile"] = {
+        {"shape", p.shape},
+        {"height_mm", p.height_mm},
+        {"width_mm", p.width_mm},
+        {"feature_mm", {p.feature_x_mm, p.feature_y_mm}},
+        {"finger_start_mm", {p.finger_x0_mm, p.finger_y0_mm}},
+        {"velocity_mm_per_s", {p.velocity_x_mm_per_s, p.velocity_y_mm_per_s}},
+        {"rule", "d = -gain * dh/d(axis) at the contactor, grid riding with the finger"}};
+  }
   j["min_triangle_quality"] = params.field.min_triangle_quality;
   j["spatial_interpolation"] = "piecewise constant per triangle";
   j["time_interpolation"] = "linear between camera frames";

@@ -127,7 +127,7 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
   refused(edit("\"methods\": [\"proportional\", \"integrated\"],", ""), "missing field 'methods'");
   refused(edit("\"seed\": 3", "\"seed\": 3, \"sead\": 4"), "unknown field 'sead'");
   refused(edit("\"integrated\"]", "\"integrated\", \"wavelet\"]"),
-          "unknown method 'wavelet' (known: proportional, integrated)");
+          "unknown method 'wavelet' (known: proportional, integrated, profile)");
   refused(edit("[\"proportional\", \"integrated\"]", "[]"), "'methods' must be a non-empty list");
   refused(edit("[\"stress\", \"latero\"]", "[]"), "'layouts' must be a non-empty list");
   refused(edit("\"latero\"]", "\"braille\"]"), "unknown layout 'braille'");

@@ -19,13 +19,17 @@
 #include "tactile/mapping/accumulate.hpp"
 #include "tactile/mapping/limits.hpp"
 #include "tactile/mapping/placement.hpp"
+#include "tactile/mapping/profile.hpp"
 #include "tactile/mapping/strain_field.hpp"
 
 namespace tactile::mapping {
 
 struct MappingParams {
-  // "proportional" or "integrated" (see methods.hpp).
+  // "proportional" or "integrated" (see methods.hpp), or "profile" (profile.hpp: model-driven,
+  // needs `profile`; the strain frames then only give the times, and the gain is micrometres per
+  // unit slope).
   std::string method = "proportional";
+  std::optional<SurfaceProfile> profile;
   // Micrometres of deflection per unit strain (for "integrated": per millimetre of pitch, so 1000
   // reproduces the skin's extension). 1000 um per unit strain = 1 um per 0.1 % strain.
   double gain_um_per_strain = 1000.0;
