@@ -75,7 +75,8 @@ struct SvmModel::Impl {
     problem.x = rows.data();
     problem.y = y.data();
     param.svm_type = type;
-    param.kernel_type = POLY;
+    // (x . y)^1 is the linear kernel; libsvm computes it without pow().
+    param.kernel_type = o.degree == 1 ? LINEAR : POLY;
     param.degree = o.degree;
     param.gamma = 1.0;
     param.coef0 = 0.0;

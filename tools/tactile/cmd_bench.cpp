@@ -12,6 +12,7 @@ void add_bench(CLI::App& app, Action& action) {
   add_bench_map(*bench, action);
   add_bench_capture(*bench, action);
   add_bench_stream(*bench, action);
+  add_bench_perceive(*bench, action);
 }
 
 }  // namespace tactile::cli

@@ -27,5 +27,6 @@ void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);
 void add_bench_capture(CLI::App& bench, Action& action);
 void add_bench_stream(CLI::App& bench, Action& action);
+void add_bench_perceive(CLI::App& bench, Action& action);
 
 }  // namespace tactile::cli
