@@ -58,9 +58,8 @@ std::vector<NamedMethod> methods(bool quick) {
     capture::CaptureParams with_minutiae;
     with_minutiae.features.find_minutiae = true;
     m.push_back({"pores + minutiae", pipeline(with_minutiae)});
-    capture::CaptureParams blob;
-    blob.features.pore_detector = capture::PoreDetector::ridge_blob;
-    m.push_back({"pores (ridge blob)", pipeline(blob)});
+    // The ridge-blob pore detector (tuned on real 1200 dpi prints) is left out: at about
+    // 3 frames/s on 640 x 484 it is a detector for single images, not for sequences.
   }
   m.push_back({"Lucas-Kanade", [](const Frames& f, const capture::Calibration& c, double rate) {
                  return from_tracks(capture::track_lucas_kanade(f, c), f, c, rate);
@@ -91,12 +90,6 @@ Result run(const NamedMethod& m, const capture::SyntheticSequence& seq) {
     r.error = e.what();
   }
   return r;
-}
-
-// The goals: strain RMS error <= 0.005 and >= 100 tracked landmarks per frame.
-bool passes(const Result& r, double max_rms, double min_points) {
-  return r.error.empty() && r.eval.edges > 0 && r.eval.rms_error <= max_rms &&
-         r.eval.median_tracked_points >= min_points;
 }
 
 void print_row(const Result& r, const std::string& extra = {}) {
@@ -224,7 +217,8 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       fmt::print("\nstability sweeps (bump, {} frames; failure: rms error > {} or < {} points)\n",
                  sweep_frames, opt->max_rms, opt->min_points);
       for (const auto& s : sweeps()) {
-        double last_ok = -1, failed_at = -1;
+        // Accuracy and yield fail at different points; each is reported on its own.
+        double accuracy_fails = -1, yield_fails = -1;
         for (double v : s.values) {
           capture::SceneSpec spec;
           spec.frame_count = sweep_frames;
@@ -237,22 +231,24 @@ void add_bench_capture(CLI::App& bench, Action& action) {
           }
           r.scene = "bump";
           r.frames = sweep_frames;
-          const bool ok = passes(r, opt->max_rms, opt->min_points);
+          const bool accurate =
+              r.error.empty() && r.eval.edges > 0 && r.eval.rms_error <= opt->max_rms;
+          const bool enough = r.error.empty() && r.eval.median_tracked_points >= opt->min_points;
           print_row(r, fmt::format("{:<34} {:>6g} ", s.name, v));
           sw << fmt::format("\"{}\",{},{:.1f},{:.6g},{:.6g},{:.0f},{}\n", s.name, v,
                             r.seconds > 0 ? r.frames / r.seconds : 0.0, r.eval.rms_error,
-                            r.eval.rms_truth, r.eval.median_tracked_points, ok ? 1 : 0);
-          if (!ok) {
-            failed_at = v;
-            break;
-          }
-          last_ok = v;
+                            r.eval.rms_truth, r.eval.median_tracked_points,
+                            accurate && enough ? 1 : 0);
+          if (!accurate && accuracy_fails < 0) accuracy_fails = v;
+          if (!enough && yield_fails < 0) yield_fails = v;
+          if (accuracy_fails >= 0 && yield_fails >= 0) break;
         }
-        if (failed_at >= 0) {
-          fmt::print("  -> {}: works up to {}, fails at {}\n", s.name, last_ok, failed_at);
-        } else {
-          fmt::print("  -> {}: never failed up to {}\n", s.name, s.values.back());
-        }
+        auto where = [&](double v) {
+          return v >= 0 ? fmt::format("fails at {}", v)
+                        : fmt::format("holds up to {}", s.values.back());
+        };
+        fmt::print("  -> {}: strain error {}; landmark yield {}\n", s.name, where(accuracy_fails),
+                   where(yield_fails));
       }
       csv::finish(sw, sweep_path);
       fmt::print("bench capture: wrote {}\n", sweep_path.string());
