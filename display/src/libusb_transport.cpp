@@ -23,6 +23,7 @@ constexpr std::uint8_t kVendorIn = 0xC1;
 constexpr std::uint8_t kVendorOut = 0x41;
 
 std::string usb_error(int code) {
+  if (code == LIBUSB_ERROR_NO_DEVICE) return "the display was unplugged (LIBUSB_ERROR_NO_DEVICE)";
   return std::string(libusb_error_name(code)) + " (" + libusb_strerror(code) + ")";
 }
 
