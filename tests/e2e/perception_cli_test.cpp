@@ -1,0 +1,59 @@
+// `tactile perceive` on real recordings and on malformed input: clear errors, right exit codes.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run.hpp"
+
+using tactile::test::run_tactile;
+
+namespace {
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tactile_perceive_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST(PerceiveCli, AnalysesEveryRealRecording) {
+  const auto out = fresh_dir("real");
+  const auto r = run_tactile("perceive --out " + out.string() + " --recordings " +
+                             TACTILE_SHARED_DATA_DIR + "/biotac-slide");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("9 of 9 recordings analysed"), std::string::npos) << r.output;
+  std::ifstream csv(out / "recordings.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 10);  // header + 9 recordings
+  std::filesystem::remove_all(out);
+}
+
+TEST(PerceiveCli, MalformedRecordingFailsNamingFileAndProblem) {
+  const auto in = fresh_dir("bad_in");
+  std::ofstream(in / "broken_bio.csv") << "timestamp,pdc\n1,2\n";
+  const auto out = fresh_dir("bad_out");
+  const auto r = run_tactile("perceive --out " + out.string() + " --recordings " + in.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("broken_bio.csv: line 1: header has 2 columns"), std::string::npos)
+      << r.output;
+  std::filesystem::remove_all(in);
+  std::filesystem::remove_all(out);
+}
+
+TEST(PerceiveCli, UsageErrors) {
+  EXPECT_EQ(run_tactile("perceive --out /tmp/x --trials 1").exit_code, 2);
+  EXPECT_EQ(run_tactile("perceive --trials 5").exit_code, 2);  // --out missing
+  const auto r = run_tactile("perceive --out /tmp/x --recordings /nonexistent/dir");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("/nonexistent/dir"), std::string::npos) << r.output;
+  const auto empty = fresh_dir("empty");
+  const auto e = run_tactile("perceive --out /tmp/x --recordings " + empty.string());
+  EXPECT_EQ(e.exit_code, 1);
+  EXPECT_NE(e.output.find("no *_bio.csv recordings"), std::string::npos) << e.output;
+  std::filesystem::remove_all(empty);
+}
