@@ -13,6 +13,7 @@
 #include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/ground_truth.hpp"
 #include "tactile/mapping/map.hpp"
+#include "tactile/mapping/profile.hpp"
 
 namespace tactile::cli {
 
@@ -20,7 +21,7 @@ void add_bench_map(CLI::App& bench, Action& action) {
   struct Options {
     int repeats = 7;
     int frames = 180;
-    double spacing_mm = 0.4;
+    double spacing_mm = 0.34;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = bench.add_subcommand(
@@ -34,7 +35,7 @@ void add_bench_map(CLI::App& bench, Action& action) {
   sub->add_option("--frames", opt->frames, "Camera frames of the strain movie")
       ->check(CLI::Range(2, 100000))
       ->capture_default_str();
-  sub->add_option("--spacing-mm", opt->spacing_mm, "Landmark spacing (0.4 mm: ~500 per frame)")
+  sub->add_option("--spacing-mm", opt->spacing_mm, "Landmark spacing (0.34 mm: ~500 per frame)")
       ->check(CLI::Range(0.1, 5.0))
       ->capture_default_str();
   sub->callback([opt, &action] {
@@ -65,6 +66,7 @@ void add_bench_map(CLI::App& bench, Action& action) {
         const auto source = mapping::strain_source(movie, params);
         for (const auto& method : mapping::mapping_method_names()) {
           params.method = method;
+          if (method == "profile") params.profile = mapping::profile_of_scene(spec);
           std::vector<double> ms;
           std::int32_t frames = 0;
           for (int r = 0; r < opt->repeats; ++r) {

@@ -1,0 +1,101 @@
+// `tactile experiment`, `tactile map --layout FILE.json` and `tactile bench map` as a user meets
+// them: wrong usage exits 2, bad files exit 1 naming the problem before any work, good runs write
+// what they promise.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run.hpp"
+#include "tactile/display/movie_io.hpp"
+
+namespace fs = std::filesystem;
+using tactile::test::run_tactile;
+using ::testing::HasSubstr;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("tactile_experiment_cli_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+const char* kTiny = R"({"name": "tiny", "seed": 1,
+  "sources": [{"name": "gt", "ground_truth": {"scene": "bump", "frames": 8}, "grid_spacing_mm": 0.6}],
+  "layouts": ["stress"], "methods": ["integrated", "profile"], "parameters": {"rate_hz": 100}})";
+
+}  // namespace
+
+TEST(ExperimentCli, MissingFileArgumentIsUsageError) {
+  const auto r = run_tactile("experiment");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("EXP_JSON"));
+}
+
+TEST(ExperimentCli, BadFilesFailBeforeAnyOutputIsWritten) {
+  const auto d = scratch("bad");
+  std::ofstream(d / "broken.json") << "{\"name\": ";
+  auto r =
+      run_tactile("experiment " + (d / "broken.json").string() + " --out " + (d / "out").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("broken.json: not valid JSON"));
+  EXPECT_FALSE(fs::exists(d / "out"));
+  std::string fast = kTiny;
+  fast.replace(fast.find("\"rate_hz\": 100"), 14, "\"rate_hz\": 900");
+  std::ofstream(d / "fast.json") << fast;
+  r = run_tactile("experiment " + (d / "fast.json").string() + " --out " + (d / "out").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("rate 900 Hz is above layout 'stress' maximum rate 700 Hz"));
+  EXPECT_FALSE(fs::exists(d / "out"));
+  fs::remove_all(d);
+}
+
+TEST(ExperimentCli, TinyExperimentWritesItsFolder) {
+  const auto d = scratch("tiny");
+  std::ofstream(d / "tiny.json") << kTiny;
+  const auto r = run_tactile("experiment " + (d / "tiny.json").string() + " --out " +
+                             (d / "out").string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("2 runs"));
+  for (const char* f :
+       {"experiment.json", "resolved.json", "metrics.csv", "plots/correlation.png",
+        "plots/activity-gt-stress.png", "movies/000-gt-stress-integrated-per-frame.h5",
+        "movies/001-gt-stress-profile-per-frame.h5"}) {
+    EXPECT_TRUE(fs::exists(d / "out" / f)) << f;
+  }
+  fs::remove_all(d);
+}
+
+TEST(ExperimentCli, MapTakesACustomLayoutFileAndRefusesABadOne) {
+  const fs::path strain = fs::path(TACTILE_E2E_DEMO_DIR) / "strain.h5";
+  ASSERT_TRUE(fs::exists(strain));
+  const auto d = scratch("layout");
+  std::ofstream(d / "bad.json") << R"({"name": "x", "rows": 4})";
+  auto r = run_tactile("map " + strain.string() + " --out " + (d / "m.h5").string() + " --layout " +
+                       (d / "bad.json").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("bad.json: missing field 'cols'"));
+  std::ofstream(d / "lab.json") << R"({"name": "lab", "rows": 5, "cols": 7, "pitch_mm": [1, 1.2],
+    "contactor_size_mm": [0.5, 0.5], "deflection_axis": "y", "deflection_range_um": [-40, 40],
+    "max_rate_hz": 500})";
+  r = run_tactile("map " + strain.string() + " --out " + (d / "m.h5").string() + " --layout " +
+                  (d / "lab.json").string() + " --rate-hz 500 --strain accumulated");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto movie = tactile::display::read_tactile_movie(d / "m.h5");
+  EXPECT_EQ(movie.layout.name, "lab");
+  EXPECT_EQ(movie.layout.cols, 7);
+  EXPECT_EQ(movie.layout.axis, tactile::display::DeflectionAxis::y);
+  EXPECT_THAT(movie.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"accumulated\""));
+  fs::remove_all(d);
+}
+
+TEST(ExperimentCli, BenchMapPrintsItsFigures) {
+  const auto r = run_tactile("bench map --frames 20 --repeats 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("median ms"));
+  EXPECT_THAT(r.output, HasSubstr("integrated"));
+}
