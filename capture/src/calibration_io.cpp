@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "json_field.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {
@@ -25,18 +26,6 @@ void write_calibration_json(const std::filesystem::path& path, const Calibration
   if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
 }
 
-namespace {
-template <typename T>
-T field(const nlohmann::json& j, const char* name, const std::string& where) {
-  if (!j.contains(name)) throw FormatError(fmt::format("{}: field '{}' is missing", where, name));
-  try {
-    return j.at(name).get<T>();
-  } catch (const nlohmann::json::exception&) {
-    throw FormatError(fmt::format("{}: field '{}' has the wrong type", where, name));
-  }
-}
-}  // namespace
-
 Calibration read_calibration_json(const std::filesystem::path& path) {
   const std::string where = path.string();
   std::ifstream in(path);
@@ -48,19 +37,19 @@ Calibration read_calibration_json(const std::filesystem::path& path) {
     throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
   }
   if (!j.is_object()) throw FormatError(fmt::format("{}: expected a JSON object", where));
-  if (field<std::string>(j, "format", where) != "tactile-calibration") {
+  if (json_field<std::string>(j, "format", where) != "tactile-calibration") {
     throw FormatError(fmt::format("{}: 'format' is not tactile-calibration", where));
   }
   Calibration c;
-  const auto h = field<std::vector<double>>(j, "px_to_mm", where);
+  const auto h = json_field<std::vector<double>>(j, "px_to_mm", where);
   if (h.size() != 9) {
     throw FormatError(
         fmt::format("{}: 'px_to_mm' must hold 9 numbers (3x3), found {}", where, h.size()));
   }
   std::copy(h.begin(), h.end(), c.px_to_mm.begin());
-  c.mm_per_px = field<double>(j, "mm_per_px", where);
-  c.image_width_px = field<int>(j, "image_width_px", where);
-  c.image_height_px = field<int>(j, "image_height_px", where);
+  c.mm_per_px = json_field<double>(j, "mm_per_px", where);
+  c.image_width_px = json_field<int>(j, "image_width_px", where);
+  c.image_height_px = json_field<int>(j, "image_height_px", where);
   c.method = j.value("method", std::string("unknown"));
 
   for (double v : h) {

@@ -5,24 +5,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "json_field.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {
 
 namespace {
-
-template <typename T>
-T field(const nlohmann::json& j, const char* name, const std::string& where) {
-  if (!j.is_object() || !j.contains(name)) {
-    throw FormatError(fmt::format("{}: field '{}' is missing", where, name));
-  }
-  try {
-    return j.at(name).get<T>();
-  } catch (const nlohmann::json::exception&) {
-    throw FormatError(fmt::format("{}: field '{}' has the wrong type", where, name));
-  }
-}
 
 void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   const std::string where = path.string();
@@ -37,31 +26,31 @@ void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   if (!j.is_object() || j.value("format", std::string()) != "tactile-synthetic-scene") {
     throw FormatError(fmt::format("{}: 'format' is not tactile-synthetic-scene", where));
   }
-  const auto s = field<nlohmann::json>(j, "spec", where);
+  const auto s = json_field<nlohmann::json>(j, "spec", where);
   const std::string w = where + " spec";
   SceneSpec& spec = gt.spec;
-  spec.scene = field<std::string>(s, "scene", w);
-  spec.speed_mm_per_s = field<double>(s, "speed_mm_per_s", w);
-  spec.feature_height_mm = field<double>(s, "feature_height_mm", w);
-  spec.feature_width_mm = field<double>(s, "feature_width_mm", w);
-  spec.frame_count = field<int>(s, "frame_count", w);
-  spec.frame_rate_hz = field<double>(s, "frame_rate_hz", w);
-  spec.width_px = field<int>(s, "width_px", w);
-  spec.height_px = field<int>(s, "height_px", w);
-  spec.field_width_mm = field<double>(s, "field_width_mm", w);
-  spec.field_height_mm = field<double>(s, "field_height_mm", w);
-  spec.contact_semi_x_mm = field<double>(s, "contact_semi_x_mm", w);
-  spec.contact_semi_y_mm = field<double>(s, "contact_semi_y_mm", w);
-  spec.displacement_per_height = field<double>(s, "displacement_per_height", w);
-  spec.ridge_period_mm = field<double>(s, "ridge_period_mm", w);
-  spec.pore_spacing_mm = field<double>(s, "pore_spacing_mm", w);
-  spec.pore_min_diameter_mm = field<double>(s, "pore_min_diameter_mm", w);
-  spec.pore_max_diameter_mm = field<double>(s, "pore_max_diameter_mm", w);
-  spec.minutiae_per_mm2 = field<double>(s, "minutiae_per_mm2", w);
-  spec.blur_sigma_px = field<double>(s, "blur_sigma_px", w);
-  spec.noise_sigma = field<double>(s, "noise_sigma", w);
-  spec.seed = field<std::uint64_t>(s, "seed", w);
-  spec.contrast = s.contains("contrast") ? field<double>(s, "contrast", w) : 1.0;
+  spec.scene = json_field<std::string>(s, "scene", w);
+  spec.speed_mm_per_s = json_field<double>(s, "speed_mm_per_s", w);
+  spec.feature_height_mm = json_field<double>(s, "feature_height_mm", w);
+  spec.feature_width_mm = json_field<double>(s, "feature_width_mm", w);
+  spec.frame_count = json_field<int>(s, "frame_count", w);
+  spec.frame_rate_hz = json_field<double>(s, "frame_rate_hz", w);
+  spec.width_px = json_field<int>(s, "width_px", w);
+  spec.height_px = json_field<int>(s, "height_px", w);
+  spec.field_width_mm = json_field<double>(s, "field_width_mm", w);
+  spec.field_height_mm = json_field<double>(s, "field_height_mm", w);
+  spec.contact_semi_x_mm = json_field<double>(s, "contact_semi_x_mm", w);
+  spec.contact_semi_y_mm = json_field<double>(s, "contact_semi_y_mm", w);
+  spec.displacement_per_height = json_field<double>(s, "displacement_per_height", w);
+  spec.ridge_period_mm = json_field<double>(s, "ridge_period_mm", w);
+  spec.pore_spacing_mm = json_field<double>(s, "pore_spacing_mm", w);
+  spec.pore_min_diameter_mm = json_field<double>(s, "pore_min_diameter_mm", w);
+  spec.pore_max_diameter_mm = json_field<double>(s, "pore_max_diameter_mm", w);
+  spec.minutiae_per_mm2 = json_field<double>(s, "minutiae_per_mm2", w);
+  spec.blur_sigma_px = json_field<double>(s, "blur_sigma_px", w);
+  spec.noise_sigma = json_field<double>(s, "noise_sigma", w);
+  spec.seed = json_field<std::uint64_t>(s, "seed", w);
+  spec.contrast = s.contains("contrast") ? json_field<double>(s, "contrast", w) : 1.0;
   try {
     validate(spec);
   } catch (const std::invalid_argument& e) {
