@@ -38,18 +38,31 @@ std::vector<SurfaceFeature> paper_features() {
   return features;
 }
 
-std::string procedure_name(Procedure p) {
+namespace {
+struct ProcedureNames {
+  const char* full;
+  const char* short_name;
+};
+ProcedureNames names_of(Procedure p) {
   switch (p) {
     case Procedure::static_contact:
-      return "static";
+      return {"static", "static"};
     case Procedure::distal_proximal:
-      return "distal-proximal";
+      return {"distal-proximal", "dp"};
     case Procedure::radial_ulnar:
-      return "radial-ulnar";
+      return {"radial-ulnar", "ru"};
     case Procedure::roll:
-      return "roll";
+      return {"roll", "roll"};
   }
   throw std::invalid_argument("unknown exploratory procedure");
+}
+}  // namespace
+
+std::string procedure_name(Procedure p) {
+  return names_of(p).full;
+}
+std::string procedure_short_name(Procedure p) {
+  return names_of(p).short_name;
 }
 
 ProcedureKinematics paper_kinematics(Procedure p) {

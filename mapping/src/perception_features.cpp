@@ -21,20 +21,6 @@ using capture::Procedure;
 constexpr int kSignals = 1 + kElectrodeClusterCount;  // pressure + 6 clusters
 constexpr double kVibrationWindowS = 0.25;
 
-std::string short_name(Procedure p) {
-  switch (p) {
-    case Procedure::static_contact:
-      return "static";
-    case Procedure::distal_proximal:
-      return "dp";
-    case Procedure::radial_ulnar:
-      return "ru";
-    case Procedure::roll:
-      return "roll";
-  }
-  throw std::invalid_argument("unknown exploratory procedure");
-}
-
 double mean(const std::vector<double>& v, std::size_t begin, std::size_t end) {
   double s = 0;
   for (std::size_t i = begin; i < end; ++i) s += v[i];
@@ -145,7 +131,7 @@ std::size_t procedure_input_count(Procedure p) {
 }
 
 std::vector<std::string> procedure_input_names(Procedure p) {
-  const std::string ep = short_name(p);
+  const std::string ep = capture::procedure_short_name(p);
   std::vector<std::string> signal_names = {"pressure"};
   for (int c = 1; c <= kElectrodeClusterCount; ++c) signal_names.push_back(fmt::format("c{}", c));
   std::vector<std::string> names;

@@ -27,6 +27,7 @@ std::vector<SurfaceFeature> paper_features();
 enum class Procedure { static_contact = 0, distal_proximal = 1, radial_ulnar = 2, roll = 3 };
 inline constexpr int kProcedureCount = 4;
 std::string procedure_name(Procedure p);  // "static", "distal-proximal", "radial-ulnar", "roll"
+std::string procedure_short_name(Procedure p);  // "static", "dp", "ru", "roll" (input names)
 
 // Commanded motion of one trial, before trial-to-trial variation.
 struct ProcedureKinematics {
