@@ -79,6 +79,10 @@ struct Result {
   std::string error;  // a method that throws is a failure, not a crash of the benchmark
 };
 
+double frames_per_s(const Result& r) {
+  return r.seconds > 0 ? r.frames / r.seconds : 0.0;
+}
+
 Result run(const NamedMethod& m, const capture::SyntheticSequence& seq) {
   Result r{m.name, seq.spec.scene, static_cast<int>(seq.frames.size()), 0, {}, {}};
   try {
@@ -98,7 +102,7 @@ void print_row(const Result& r, const std::string& extra = {}) {
     return;
   }
   fmt::print("{:<32} {:<11} {}{:>8.0f} {:>9.5f} {:>9.5f} {:>8.0f} {:>8.4f} {:>7}\n", r.method,
-             r.scene, extra, r.frames / r.seconds, r.eval.rms_error, r.eval.rms_truth,
+             r.scene, extra, frames_per_s(r), r.eval.rms_error, r.eval.rms_truth,
              r.eval.median_tracked_points, r.eval.localisation_rms_mm, r.eval.track_count);
 }
 
@@ -193,10 +197,10 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       for (const auto& r : results) {
         csv << fmt::format(
             "\"{}\",{},{},{:.4f},{:.1f},{:.6g},{:.6g},{},{:.0f},{:.5f},{},{:.0f},\"{}\"\n",
-            r.method, r.scene, r.frames, r.seconds, r.frames / r.seconds, r.eval.rms_error,
+            r.method, r.scene, r.frames, r.seconds, frames_per_s(r), r.eval.rms_error,
             r.eval.rms_truth, r.eval.edges, r.eval.median_tracked_points,
             r.eval.localisation_rms_mm, r.eval.track_count, r.eval.median_track_frames, r.error);
-        if (r.error.empty()) points.push_back({r.method, r.frames / r.seconds, r.eval.rms_error});
+        if (r.error.empty()) points.push_back({r.method, frames_per_s(r), r.eval.rms_error});
       }
       csv::finish(csv, csv_path);
       capture::write_scatter_chart_png(
@@ -236,9 +240,8 @@ void add_bench_capture(CLI::App& bench, Action& action) {
           const bool enough = r.error.empty() && r.eval.median_tracked_points >= opt->min_points;
           print_row(r, fmt::format("{:<34} {:>6g} ", s.name, v));
           sw << fmt::format("\"{}\",{},{:.1f},{:.6g},{:.6g},{:.0f},{}\n", s.name, v,
-                            r.seconds > 0 ? r.frames / r.seconds : 0.0, r.eval.rms_error,
-                            r.eval.rms_truth, r.eval.median_tracked_points,
-                            accurate && enough ? 1 : 0);
+                            frames_per_s(r), r.eval.rms_error, r.eval.rms_truth,
+                            r.eval.median_tracked_points, accurate && enough ? 1 : 0);
           if (!accurate && accuracy_fails < 0) accuracy_fails = v;
           if (!enough && yield_fails < 0) yield_fails = v;
           if (accuracy_fails >= 0 && yield_fails >= 0) break;
