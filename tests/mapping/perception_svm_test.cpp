@@ -78,3 +78,39 @@ TEST(PerceptionSplit, NinetyTenPerBlock) {
   for (auto i : split.train) per_curvature_train += d.samples[i].curvature == 1;
   EXPECT_EQ(per_curvature_train, 288);
 }
+
+TEST(PerceptionCascade, PerfectInputsGivePerfectTableRow) {
+  // Inputs that state the answer (a one-hot curvature code and the signed footprint, plus a
+  // constant column): the classifier must be exact, every regressor near exact (R^2 ~ 1), and
+  // the confusion matrix diagonal with 2 held-out trials x 16 features per curvature.
+  map::PerceptionDataset d;
+  d.names = {"planar", "conical", "spherical", "footprint", "constant"};
+  const double footprints[] = {1.25, 2.5, 3.75, 5, 7.5, 10, 15, 20};
+  int feature = 0;
+  for (int c = 0; c < 3; ++c)
+    for (double sign : {1.0, -1.0})
+      for (double f : footprints) {
+        for (int t = 0; t < 20; ++t) {
+          const double jitter = 0.01 * ((t * 7) % 5 - 2);
+          d.samples.push_back({feature,
+                               t,
+                               c,
+                               sign * f,
+                               {c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0,
+                                sign * f + jitter, 3.0}});
+        }
+        ++feature;
+      }
+  const auto split = map::split_per_block(d);
+  map::InputSet all{"all", {0, 1, 2, 3, 4}};
+  const auto r = map::evaluate_cascade(d, split, all, 1);
+  EXPECT_EQ(r.tested, 96);
+  EXPECT_EQ(r.correct, 96);
+  for (int t = 0; t < 3; ++t)
+    for (int p = 0; p < 3; ++p) EXPECT_EQ(r.confusion[t][p], t == p ? 32 : 0);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(r.r2[c], 0.99) << c;
+    EXPECT_LT(r.rms_mm[c], 0.5) << c;
+  }
+  EXPECT_EQ(r.predictions.size(), 96u);
+}
