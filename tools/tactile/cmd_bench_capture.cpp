@@ -135,9 +135,12 @@ std::vector<Sweep> sweeps() {
       {"bump height (mm), loss of contact",
        {0.5, 1.0, 1.5, 2.0, 2.5, 3.0},
        [](capture::SceneSpec& s, double v) { s.feature_height_mm = v; }},
-      {"contact patch half-width (mm)",
-       {4.8, 3.5, 2.5, 2.0, 1.5, 1.0},
-       [](capture::SceneSpec& s, double v) { s.contact_semi_x_mm = s.contact_semi_y_mm = v; }},
+      {"contact patch size (x nominal)",
+       {1.0, 0.8, 0.6, 0.5, 0.4, 0.3},
+       [](capture::SceneSpec& s, double v) {
+         s.contact_semi_x_mm *= v;
+         s.contact_semi_y_mm *= v;
+       }},
   };
 }
 
