@@ -6,7 +6,9 @@ if(TACTILE_JAVA AND TACTILE_WEKA_JAR)
   tactile_add_test_binary(weka_tests weka tactile_mapping)
   target_compile_definitions(weka_tests PRIVATE TACTILE_JAVA="${TACTILE_JAVA}"
                                                 TACTILE_WEKA_JAR="${TACTILE_WEKA_JAR}")
-  gtest_discover_tests(weka_tests PROPERTIES LABELS weka TIMEOUT 300 DISCOVERY_TIMEOUT 60)
+  # One process for the whole suite: the simulated data set is built once, not once per test.
+  add_test(NAME weka.golden COMMAND weka_tests)
+  set_tests_properties(weka.golden PROPERTIES LABELS weka TIMEOUT 300)
 else()
   message(WARNING "java or weka.jar not found (tools/setup.sh installs them): no weka tests")
 endif()
