@@ -138,20 +138,34 @@ StrainField build_strain_field(const capture::StrainFrame& frame, const StrainFi
     }
   }
 
-  // A sorted vector searched by bisection: cheaper to build than a hash map for the few thousand
-  // edges of a frame, and the build dominates.
-  std::vector<std::pair<std::uint64_t, double>> rel_change;
-  rel_change.reserve(frame.edges.size());
-  for (const auto& e : frame.edges) {
-    rel_change.emplace_back(edge_key(e.track_a, e.track_b), e.rel_change);
+  // The keys of the edges the wanted triangles need, sorted; each edge of the frame is looked up
+  // among them once. Sorting only these (a fraction of the frame's edges when the field is built
+  // for a few contactors) is what keeps the per-frame cost low.
+  const auto key_of = [&](std::size_t t, std::size_t k) {
+    const auto& tri = frame.triangles[t];
+    return edge_key(from[static_cast<std::size_t>(tri.point_index[k])].track_id,
+                    from[static_cast<std::size_t>(tri.point_index[(k + 1) % 3])].track_id);
+  };
+  std::vector<std::uint64_t> keys;
+  for (std::size_t t = 0; t < frame.triangles.size(); ++t) {
+    if (!wanted[t]) continue;
+    for (std::size_t k = 0; k < 3; ++k) keys.push_back(key_of(t, k));
   }
-  std::sort(rel_change.begin(), rel_change.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<double> change_of_key(keys.size(), std::nan(""));
+  for (const auto& e : frame.edges) {
+    const auto key = edge_key(e.track_a, e.track_b);
+    const auto it = std::lower_bound(keys.begin(), keys.end(), key);
+    if (it != keys.end() && *it == key) {
+      change_of_key[static_cast<std::size_t>(it - keys.begin())] = e.rel_change;
+    }
+  }
   const auto find_change = [&](std::uint64_t key) -> const double* {
-    const auto it =
-        std::lower_bound(rel_change.begin(), rel_change.end(), key,
-                         [](const auto& entry, std::uint64_t k) { return entry.first < k; });
-    return it != rel_change.end() && it->first == key ? &it->second : nullptr;
+    const auto it = std::lower_bound(keys.begin(), keys.end(), key);
+    if (it == keys.end() || *it != key) return nullptr;
+    const double* value = &change_of_key[static_cast<std::size_t>(it - keys.begin())];
+    return std::isnan(*value) ? nullptr : value;
   };
 
   StrainField field;
