@@ -25,3 +25,7 @@ capture_cli_expect(evaluate_not_synth_dir 1 "scene.json" evaluate ${cc_dir}/empt
                    ${cc_dir}/strain.h5)
 capture_cli_expect(evaluate_not_hdf5 1 "fake.h5" evaluate ${cc_dir}/seq ${cc_dir}/fake.h5)
 capture_cli_expect(bench_too_few_frames 2 "frames" bench capture --frames 5)
+capture_cli_expect(features_bad_pores 2 "pores" features ${cc_dir}/seq/frame_000.png
+                   --px-per-mm 62 --pores bogus)
+capture_cli_expect(features_ridge_blob 0 "features: [0-9]+ pores" features
+                   ${cc_dir}/seq/frame_000.png --px-per-mm 62 --pores ridge-blob)
