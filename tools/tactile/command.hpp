@@ -19,6 +19,7 @@ void add_capture(CLI::App& app, Action& action);
 void add_evaluate(CLI::App& app, Action& action);
 void add_map(CLI::App& app, Action& action);
 void add_experiment(CLI::App& app, Action& action);
+void add_perceive(CLI::App& app, Action& action);
 void add_play(CLI::App& app, Action& action);
 void add_view(CLI::App& app, Action& action);
 void add_devices(CLI::App& app, Action& action);
