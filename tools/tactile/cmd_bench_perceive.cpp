@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <regex>
 
 #include "command.hpp"
 #include "tactile/mapping/perception_arff.hpp"
@@ -34,11 +33,17 @@ double run_weka(const std::string& java, const std::string& jar, const std::stri
   std::string out;
   std::array<char, 4096> buffer{};
   while (fgets(buffer.data(), buffer.size(), pipe.get())) out += buffer.data();
-  std::smatch m;
-  static const std::regex built(R"(Time taken to build model: ([0-9.]+) seconds)");
-  if (!std::regex_search(out, m, built))
+  // WEKA prints "Time taken to build model: 0.12 seconds".
+  const std::string marker = "Time taken to build model: ";
+  const auto at = out.find(marker);
+  if (at == std::string::npos) {
     throw std::runtime_error("WEKA did not report a build time:\n" + out);
-  return std::stod(m[1]);
+  }
+  try {
+    return std::stod(out.substr(at + marker.size()));
+  } catch (const std::exception&) {
+    throw std::runtime_error("WEKA's build time is not a number:\n" + out);
+  }
 }
 
 }  // namespace

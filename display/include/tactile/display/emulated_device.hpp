@@ -17,11 +17,14 @@ namespace tactile::display {
 
 enum class EmulatedClock { simulated, real_time };
 
+// The firmware's default slew limit, and so the one mappings apply (mapping/limits.hpp refers
+// here). Assumption: 20 mm/s lets a contactor cross the whole +-50 um STReSS range in 5 ms, fast
+// enough for any strain-derived movie yet a real limit on step inputs.
+inline constexpr double kDefaultMaxSlewUmPerS = 20000.0;
+
 struct EmulatedDeviceOptions {
   Layout layout = stress_layout();
-  // Assumption: 20 mm/s lets a contactor cross the whole +-50 um STReSS range in 5 ms, fast
-  // enough for any strain-derived movie yet a real limit on step inputs.
-  double max_slew_um_per_s = 20000;
+  double max_slew_um_per_s = kDefaultMaxSlewUmPerS;
   double watchdog_timeout_s = 0.005;
   EmulatedClock clock = EmulatedClock::simulated;
   bool record_outputs = true;

@@ -3,14 +3,14 @@
 // the device (DESIGN.md section 4); applying them here too means the movie file shows what the
 // skin will actually get.
 
+#include "tactile/display/emulated_device.hpp"
 #include "tactile/display/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
-// 20 mm/s: a full 100 um swing of a STReSS contactor takes 5 ms (3.5 frames at 700 Hz). The same
-// value as display::EmulatedDeviceOptions::max_slew_um_per_s, i.e. what the emulated firmware
-// enforces by default; the two must stay identical (issue 5: one source for both).
-inline constexpr double kDefaultSlewLimitUmPerS = 20000.0;
+// What the firmware enforces by default (20 mm/s: a full 100 um swing of a STReSS contactor takes
+// 5 ms, 3.5 frames at 700 Hz), so a mapped movie shows what the skin will get.
+inline constexpr double kDefaultSlewLimitUmPerS = display::kDefaultMaxSlewUmPerS;
 
 // Clamps every deflection to [layout.deflection_min_um, layout.deflection_max_um], then limits how
 // far each contactor may move between consecutive frames to slew_limit_um_per_s / rate_hz. The
