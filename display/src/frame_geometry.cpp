@@ -37,6 +37,16 @@ double auto_magnification(const Layout& layout) {
   return range_um > 0 ? 0.4 * pitch_um / range_um : 1.0;
 }
 
+double auto_magnification(const TactileMovie& movie) {
+  float peak_um = 0;
+  for (float d : movie.deflection_um) peak_um = std::max(peak_um, std::abs(d));
+  if (!(peak_um > 0)) return auto_magnification(movie.layout);
+  const Layout& layout = movie.layout;
+  const double pitch_um =
+      1000.0 * (layout.axis == DeflectionAxis::x ? layout.pitch_x_mm : layout.pitch_y_mm);
+  return 0.4 * pitch_um / peak_um;
+}
+
 std::vector<ContactorShape> frame_shapes(const Layout& layout, std::span<const float> frame_um,
                                          double magnification) {
   const std::vector<double> strain = neighbour_strain(layout, frame_um);

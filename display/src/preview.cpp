@@ -127,7 +127,7 @@ void write_preview_strip(const std::filesystem::path& png, const TactileMovie& m
         options.frames, options.panel_px, options.plot_height_px));
   }
   const double magnification =
-      options.magnification > 0 ? options.magnification : auto_magnification(movie.layout);
+      options.magnification > 0 ? options.magnification : auto_magnification(movie);
   const double strain_scale = std::max(movie_strain_full_scale(movie), 1e-6);
   const int width = options.frames * options.panel_px;
   const int strip_y = kPreviewHeaderPx;

@@ -35,6 +35,13 @@ TEST(FrameGeometry, StrainIsTheRelativeChangeOfNeighbourDistance) {
   EXPECT_NEAR(shapes[3 * 10 + 9].x_mm, 9 + 0.09 * 8, 1e-6);
   EXPECT_DOUBLE_EQ(shapes[3 * 10 + 9].rest_x_mm, 9);
   EXPECT_DOUBLE_EQ(auto_magnification(l), 8);  // 50 um drawn as 0.4 mm
+  TactileMovie small;
+  small.layout = l;
+  small.frame_count = 1;
+  small.deflection_um.assign(100, 0.0f);
+  EXPECT_DOUBLE_EQ(auto_magnification(small), 8);  // still: falls back to the range
+  small.deflection_um[42] = -10.0f;
+  EXPECT_DOUBLE_EQ(auto_magnification(small), 40);  // its 10 um peak drawn as 0.4 mm
   EXPECT_EQ(strain_colour(0.01, 0.01), (std::array<std::uint8_t, 3>{255, 0, 0}));
   EXPECT_EQ(strain_colour(-0.02, 0.01), (std::array<std::uint8_t, 3>{0, 0, 255}));
   EXPECT_EQ(strain_colour(0, 0.01), (std::array<std::uint8_t, 3>{255, 255, 255}));

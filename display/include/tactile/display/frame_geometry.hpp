@@ -31,6 +31,11 @@ std::vector<double> neighbour_strain(const Layout& layout, std::span<const float
 // deflection axis: big enough to see, small enough that neighbours never cross.
 double auto_magnification(const Layout& layout);
 
+// The same rule applied to the movie's own largest |deflection| instead of the whole range, so
+// a movie that uses a fifth of the range is still drawn visibly displaced (the preview's default).
+// Falls back to auto_magnification(layout) for a movie that never moves.
+double auto_magnification(const TactileMovie& movie);
+
 // Contactor shapes of one frame in millimetres, (0, 0) = rest centre of contactor (0, 0).
 std::vector<ContactorShape> frame_shapes(const Layout& layout, std::span<const float> frame_um,
                                          double magnification);

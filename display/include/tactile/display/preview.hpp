@@ -13,7 +13,7 @@ struct PreviewOptions {
   int frames = 8;            // panels in the strip, evenly spaced from first to last frame
   int panel_px = 200;        // each panel is panel_px x panel_px
   int plot_height_px = 200;  // activity plot below the strip
-  double magnification = 0;  // deflection drawing scale; 0 = auto_magnification(layout)
+  double magnification = 0;  // deflection drawing scale; 0 = auto_magnification(movie)
 };
 
 // Image size: width = frames * panel_px; height = kPreviewHeaderPx + panel_px +
