@@ -15,6 +15,7 @@
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain.hpp"
+#include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/version.hpp"
 
@@ -66,6 +67,25 @@ void add_pore_option(CLI::App& sub, std::string& pores) {
 
 capture::PoreDetector pore_detector(const std::string& name) {
   return name == "ridge-blob" ? capture::PoreDetector::ridge_blob : capture::PoreDetector::paper;
+}
+
+void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress& progress) {
+  const double full_scale = capture::strain_map_full_scale(movie);
+  if (!(full_scale > 0)) {
+    fmt::print("capture: no strain edges, so no maps written\n");
+    return;
+  }
+  fs::create_directories(dir);
+  const int total = static_cast<int>(movie.frames.size());
+  for (int i = 0; i < total; ++i) {
+    const auto& frame = movie.frames[static_cast<std::size_t>(i)];
+    capture::write_strain_map_png(dir / fmt::format("strain_{:03d}.png", frame.frame_from), frame,
+                                  movie.calibration, {.full_scale = full_scale});
+    progress("maps", i + 1, total);
+  }
+  progress.finish();
+  fmt::print("capture: wrote {} strain maps (full scale {:.2f} %) in {}\n", total, 100 * full_scale,
+             dir.string());
 }
 
 }  // namespace
@@ -150,6 +170,7 @@ void add_capture(CLI::App& app, Action& action) {
     std::optional<double> px_per_mm;
     fs::path out;
     std::optional<fs::path> csv_dir;
+    std::optional<fs::path> maps_dir;
     int span = 1;
     double rate_hz = 60;
     int min_track_frames = 30;
@@ -167,6 +188,9 @@ void add_capture(CLI::App& app, Action& action) {
   add_calibration_options(*sub, opt->calib, opt->px_per_mm);
   sub->add_option("--out", opt->out, "Strain movie to write (HDF5)")->required();
   sub->add_option("--csv", opt->csv_dir, "Also write tracks.csv and edges.csv into this folder");
+  sub->add_option("--maps", opt->maps_dir,
+                  "Also draw each strain frame as strain_NNN.png in this folder (edges black = "
+                  "most compressed .. white = most stretched, one scale for the whole movie)");
   sub->add_option("--span", opt->span, "Frames between the two ends of each strain measurement")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
@@ -205,6 +229,7 @@ void add_capture(CLI::App& app, Action& action) {
         capture::export_strain_csv(*opt->csv_dir, movie);
         fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", opt->csv_dir->string());
       }
+      if (opt->maps_dir) write_maps(*opt->maps_dir, movie, progress);
       return 0;
     };
   });
