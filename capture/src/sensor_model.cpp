@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -216,15 +217,29 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
     r.temperature_ac.push_back(0.0);
     r.pressure.push_back(p0 + load[i] + m.pressure_noise * unit(rng));
     for (int e = 0; e < kElectrodeCount; ++e) {
-      // The skin spreads the load: mean indentation over a 5-point stencil 1 mm around it.
+      // Impedance follows the skin over the electrode's face (7 x 7 points 0.2 mm apart): the
+      // local indentation closes the fluid gap (u / (L - u)), the skin's bending (Laplacian)
+      // and its stretch (membrane strain sqrt(1 + |grad u|^2) - 1) redistribute the fluid.
       const auto [x, y] = electrodes[e];
-      double u = 0;
-      for (const auto& [dx, dy] :
-           {std::pair{0.0, 0.0}, {1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
-        u += indentation_mm(feature, p, m, x + dx, y + dy);
-      // Impedance grows as the fluid gap between skin and electrode closes: u / (L - u).
-      u = std::min(u / 5, 0.8 * m.fluid_layer_mm);
-      const double gap = m.electrode_per_mm * m.fluid_layer_mm * u / (m.fluid_layer_mm - u);
+      constexpr double s = 0.2;
+      std::array<std::array<double, 9>, 9> g{};
+      for (int i = 0; i < 9; ++i)
+        for (int j = 0; j < 9; ++j)
+          g[i][j] = indentation_mm(feature, p, m, x + (i - 4) * s, y + (j - 4) * s);
+      double gap = 0;
+      for (int i = 1; i < 8; ++i)
+        for (int j = 1; j < 8; ++j) {
+          const double uc = g[i][j];
+          const double bending =
+              -(g[i + 1][j] + g[i - 1][j] + g[i][j + 1] + g[i][j - 1] - 4 * uc) / (s * s);
+          const double slope =
+              std::hypot(g[i + 1][j] - g[i - 1][j], g[i][j + 1] - g[i][j - 1]) / (2 * s);
+          const double stretch = std::sqrt(1 + slope * slope) - 1;
+          const double u = std::min(uc, 0.8 * m.fluid_layer_mm);
+          gap += m.electrode_per_mm * m.fluid_layer_mm * u / (m.fluid_layer_mm - u) +
+                 m.electrode_per_bending_mm * bending + m.electrode_per_strain * stretch;
+        }
+      gap /= 49;
       r.electrodes[e].push_back(e0[e] + gap + 0.05 * load[i] + m.electrode_noise * unit(rng));
     }
   }
