@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -20,10 +21,20 @@ void write_calibration_json(const std::filesystem::path& path, const Calibration
   j["image_width_px"] = calibration.image_width_px;
   j["image_height_px"] = calibration.image_height_px;
   j["method"] = calibration.method;
-  std::ofstream out(path);
-  out << j.dump(2) << '\n';
-  out.flush();
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  // Written beside the target and renamed, so a failed write never destroys a calibration
+  // that was already there (the same rule as the HDF5 files).
+  const std::filesystem::path tmp = path.string() + ".partial";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << '\n';
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);
+      throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+    }
+  }
+  std::filesystem::rename(tmp, path);
 }
 
 Calibration read_calibration_json(const std::filesystem::path& path) {
