@@ -1,8 +1,9 @@
-// USB enumeration through libusb and hidapi.
+// USB enumeration through libusb (usbdevfs) and hidapi (hidraw).
 #include "tactile/display/devices.hpp"
 
 #include <hidapi.h>
 #include <libusb.h>
+#include <unistd.h>
 
 #include <cwchar>
 #include <string>
@@ -66,11 +67,12 @@ void list_hidapi(std::vector<DeviceDescription>& out) {
     d.vendor_id = p->vendor_id;
     d.product_id = p->product_id;
     d.path = p->path != nullptr ? p->path : "";
+    d.interface_number = p->interface_number;
     d.manufacturer = narrow(p->manufacturer_string);
     d.product = narrow(p->product_string);
     d.serial = narrow(p->serial_number);
-    // hidapi-libusb reads the strings by opening the device; none means it could not.
-    d.accessible = !d.product.empty() || !d.serial.empty();
+    // The hidraw back end lists from sysfs without opening the node: ask the node itself.
+    d.accessible = !d.path.empty() && access(d.path.c_str(), R_OK | W_OK) == 0;
     out.push_back(d);
   }
   hid_free_enumeration(devs);

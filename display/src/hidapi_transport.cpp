@@ -1,5 +1,8 @@
 // HID-interface transport (hosts without a driver): frames split into output reports of 61
 // payload bytes, control requests as feature reports (docs/protocol.md, "HID interface").
+// Linked against hidapi's hidraw back end: each report is a write() to /dev/hidrawN, which the
+// kernel's usbhid driver sends as an interrupt OUT transfer, and each feature report an ioctl
+// it sends as a GET_REPORT/SET_REPORT control transfer.
 #include <hidapi.h>
 
 #include <algorithm>
@@ -30,8 +33,9 @@ class HidapiTransport final : public Transport {
     if (hid_init() != 0) throw TransportError("hidapi: cannot initialise");
     dev_ = hid_open_path(device.path.c_str());
     if (dev_ == nullptr) {
+      const std::string why = narrow(hid_error(nullptr));
       hid_exit();
-      throw TransportError("hidapi: cannot open the " + where_ +
+      throw TransportError("hidapi: cannot open the " + where_ + (why.empty() ? "" : ": " + why) +
                            " (unplugged, or no permission: install the udev rules)");
     }
     try {
@@ -62,7 +66,8 @@ class HidapiTransport final : public Transport {
   void stop() override { command(TFW_USB_REQ_STOP, 0, "stop"); }
 
   // Each report is an interrupt OUT transfer the device NAKs while its FIFO is full, so a
-  // write returns once the device took the chunk (or fails after hidapi's timeout).
+  // write returns once the device took the chunk, or fails: ENODEV once unplugged, or after
+  // the kernel's own 5 s transfer timeout (hidraw writes have no timeout of their own).
   bool send_frame(std::span<const std::uint8_t> frame) override {
     std::uint8_t report[TFW_HID_REPORT_BYTES];
     for (std::size_t at = 0; at < frame.size() || at == 0; at += TFW_HID_CHUNK_PAYLOAD) {
@@ -106,9 +111,10 @@ class HidapiTransport final : public Transport {
   }
 
   [[noreturn]] void fail(const std::string& what) {
-    // hidapi-libusb 0.13 has no error text ("hid_error is not implemented yet"): leave it out.
+    // hidraw gives strerror() text ("No such device"); other back ends may have none.
     const std::string e = dev_ != nullptr ? narrow(hid_error(dev_)) : std::string();
-    const bool useful = !e.empty() && e.find("not implemented") == std::string::npos;
+    const bool useful =
+        !e.empty() && e != "Success" && e.find("not implemented") == std::string::npos;
     throw TransportError("hidapi: " + what + (useful ? ": " + e : std::string()) + " (" + where_ +
                          "; unplugged?)");
   }

@@ -1,9 +1,9 @@
 #pragma once
 // A display on a fake USB bus: umockdev's testbed provides the sysfs entry and the usbdevfs
 // node /dev/bus/usb/001/002 (port 1 of bus 1), and this class answers the node's ioctls (URBs) with
-// the real firmware (tfw_device + tfw_usb, full speed) behind a fake device controller. libusb and
-// hidapi-libusb in the test process then talk to it exactly as to hardware. The test binary
-// must run under umockdev-wrapper (LD_PRELOAD of libumockdev-preload).
+// the real firmware (fake_firmware.hpp). libusb in the test process then talks to it exactly as
+// to hardware. The test binary must run under umockdev-wrapper (LD_PRELOAD of
+// libumockdev-preload). The HID interface as Linux presents it (hidraw) is fake_hidraw.hpp.
 //
 // The device's playout clock is real time, advanced lazily whenever the host touches the
 // device (each ioctl), which is how a host observes a device anyway.
@@ -23,8 +23,6 @@ class FakeDisplay {
 
   // Every bulk transfer received on EP 0x01, as the bytes that came over the wire.
   std::vector<std::vector<std::uint8_t>> bulk_transfers() const;
-  // Frames rebuilt from the HID output reports on EP 0x02 by the chunk headers alone.
-  std::vector<std::vector<std::uint8_t>> hid_frames() const;
   // Pulls the plug: transfers in flight end with ENODEV, new ones are refused, and the
   // testbed reports the removal.
   void unplug();

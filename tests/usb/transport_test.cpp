@@ -1,5 +1,5 @@
-// libusb and hidapi transports against a fake display on umockdev's fake USB bus
-// (fake_display.hpp): enumerate, open, claim, stream, and unplug mid-stream.
+// The libusb transport against a fake display on umockdev's fake USB bus (fake_display.hpp):
+// enumerate, open, claim, stream, and unplug mid-stream. hidapi: hidraw_test.cpp.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -149,43 +149,6 @@ TEST(UsbLibusb, PlayerStreamsAMovieDevicePaced) {
   const auto transfers = fake.bulk_transfers();
   ASSERT_EQ(static_cast<std::int64_t>(transfers.size()), r.frames_sent);
   EXPECT_EQ(transfers.back()[5] & 1, 1);  // the last one is flagged end of stream
-}
-
-TEST(UsbHidapi, EnumeratesOpensAndStreamsTheFramesInReports) {
-  test::FakeDisplay fake;
-  const auto device = find("hidapi");
-  ASSERT_TRUE(device.has_value()) << "hidapi does not see the fake display";
-  auto t = open_usb_transport(*device);
-  EXPECT_EQ(t->info().backend, "hidapi");
-  EXPECT_EQ(t->info().layout.rows, 10);
-  t->start(1000);
-  const auto sent = stream(*t, 1, 100);
-  wait_received(*t, sent.size());
-  const DeviceStatus s = t->status();
-  EXPECT_EQ(s.frames_received, sent.size());
-  EXPECT_EQ(s.malformed, 0u);
-  EXPECT_EQ(fake.hid_frames(), sent);
-}
-
-TEST(UsbHidapi, UnplugMidStreamIsAClearError) {
-  test::FakeDisplay fake;
-  const auto device = find("hidapi");
-  ASSERT_TRUE(device.has_value());
-  auto t = open_usb_transport(*device);
-  t->start(1000);
-  stream(*t, 1, 20);
-  fake.unplug();
-  const auto t0 = std::chrono::steady_clock::now();
-  std::string message;
-  try {
-    stream(*t, 21, 1000);
-  } catch (const TransportError& e) {
-    message = e.what();
-  }
-  std::printf("unplugged: %s\n", message.c_str());
-  EXPECT_NE(message.find("hidapi"), std::string::npos) << message;
-  EXPECT_NE(message.find(device->path), std::string::npos) << message;
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
 }
 
 }  // namespace

@@ -17,10 +17,11 @@ struct DeviceDescription {
   std::string backend;  // "libusb" (vendor interface) or "hidapi" (HID interface)
   std::uint16_t vendor_id = 0;
   std::uint16_t product_id = 0;
-  std::uint8_t bus = 0;      // libusb only
-  std::uint8_t address = 0;  // libusb only
-  std::string path;          // hidapi device path, or "bus:address" for libusb
-  std::string manufacturer;  // empty when the device could not be opened to read strings
+  std::uint8_t bus = 0;       // libusb only
+  std::uint8_t address = 0;   // libusb only
+  std::string path;           // hidapi device path (/dev/hidrawN), or "bus:address" for libusb
+  int interface_number = -1;  // hidapi: the USB interface of the HID device (1 on a display)
+  std::string manufacturer;   // empty when the device could not be opened to read strings
   std::string product;
   std::string serial;
   bool accessible = false;  // false: found but not openable (permissions: see the udev rules)
