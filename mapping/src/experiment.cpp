@@ -13,6 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tactile/capture/sensor_recording.hpp"
+#include "tactile/capture/sensor_scene.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/display/layout_json.hpp"
@@ -200,6 +202,58 @@ std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
   return grid;
 }
 
+ExperimentPerception parse_perception(const Context& cx, const json& j) {
+  only_keys(cx, j, "perception",
+            {"trials", "degree", "footprints_mm", "seed", "reference", "grid_spacing_mm"});
+  ExperimentPerception p;
+  if (j.contains("trials")) {
+    const auto n = integer(cx, j["trials"], "perception.trials");
+    if (n < 2 || n > 1000) cx.fail(fmt::format("perception.trials = {} is not in 2..1000", n));
+    p.trials = static_cast<int>(n);
+  }
+  if (j.contains("degree")) {
+    p.degrees.clear();
+    for (const auto& v : list(cx, j["degree"], "perception.degree")) {
+      const auto d = integer(cx, v, "perception.degree");
+      if (d != 1 && d != 2) cx.fail(fmt::format("perception.degree {} is not 1 or 2", d));
+      if (std::find(p.degrees.begin(), p.degrees.end(), d) != p.degrees.end())
+        cx.fail(fmt::format("perception.degree {} is given twice", d));
+      p.degrees.push_back(static_cast<int>(d));
+    }
+  }
+  if (j.contains("footprints_mm")) {
+    std::set<double> paper;
+    for (const auto& f : capture::paper_features()) paper.insert(f.footprint_mm);
+    for (const auto& v : list(cx, j["footprints_mm"], "perception.footprints_mm")) {
+      const double mm = number(cx, v, "perception.footprints_mm");
+      if (!paper.contains(mm))
+        cx.fail(
+            fmt::format("perception.footprints_mm: {:g} is not a footprint of the paper's "
+                        "plates ({})",
+                        mm, fmt::join(paper, ", ")));
+      if (std::find(p.footprints_mm.begin(), p.footprints_mm.end(), mm) != p.footprints_mm.end())
+        cx.fail(fmt::format("perception.footprints_mm: {:g} is given twice", mm));
+      p.footprints_mm.push_back(mm);
+    }
+  }
+  if (j.contains("seed")) {
+    const auto seed = integer(cx, j["seed"], "perception.seed");
+    if (seed < 0) cx.fail("perception.seed must not be negative");
+    p.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (j.contains("reference")) {
+    if (!j["reference"].is_boolean()) cx.fail("'perception.reference' must be true or false");
+    p.reference = j["reference"].get<bool>();
+  }
+  if (j.contains("grid_spacing_mm")) {
+    p.grid_spacing_mm = number(cx, j["grid_spacing_mm"], "perception.grid_spacing_mm");
+    if (!(p.grid_spacing_mm >= 0.25 && p.grid_spacing_mm <= 3))
+      cx.fail(
+          fmt::format("perception.grid_spacing_mm = {:g} is not in [0.25, 3]", p.grid_spacing_mm));
+  }
+  return p;
+}
+
 }  // namespace
 
 Experiment parse_experiment(const std::string& text, const std::string& origin,
@@ -212,7 +266,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
     cx.fail(fmt::format("not valid JSON ({})", e.what()));
   }
   only_keys(cx, j, "the experiment",
-            {"name", "seed", "sources", "layouts", "methods", "parameters", "write_movies"});
+            {"name", "seed", "sources", "layouts", "methods", "parameters", "write_movies",
+             "perception"});
   Experiment ex;
   ex.text = text;
   ex.origin = origin;
@@ -305,6 +360,19 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         }
       }
     }
+  }
+  if (j.contains("perception")) {
+    ex.perception = parse_perception(cx, j["perception"]);
+    if (std::all_of(method_list.begin(), method_list.end(),
+                    [](const std::string& m) { return m == "profile"; }))
+      cx.fail(
+          "perception: needs a strain-driven method (proportional or integrated); 'profile' "
+          "renders a scene's surface, not the feature plates");
+    for (const auto& layout : ex.layouts)
+      if (layout.cols < capture::kElectrodeClusterCount)
+        cx.fail(fmt::format(
+            "perception: layout '{}' has {} columns, fewer than the {} distal-proximal clusters",
+            layout.name, layout.cols, capture::kElectrodeClusterCount));
   }
   return ex;
 }

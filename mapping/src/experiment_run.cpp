@@ -4,10 +4,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -15,6 +13,7 @@
 #include <thread>
 
 #include "experiment_plots.hpp"
+#include "parallel_for.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/h5.hpp"
@@ -28,32 +27,6 @@ namespace tactile::mapping {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs task(0..count-1) on `threads` workers; the first exception is rethrown after all stop.
-void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& task) {
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  const auto worker = [&] {
-    for (std::size_t i; !failed && (i = next++) < count;) {
-      try {
-        task(i);
-      } catch (...) {
-        const std::lock_guard lock(error_mutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    const auto n = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count);
-    for (std::size_t w = 1; w < n; ++w) pool.emplace_back(worker);
-    worker();
-  }
-  if (error) std::rethrow_exception(error);
-}
 
 capture::StrainMovie prepare(const ExperimentSource& s) {
   if (s.kind == "file") return *s.loaded;
@@ -306,6 +279,12 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
     report.files.push_back(plots / "saturation.png");
   }
   report.run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (ex.perception) {
+    t0 = std::chrono::steady_clock::now();
+    report.perception = run_perception(ex, out_dir, report.threads, made_by, report.files, say);
+    report.perception_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   return report;
 }
 

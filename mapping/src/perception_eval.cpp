@@ -48,17 +48,20 @@ PerceptionDataset build_dataset(const std::vector<capture::SurfaceFeature>& feat
   return d;
 }
 
+std::uint64_t simulated_trial_seed(const capture::SurfaceFeature& f, Procedure p, int trial,
+                                   std::uint64_t seed) {
+  const auto index = static_cast<std::uint64_t>(std::lround(f.signed_footprint_mm() * 100) + 4000 +
+                                                10000 * static_cast<int>(f.curvature));
+  return ((seed * 131 + index) * 8 + static_cast<std::uint64_t>(p)) * 1000 +
+         static_cast<std::uint64_t>(trial);
+}
+
 PerceptionDataset simulate_dataset(int trials_per_feature, std::uint64_t seed,
                                    const capture::SensorModel& model) {
   const auto features = capture::paper_features();
   return build_dataset(
       features, trials_per_feature, [&](const capture::SurfaceFeature& f, Procedure p, int trial) {
-        const auto index = static_cast<std::uint64_t>(std::lround(f.signed_footprint_mm() * 100) +
-                                                      4000 + 10000 * static_cast<int>(f.curvature));
-        const std::uint64_t trial_seed =
-            ((seed * 131 + index) * 8 + static_cast<std::uint64_t>(p)) * 1000 +
-            static_cast<std::uint64_t>(trial);
-        return capture::simulate_trial(f, p, trial_seed, model);
+        return capture::simulate_trial(f, p, simulated_trial_seed(f, p, trial, seed), model);
       });
 }
 

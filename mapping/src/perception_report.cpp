@@ -17,10 +17,11 @@ constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
 constexpr const char* kColours[3] = {"#1f77b4", "#d62728", "#2ca02c"};
 }  // namespace
 
-std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const PerceptionSplit& split) {
+std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const PerceptionSplit& split,
+                                     const std::vector<int>& degrees) {
   std::vector<TimedCascade> rows;
   for (const auto& inputs : table2_input_sets(d))
-    for (int degree : {1, 2}) {
+    for (int degree : degrees) {
       const auto t0 = std::chrono::steady_clock::now();
       CascadeResult r = evaluate_cascade(d, split, inputs, degree);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -15,6 +15,7 @@
 #include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/fidelity.hpp"
 #include "tactile/mapping/map.hpp"
+#include "tactile/mapping/perception_report.hpp"
 
 namespace tactile::mapping {
 
@@ -38,6 +39,18 @@ struct ExperimentRun {
   MappingParams params;
 };
 
+// Optional "perception" section: Table 2 of paper 2 computed from the tactile movies each
+// mapping makes of the skin strain of the simulated fingertip's trials (capture's
+// simulate_skin_strain; movie_signals.hpp), beside the simulated sensor's own Table 2.
+struct ExperimentPerception {
+  int trials = 20;                    // per feature and procedure, as `tactile perceive`
+  std::vector<int> degrees = {1, 2};  // kernel exponents
+  std::vector<double> footprints_mm;  // features kept (all curvatures, bumps and pits); empty: all
+  std::uint64_t seed = 1;             // trial seeds, as `tactile perceive --seed`
+  bool reference = true;              // also the simulated sensor's Table 2 on the same trials
+  double grid_spacing_mm = 1.0;       // material grid of the skin strain
+};
+
 struct Experiment {
   std::string name;
   std::uint64_t seed = 1;
@@ -47,13 +60,16 @@ struct Experiment {
   std::vector<ExperimentSource> sources;
   std::vector<display::Layout> layouts;
   std::vector<ExperimentRun> runs;
+  std::optional<ExperimentPerception> perception;
 };
 
 // Parses and checks a whole experiment before any work: JSON syntax, unknown or missing fields,
 // wrong types, no sources / layouts / methods, duplicate source names, unknown method, strain
 // or normalisation, bad parameters, bad scenes, unreadable source files or layout files, a rate
 // above a layout's maximum rate (incompatible layout and rate), a source filmed faster than a
-// layout can play. Relative paths are taken from base_dir. Throws tactile::FormatError naming
+// layout can play, a bad perception section (trials, degree, footprints, seed, reference, grid
+// spacing; a layout with fewer than 6 columns; no strain-driven method). Relative paths are
+// taken from base_dir. Throws tactile::FormatError naming
 // `origin` and the problem.
 Experiment parse_experiment(const std::string& text, const std::string& origin,
                             const std::filesystem::path& base_dir);
@@ -68,11 +84,22 @@ struct RunResult {
   std::vector<double> activity_um;
 };
 
+// Table 2 from the movies of one mapping (a layout and a parameter set: the runs that differ
+// only in their source share one), or of the simulated sensor (method "sensor").
+struct PerceptionTable {
+  std::string id;  // "00-stress-proportional-per-frame", "sensor"
+  std::string layout, method, strain, normalisation;
+  double gain_um_per_strain = 0, rate_hz = 0;
+  std::vector<TimedCascade> rows;  // as run_table2
+};
+
 struct ExperimentReport {
   std::vector<RunResult> results;            // in the order of Experiment::runs
+  std::vector<PerceptionTable> perception;   // the sensor's first, when asked for
   std::vector<std::filesystem::path> files;  // everything written
   double prepare_s = 0;                      // sources made or read
   double run_s = 0;                          // all mappings, metrics and movie files
+  double perception_s = 0;                   // skin strain, movies, signals and Table 2s
   int threads = 1;
 };
 
@@ -80,11 +107,23 @@ struct ExperimentReport {
 // into out_dir (created): experiment.json (the input as given), resolved.json (every run's
 // resolved parameters, layouts and provenance), metrics.csv, movies/<run id>.h5 (if
 // write_movies), plots/correlation.png, plots/saturation.png and
-// plots/activity-<source>-<layout>.png. The same experiment gives the same files, whatever the
+// plots/activity-<source>-<layout>.png; with a perception section also
+// perception/table2-<mapping>.csv per mapping (and table2-sensor.csv), perception/summary.csv
+// and plots/perception.png. The same experiment gives the same files, whatever the
 // thread count (up to the creation time). `progress` (optional) is called from worker threads with
 // a short message.
 ExperimentReport run_experiment(Experiment experiment, const std::filesystem::path& out_dir,
                                 int threads,
                                 const std::function<void(const std::string&)>& progress = {});
+
+// The perception section alone (run_experiment calls it after the runs): one Table 2 per distinct
+// (layout, parameters) of the strain-driven runs ("profile" renders a capture scene's Gaussian
+// surface, not the feature plates, and is left out), the sensor's first when asked for; files as
+// above, appended to `files`. Throws std::runtime_error naming the mapping and trial when a
+// movie shows no contact.
+std::vector<PerceptionTable> run_perception(
+    const Experiment& experiment, const std::filesystem::path& out_dir, int threads,
+    const std::string& made_by, std::vector<std::filesystem::path>& files,
+    const std::function<void(const std::string&)>& progress);
 
 }  // namespace tactile::mapping

@@ -39,6 +39,10 @@ using TrialSource = std::function<capture::SensorRecording(const capture::Surfac
 // from (feature, procedure, trial, seed).
 PerceptionDataset build_dataset(const std::vector<capture::SurfaceFeature>& features,
                                 int trials_per_feature, const TrialSource& source);
+// Seed of one simulated trial (what simulate_dataset passes to capture::simulate_trial), so other
+// models of the same trials (capture::simulate_skin_strain) see the same variation.
+std::uint64_t simulated_trial_seed(const capture::SurfaceFeature& feature,
+                                   capture::Procedure procedure, int trial, std::uint64_t seed);
 PerceptionDataset simulate_dataset(int trials_per_feature, std::uint64_t seed = 1,
                                    const capture::SensorModel& model = {});
 

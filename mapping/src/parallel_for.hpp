@@ -1,0 +1,43 @@
+#pragma once
+// A pool of threads over an index range, for the experiment's independent jobs. Private to the
+// mapping module.
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace tactile::mapping {
+
+// Runs task(0..count-1) on `threads` workers; the first exception is rethrown after all stop.
+inline void parallel_for(std::size_t count, int threads,
+                         const std::function<void(std::size_t)>& task) {
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto worker = [&] {
+    for (std::size_t i; !failed && (i = next++) < count;) {
+      try {
+        task(i);
+      } catch (...) {
+        const std::lock_guard lock(error_mutex);
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    const auto n = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count);
+    for (std::size_t w = 1; w < n; ++w) pool.emplace_back(worker);
+    worker();
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace tactile::mapping
