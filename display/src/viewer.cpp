@@ -2,7 +2,10 @@
 #include "tactile/display/viewer.hpp"
 
 #include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl2.h>
 #include <fmt/format.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,8 +76,17 @@ void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mod
   }
 }
 
-void draw_frame(const Layout& layout, std::span<const float> frame, double magnification,
-                double strain_scale, int width, int height) {
+void fill_rect(const PixelRect& r, std::array<std::uint8_t, 3> rgb) {
+  glColor3ub(rgb[0], rgb[1], rgb[2]);
+  glBegin(GL_QUADS);
+  glVertex2d(r.x, r.y);
+  glVertex2d(r.x + r.width, r.y);
+  glVertex2d(r.x + r.width, r.y + r.height);
+  glVertex2d(r.x, r.y + r.height);
+  glEnd();
+}
+
+void begin_pixels(int width, int height) {
   glViewport(0, 0, width, height);
   glMatrixMode(GL_PROJECTION);
   glLoadIdentity();
@@ -83,7 +95,11 @@ void draw_frame(const Layout& layout, std::span<const float> frame, double magni
   glLoadIdentity();
   glClearColor(0.25f, 0.25f, 0.25f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
-  const ViewTransform t = fit_view(layout, magnification, width, height);
+}
+
+void draw_contactors(const Layout& layout, std::span<const float> frame, double magnification,
+                     double strain_scale, const PixelRect& pane) {
+  const ViewTransform t = pane_view(layout, magnification, pane);
   const auto px = [&](double x_mm) { return t.origin_x_px + x_mm * t.px_per_mm; };
   const auto py = [&](double y_mm) { return t.origin_y_px + y_mm * t.px_per_mm; };
   const std::vector<ContactorShape> shapes = frame_shapes(layout, frame, magnification);
@@ -117,17 +133,48 @@ void draw_frame(const Layout& layout, std::span<const float> frame, double magni
     glVertex2d(x, y + 3);
   }
   glEnd();
-  // Scale bar along the bottom: the layout's full deflection at the current magnification.
+  // Scale bar along the pane's bottom: the layout's full deflection at this magnification.
   const double range_um =
       std::max(std::abs(layout.deflection_min_um), std::abs(layout.deflection_max_um));
   const double bar_px = range_um * magnification / 1000.0 * t.px_per_mm;
+  const double bar_y = pane.y + pane.height - 6;
   glColor3ub(255, 255, 255);
   glLineWidth(3);
   glBegin(GL_LINES);
-  glVertex2d(10, height - 12);
-  glVertex2d(10 + bar_px, height - 12);
+  glVertex2d(pane.x + 10, bar_y);
+  glVertex2d(pane.x + 10 + bar_px, bar_y);
   glEnd();
   glLineWidth(1);
+}
+
+// The field's background: capture's strain maps' dark blue, against which black, grey and
+// white edges all stand out.
+constexpr std::array<std::uint8_t, 3> kFieldBackground{20, 40, 70};
+
+void draw_field(const SideField& field, const FieldFrame& frame, const PixelRect& pane) {
+  fill_rect(pane, kFieldBackground);
+  const ViewTransform t = pane_field_view(field, pane);
+  glLineWidth(3);
+  glBegin(GL_LINES);
+  for (const FieldSegment& s : frame.segments) {
+    const std::uint8_t g = field_grey(s.value, field.full_scale);
+    glColor3ub(g, g, g);
+    glVertex2d(t.origin_x_px + s.x0_mm * t.px_per_mm, t.origin_y_px + s.y0_mm * t.px_per_mm);
+    glVertex2d(t.origin_x_px + s.x1_mm * t.px_per_mm, t.origin_y_px + s.y1_mm * t.px_per_mm);
+  }
+  glEnd();
+  glLineWidth(1);
+}
+
+// Scrub bar colours: the played part, the rest, and the handle.
+constexpr std::array<std::uint8_t, 3> kScrubPlayed{70, 130, 200};
+constexpr std::array<std::uint8_t, 3> kScrubRest{40, 40, 40};
+
+void draw_scrub(const PixelRect& bar, std::int32_t frame, std::int32_t frames) {
+  fill_rect(bar, kScrubRest);
+  const double x = scrub_handle_x(bar, frame, frames);
+  fill_rect({bar.x, bar.y, static_cast<int>(std::lround(x)) - bar.x, bar.height}, kScrubPlayed);
+  fill_rect({static_cast<int>(std::lround(x)) - 1, bar.y - 3, 3, bar.height + 6}, {255, 255, 255});
 }
 
 RenderedImage read_pixels(int width, int height) {
@@ -159,6 +206,28 @@ struct GlfwSession {
   bool ok = false;
 };
 
+// Dear ImGui on the window for text (legacy OpenGL 2 back end, like the drawing); also owns
+// the window so that ImGui shuts down before it goes.
+struct ImGuiSession {
+  explicit ImGuiSession(GLFWwindow* w) : window(w) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL2_Init();
+  }
+  ~ImGuiSession() {
+    ImGui_ImplOpenGL2_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window);
+  }
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+  GLFWwindow* window;
+};
+
 }  // namespace
 
 bool screen_available() {
@@ -169,11 +238,15 @@ bool screen_available() {
 
 ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options) {
   validate(movie);
+  if (options.field) validate(*options.field);
+  ViewerResult result;
   TactileMovie shown;
+  std::int64_t lead_in_frames = 0;  // shown frames before the movie's first (the start ramp)
   if (options.through_device) {
     EmulatedDeviceOptions device = options.device;
     device.layout = movie.layout;
-    shown = render_through_device(movie, device, options.play);
+    shown = render_through_device(movie, device, options.play, &result.device_report);
+    lead_in_frames = result.device_report.ramp_frames / 2;
   } else {
     shown = movie;
   }
@@ -187,8 +260,9 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
   if (!session.ok) throw std::runtime_error("cannot start GLFW: " + g_last_glfw_error);
   glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  const int width_px = options.field ? options.width_px * 2 : options.width_px;
   GLFWwindow* window =
-      glfwCreateWindow(options.width_px, options.height_px, "tactile view", nullptr, nullptr);
+      glfwCreateWindow(width_px, options.height_px, "tactile view", nullptr, nullptr);
   if (window == nullptr) throw std::runtime_error("cannot open a window: " + g_last_glfw_error);
   glfwMakeContextCurrent(window);
   glfwSwapInterval(options.fixed_step ? 0 : 1);
@@ -198,19 +272,102 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
   state.loop = options.loop;
   state.speed = options.speed > 0 ? options.speed : 1.0;
   state.frames = shown.frame_count;
+  state.position = std::clamp(static_cast<double>(lead_in_frames) + options.start_s * shown.rate_hz,
+                              0.0, static_cast<double>(shown.frame_count - 1));
   glfwSetWindowUserPointer(window, &state);
-  glfwSetKeyCallback(window, on_key);
+  glfwSetKeyCallback(window, on_key);  // before ImGui, which chains to it
+  ImGuiSession gui(window);
 
-  ViewerResult result;
   result.shown_frame_count = shown.frame_count;
   double last_time = glfwGetTime();
-  std::int32_t titled_frame = -1;
+  std::size_t next_event = 0;
+  PointerEvent pointer;
+  bool was_pressed = false;
+  bool scrubbing = false;
   while (!glfwWindowShouldClose(window)) {
-    const auto frame = static_cast<std::int32_t>(
-        std::clamp(std::floor(state.position), 0.0, static_cast<double>(shown.frame_count - 1)));
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window, &fb_w, &fb_h);
-    draw_frame(shown.layout, shown.frame(frame), magnification, strain_scale, fb_w, fb_h);
+    const ViewerPanes panes = viewer_panes(fb_w, fb_h, options.field.has_value());
+
+    // Pointer: scripted events, else the mouse (window coordinates scaled to framebuffer).
+    if (!options.scripted_pointer.empty()) {
+      while (next_event < options.scripted_pointer.size() &&
+             options.scripted_pointer[next_event].at_frame <= result.frames_drawn) {
+        pointer = options.scripted_pointer[next_event++];
+      }
+    } else {
+      int win_w = 1, win_h = 1;
+      glfwGetWindowSize(window, &win_w, &win_h);
+      double cx = 0, cy = 0;
+      glfwGetCursorPos(window, &cx, &cy);
+      pointer.x_px = cx * fb_w / std::max(win_w, 1);
+      pointer.y_px = cy * fb_h / std::max(win_h, 1);
+      pointer.pressed = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    }
+    if (pointer.pressed && !was_pressed)
+      scrubbing = panes.scrub.contains(pointer.x_px, pointer.y_px);
+    if (!pointer.pressed) scrubbing = false;
+    was_pressed = pointer.pressed;
+    if (scrubbing) state.position = scrub_frame(panes.scrub, pointer.x_px, shown.frame_count);
+
+    const auto frame = static_cast<std::int32_t>(
+        std::clamp(std::floor(state.position), 0.0, static_cast<double>(shown.frame_count - 1)));
+    const double movie_t_s = static_cast<double>(frame - lead_in_frames) / shown.rate_hz;
+    begin_pixels(fb_w, fb_h);
+    draw_contactors(shown.layout, shown.frame(frame), magnification, strain_scale,
+                    panes.contactors);
+    if (options.field) {
+      result.last_field_frame = field_frame_at(*options.field, movie_t_s);
+      draw_field(*options.field, options.field->frames[result.last_field_frame], panes.field);
+    }
+    draw_scrub(panes.scrub, frame, shown.frame_count);
+
+    ImGui_ImplOpenGL2_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(
+        ImVec2(static_cast<float>(panes.info.x), static_cast<float>(panes.info.y)));
+    ImGui::SetNextWindowSize(
+        ImVec2(static_cast<float>(panes.info.width), static_cast<float>(panes.info.height)));
+    ImGui::Begin("info", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+    ImGui::TextUnformatted(fmt::format("{}   t = {:.3f} s   frame {}/{}{}", shown.layout.name,
+                                       movie_t_s, frame + 1, shown.frame_count,
+                                       state.playing ? "" : "   (paused)")
+                               .c_str());
+    ImGui::TextUnformatted(
+        fmt::format("speed x{:g}   loop {}   magnification x{:.1f} (white bar: {:g} um)",
+                    state.speed, state.loop ? "on" : "off", magnification,
+                    std::max(std::abs(shown.layout.deflection_min_um),
+                             std::abs(shown.layout.deflection_max_um)))
+            .c_str());
+    if (options.through_device) {
+      const PlaybackReport& d = result.device_report;
+      ImGui::TextUnformatted(
+          fmt::format("emulated firmware: {} clamped, {} slew-limited samples, {} underruns, "
+                      "watchdog {} ({} trips), {} malformed",
+                      d.clamped_samples, d.slew_limited_samples, d.underruns,
+                      d.watchdog_trips > 0 ? "tripped" : "quiet", d.watchdog_trips, d.malformed)
+              .c_str());
+    } else {
+      ImGui::TextUnformatted("raw movie (not through the emulated firmware)");
+    }
+    ImGui::TextUnformatted(
+        "space play/pause  arrows step  up/down speed  L loop  Home start  drag bar: seek");
+    ImGui::End();
+    if (options.field) {
+      ImGui::GetForegroundDrawList()->AddText(
+          ImVec2(static_cast<float>(panes.field.x + 8), static_cast<float>(panes.field.y + 4)),
+          IM_COL32(230, 230, 230, 255),
+          fmt::format("{}\nblack {:+.1f} % compressed .. white {:+.1f} % stretched",
+                      options.field->title, -100 * options.field->full_scale,
+                      100 * options.field->full_scale)
+              .c_str());
+    }
+    ImGui::Render();
+    ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+
     result.last_movie_frame = frame;
     ++result.frames_drawn;
     const bool last =
@@ -218,20 +375,9 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
     if (last) result.last_image = read_pixels(fb_w, fb_h);
     glfwSwapBuffers(window);
     if (last) break;
-    if (frame != titled_frame) {
-      // Text stays out of the GL drawing (legacy GL has no fonts); the title carries it.
-      glfwSetWindowTitle(window,
-                         fmt::format("tactile view - {} - t = {:.3f} s - frame {}/{} - x{:.1f} - "
-                                     "speed {:g}{}{}",
-                                     shown.layout.name, frame / shown.rate_hz, frame + 1,
-                                     shown.frame_count, magnification, state.speed,
-                                     state.loop ? " - loop" : "", state.playing ? "" : " - paused")
-                             .c_str());
-      titled_frame = frame;
-    }
     glfwPollEvents();
     const double now = glfwGetTime();
-    if (state.playing) {
+    if (state.playing && !scrubbing) {
       state.position += options.fixed_step ? 1.0 : (now - last_time) * shown.rate_hz * state.speed;
       if (state.position >= shown.frame_count) {
         if (state.loop) {
@@ -244,7 +390,6 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
     }
     last_time = now;
   }
-  glfwDestroyWindow(window);
   return result;
 }
 

@@ -7,6 +7,7 @@
 
 #include "command.hpp"
 #include "playback.hpp"
+#include "strain_panel.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/display/devices.hpp"
@@ -46,6 +47,9 @@ void add_play(CLI::App& app, Action& action) {
 void add_view(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
+    fs::path strain;
+    bool no_strain = false;
+    fs::path screenshot;
     display::ViewerOptions viewer;
   };
   auto opt = std::make_shared<Options>();
@@ -53,20 +57,50 @@ void add_view(CLI::App& app, Action& action) {
       "view",
       "Open the emulator window: contactors drawn at their rest positions, displaced by their\n"
       "deflection (magnified) and coloured by the stretch between neighbours, as the emulated\n"
-      "device outputs them. Keys: space play/pause, arrows step, L loop, Esc quit.");
+      "device outputs them, with the source strain movie's edges beside them (black compressed\n"
+      "... white stretched) when the movie's provenance names one that exists, or --strain.\n"
+      "Keys: space play/pause, arrows step, up/down speed, L loop, Esc quit; drag the bottom\n"
+      "bar to seek.");
   sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
       ->required()
       ->check(CLI::ExistingFile);
+  CLI::Option* strain =
+      sub->add_option("--strain", opt->strain, "Strain movie to show beside the array (HDF5)")
+          ->check(CLI::ExistingFile);
+  sub->add_flag("--no-strain", opt->no_strain, "Show no strain field, even when one is found")
+      ->excludes(strain);
   sub->add_flag("--loop", opt->viewer.loop, "Loop the movie");
+  sub->add_option("--at", opt->viewer.start_s, "Start at this movie time (s)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--screenshot", opt->screenshot,
+                  "Draw the window once (at --at), write it to this PNG and quit");
   sub->callback([opt, &action] {
     action = [opt] {
       const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      if (!opt->screenshot.empty()) {
+        opt->viewer.visible = false;
+        opt->viewer.start_paused = true;
+        opt->viewer.fixed_step = true;
+        opt->viewer.exit_after_frames = 1;
+      }
+      if (!opt->no_strain) {
+        if (const auto path = find_source_strain(movie, opt->movie, opt->strain)) {
+          opt->viewer.field = strain_side_field(capture::read_strain_movie(*path),
+                                                "strain: " + path->filename().string());
+        }
+      }
       if (!display::screen_available()) {
         throw std::runtime_error(
             "no screen (DISPLAY is unset or cannot be opened); use `tactile play --headless` for "
             "a preview image instead");
       }
-      display::run_viewer(movie, opt->viewer);
+      const display::ViewerResult r = display::run_viewer(movie, opt->viewer);
+      if (!opt->screenshot.empty()) {
+        display::write_png(opt->screenshot, r.last_image);
+        fmt::print("view: frame {} of {} drawn to {}{}\n", r.last_movie_frame + 1,
+                   r.shown_frame_count, opt->screenshot.string(),
+                   opt->viewer.field ? " (with the source strain field)" : "");
+      }
       return 0;
     };
   });

@@ -1,21 +1,69 @@
 #pragma once
-// The on-screen emulator window (GLFW, legacy OpenGL): contactors at their rest positions
-// displaced by their magnified deflection, coloured by stretch/compression between
-// neighbours. By default it shows what the emulated firmware outputs for the movie (ramps,
+// The on-screen emulator window (GLFW, legacy OpenGL, Dear ImGui for text): contactors at
+// their rest positions displaced by their magnified deflection, coloured by stretch/compression
+// between neighbours; beside them, when given, the source field (side_field.hpp) at the same
+// movie time. By default it shows what the emulated firmware outputs for the movie (ramps,
 // clamps, slew limits, watchdog included), not the raw movie.
 //
+// Window, top to bottom: a text strip (time, frame, speed, loop, magnification, the emulated
+// firmware's counters), the contactors (left) and the field (right, when given), a scrub bar.
 // Keys: space play/pause, right/left step one frame (and pause), up/down double/halve speed,
-// L toggle loop, Home back to the start, Esc or Q close.
+// L toggle loop, Home back to the start, Esc or Q close. Mouse: click or drag in the scrub bar
+// to seek.
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/player.hpp"
+#include "tactile/display/side_field.hpp"
 #include "tactile/display/tactile_movie.hpp"
 
 namespace tactile::display {
+
+// A rectangle of the window in framebuffer pixels, y down.
+struct PixelRect {
+  int x = 0;
+  int y = 0;
+  int width = 0;
+  int height = 0;
+  bool contains(double px, double py) const {
+    return px >= x && px < x + width && py >= y && py < y + height;
+  }
+};
+
+struct ViewerPanes {
+  PixelRect info;        // text strip along the top
+  PixelRect contactors;  // the array
+  PixelRect field;       // the side field (empty without one)
+  PixelRect scrub;       // seek bar along the bottom
+};
+
+// Where the viewer draws what in a width x height framebuffer.
+ViewerPanes viewer_panes(int width_px, int height_px, bool with_field);
+
+// The frame a click at x_px in the scrub bar seeks to: the bar's left edge is frame 0, its
+// right edge the last frame, nearest frame in between (clamped outside the bar).
+std::int32_t scrub_frame(const PixelRect& bar, double x_px, std::int32_t frame_count);
+
+// Where frame `frame` puts the scrub bar's handle (its x in pixels).
+double scrub_handle_x(const PixelRect& bar, std::int32_t frame, std::int32_t frame_count);
+
+// fit_view() into a pane: the same transform, offset to the pane's corner.
+ViewTransform pane_view(const Layout& layout, double magnification, const PixelRect& pane);
+ViewTransform pane_field_view(const SideField& field, const PixelRect& pane);
+
+// A pointer state fed to the viewer instead of the real mouse from drawn frame `at_frame` on
+// (tests and recordings drive the scrub bar with these, through the same code as the mouse).
+struct PointerEvent {
+  std::int64_t at_frame = 0;
+  double x_px = 0;
+  double y_px = 0;
+  bool pressed = false;
+};
 
 struct ViewerOptions {
   bool through_device = true;    // show the emulated device's output instead of the raw movie
@@ -24,6 +72,7 @@ struct ViewerOptions {
   double speed = 1.0;  // playback speed relative to the movie's rate
   bool loop = true;
   bool start_paused = false;
+  double start_s = 0;  // movie time of the first frame shown (after the device's start ramp)
   int width_px = 800;
   int height_px = 800;
   bool visible = true;
@@ -33,6 +82,8 @@ struct ViewerOptions {
   // user closes the window).
   bool fixed_step = false;
   std::int64_t exit_after_frames = -1;
+  std::vector<PointerEvent> scripted_pointer;  // in drawn-frame order; empty = the real mouse
+  std::optional<SideField> field;              // drawn beside the array, synchronised in time
 };
 
 struct RenderedImage {
@@ -51,15 +102,21 @@ struct ViewerResult {
   std::int64_t frames_drawn = 0;
   std::int32_t last_movie_frame = 0;  // index into the shown frames (device output if through)
   std::int32_t shown_frame_count = 0;
-  RenderedImage last_image;  // pixels of the last drawn frame, read back from OpenGL
+  RenderedImage last_image;          // pixels of the last drawn frame, read back from OpenGL
+  std::size_t last_field_frame = 0;  // index into options.field->frames, when given
+  PlaybackReport device_report;      // the emulated firmware's counters (through_device)
 };
+
+// Writes the image as a PNG (a screenshot of the window). Throws std::runtime_error naming the
+// file when it cannot be written, std::invalid_argument for an empty image.
+void write_png(const std::filesystem::path& png, const RenderedImage& image);
 
 // True when a display server is named (DISPLAY or WAYLAND_DISPLAY) and GLFW initialises.
 bool screen_available();
 
 // Opens the window and plays until closed (or exit_after_frames). Throws std::runtime_error
 // naming the GLFW error when no window can be opened, std::invalid_argument for a movie the
-// emulated device cannot play.
+// emulated device cannot play or an invalid side field.
 ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options = {});
 
 }  // namespace tactile::display

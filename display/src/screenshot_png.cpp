@@ -1,0 +1,31 @@
+// A rendered window image as a PNG (viewer.hpp).
+#include <fmt/format.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "tactile/display/viewer.hpp"
+
+namespace tactile::display {
+
+void write_png(const std::filesystem::path& png, const RenderedImage& image) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
+    throw std::invalid_argument("screenshot: the image is empty or inconsistent");
+  }
+  // OpenCV wants BGR; the image is RGB.
+  const cv::Mat rgb(image.height, image.width, CV_8UC3,
+                    const_cast<std::uint8_t*>(image.rgb.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  bool written = false;
+  try {
+    written = cv::imwrite(png.string(), bgr);
+  } catch (const cv::Exception&) {
+    written = false;
+  }
+  if (!written) throw std::runtime_error(fmt::format("cannot write {}", png.string()));
+}
+
+}  // namespace tactile::display
