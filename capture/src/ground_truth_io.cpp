@@ -50,7 +50,15 @@ void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   spec.blur_sigma_px = json_field<double>(s, "blur_sigma_px", w);
   spec.noise_sigma = json_field<double>(s, "noise_sigma", w);
   spec.seed = json_field<std::uint64_t>(s, "seed", w);
-  spec.contrast = s.contains("contrast") ? json_field<double>(s, "contrast", w) : 1.0;
+  // Fields added after format version 1 was first written keep their defaults when absent.
+  const SceneSpec defaults;
+  auto optional = [&](const char* name, double fallback) {
+    return s.contains(name) ? json_field<double>(s, name, w) : fallback;
+  };
+  spec.contrast = optional("contrast", defaults.contrast);
+  spec.rotation_deg = optional("rotation_deg", defaults.rotation_deg);
+  spec.lateral_amplitude_mm = optional("lateral_amplitude_mm", defaults.lateral_amplitude_mm);
+  spec.stick_ratio = optional("stick_ratio", defaults.stick_ratio);
   try {
     validate(spec);
   } catch (const std::invalid_argument& e) {

@@ -8,6 +8,8 @@ namespace tactile::capture {
 
 class SceneModel {
  public:
+  enum class Kind { flat_slide, bump, hole, flat_rotate, flat_stick_slip };
+
   explicit SceneModel(const SceneSpec& spec);
 
   double mm_per_px_x() const { return mm_per_px_x_; }
@@ -21,6 +23,14 @@ class SceneModel {
   double indentation(int frame) const;
   // Lateral skin displacement at image position x caused by the feature, per unit indentation.
   PointMm unit_displacement(PointMm x) const;
+  // Partial slip (flat-rotate, flat-stick-slip): the load at `frame` (twist in radians, or rim
+  // displacement along x in mm) and the slipped fraction of it at image position x, 0 inside
+  // the stick region, rising smoothly to 1 at the patch edge.
+  double partial_slip_load(int frame) const;
+  double slip_fraction(PointMm x) const;
+  // Whether the image <-> skin map is the static field of the feature scaled by the indentation
+  // and shifted by the slide (so the renderer can precompute it), rather than partial slip.
+  bool is_sliding_scene() const { return kind_ <= Kind::hole; }
   // Loss-of-contact strength per unit indentation at image position x, 0..1.
   double unit_gap(PointMm x) const;
   // Contact 0..1 at image position x in `frame` (patch edge and loss of contact).
@@ -44,7 +54,8 @@ class SceneModel {
   PointMm finger_centre0_;
   double sigma_mm_;
   double amplitude_mm_;  // signed: + pushes skin outward (bump), - inward (hole)
-  int feature_kind_;     // 0 flat, 1 bump, 2 hole
+  Kind kind_;
+  double skin_margin_mm_;  // how far skin may move beyond the field (texture sizing)
 };
 
 }  // namespace tactile::capture

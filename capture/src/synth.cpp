@@ -124,13 +124,29 @@ SyntheticSequence render_sequence(const SceneSpec& spec,
     const int end = std::min(spec.frame_count, start + batch);
     cv::parallel_for_(cv::Range(start, end), [&](const cv::Range& range) {
       for (int f = range.start; f < range.end; ++f) {
-        const PointMm u = model.slide(f);
-        const double p = model.indentation(f);
         cv::Mat map_x, map_y;
-        cv::scaleAdd(disp_x, p, base_x, map_x);
-        cv::scaleAdd(disp_y, p, base_y, map_y);
-        map_x -= u.x_mm * texels_per_mm;
-        map_y -= u.y_mm * texels_per_mm;
+        if (model.is_sliding_scene()) {
+          const PointMm u = model.slide(f);
+          const double p = model.indentation(f);
+          cv::scaleAdd(disp_x, p, base_x, map_x);
+          cv::scaleAdd(disp_y, p, base_y, map_y);
+          map_x -= u.x_mm * texels_per_mm;
+          map_y -= u.y_mm * texels_per_mm;
+        } else {
+          // Partial slip is not a scaled static field: map every pixel through the model.
+          map_x.create(h, w, CV_32F);
+          map_y.create(h, w, CV_32F);
+          for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+              const PointMm skin =
+                  model.to_skin({x * model.mm_per_px_x(), y * model.mm_per_px_y()}, f);
+              map_x.at<float>(y, x) =
+                  static_cast<float>((skin.x_mm - tex.origin_x_mm) * texels_per_mm);
+              map_y.at<float>(y, x) =
+                  static_cast<float>((skin.y_mm - tex.origin_y_mm) * texels_per_mm);
+            }
+          }
+        }
         cv::Mat print;
         cv::remap(tex.reflectance, print, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
         // Skin out of contact reflects totally: bright, no ridges.
@@ -206,6 +222,9 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
                {"blur_sigma_px", s.blur_sigma_px},
                {"noise_sigma", s.noise_sigma},
                {"contrast", s.contrast},
+               {"rotation_deg", s.rotation_deg},
+               {"lateral_amplitude_mm", s.lateral_amplitude_mm},
+               {"stick_ratio", s.stick_ratio},
                {"seed", s.seed}};
   j["calibration"] = {{"px_to_mm", c.px_to_mm},
                       {"mm_per_px", c.mm_per_px},

@@ -53,6 +53,52 @@ std::vector<double> smooth(const std::vector<double>& v, int h) {
   return out;
 }
 
+// Cuts a trajectory wherever a position lies more than gate_px from the least-squares line
+// through the (up to) 6 positions before it in the same piece.
+std::vector<Track> split_at_jumps(const Track& t, double gate_px) {
+  constexpr int kWindow = 6;
+  constexpr int kMinFit = 3;
+  std::vector<Track> pieces;
+  const int n = static_cast<int>(t.x_px.size());
+  int start = 0;
+  auto emit = [&](int from, int to) {
+    Track piece;
+    piece.type = t.type;
+    piece.first_frame = t.first_frame + from;
+    piece.x_px.assign(t.x_px.begin() + from, t.x_px.begin() + to);
+    piece.y_px.assign(t.y_px.begin() + from, t.y_px.begin() + to);
+    pieces.push_back(std::move(piece));
+  };
+  for (int k = 0; k < n; ++k) {
+    const int m = std::min(kWindow, k - start);
+    if (m < kMinFit) continue;
+    // Line through samples s = 0..m-1, extrapolated to s = m.
+    const double s_mean = (m - 1) / 2.0;
+    double ss = 0, sx = 0, sy = 0, mx = 0, my = 0;
+    for (int i = 0; i < m; ++i) {
+      mx += t.x_px[static_cast<std::size_t>(k - m + i)];
+      my += t.y_px[static_cast<std::size_t>(k - m + i)];
+    }
+    mx /= m;
+    my /= m;
+    for (int i = 0; i < m; ++i) {
+      const double ds = i - s_mean;
+      ss += ds * ds;
+      sx += ds * (t.x_px[static_cast<std::size_t>(k - m + i)] - mx);
+      sy += ds * (t.y_px[static_cast<std::size_t>(k - m + i)] - my);
+    }
+    const double px = mx + sx / ss * (m - s_mean);
+    const double py = my + sy / ss * (m - s_mean);
+    const auto uk = static_cast<std::size_t>(k);
+    if (std::hypot(t.x_px[uk] - px, t.y_px[uk] - py) > gate_px) {
+      emit(start, k);
+      start = k;
+    }
+  }
+  emit(start, n);
+  return pieces;
+}
+
 }  // namespace
 
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
@@ -60,6 +106,9 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
   if (!(params.match_radius_mm > 0)) throw std::invalid_argument("match_radius_mm must be > 0");
   if (params.min_track_frames < 2) throw std::invalid_argument("min_track_frames must be >= 2");
   if (params.max_gap_frames < 0) throw std::invalid_argument("max_gap_frames must be >= 0");
+  if (!(params.max_jump_mm > 0)) throw std::invalid_argument("max_jump_mm must be > 0");
+  if (!(calibration.mm_per_px > 0))
+    throw std::invalid_argument("calibration mm_per_px must be > 0");
 
   std::vector<Track> all;
   std::vector<Active> active;
@@ -153,11 +202,15 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
   }
 
   std::vector<Track> result;
-  for (auto& t : all) {
-    if (static_cast<int>(t.x_px.size()) < params.min_track_frames) continue;
-    t.x_px = smooth(t.x_px, params.smoothing_half_window);
-    t.y_px = smooth(t.y_px, params.smoothing_half_window);
-    result.push_back(std::move(t));
+  const double gate_px = params.max_jump_mm / calibration.mm_per_px;
+  for (const auto& whole : all) {
+    if (static_cast<int>(whole.x_px.size()) < params.min_track_frames) continue;
+    for (auto& t : split_at_jumps(whole, gate_px)) {
+      if (static_cast<int>(t.x_px.size()) < params.min_track_frames) continue;
+      t.x_px = smooth(t.x_px, params.smoothing_half_window);
+      t.y_px = smooth(t.y_px, params.smoothing_half_window);
+      result.push_back(std::move(t));
+    }
   }
   std::stable_sort(result.begin(), result.end(),
                    [](const Track& a, const Track& b) { return a.first_frame < b.first_frame; });

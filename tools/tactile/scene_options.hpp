@@ -8,8 +8,11 @@
 namespace tactile::cli {
 
 inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
-  sub.add_option("--scene", spec.scene, "Scene: bump, hole or flat-slide")
-      ->check(CLI::IsMember({"bump", "hole", "flat-slide"}))
+  sub.add_option("--scene", spec.scene,
+                 "Scene: bump, hole, flat-slide (slide over a feature or flat glass), "
+                 "flat-rotate (press and twist), flat-stick-slip (push back and forth with a "
+                 "sticking centre)")
+      ->check(CLI::IsMember(capture::scene_names()))
       ->capture_default_str();
   sub.add_option("--frames", spec.frame_count, "Number of camera frames")
       ->check(CLI::Range(2, 100000))
@@ -26,6 +29,17 @@ inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
   sub.add_option("--contact-semi-x", spec.contact_semi_x_mm,
                  "Half-width of the fingertip contact patch along the slide, mm")
       ->check(CLI::Range(0.5, 20.0))
+      ->capture_default_str();
+  sub.add_option("--rotation", spec.rotation_deg, "flat-rotate: twist at the last frame, degrees")
+      ->check(CLI::Range(-45.0, 45.0))
+      ->capture_default_str();
+  sub.add_option("--lateral-amplitude", spec.lateral_amplitude_mm,
+                 "flat-stick-slip: peak rim displacement, mm")
+      ->check(CLI::Range(-3.0, 3.0))
+      ->capture_default_str();
+  sub.add_option("--stick-ratio", spec.stick_ratio,
+                 "flat-rotate, flat-stick-slip: stick radius / contact radius")
+      ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
   sub.add_option("--noise", spec.noise_sigma, "Camera noise, grey levels (sigma)")
       ->check(CLI::Range(0.0, 128.0))

@@ -1,6 +1,7 @@
 #pragma once
 // Synthetic prism (FTIR) fingerprint sequences with exact ground truth: a fingertip slides over
-// flat glass or over a Gaussian bump or hole, filmed by a camera fixed to the glass.
+// flat glass or over a Gaussian bump or hole, or is pressed on flat glass and twisted or pushed
+// sideways with a sticking central patch, filmed by a camera fixed to the glass.
 // The model and its assumptions are written in docs/capture-models.md.
 
 #include <cstdint>
@@ -15,7 +16,8 @@
 namespace tactile::capture {
 
 struct SceneSpec {
-  std::string scene = "bump";      // "bump" | "hole" | "flat-slide"
+  // "bump" | "hole" | "flat-slide" | "flat-rotate" | "flat-stick-slip" (scene_names())
+  std::string scene = "bump";
   double speed_mm_per_s = 2.4;     // finger speed along +x over the glass
   double feature_height_mm = 0.5;  // bump height or hole depth
   double feature_width_mm = 3.0;   // full width at half maximum of the Gaussian profile
@@ -30,6 +32,11 @@ struct SceneSpec {
   double contact_semi_y_mm = 5.6;
   // Peak lateral skin displacement per mm of feature height (dimensionless skin compliance).
   double displacement_per_height = 0.4;
+  // Partial-slip scenes (flat-rotate, flat-stick-slip): the finger does not slide; the centre of
+  // the patch (elliptical radius below stick_ratio) sticks to the glass and the rim slips.
+  double rotation_deg = 5.0;          // flat-rotate: the finger's twist at the last frame
+  double lateral_amplitude_mm = 0.3;  // flat-stick-slip: peak rim displacement (+x, then -x)
+  double stick_ratio = 0.4;           // stick radius / contact radius
   double ridge_period_mm = 0.45;
   double pore_spacing_mm = 0.55;  // mean distance between pores along a ridge
   double pore_min_diameter_mm = 0.088;
@@ -62,6 +69,9 @@ struct SyntheticSequence {
   GrayImage dot_grid;                    // 0.5 mm dot grid seen through the same camera
   std::vector<TruthLandmark> landmarks;  // every landmark in contact and in view, every frame
 };
+
+// Every scene name `SceneSpec::scene` accepts.
+const std::vector<std::string>& scene_names();
 
 // Throws std::invalid_argument naming the first bad field.
 void validate(const SceneSpec& spec);

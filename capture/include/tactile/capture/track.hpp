@@ -13,6 +13,10 @@ struct TrackParams {
   int min_track_frames = 30;      // shorter trajectories are rejected (paper: about 30)
   int max_gap_frames = 2;         // a landmark may be missed this many frames in a row
   int smoothing_half_window = 3;  // local quadratic fit over 2h+1 frames; 0 = no smoothing
+  // A position further than this from the straight-line motion of the 6 before it is a wrong
+  // match (a landmark left contact and a neighbour was taken for it): the track is cut there.
+  // Real motion deviates far less: 0.05 mm allows accelerations up to about 0.01 mm/frame^2.
+  double max_jump_mm = 0.05;
 };
 
 // One landmark's trajectory: a position for every frame from first_frame on (frames where it
@@ -31,8 +35,8 @@ struct Track {
 
 // Matches consecutive frames (same type, within match_radius_mm of the position predicted from
 // the previous displacement, one-to-one, greedy by confidence = 1 - distance / radius, lowered
-// by orientation disagreement for endings), links matches into tracks, drops short tracks and
-// smooths the rest. Kept tracks are numbered 0.. in order of first frame.
+// by orientation disagreement for endings), links matches into tracks, cuts tracks at jumps,
+// drops short tracks and smooths the rest. Kept tracks are numbered 0.. in order of first frame.
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
                                   const Calibration& calibration, const TrackParams& params = {});
 

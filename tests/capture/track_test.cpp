@@ -1,0 +1,59 @@
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+#include "tactile/capture/track.hpp"
+
+namespace tactile::capture {
+namespace {
+
+// One pore moving at a constant 1.5 px per frame for 60 frames (60 px/mm, so 0.025 mm/frame).
+std::vector<std::vector<Feature>> one_moving_pore(int frames) {
+  std::vector<std::vector<Feature>> out(static_cast<std::size_t>(frames));
+  for (int f = 0; f < frames; ++f) {
+    out[static_cast<std::size_t>(f)].push_back({FeatureType::pore, 100 + 1.5 * f, 200, 0});
+  }
+  return out;
+}
+
+TEST(Track, SteadyMotionGivesOneTrackOnTheTruePath) {
+  TrackParams p;
+  p.min_track_frames = 10;
+  const auto tracks = track_features(one_moving_pore(60), uniform_calibration(60, 640, 480), p);
+  ASSERT_EQ(tracks.size(), 1u);
+  EXPECT_EQ(tracks[0].first_frame, 0);
+  ASSERT_EQ(tracks[0].x_px.size(), 60u);
+  // The quadratic smoother is exact on uniform motion.
+  for (std::size_t k = 0; k < 60; ++k) EXPECT_NEAR(tracks[0].x_px[k], 100 + 1.5 * k, 1e-9);
+}
+
+// At frame 40 the pore is lost and a neighbour 6 px (0.1 mm, inside the 0.3 mm search radius)
+// to the side is taken for it: the track must be cut there rather than bend towards it.
+TEST(Track, AJumpToANeighbourCutsTheTrack) {
+  auto feats = one_moving_pore(60);
+  for (int f = 40; f < 60; ++f) {
+    feats[static_cast<std::size_t>(f)][0].y_px += 6;
+  }
+  TrackParams p;
+  p.min_track_frames = 10;
+  const auto tracks = track_features(feats, uniform_calibration(60, 640, 480), p);
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_EQ(tracks[0].first_frame, 0);
+  EXPECT_EQ(tracks[0].last_frame(), 39);
+  EXPECT_EQ(tracks[1].first_frame, 40);
+  for (double y : tracks[0].y_px) EXPECT_NEAR(y, 200, 1e-9);
+  for (double y : tracks[1].y_px) EXPECT_NEAR(y, 206, 1e-9);
+}
+
+TEST(Track, BadParametersAreRejected) {
+  TrackParams p;
+  p.max_jump_mm = 0;
+  EXPECT_THROW(track_features({}, uniform_calibration(60, 640, 480), p), std::invalid_argument);
+  Calibration no_scale;
+  no_scale.mm_per_px = 0;
+  EXPECT_THROW(track_features({}, no_scale, TrackParams{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tactile::capture
