@@ -32,7 +32,8 @@ double sigma_mm(const SurfaceProfile& p) {
 SurfaceProfile profile_of_scene(const capture::SceneSpec& spec) {
   capture::validate(spec);
   SurfaceProfile p;
-  p.shape = spec.scene == "flat-slide" ? "flat" : spec.scene;
+  // Every scene but the bump and the hole is on flat glass.
+  p.shape = spec.scene == "bump" || spec.scene == "hole" ? spec.scene : "flat";
   p.height_mm = spec.feature_height_mm;
   p.width_mm = spec.feature_width_mm;
   const auto cal = capture::true_calibration(spec);
