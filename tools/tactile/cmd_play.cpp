@@ -85,8 +85,15 @@ void add_view(CLI::App& app, Action& action) {
       }
       if (!opt->no_strain) {
         if (const auto path = find_source_strain(movie, opt->movie, opt->strain)) {
-          opt->viewer.field = strain_side_field(capture::read_strain_movie(*path),
-                                                "strain: " + path->filename().string());
+          try {
+            opt->viewer.field = strain_side_field(capture::read_strain_movie(*path),
+                                                  "strain: " + path->filename().string());
+          } catch (const std::invalid_argument& e) {
+            // Asked for: an error. Found through the provenance: show the movie without it.
+            if (!opt->strain.empty()) throw std::invalid_argument(path->string() + ": " + e.what());
+            fmt::print(stderr, "view: not showing the source strain movie {}: {}\n", path->string(),
+                       e.what());
+          }
         }
       }
       if (!display::screen_available()) {
