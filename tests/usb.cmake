@@ -7,7 +7,8 @@ find_program(TACTILE_UMOCKDEV_WRAPPER umockdev-wrapper REQUIRED)
 
 tactile_add_test_binary(usb_tests usb tactile_display)
 target_link_libraries(usb_tests PRIVATE PkgConfig::UMOCKDEV tactile_firmware)
-target_include_directories(usb_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/firmware/target)
+target_include_directories(usb_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/firmware/target
+                                             ${CMAKE_CURRENT_SOURCE_DIR}/display)
 add_test(NAME usb.libusb COMMAND ${TACTILE_UMOCKDEV_WRAPPER} $<TARGET_FILE:usb_tests>
                                  --gtest_filter=UsbLibusb.*)
 add_test(NAME usb.hidraw COMMAND ${TACTILE_UMOCKDEV_WRAPPER} $<TARGET_FILE:usb_tests>

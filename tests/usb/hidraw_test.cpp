@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fake_hidraw.hpp"
+#include "play_check.hpp"
 #include "tactile/display/devices.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/player.hpp"
@@ -165,20 +166,7 @@ TEST(UsbHidraw, PluggedBackInTheNextStreamWorks) {
 TEST(UsbHidraw, PlayerStreamsAMovieDevicePaced) {
   test::FakeHidraw fake;
   auto t = open_usb_transport(*find_hid());
-  TactileMovie movie;
-  movie.layout = stress_layout();
-  movie.rate_hz = 700;
-  movie.frame_count = 140;
-  for (std::int32_t f = 0; f < movie.frame_count; ++f) {
-    for (int i = 0; i < 100; ++i) {
-      movie.deflection_um.push_back(static_cast<float>((f + i) % 40 - 20));
-    }
-  }
-  const PlaybackReport r = play_movie(movie, *t);
-  std::printf("%s", format_playback_report(r).c_str());
-  EXPECT_EQ(r.frames_played, r.frames_sent);
-  EXPECT_EQ(r.frames_sent, r.movie_frames + r.ramp_frames);
-  EXPECT_EQ(r.malformed, 0);
+  const PlaybackReport r = testing::play_and_check(*t);
   const auto reports = fake.output_reports();
   ASSERT_EQ(static_cast<std::int64_t>(reports.size()), 4 * r.frames_sent);
   EXPECT_EQ(reports[reports.size() - 4][0], 1);
