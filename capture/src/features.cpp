@@ -9,6 +9,7 @@
 
 #include "cv_image.hpp"
 #include "pore_blobs.hpp"
+#include "run_components.hpp"
 #include "tactile/common/csv.hpp"
 #include "thinning.hpp"
 
@@ -29,24 +30,66 @@ struct Prepared {
   cv::Mat near_background;  // CV_8U: background grown by half the border margin
 };
 
+// Box means over window_px x window_px of src and of src^2, computed on a copy binned by an
+// integer factor (area averaging) so that a large window costs a small one. The binned window
+// covers window_px rounded to a multiple of the factor; for windows of dozens of pixels over a
+// ridge texture that changes a mean by far less than a grey level. Returns the factor used.
+int binned_box_means(const cv::Mat& src, int window_px, cv::Mat& mean, cv::Mat* mean_sq) {
+  int factor = 1;
+  for (int f : {4, 2}) {
+    if (window_px >= 8 * f && src.cols >= 16 * f && src.rows >= 16 * f) {
+      factor = f;
+      break;
+    }
+  }
+  const int window = odd_at_least_3(static_cast<double>(window_px) / factor);
+  const cv::Size ksize(window, window);
+  cv::Mat binned = src;
+  if (factor > 1) {
+    cv::resize(src, binned, cv::Size(), 1.0 / factor, 1.0 / factor, cv::INTER_AREA);
+  }
+  cv::blur(binned, mean, ksize, cv::Point(-1, -1), cv::BORDER_REFLECT);
+  if (mean_sq) {
+    cv::Mat sq, binned_sq;
+    cv::multiply(src, src, sq);
+    binned_sq = sq;
+    if (factor > 1) {
+      cv::resize(sq, binned_sq, binned.size(), 0, 0, cv::INTER_AREA);
+    }
+    cv::blur(binned_sq, *mean_sq, ksize, cv::Point(-1, -1), cv::BORDER_REFLECT);
+  }
+  return factor;
+}
+
 Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) {
   Prepared r;
   gray.convertTo(r.gray, CV_32F);
-  r.smooth = r.gray.clone();
   const double sigma = p.smoothing_sigma_mm * px_per_mm;
-  if (sigma > 0.1) cv::GaussianBlur(r.smooth, r.smooth, cv::Size(0, 0), sigma);
+  if (sigma > 0.1) {
+    cv::GaussianBlur(r.gray, r.smooth, cv::Size(0, 0), sigma);
+  } else {
+    r.smooth = r.gray.clone();
+  }
+  // The 2 mm local mean is smooth at the scale of a few pixels: computed binned, interpolated.
   const int window = odd_at_least_3(p.local_window_mm * px_per_mm);
-  cv::blur(r.smooth, r.mean, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
+  cv::Mat coarse_mean;
+  if (binned_box_means(r.smooth, window, coarse_mean, nullptr) > 1) {
+    cv::resize(coarse_mean, r.mean, gray.size(), 0, 0, cv::INTER_LINEAR);
+  } else {
+    r.mean = coarse_mean;
+  }
+  // Background decided on the binned grid, then brought back pixel for pixel; the border
+  // margin below is grown at full resolution.
   const int bg_window = odd_at_least_3(p.background_window_mm * px_per_mm);
-  cv::Mat sq, bg_mean, bg_mean_sq;
-  cv::multiply(r.smooth, r.smooth, sq);
-  cv::blur(r.smooth, bg_mean, cv::Size(bg_window, bg_window), cv::Point(-1, -1),
-           cv::BORDER_REFLECT);
-  cv::blur(sq, bg_mean_sq, cv::Size(bg_window, bg_window), cv::Point(-1, -1), cv::BORDER_REFLECT);
+  cv::Mat bg_mean, bg_mean_sq;
+  binned_box_means(r.smooth, bg_window, bg_mean, &bg_mean_sq);
   cv::Mat var = bg_mean_sq - bg_mean.mul(bg_mean);
   const double global_mean = cv::mean(r.smooth)[0];
   cv::Mat background = (var < p.background_max_std * p.background_max_std) &
                        (bg_mean > p.background_min_mean_ratio * global_mean);
+  if (background.size() != gray.size()) {
+    cv::resize(background, background, gray.size(), 0, 0, cv::INTER_NEAREST);
+  }
   // Keep features away from the background and the image edge, where the local mean is biased.
   const int margin = std::max(0, static_cast<int>(std::lround(p.border_margin_mm * px_per_mm)));
   // Square dilations: separable for rectangles, so cheap whatever the margin.
@@ -63,48 +106,50 @@ Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) 
                        std::max(0, gray.rows - 2 * margin));
   r.foreground(inner).setTo(1);
   r.foreground.setTo(0, grown);
-  const int half = std::max(1, margin / 2);
-  r.near_background = grow(half);
+  // Only the minutiae need it.
+  if (p.find_minutiae) r.near_background = grow(std::max(1, margin / 2));
   r.bright = (r.smooth > r.mean) / 255;
   return r;
 }
 
-void find_pores(const Prepared& r, double px_per_mm, const FeatureParams& p, cv::Mat& pore_mask,
+// pore_mask (when given) receives the pore pixels, for the minutiae stage.
+void find_pores(const Prepared& r, double px_per_mm, const FeatureParams& p, cv::Mat* pore_mask,
                 std::vector<Feature>& out) {
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(r.bright, labels, stats, centroids, 4, CV_32S);
+  const RunLabels blobs = label_runs_4(r.bright);
   const double px2_per_mm2 = px_per_mm * px_per_mm;
   const double max_extent = p.pore_max_extent_mm * px_per_mm;
-  std::vector<char> is_pore(static_cast<std::size_t>(n), 0);
-  for (int i = 1; i < n; ++i) {
-    const double area = stats.at<int>(i, cv::CC_STAT_AREA);
-    const double w = stats.at<int>(i, cv::CC_STAT_WIDTH);
-    const double h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+  const std::size_t n = blobs.components.size();
+  std::vector<char> is_pore(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const RunComponent& c = blobs.components[i];
+    const double area = static_cast<double>(c.area);
+    const double w = c.x_max - c.x_min + 1;
+    const double h = c.y_max - c.y_min + 1;
     if (area < p.pore_min_area_mm2 * px2_per_mm2 || area > p.pore_max_area_mm2 * px2_per_mm2) {
       continue;
     }
     if (std::max(w, h) > max_extent || area < p.pore_min_fill * w * h) continue;
-    is_pore[static_cast<std::size_t>(i)] = 1;
+    is_pore[i] = 1;
   }
   // Grey-level centre of mass, weighted by brightness above the local mean.
-  std::vector<cv::Vec3d> sums(static_cast<std::size_t>(n), cv::Vec3d(0, 0, 0));
-  pore_mask = cv::Mat::zeros(r.bright.size(), CV_8U);
-  for (int y = 0; y < labels.rows; ++y) {
-    const int* lrow = labels.ptr<int>(y);
-    const float* srow = r.smooth.ptr<float>(y);
-    const float* mrow = r.mean.ptr<float>(y);
-    std::uint8_t* prow = pore_mask.ptr<std::uint8_t>(y);
-    for (int x = 0; x < labels.cols; ++x) {
-      const int l = lrow[x];
-      if (!is_pore[static_cast<std::size_t>(l)]) continue;
-      prow[x] = 1;
+  std::vector<cv::Vec3d> sums(n, cv::Vec3d(0, 0, 0));
+  if (pore_mask) *pore_mask = cv::Mat::zeros(r.bright.size(), CV_8U);
+  for (const PixelRun& run : blobs.runs) {
+    const auto c = static_cast<std::size_t>(run.component);
+    if (!is_pore[c]) continue;
+    const float* srow = r.smooth.ptr<float>(run.y);
+    const float* mrow = r.mean.ptr<float>(run.y);
+    if (pore_mask) {
+      std::fill_n(pore_mask->ptr<std::uint8_t>(run.y) + run.x_begin, run.x_end - run.x_begin, 1);
+    }
+    for (int x = run.x_begin; x < run.x_end; ++x) {
       const double w = srow[x] - mrow[x];
-      sums[static_cast<std::size_t>(l)] += cv::Vec3d(w * x, w * y, w);
+      sums[c] += cv::Vec3d(w * x, w * run.y, w);
     }
   }
-  for (int i = 1; i < n; ++i) {
-    const auto& s = sums[static_cast<std::size_t>(i)];
-    if (!is_pore[static_cast<std::size_t>(i)] || s[2] <= 0) continue;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& s = sums[i];
+    if (!is_pore[i] || s[2] <= 0) continue;
     const double x = s[0] / s[2];
     const double y = s[1] / s[2];
     if (!r.foreground.at<std::uint8_t>(static_cast<int>(std::lround(y)),
@@ -192,7 +237,7 @@ std::vector<Feature> extract_features(const GrayImage& image, double px_per_mm,
     // Blob pores sit inside ridges, never in the bright valleys the minutiae are traced in.
     pore_mask = cv::Mat::zeros(r.bright.size(), CV_8U);
   } else {
-    find_pores(r, px_per_mm, params, pore_mask, features);
+    find_pores(r, px_per_mm, params, params.find_minutiae ? &pore_mask : nullptr, features);
   }
   if (params.find_minutiae) find_minutiae(r, pore_mask, px_per_mm, params, features);
   return features;

@@ -7,11 +7,14 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "command.hpp"
@@ -70,11 +73,26 @@ std::vector<NamedMethod> methods(bool quick) {
   return m;
 }
 
+// CPU seconds of the whole process (every thread): with other jobs on the machine, wall-clock
+// frames/s measure the load as much as the method, CPU time per frame does not.
+double process_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+std::string load_average() {
+  double load[3] = {0, 0, 0};
+  if (getloadavg(load, 3) != 3) return "unknown";
+  return fmt::format("{:.1f} {:.1f} {:.1f}", load[0], load[1], load[2]);
+}
+
 struct Result {
   std::string method;
   std::string scene;
   int frames = 0;
   double seconds = 0;
+  double cpu_seconds = 0;
   capture::Evaluation eval;
   std::string error;  // a method that throws is a failure, not a crash of the benchmark
 };
@@ -83,11 +101,17 @@ double frames_per_s(const Result& r) {
   return r.seconds > 0 ? r.frames / r.seconds : 0.0;
 }
 
+double cpu_ms_per_frame(const Result& r) {
+  return r.frames > 0 ? 1e3 * r.cpu_seconds / r.frames : 0.0;
+}
+
 Result run(const NamedMethod& m, const capture::SyntheticSequence& seq) {
-  Result r{m.name, seq.spec.scene, static_cast<int>(seq.frames.size()), 0, {}, {}};
+  Result r{m.name, seq.spec.scene, static_cast<int>(seq.frames.size()), 0, 0, {}, {}};
   try {
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = process_cpu_s();
     const capture::StrainMovie movie = m.run(seq.frames, seq.calibration, seq.spec.frame_rate_hz);
+    r.cpu_seconds = process_cpu_s() - c0;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.eval = capture::evaluate_strain(movie, {seq.spec, seq.calibration, seq.landmarks});
   } catch (const std::exception& e) {
@@ -98,12 +122,13 @@ Result run(const NamedMethod& m, const capture::SyntheticSequence& seq) {
 
 void print_row(const Result& r, const std::string& extra = {}) {
   if (!r.error.empty()) {
-    fmt::print("{:<32} {:<11} {}failed: {}\n", r.method, r.scene, extra, r.error);
+    fmt::print("{:<20} {:<15} {}failed: {}\n", r.method, r.scene, extra, r.error);
     return;
   }
-  fmt::print("{:<32} {:<11} {}{:>8.0f} {:>9.5f} {:>9.5f} {:>8.0f} {:>8.4f} {:>7}\n", r.method,
-             r.scene, extra, frames_per_s(r), r.eval.rms_error, r.eval.rms_truth,
-             r.eval.median_tracked_points, r.eval.localisation_rms_mm, r.eval.track_count);
+  fmt::print("{:<20} {:<15} {}{:>8.0f} {:>8.2f} {:>9.5f} {:>9.5f} {:>7.0f} {:>7.4f} {:>6}\n",
+             r.method, r.scene, extra, frames_per_s(r), cpu_ms_per_frame(r), r.eval.rms_error,
+             r.eval.rms_truth, r.eval.median_tracked_points, r.eval.localisation_rms_mm,
+             r.eval.track_count);
 }
 
 struct Sweep {
@@ -180,8 +205,10 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       fs::create_directories(opt->out);
       const auto all = methods(opt->quick);
       std::vector<Result> results;
-      fmt::print("{:<32} {:<11} {:>8} {:>9} {:>9} {:>8} {:>8} {:>7}\n", "method", "scene",
-                 "frames/s", "rms_err", "rms_true", "points", "loc_mm", "tracks");
+      fmt::print("load average before the run: {} ({} cores)\n", load_average(),
+                 std::thread::hardware_concurrency());
+      fmt::print("{:<20} {:<15} {:>8} {:>8} {:>9} {:>9} {:>7} {:>7} {:>6}\n", "method", "scene",
+                 "frames/s", "cpu_ms/f", "rms_err", "rms_true", "points", "loc_mm", "tracks");
       for (const std::string& scene : capture::scene_names()) {
         capture::SceneSpec spec;
         spec.scene = scene;
@@ -195,23 +222,23 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       const auto csv_path = opt->out / "bench_capture.csv";
       auto csv = csv::open_with_header(
           csv_path,
-          "method,scene,frames,seconds,frames_per_s,rms_error,rms_truth,edges,"
+          "method,scene,frames,seconds,frames_per_s,cpu_ms_per_frame,rms_error,rms_truth,edges,"
           "median_tracked_points,localisation_rms_mm,track_count,median_track_frames,error");
       std::vector<capture::ChartPoint> points;
       for (const auto& r : results) {
         csv << fmt::format(
-            "\"{}\",{},{},{:.4f},{:.1f},{:.6g},{:.6g},{},{:.0f},{:.5f},{},{:.0f},\"{}\"\n",
-            r.method, r.scene, r.frames, r.seconds, frames_per_s(r), r.eval.rms_error,
-            r.eval.rms_truth, r.eval.edges, r.eval.median_tracked_points,
+            "\"{}\",{},{},{:.4f},{:.1f},{:.3f},{:.6g},{:.6g},{},{:.0f},{:.5f},{},{:.0f},\"{}\"\n",
+            r.method, r.scene, r.frames, r.seconds, frames_per_s(r), cpu_ms_per_frame(r),
+            r.eval.rms_error, r.eval.rms_truth, r.eval.edges, r.eval.median_tracked_points,
             r.eval.localisation_rms_mm, r.eval.track_count, r.eval.median_track_frames, r.error);
         if (r.error.empty()) points.push_back({r.method, frames_per_s(r), r.eval.rms_error});
       }
       csv::finish(csv, csv_path);
-      capture::write_scatter_chart_png(
-          opt->out / "speed_accuracy.png", points,
-          {"Strain from the five synthetic scenes (640 x 484)",
-           "frames per second (extract + match + track + strain)", "edge strain RMS error", true,
-           true, 0.005, 300});
+      capture::write_scatter_chart_png(opt->out / "speed_accuracy.png", points,
+                                       {"Strain from the five synthetic scenes (640 x 484)",
+                                        "frames per second (extract + match + track + strain)",
+                                        "edge strain RMS error", true, true, 0.005, 300});
+      fmt::print("load average after the run: {}\n", load_average());
       fmt::print("bench capture: wrote {} and {}\n", csv_path.string(),
                  (opt->out / "speed_accuracy.png").string());
 
