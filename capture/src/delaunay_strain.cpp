@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -59,11 +58,15 @@ void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector
                    lengths.end());
   const double bound = max_edge_ratio * lengths[lengths.size() / 2];
 
-  std::map<std::pair<std::int32_t, std::int32_t>, bool> kept;
+  // Whether an edge is kept depends only on its length, so faces test their edges directly.
+  auto edge_kept = [&](std::int32_t a, std::int32_t b) {
+    const auto& pa = from[static_cast<std::size_t>(a)];
+    const auto& pb = from[static_cast<std::size_t>(b)];
+    const double length = std::hypot(pb.x_mm - pa.x_mm, pb.y_mm - pa.y_mm);
+    return length <= bound && length > 0;
+  };
   for (const auto& r : raw) {
-    const bool keep = r.length_from <= bound && r.length_from > 0;
-    kept[{r.a, r.b}] = keep;
-    if (!keep) continue;
+    if (!(r.length_from <= bound && r.length_from > 0)) continue;
     const auto& qa = to[static_cast<std::size_t>(r.a)];
     const auto& qb = to[static_cast<std::size_t>(r.b)];
     const double length_to = std::hypot(qb.x_mm - qa.x_mm, qb.y_mm - qa.y_mm);
@@ -71,10 +74,6 @@ void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector
                      from[static_cast<std::size_t>(r.b)].track_id, r.length_from, length_to,
                      (length_to - r.length_from) / r.length_from});
   }
-  auto edge_kept = [&](std::int32_t a, std::int32_t b) {
-    const auto it = kept.find({std::min(a, b), std::max(a, b)});
-    return it != kept.end() && it->second;
-  };
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
     const std::int32_t a = f->vertex(0)->info();
     const std::int32_t b = f->vertex(1)->info();

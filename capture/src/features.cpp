@@ -30,35 +30,29 @@ struct Prepared {
   cv::Mat near_background;  // CV_8U: background grown by half the border margin
 };
 
-// Box means over window_px x window_px of src and of src^2, computed on a copy binned by an
-// integer factor (area averaging) so that a large window costs a small one. The binned window
-// covers window_px rounded to a multiple of the factor; for windows of dozens of pixels over a
-// ridge texture that changes a mean by far less than a grey level. Returns the factor used.
-int binned_box_means(const cv::Mat& src, int window_px, cv::Mat& mean, cv::Mat* mean_sq) {
-  int factor = 1;
+// Box mean over window_px x window_px of an image binned by `factor` (area averaging), so that
+// a large window costs a small one. The binned window covers window_px rounded to a multiple of
+// the factor; for windows of dozens of pixels over a ridge texture that changes a mean by far
+// less than a grey level.
+int bin_factor(const cv::Mat& src, int window_px) {
   for (int f : {4, 2}) {
-    if (window_px >= 8 * f && src.cols >= 16 * f && src.rows >= 16 * f) {
-      factor = f;
-      break;
-    }
+    if (window_px >= 8 * f && src.cols >= 16 * f && src.rows >= 16 * f) return f;
   }
+  return 1;
+}
+
+cv::Mat binned(const cv::Mat& src, int factor) {
+  if (factor == 1) return src;
+  cv::Mat out;
+  cv::resize(src, out, cv::Size(), 1.0 / factor, 1.0 / factor, cv::INTER_AREA);
+  return out;
+}
+
+cv::Mat binned_box_mean(const cv::Mat& binned_src, int window_px, int factor) {
   const int window = odd_at_least_3(static_cast<double>(window_px) / factor);
-  const cv::Size ksize(window, window);
-  cv::Mat binned = src;
-  if (factor > 1) {
-    cv::resize(src, binned, cv::Size(), 1.0 / factor, 1.0 / factor, cv::INTER_AREA);
-  }
-  cv::blur(binned, mean, ksize, cv::Point(-1, -1), cv::BORDER_REFLECT);
-  if (mean_sq) {
-    cv::Mat sq, binned_sq;
-    cv::multiply(src, src, sq);
-    binned_sq = sq;
-    if (factor > 1) {
-      cv::resize(sq, binned_sq, binned.size(), 0, 0, cv::INTER_AREA);
-    }
-    cv::blur(binned_sq, *mean_sq, ksize, cv::Point(-1, -1), cv::BORDER_REFLECT);
-  }
-  return factor;
+  cv::Mat mean;
+  cv::blur(binned_src, mean, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
+  return mean;
 }
 
 Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) {
@@ -72,17 +66,23 @@ Prepared prepare(const cv::Mat& gray, double px_per_mm, const FeatureParams& p) 
   }
   // The 2 mm local mean is smooth at the scale of a few pixels: computed binned, interpolated.
   const int window = odd_at_least_3(p.local_window_mm * px_per_mm);
-  cv::Mat coarse_mean;
-  if (binned_box_means(r.smooth, window, coarse_mean, nullptr) > 1) {
+  const int bg_window = odd_at_least_3(p.background_window_mm * px_per_mm);
+  const int factor = bin_factor(r.smooth, window);
+  const int bg_factor = bin_factor(r.smooth, bg_window);
+  const cv::Mat smooth_binned = binned(r.smooth, factor);
+  const cv::Mat coarse_mean = binned_box_mean(smooth_binned, window, factor);
+  if (factor > 1) {
     cv::resize(coarse_mean, r.mean, gray.size(), 0, 0, cv::INTER_LINEAR);
   } else {
     r.mean = coarse_mean;
   }
   // Background decided on the binned grid, then brought back pixel for pixel; the border
   // margin below is grown at full resolution.
-  const int bg_window = odd_at_least_3(p.background_window_mm * px_per_mm);
-  cv::Mat bg_mean, bg_mean_sq;
-  binned_box_means(r.smooth, bg_window, bg_mean, &bg_mean_sq);
+  cv::Mat sq;
+  cv::multiply(r.smooth, r.smooth, sq);
+  const cv::Mat bg_mean = binned_box_mean(
+      bg_factor == factor ? smooth_binned : binned(r.smooth, bg_factor), bg_window, bg_factor);
+  const cv::Mat bg_mean_sq = binned_box_mean(binned(sq, bg_factor), bg_window, bg_factor);
   cv::Mat var = bg_mean_sq - bg_mean.mul(bg_mean);
   const double global_mean = cv::mean(r.smooth)[0];
   cv::Mat background = (var < p.background_max_std * p.background_max_std) &

@@ -28,26 +28,42 @@ struct Candidate {
 
 // Least-squares quadratic through the positions within +-h frames, evaluated at the centre; it
 // keeps constant-acceleration motion unbiased while averaging localisation noise.
+double quadratic_fit_at(const std::vector<double>& v, int i, int lo, int hi) {
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  for (int k = lo; k <= hi; ++k) {
+    const double t = k - i;
+    const Eigen::Vector3d a(1, t, t * t);
+    ata += a * a.transpose();
+    atb += a * v[static_cast<std::size_t>(k)];
+  }
+  const int count = hi - lo + 1;
+  if (count < 3) return atb[0] / count;
+  return ata.ldlt().solve(atb)[0];
+}
+
 std::vector<double> smooth(const std::vector<double>& v, int h) {
   if (h <= 0 || v.size() < 3) return v;
   const int n = static_cast<int>(v.size());
   std::vector<double> out(v.size());
+  // Inside the track the window is symmetric and the fit's value at the centre is a fixed
+  // weighted sum (Savitzky-Golay): w_j = (3(3h^2 + 3h - 1) - 15 j^2) / ((2h - 1)(2h + 1)(2h + 3)).
+  std::vector<double> w(static_cast<std::size_t>(2 * h + 1));
+  const double denom = (2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3);
+  for (int j = -h; j <= h; ++j) {
+    w[static_cast<std::size_t>(j + h)] = (3.0 * (3 * h * h + 3 * h - 1) - 15.0 * j * j) / denom;
+  }
   for (int i = 0; i < n; ++i) {
     const int lo = std::max(0, i - h);
     const int hi = std::min(n - 1, i + h);
-    Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d atb = Eigen::Vector3d::Zero();
-    for (int k = lo; k <= hi; ++k) {
-      const double t = k - i;
-      const Eigen::Vector3d a(1, t, t * t);
-      ata += a * a.transpose();
-      atb += a * v[static_cast<std::size_t>(k)];
-    }
-    const int count = hi - lo + 1;
-    if (count < 3) {
-      out[static_cast<std::size_t>(i)] = atb[0] / count;
+    if (hi - lo == 2 * h) {
+      double sum = 0;
+      for (int k = lo; k <= hi; ++k) {
+        sum += w[static_cast<std::size_t>(k - lo)] * v[static_cast<std::size_t>(k)];
+      }
+      out[static_cast<std::size_t>(i)] = sum;
     } else {
-      out[static_cast<std::size_t>(i)] = ata.ldlt().solve(atb)[0];
+      out[static_cast<std::size_t>(i)] = quadratic_fit_at(v, i, lo, hi);
     }
   }
   return out;
@@ -136,26 +152,68 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
     feat_mm.reserve(feats.size());
     for (const auto& f : feats) feat_mm.push_back(to_mm(calibration, f.x_px, f.y_px));
 
+    // Features bucketed on a grid of radius-sized cells: a prediction's candidates lie in the
+    // 3 x 3 cells around it.
+    double min_x = 0, min_y = 0;
+    int grid_w = 0, grid_h = 0;
+    if (!feats.empty()) {
+      min_x = feat_mm[0].x_mm;
+      min_y = feat_mm[0].y_mm;
+      double max_x = min_x, max_y = min_y;
+      for (const auto& p : feat_mm) {
+        min_x = std::min(min_x, p.x_mm);
+        min_y = std::min(min_y, p.y_mm);
+        max_x = std::max(max_x, p.x_mm);
+        max_y = std::max(max_y, p.y_mm);
+      }
+      grid_w = static_cast<int>((max_x - min_x) / radius) + 1;
+      grid_h = static_cast<int>((max_y - min_y) / radius) + 1;
+    }
+    std::vector<int> cell_head(static_cast<std::size_t>(grid_w) * grid_h, -1);
+    std::vector<int> next_in_cell(feats.size(), -1);
+    for (std::size_t k = 0; k < feats.size(); ++k) {
+      const int cx = static_cast<int>((feat_mm[k].x_mm - min_x) / radius);
+      const int cy = static_cast<int>((feat_mm[k].y_mm - min_y) / radius);
+      auto& head = cell_head[static_cast<std::size_t>(cy) * grid_w + cx];
+      next_in_cell[k] = head;
+      head = static_cast<int>(k);
+    }
+
     std::vector<Candidate> candidates;
-    for (std::size_t a = 0; a < active.size(); ++a) {
+    for (std::size_t a = 0; a < active.size() && !feats.empty(); ++a) {
       const Active& act = active[a];
       const Track& t = all[act.track];
       const int steps = frame - act.last_frame;
       const PointMm v = act.has_velocity ? act.velocity_mm : global_velocity;
       const PointMm pred{act.last_mm.x_mm + v.x_mm * steps, act.last_mm.y_mm + v.y_mm * steps};
-      for (std::size_t k = 0; k < feats.size(); ++k) {
-        if (feats[k].type != t.type) continue;
-        const double d = std::hypot(feat_mm[k].x_mm - pred.x_mm, feat_mm[k].y_mm - pred.y_mm);
-        if (d >= radius) continue;
-        double confidence = 1 - d / radius;
-        if (t.type == FeatureType::ending) {
-          confidence *= 0.5 * (1 + std::cos(feats[k].orientation_rad - act.orientation));
+      const double gx = std::floor((pred.x_mm - min_x) / radius);
+      const double gy = std::floor((pred.y_mm - min_y) / radius);
+      if (gx < -1 || gy < -1 || gx > grid_w || gy > grid_h) continue;
+      for (int cy = std::max(0, static_cast<int>(gy) - 1);
+           cy <= std::min(grid_h - 1, static_cast<int>(gy) + 1); ++cy) {
+        for (int cx = std::max(0, static_cast<int>(gx) - 1);
+             cx <= std::min(grid_w - 1, static_cast<int>(gx) + 1); ++cx) {
+          for (int k = cell_head[static_cast<std::size_t>(cy) * grid_w + cx]; k >= 0;
+               k = next_in_cell[static_cast<std::size_t>(k)]) {
+            const auto uk = static_cast<std::size_t>(k);
+            if (feats[uk].type != t.type) continue;
+            const double d = std::hypot(feat_mm[uk].x_mm - pred.x_mm, feat_mm[uk].y_mm - pred.y_mm);
+            if (d >= radius) continue;
+            double confidence = 1 - d / radius;
+            if (t.type == FeatureType::ending) {
+              confidence *= 0.5 * (1 + std::cos(feats[uk].orientation_rad - act.orientation));
+            }
+            if (confidence > 0) candidates.push_back({confidence, a, uk});
+          }
         }
-        if (confidence > 0) candidates.push_back({confidence, a, k});
       }
     }
-    std::sort(candidates.begin(), candidates.end(),
-              [](const Candidate& l, const Candidate& r) { return l.confidence > r.confidence; });
+    // Ties broken by track and feature order, so the result does not depend on the grid.
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& l, const Candidate& r) {
+      if (l.confidence != r.confidence) return l.confidence > r.confidence;
+      if (l.active != r.active) return l.active < r.active;
+      return l.feature < r.feature;
+    });
     std::vector<char> active_used(active.size(), 0);
     std::vector<char> feature_used(feats.size(), 0);
     std::vector<double> vx, vy;

@@ -28,6 +28,32 @@ TEST(Track, SteadyMotionGivesOneTrackOnTheTruePath) {
   for (std::size_t k = 0; k < 60; ++k) EXPECT_NEAR(tracks[0].x_px[k], 100 + 1.5 * k, 1e-9);
 }
 
+// The smoother is a local least-squares quadratic, so constant acceleration passes through it
+// unchanged, inside the track and at both ends; and a pore among many is matched to itself.
+TEST(Track, ConstantAccelerationIsKeptExactlyAmongNeighbours) {
+  std::vector<std::vector<Feature>> feats(50);
+  for (int f = 0; f < 50; ++f) {
+    for (int i = 0; i < 5; ++i) {
+      for (int j = 0; j < 5; ++j) {
+        feats[static_cast<std::size_t>(f)].push_back(
+            {FeatureType::pore, 100 + 30.0 * i + 0.5 * f + 0.01 * f * f, 100 + 30.0 * j, 0});
+      }
+    }
+  }
+  TrackParams p;
+  p.min_track_frames = 10;
+  const auto tracks = track_features(feats, uniform_calibration(60, 640, 480), p);
+  ASSERT_EQ(tracks.size(), 25u);
+  for (const auto& t : tracks) {
+    ASSERT_EQ(t.x_px.size(), 50u);
+    const double x0 = t.x_px[0];
+    for (std::size_t k = 0; k < 50; ++k) {
+      const double f = static_cast<double>(k);
+      EXPECT_NEAR(t.x_px[k], x0 + 0.5 * f + 0.01 * f * f, 1e-9);
+    }
+  }
+}
+
 // At frame 40 the pore is lost and a neighbour 6 px (0.1 mm, inside the 0.3 mm search radius)
 // to the side is taken for it: the track must be cut there rather than bend towards it.
 TEST(Track, AJumpToANeighbourCutsTheTrack) {
