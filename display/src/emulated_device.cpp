@@ -65,6 +65,7 @@ struct EmulatedDevice::Impl {
   double now_s = 0;        // device time (simulated clock)
   double next_tick_s = 0;  // when the next tick is due
   std::vector<float> recorded;
+  std::vector<DeviceTick> recorded_states;
   std::int64_t recorded_ticks = 0;
   double recording_rate_hz = 0;
   // Real-time clock: a thread ticks the firmware like the device's hardware timer would.
@@ -90,6 +91,11 @@ struct EmulatedDevice::Impl {
         const std::int16_t* out = tfw_device_outputs(&device);
         for (std::uint16_t i = 0; i < n; ++i) recorded.push_back(from_wire_units(out[i]));
         ++recorded_ticks;
+        const tfw_status& c = device.counters;
+        recorded_states.push_back({c.clamped_samples, c.slew_limited_samples, c.underruns,
+                                   c.watchdog_trips, tfw_fifo_count(&device.fifo),
+                                   device.state == TFW_STATE_STREAMING,
+                                   device.state != TFW_STATE_STOPPED});
       }
     }
   }
@@ -151,6 +157,7 @@ void EmulatedDevice::start(double rate_hz) {
   impl_->set_rate(rate);
   impl_->next_tick_s = impl_->now_s + impl_->tick_period_s;
   impl_->recorded.clear();
+  impl_->recorded_states.clear();
   impl_->recorded_ticks = 0;
 }
 
@@ -199,6 +206,11 @@ TactileMovie EmulatedDevice::recording() const {
   m.deflection_um = impl_->recorded;
   m.provenance.source = "emulated device output";
   return m;
+}
+
+std::vector<DeviceTick> EmulatedDevice::recorded_states() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->recorded_states;
 }
 
 std::int64_t EmulatedDevice::recorded_ticks() const {

@@ -202,12 +202,14 @@ std::string format_playback_report(const PlaybackReport& r) {
 }
 
 TactileMovie render_through_device(const TactileMovie& movie, EmulatedDeviceOptions device,
-                                   const PlayOptions& options, PlaybackReport* report) {
+                                   const PlayOptions& options, PlaybackReport* report,
+                                   std::vector<DeviceTick>* states) {
   device.clock = EmulatedClock::simulated;
   device.record_outputs = true;
   EmulatedDevice emulator(device);
   const PlaybackReport r = play_movie(movie, emulator, options);
   if (report != nullptr) *report = r;
+  if (states != nullptr) *states = emulator.recorded_states();
   TactileMovie out = emulator.recording();
   out.layout = movie.layout;
   out.provenance = movie.provenance;

@@ -242,10 +242,11 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
   ViewerResult result;
   TactileMovie shown;
   std::int64_t lead_in_frames = 0;  // shown frames before the movie's first (the start ramp)
+  std::vector<DeviceTick> states;   // the firmware after each shown frame (through_device)
   if (options.through_device) {
     EmulatedDeviceOptions device = options.device;
     device.layout = movie.layout;
-    shown = render_through_device(movie, device, options.play, &result.device_report);
+    shown = render_through_device(movie, device, options.play, &result.device_report, &states);
     lead_in_frames = result.device_report.ramp_frames / 2;
   } else {
     shown = movie;
@@ -342,13 +343,17 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
                     std::max(std::abs(shown.layout.deflection_min_um),
                              std::abs(shown.layout.deflection_max_um)))
             .c_str());
-    if (options.through_device) {
-      const PlaybackReport& d = result.device_report;
+    if (options.through_device && static_cast<std::size_t>(frame) < states.size()) {
+      const DeviceTick& d = states[static_cast<std::size_t>(frame)];
+      result.last_device_tick = d;
       ImGui::TextUnformatted(
-          fmt::format("emulated firmware: {} clamped, {} slew-limited samples, {} underruns, "
-                      "watchdog {} ({} trips), {} malformed",
-                      d.clamped_samples, d.slew_limited_samples, d.underruns,
-                      d.watchdog_trips > 0 ? "tripped" : "quiet", d.watchdog_trips, d.malformed)
+          fmt::format("emulated firmware: {}, FIFO {}; so far {} clamped, {} slew-limited, "
+                      "{} underruns, {} watchdog trips",
+                      !d.started    ? "stopped"
+                      : d.streaming ? "streaming"
+                                    : "idle (neutral)",
+                      d.fifo_fill, d.clamped_samples, d.slew_limited_samples, d.underruns,
+                      d.watchdog_trips)
               .c_str());
     } else {
       ImGui::TextUnformatted("raw movie (not through the emulated firmware)");

@@ -220,6 +220,32 @@ TEST(EmulatedDevice, WatchdogBringsTheOutputsHome) {
   EXPECT_EQ(device.status().watchdog_trips, 1u);
 }
 
+TEST(EmulatedDevice, RecordsTheFirmwareStateAfterEveryTick) {
+  // STReSS: +-50 um; 20 mm/s at 700 Hz is 285 units (28.5 um) per tick.
+  EmulatedDevice device(device_for(stress_layout()));
+  device.start(700);
+  std::vector<float> frame(100, 80);  // beyond the range: every sample clamped to 50 um
+  for (std::uint32_t s = 0; s < 10; ++s) ASSERT_TRUE(device.send_frame(encode_frame(frame, s)));
+  device.wait(std::chrono::milliseconds(30));
+  const std::vector<DeviceTick> states = device.recorded_states();
+  ASSERT_EQ(static_cast<std::int64_t>(states.size()), device.recorded_ticks());
+  ASSERT_EQ(states.size(), 21u);  // 30 ms at 700 Hz
+  EXPECT_TRUE(states[0].streaming);
+  EXPECT_EQ(states[0].clamped_samples, 100u);
+  EXPECT_EQ(states[0].fifo_fill, 9u);  // 10 sent, one played
+  // 0 -> 28.5 -> 50 um: the first step is cut to the slew limit, the second is not.
+  EXPECT_EQ(states[9].slew_limited_samples, 100u);
+  EXPECT_EQ(states[9].clamped_samples, 1000u);
+  EXPECT_EQ(states[9].watchdog_trips, 0u);
+  // Then silence: underruns until the 5 ms watchdog trips, and the device idles at neutral.
+  EXPECT_EQ(states.back().watchdog_trips, 1u);
+  EXPECT_FALSE(states.back().streaming);
+  EXPECT_TRUE(states.back().started);
+  EXPECT_GE(states.back().underruns, 1u);
+  EXPECT_LE(states.back().underruns, 5u);
+  EXPECT_EQ(states.back().clamped_samples, 1000u);
+}
+
 }  // namespace
 }  // namespace tactile::display
 

@@ -80,7 +80,11 @@ TEST(Viewer, ShowsTheFirmwareClampNotTheRawMovie) {
   };
   // Contactor (5, 5) rests at (5, 5) mm and is 0.5 mm wide. Clamped: it spans 5.15..5.65 mm;
   // unclamped it would span 5.39..5.89 mm.
-  EXPECT_TRUE(is_white(pixel(5.25, 5.0)));       // inside only the clamped position
+  EXPECT_TRUE(is_white(pixel(5.25, 5.0)));  // inside only the clamped position
+  // What the text strip reports at this frame: streaming, 100 samples clamped per frame.
+  EXPECT_TRUE(r.last_device_tick.streaming);
+  EXPECT_EQ(r.last_device_tick.clamped_samples % 100, 0u);
+  EXPECT_GE(r.last_device_tick.clamped_samples, 500u);
   EXPECT_TRUE(is_background(pixel(5.75, 5.0)));  // inside only the unclamped position
 }
 

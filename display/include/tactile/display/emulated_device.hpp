@@ -31,6 +31,18 @@ struct EmulatedDeviceOptions {
   std::string serial = "EMU-0001";
 };
 
+// The firmware's state after one tick: its safety counters since start() and where it stands,
+// so a viewer can say what the device was doing at each output frame.
+struct DeviceTick {
+  std::uint32_t clamped_samples = 0;
+  std::uint32_t slew_limited_samples = 0;
+  std::uint32_t underruns = 0;
+  std::uint32_t watchdog_trips = 0;
+  std::uint16_t fifo_fill = 0;
+  bool streaming = false;  // playing a stream (else idle: before it, after its end or a trip)
+  bool started = false;
+};
+
 class EmulatedDevice final : public Transport {
  public:
   // Throws std::invalid_argument when the options do not make a valid firmware configuration.
@@ -52,6 +64,8 @@ class EmulatedDevice final : public Transport {
   // tick, row-major, at the rate given to start().
   TactileMovie recording() const;
   std::int64_t recorded_ticks() const;
+  // The firmware's state after each recorded tick (same ticks as recording()).
+  std::vector<DeviceTick> recorded_states() const;
 
  private:
   struct Impl;

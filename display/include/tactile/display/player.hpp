@@ -60,9 +60,11 @@ PlaybackReport play_movie(const TactileMovie& movie, Transport& transport,
 std::string format_playback_report(const PlaybackReport& report);
 
 // Plays the movie into a simulated-clock emulated device and returns what the firmware output
-// (ramps included): what the viewer shows. `device.clock` is forced to simulated.
+// (ramps included): what the viewer shows. `device.clock` is forced to simulated. `states`,
+// when given, receives the firmware's state after each output frame.
 TactileMovie render_through_device(const TactileMovie& movie, EmulatedDeviceOptions device,
                                    const PlayOptions& options = {},
-                                   PlaybackReport* report = nullptr);
+                                   PlaybackReport* report = nullptr,
+                                   std::vector<DeviceTick>* states = nullptr);
 
 }  // namespace tactile::display

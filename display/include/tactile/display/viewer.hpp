@@ -105,6 +105,7 @@ struct ViewerResult {
   RenderedImage last_image;          // pixels of the last drawn frame, read back from OpenGL
   std::size_t last_field_frame = 0;  // index into options.field->frames, when given
   PlaybackReport device_report;      // the emulated firmware's counters (through_device)
+  DeviceTick last_device_tick;       // its state at the last drawn frame, as the text shows it
 };
 
 // Writes the image as a PNG (a screenshot of the window). Throws std::runtime_error naming the
