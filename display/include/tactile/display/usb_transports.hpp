@@ -1,8 +1,9 @@
 #pragma once
 // Transports to a display on USB (docs/protocol.md, "USB"): libusb on the vendor interface
-// (bulk OUT frames, asynchronous transfers) and hidapi on the HID interface. Both check every
-// reply and turn every USB failure, an unplugged device included, into a TransportError
-// within `timeout`: no call blocks longer.
+// (bulk OUT frames, asynchronous transfers) and hidapi on the HID interface (hidraw). Both
+// check every reply and turn every USB failure, an unplugged device included, into a
+// TransportError. libusb bounds every call by `timeout`; a hidraw write has no timeout of its
+// own and is bounded by the kernel's 5 s transfer timeout instead (an unplug ends it at once).
 
 #include <chrono>
 #include <memory>
