@@ -61,6 +61,28 @@ std::vector<Mapping> distinct_mappings(const Experiment& ex) {
   return mappings;
 }
 
+// Keeps only the first and last frame of every run of frames whose edges all change alike
+// (within 1e-12: free air, a converged static hold, a flat plate sliding before the feature
+// arrives). The mapping resamples linearly between strain frames, so the movie does not change,
+// and building strain fields is most of the cost of a perception run.
+capture::StrainMovie without_repeats(capture::StrainMovie movie) {
+  const auto same = [](const capture::StrainFrame& a, const capture::StrainFrame& b) {
+    if (a.edges.size() != b.edges.size()) return false;
+    for (std::size_t e = 0; e < a.edges.size(); ++e)
+      if (std::abs(a.edges[e].rel_change - b.edges[e].rel_change) > 1e-12) return false;
+    return true;
+  };
+  const auto& frames = movie.frames;
+  std::vector<char> keep(frames.size(), 1);
+  for (std::size_t k = 1; k + 1 < frames.size(); ++k)
+    keep[k] = !(same(frames[k - 1], frames[k]) && same(frames[k], frames[k + 1]));
+  std::vector<capture::StrainFrame> kept;
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    if (keep[k]) kept.push_back(std::move(movie.frames[k]));
+  movie.frames = std::move(kept);
+  return movie;
+}
+
 const char* curvature_name(capture::Curvature c) {
   constexpr const char* names[] = {"planar", "conical", "spherical"};
   return names[static_cast<int>(c)];
@@ -161,9 +183,11 @@ std::vector<PerceptionTable> run_perception(
       }
       capture::SkinStrainOptions o = skin;
       std::optional<capture::StrainMovie> strain[2];
-      if (per_frame) strain[0] = capture::simulate_skin_strain(feature, p, seed, {}, o);
+      if (per_frame)
+        strain[0] = without_repeats(capture::simulate_skin_strain(feature, p, seed, {}, o));
       o.from_rest = true;
-      if (from_rest) strain[1] = capture::simulate_skin_strain(feature, p, seed, {}, o);
+      if (from_rest)
+        strain[1] = without_repeats(capture::simulate_skin_strain(feature, p, seed, {}, o));
       for (std::size_t m = 0; m < mappings.size(); ++m) {
         const auto& source = *strain[mappings[m].params.strain == "accumulated" ? 1 : 0];
         const std::string what =

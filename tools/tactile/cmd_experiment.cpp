@@ -28,7 +28,9 @@ void add_experiment(CLI::App& app, Action& action) {
       "Run a mapping experiment: every source x layout x method x parameter combination in\n"
       "EXP.json, in parallel, into one folder (movies, metrics.csv, plots, the configuration).\n"
       "The whole file is checked before any work starts. Schema: docs/formats.md;\n"
-      "example: tools/experiments/methods.json.");
+      "example: tools/experiments/methods.json. With a \"perception\" section, also Table 2\n"
+      "of paper 2 computed from each mapping's movies of the simulated fingertip's skin\n"
+      "(tools/experiments/perception.json).");
   sub->add_option("EXP_JSON", opt->file, "Experiment file (JSON)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -60,11 +62,24 @@ void add_experiment(CLI::App& app, Action& action) {
                    r.metrics.strain_correlation, r.metrics.strain_rms_error,
                    r.metrics.saturated_fraction, r.map_ms);
       }
+      if (!report.perception.empty()) {
+        fmt::print(
+            "perception (Table 2 from movies; accuracy with all 76 inputs, mean R^2, "
+            "cascade RMS):\n");
+        for (const auto& t : report.perception)
+          for (const auto& row : t.rows)
+            if (row.result.inputs == "all") {
+              const auto& r = row.result;
+              fmt::print("  {:<40} exp {} {:>3}/{:<3} R^2 {:.3f} cascade RMS {:.2f} mm\n", t.id,
+                         r.degree, r.correct, r.tested, (r.r2[0] + r.r2[1] + r.r2[2]) / 3,
+                         r.cascade_rms_mm);
+            }
+      }
       fmt::print(
-          "experiment: {} runs on {} threads: sources {:.2f} s, runs {:.2f} s, total {:.2f} s; "
-          "{} files in {}\n",
-          ex.runs.size(), report.threads, report.prepare_s, report.run_s, total_s,
-          report.files.size(), out.string());
+          "experiment: {} runs on {} threads: sources {:.2f} s, runs {:.2f} s, perception "
+          "{:.2f} s, total {:.2f} s; {} files in {}\n",
+          ex.runs.size(), report.threads, report.prepare_s, report.run_s, report.perception_s,
+          total_s, report.files.size(), out.string());
       return 0;
     };
   });
