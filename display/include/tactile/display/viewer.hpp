@@ -73,7 +73,7 @@ struct ViewerOptions {
   bool loop = true;
   bool start_paused = false;
   double start_s = 0;  // movie time of the first frame shown (after the device's start ramp)
-  int width_px = 800;
+  int width_px = 800;  // doubled when a field is shown beside the array
   int height_px = 800;
   bool visible = true;
   double magnification = 0;  // 0 = auto_magnification(layout)
