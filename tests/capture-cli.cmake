@@ -29,3 +29,8 @@ capture_cli_expect(features_bad_pores 2 "pores" features ${cc_dir}/seq/frame_000
                    --px-per-mm 62 --pores bogus)
 capture_cli_expect(features_ridge_blob 0 "features: [0-9]+ pores" features
                    ${cc_dir}/seq/frame_000.png --px-per-mm 62 --pores ridge-blob)
+capture_cli_expect(capture_bad_assignment 2 "assignment" capture ${cc_dir}/seq --px-per-mm 62
+                   --out ${cc_dir}/never.h5 --assignment bogus)
+capture_cli_expect(synth_bad_scene 2 "scene" synth ${cc_dir}/never --scene volcano)
+capture_cli_expect(synth_rotation_too_large 1 "rotation_deg" synth ${cc_dir}/never
+                   --scene flat-rotate --rotation 40 --frames 2)

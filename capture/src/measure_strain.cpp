@@ -113,6 +113,7 @@ StrainMovie measure_strain(
 
   TrackParams tp;
   tp.match_radius_mm = params.match_radius_mm;
+  tp.assignment = params.assignment;
   tp.min_track_frames = params.min_track_frames;
   tp.max_gap_frames = params.max_gap_frames;
   tp.smoothing_half_window = params.smoothing_half_window;

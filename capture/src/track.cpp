@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include "assignment.hpp"
+
 namespace tactile::capture {
 
 namespace {
@@ -208,18 +210,17 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
         }
       }
     }
-    // Ties broken by track and feature order, so the result does not depend on the grid.
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& l, const Candidate& r) {
-      if (l.confidence != r.confidence) return l.confidence > r.confidence;
-      if (l.active != r.active) return l.active < r.active;
-      return l.feature < r.feature;
-    });
-    std::vector<char> active_used(active.size(), 0);
+    std::vector<ScoredPair> scored;
+    scored.reserve(candidates.size());
+    for (const auto& c : candidates) scored.push_back({c.confidence, c.active, c.feature});
+    const std::vector<ScoredPair> chosen = params.assignment == Assignment::optimal
+                                               ? assign_optimal(scored)
+                                               : assign_greedy(std::move(scored));
     std::vector<char> feature_used(feats.size(), 0);
     std::vector<double> vx, vy;
-    for (const auto& c : candidates) {
-      if (active_used[c.active] || feature_used[c.feature]) continue;
-      active_used[c.active] = feature_used[c.feature] = 1;
+    for (const auto& pick : chosen) {
+      const Candidate c{pick.score, pick.left, pick.right};
+      feature_used[c.feature] = 1;
       Active& act = active[c.active];
       Track& t = all[act.track];
       const int steps = frame - act.last_frame;

@@ -58,6 +58,9 @@ std::vector<NamedMethod> methods(bool quick) {
   one_thread.threads = 1;
   m.push_back({"pores, 1 thread", pipeline(one_thread)});
   if (!quick) {
+    capture::CaptureParams optimal;
+    optimal.assignment = capture::Assignment::optimal;
+    m.push_back({"pores, optimal match", pipeline(optimal)});
     capture::CaptureParams with_minutiae;
     with_minutiae.features.find_minutiae = true;
     m.push_back({"pores + minutiae", pipeline(with_minutiae)});

@@ -175,6 +175,7 @@ void add_capture(CLI::App& app, Action& action) {
     double rate_hz = 60;
     int min_track_frames = 30;
     std::string pores = "paper";
+    std::string assignment = "greedy";
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -201,6 +202,11 @@ void add_capture(CLI::App& app, Action& action) {
       ->check(CLI::Range(2, 100000))
       ->capture_default_str();
   add_pore_option(*sub, opt->pores);
+  sub->add_option("--assignment", opt->assignment,
+                  "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "
+                  "confidence, Hungarian method)")
+      ->check(CLI::IsMember({"greedy", "optimal"}))
+      ->capture_default_str();
   sub->callback([opt, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
     action = [opt] {
@@ -213,6 +219,8 @@ void add_capture(CLI::App& app, Action& action) {
       params.span_frames = opt->span;
       params.min_track_frames = opt->min_track_frames;
       params.features.pore_detector = pore_detector(opt->pores);
+      params.assignment =
+          opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;
       const auto t0 = std::chrono::steady_clock::now();
       capture::StrainMovie movie = capture::measure_strain(
           frames, c, opt->rate_hz, params,

@@ -25,6 +25,7 @@ struct CaptureParams {
   // they raised the consecutive-frame strain RMS error from 0.0006 to 0.015.
   FeatureParams features = pores_only();
   double match_radius_mm = 0.3;
+  Assignment assignment = Assignment::greedy;
   int min_track_frames = 30;
   int max_gap_frames = 2;
   int smoothing_half_window = 3;

@@ -8,7 +8,12 @@
 
 namespace tactile::capture {
 
+// One-to-one matching of tracks to a frame's features: greedy by decreasing confidence, or
+// optimal (maximum total confidence; Hungarian method on each group of competing candidates).
+enum class Assignment { greedy, optimal };
+
 struct TrackParams {
+  Assignment assignment = Assignment::greedy;
   double match_radius_mm = 0.3;   // search radius around the predicted position
   int min_track_frames = 30;      // shorter trajectories are rejected (paper: about 30)
   int max_gap_frames = 2;         // a landmark may be missed this many frames in a row
