@@ -11,24 +11,24 @@
 namespace tactile::capture {
 
 // How pores are found. `paper`: bright 4-connected blobs of the binarised image (the first
-// paper's rule; misses every pore that opens into a valley). `ridge_blob`: small-scale
-// difference-of-Gaussians maxima restricted to the ridges, the ridges found by smoothing along
-// the local ridge orientation so that the pores themselves do not punch holes in them.
+// paper's rule; misses every pore that opens into a valley). `ridge_blob`: bright spots above
+// the grey level of their own ridge (the image smoothed along the local ridge direction on
+// both sides of the spot), kept only in the inner part of the ridges.
 enum class PoreDetector { paper, ridge_blob };
 
-// Parameters of PoreDetector::ridge_blob (millimetres; tuned on the PolyU HRF prints, about
-// 47 px/mm, where 0.019 mm is 0.9 px).
+// Parameters of PoreDetector::ridge_blob (millimetres; chosen on the PolyU HRF prints, about
+// 47 px/mm; docs/capture-models.md says how).
 struct RidgeBlobParams {
-  double dog_inner_sigma_mm = 0.019;     // pore-sized Gaussian
-  double dog_outer_sigma_mm = 0.0425;    // its surround
   double orientation_sigma_mm = 0.106;   // structure-tensor smoothing (orientation field)
-  double along_sigma_mm = 0.106;         // ridge smoothing along the ridge (fills pores)
+  double along_sigma_mm = 0.106;         // ridge level: smoothing along the ridge ...
   double across_sigma_mm = 0.032;        // ... and across it (keeps ridges apart)
+  double pore_radius_mm = 0.04;          // ... leaving out this much on either side of the spot
   int orientations = 12;                 // quantised ridge directions
-  double window_mm = 0.53;               // local mean / spread window (about one ridge period)
+  double pore_sigma_mm = 0.015;          // smoothing of the brightness above the ridge level
+  double window_mm = 0.53;               // ridge/valley envelope window (about one ridge period)
+  double min_ridge_depth = 0.65;         // 0 = valley level, 1 = ridge bottom: inner ridge only
   double suppression_radius_mm = 0.064;  // one pore per disc of this radius
-  double min_response = 0.05;            // DoG peak / local grey-level spread
-  double min_relative_response = 0.2;    // DoG peak / median peak of the image
+  double min_relative_response = 0.15;   // peak / median candidate peak of the image
 };
 
 struct FeatureParams {
