@@ -10,8 +10,10 @@ namespace tactile::capture {
 
 namespace {
 
-// Anisotropic Gaussian, long axis at `angle_rad` (image x to the right, y down), unit sum.
-cv::Mat oriented_kernel(double angle_rad, double along_px, double across_px) {
+// Anisotropic Gaussian, long axis at `angle_rad` (image x to the right, y down), unit sum,
+// with the middle band |along| < gap_px left out: the level it measures at a pixel comes from
+// either side of it along the ridge, so a pore does not lift its own ridge level.
+cv::Mat flank_kernel(double angle_rad, double along_px, double across_px, double gap_px) {
   const int half = std::max(1, static_cast<int>(std::ceil(3.0 * along_px)));
   cv::Mat k(2 * half + 1, 2 * half + 1, CV_32F);
   const double c = std::cos(angle_rad);
@@ -22,7 +24,9 @@ cv::Mat oriented_kernel(double angle_rad, double along_px, double across_px) {
       const double u = x * c + y * s;
       const double v = -x * s + y * c;
       const double w =
-          std::exp(-u * u / (2 * along_px * along_px) - v * v / (2 * across_px * across_px));
+          std::abs(u) < gap_px
+              ? 0.0
+              : std::exp(-u * u / (2 * along_px * along_px) - v * v / (2 * across_px * across_px));
       k.at<float>(y + half, x + half) = static_cast<float>(w);
       sum += w;
     }
@@ -30,9 +34,9 @@ cv::Mat oriented_kernel(double angle_rad, double along_px, double across_px) {
   return k / sum;
 }
 
-// Grey level of the ridge/valley pattern with pores filled in: each pixel smoothed along its
-// ridge direction (from the structure tensor), where a pore is short and a ridge is long.
-cv::Mat along_ridge_smoothing(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams& p) {
+// Grey level of the ridge (or valley) each pixel lies on, measured along the local ridge
+// direction (from the structure tensor) on both sides of the pixel.
+cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams& p) {
   cv::Mat gx, gy;
   cv::Sobel(gray, gx, CV_32F, 1, 0);
   cv::Sobel(gray, gy, CV_32F, 0, 1);
@@ -44,7 +48,8 @@ cv::Mat along_ridge_smoothing(const cv::Mat& gray, double px_per_mm, const Ridge
   std::vector<cv::Mat> smoothed(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
     const cv::Mat kernel =
-        oriented_kernel(k * step, p.along_sigma_mm * px_per_mm, p.across_sigma_mm * px_per_mm);
+        flank_kernel(k * step, p.along_sigma_mm * px_per_mm, p.across_sigma_mm * px_per_mm,
+                     p.pore_radius_mm * px_per_mm);
     cv::filter2D(gray, smoothed[static_cast<std::size_t>(k)], CV_32F, kernel, cv::Point(-1, -1), 0,
                  cv::BORDER_REFLECT);
   }
@@ -64,35 +69,38 @@ cv::Mat along_ridge_smoothing(const cv::Mat& gray, double px_per_mm, const Ridge
   return out;
 }
 
+// Where a level lies between the local valley level (0) and the local ridge bottom (1). Pores
+// sit in the inner part of a ridge; bright spots at a ridge's edge are mostly its ragged
+// outline, and spots where the level is wrong (ridge endings, wide valleys) are valley.
+cv::Mat ridge_depth(const cv::Mat& level, double px_per_mm, const RidgeBlobParams& p) {
+  const int window = std::max(3, static_cast<int>(std::lround(p.window_mm * px_per_mm)) | 1);
+  const cv::Mat box = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(window, window));
+  cv::Mat valley, ridge;
+  cv::dilate(level, valley, box);
+  cv::erode(level, ridge, box);
+  return (valley - level) / cv::max(valley - ridge, 1.0);
+}
+
 }  // namespace
 
 std::vector<Feature> find_ridge_blob_pores(const cv::Mat& gray, const cv::Mat& allowed,
                                            double px_per_mm, const RidgeBlobParams& p) {
-  cv::Mat inner, outer;
-  cv::GaussianBlur(gray, inner, cv::Size(0, 0), p.dog_inner_sigma_mm * px_per_mm);
-  cv::GaussianBlur(gray, outer, cv::Size(0, 0), p.dog_outer_sigma_mm * px_per_mm);
-  cv::Mat response = inner - outer;
+  const cv::Mat level = ridge_level(gray, px_per_mm, p);
+  // Brightness above the pixel's own ridge level, smoothed to about a pixel against noise.
+  cv::Mat response;
+  cv::GaussianBlur(gray - level, response, cv::Size(0, 0), p.pore_sigma_mm * px_per_mm);
+  const cv::Mat inner = ridge_depth(level, px_per_mm, p) >= p.min_ridge_depth;
 
-  const int window = std::max(3, static_cast<int>(std::lround(p.window_mm * px_per_mm)) | 1);
-  cv::Mat mean, mean_sq;
-  cv::blur(gray, mean, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT);
-  cv::blur(gray.mul(gray), mean_sq, cv::Size(window, window), cv::Point(-1, -1),
-           cv::BORDER_REFLECT);
-  cv::Mat spread;
-  cv::sqrt(cv::max(mean_sq - mean.mul(mean), 1.0), spread);
-  // Ridges are darker than the local mean once their pores are smoothed away.
-  const cv::Mat ridge = along_ridge_smoothing(gray, px_per_mm, p) < mean;
-
-  // A pore is a local maximum of the response in its 3 x 3 neighbourhood and the strongest
-  // ridge pixel within the suppression radius (valley pixels do not compete: a valley edge's
-  // response would otherwise suppress a pore beside it).
+  // A pore is a local maximum of the response in its 3 x 3 neighbourhood (a ramp rising
+  // towards a valley has none) and the strongest inner-ridge pixel within the suppression
+  // radius (valley pixels do not compete: a valley edge would suppress a pore beside it).
   cv::Mat local_max;
   cv::dilate(response, local_max, cv::Mat());
-  cv::Mat ridge_response = response.clone();
-  ridge_response.setTo(-1e9, ~ridge);
+  cv::Mat inner_response = response.clone();
+  inner_response.setTo(-1e9, ~inner);
   const int r = std::max(1, static_cast<int>(std::lround(p.suppression_radius_mm * px_per_mm)));
-  cv::Mat ridge_max;
-  cv::dilate(ridge_response, ridge_max,
+  cv::Mat inner_max;
+  cv::dilate(inner_response, inner_max,
              cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
 
   struct Candidate {
@@ -103,17 +111,17 @@ std::vector<Feature> find_ridge_blob_pores(const cv::Mat& gray, const cv::Mat& a
   for (int y = 0; y < gray.rows; ++y) {
     const float* resp = response.ptr<float>(y);
     const float* lmax = local_max.ptr<float>(y);
-    const float* rmax = ridge_max.ptr<float>(y);
-    const float* spr = spread.ptr<float>(y);
-    const std::uint8_t* rid = ridge.ptr<std::uint8_t>(y);
+    const float* imax = inner_max.ptr<float>(y);
+    const std::uint8_t* in = inner.ptr<std::uint8_t>(y);
     const std::uint8_t* ok = allowed.ptr<std::uint8_t>(y);
     for (int x = 0; x < gray.cols; ++x) {
       const float v = resp[x];
-      if (!rid[x] || !ok[x] || v < lmax[x] || v < rmax[x] || v < p.min_response * spr[x]) continue;
-      // Sub-pixel peak: a parabola through the neighbours along each axis.
+      if (!in[x] || !ok[x] || v < lmax[x] || v < imax[x]) continue;
+      // Sub-pixel peak: a parabola through the neighbours along each axis, kept within half a
+      // pixel (a nearly flat top would otherwise throw the peak far away).
       auto offset = [v](float before, float after) {
         const double curvature = before - 2.0 * v + after;
-        return curvature < 0 ? 0.5 * (before - after) / curvature : 0.0;
+        return curvature < 0 ? std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5) : 0.0;
       };
       const double dx = (x > 0 && x + 1 < gray.cols) ? offset(resp[x - 1], resp[x + 1]) : 0.0;
       const double dy = (y > 0 && y + 1 < gray.rows)

@@ -1,5 +1,6 @@
 #pragma once
-// Pores as blob-detector maxima inside the ridges (PoreDetector::ridge_blob).
+// Pores as bright spots above their own ridge level, inside the ridges
+// (PoreDetector::ridge_blob).
 
 #include <vector>
 
