@@ -107,10 +107,12 @@ TEST(RealPores, PaperRuleBaselineOnPolyUHrf) {
   EXPECT_LT(1.0 - double(total.matched) / total.found, 0.05);
 }
 
-// The ridge-restricted blob detector: the target is TDR >= 0.85 and FDR <= 0.15 with
-// one-to-one mutual nearest neighbours within 0.15 mm. Overall it is met; per image the
-// weakest prints (faint pores, image 12's noisy ridges) stay below it, so the per-image bound
-// asserted here is looser.
+// The ridge-level detector against the target, TDR >= 0.85 and FDR <= 0.15 with
+// one-to-one mutual nearest neighbours within 0.15 mm, overall and per image. Two prints are
+// still short of it and are held to the figure they reach (so a regression there fails too):
+// image 10, whose pores are small, packed 0.05-0.1 mm apart and often open at the ridge edge
+// (TDR 0.78), and image 13, whose very dark, noisy ridges carry faint bright specks that are
+// not marked as pores (FDR 0.17). docs/capture-models.md section 5b gives the figures.
 TEST(RealPores, RidgeBlobDetectorOnPolyUHrf) {
   const auto prints = read_prints();
   FeatureParams p;
@@ -121,10 +123,16 @@ TEST(RealPores, RidgeBlobDetectorOnPolyUHrf) {
   const auto scores = score_prints(prints, p, "ridge blob", total);
   EXPECT_GE(double(total.matched) / total.truth, 0.85);
   EXPECT_LE(1.0 - double(total.matched) / total.found, 0.15);
+  int within_target = 0;
   for (std::size_t i = 0; i < scores.size(); ++i) {
-    EXPECT_GE(double(scores[i].matched) / scores[i].truth, 0.75) << "image " << i + 1;
-    EXPECT_LE(1.0 - double(scores[i].matched) / scores[i].found, 0.25) << "image " << i + 1;
+    const int image = static_cast<int>(i) + 1;
+    const double tdr = double(scores[i].matched) / scores[i].truth;
+    const double fdr = 1.0 - double(scores[i].matched) / scores[i].found;
+    within_target += tdr >= 0.85 && fdr <= 0.15;
+    EXPECT_GE(tdr, image == 10 ? 0.76 : 0.85) << "image " << image;
+    EXPECT_LE(fdr, image == 13 ? 0.18 : 0.15) << "image " << image;
   }
+  EXPECT_GE(within_target, 13);
 }
 
 }  // namespace
