@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -37,12 +36,12 @@ struct Mapping {
 // One mapping per distinct (layout, parameters) among the strain-driven runs, in run order.
 std::vector<Mapping> distinct_mappings(const Experiment& ex) {
   std::vector<Mapping> mappings;
-  std::map<std::string, bool> seen;
+  std::set<std::string> seen;
   for (const auto& run : ex.runs) {
     if (run.params.method == "profile") continue;
     const std::string key =
         fmt::format("{}:{}", run.layout, parameters_json(run.params, Placement{}));
-    if (!seen.emplace(key, true).second) continue;
+    if (!seen.insert(key).second) continue;
     Mapping m;
     m.layout = run.layout;
     m.params = run.params;
