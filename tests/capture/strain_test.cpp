@@ -28,6 +28,41 @@ std::vector<TrackedPoint> grid_points(int n, double pitch_mm) {
   return pts;
 }
 
+// A movie's edges against the exact relative length change of the same skin segments
+// (true_rel_change maps both ends through the scene's skin model).
+struct EdgeErrors {
+  double rms_error = 0;
+  double rms_truth = 0;
+  long edges = 0;
+  std::size_t median_points = 0;
+};
+
+EdgeErrors edge_errors(const StrainMovie& movie, const SceneSpec& spec) {
+  EdgeErrors e;
+  double se = 0, st = 0;
+  std::vector<std::size_t> counts;
+  for (const auto& f : movie.frames) {
+    counts.push_back(f.points_from.size());
+    std::map<std::int32_t, TrackedPoint> at;
+    for (const auto& pt : f.points_from) at[pt.track_id] = pt;
+    for (const auto& edge : f.edges) {
+      const auto& a = at.at(edge.track_a);
+      const auto& b = at.at(edge.track_b);
+      const double truth =
+          true_rel_change(spec, {a.x_mm, a.y_mm}, {b.x_mm, b.y_mm}, f.frame_from, f.frame_to);
+      se += (edge.rel_change - truth) * (edge.rel_change - truth);
+      st += truth * truth;
+      ++e.edges;
+    }
+  }
+  if (e.edges == 0 || counts.empty()) return e;
+  std::sort(counts.begin(), counts.end());
+  e.median_points = counts[counts.size() / 2];
+  e.rms_error = std::sqrt(se / static_cast<double>(e.edges));
+  e.rms_truth = std::sqrt(st / static_cast<double>(e.edges));
+  return e;
+}
+
 TEST(Strain, UniformScalingGivesThatStrainOnEveryEdge) {
   const auto from = grid_points(6, 0.5);
   auto to = from;
@@ -105,12 +140,7 @@ class BumpPipeline : public ::testing::Test {
     delete sequence_;
     delete spec_;
   }
-  struct Errors {
-    double rms_error = 0;
-    double rms_truth = 0;
-    long edges = 0;
-    int median_points = 0;
-  };
+  using Errors = EdgeErrors;
   static Errors run(int span) {
     CaptureParams p;
     p.min_track_frames = 20;
@@ -118,28 +148,8 @@ class BumpPipeline : public ::testing::Test {
     p.features.find_minutiae = false;
     const StrainMovie movie =
         measure_strain(sequence_->frames, sequence_->calibration, spec_->frame_rate_hz, p);
-    Errors e;
-    double se = 0, st = 0;
-    std::vector<int> counts;
-    for (const auto& f : movie.frames) {
-      counts.push_back(static_cast<int>(f.points_from.size()));
-      std::map<std::int32_t, TrackedPoint> at;
-      for (const auto& pt : f.points_from) at[pt.track_id] = pt;
-      for (const auto& edge : f.edges) {
-        const auto& a = at.at(edge.track_a);
-        const auto& b = at.at(edge.track_b);
-        const double truth =
-            true_rel_change(*spec_, {a.x_mm, a.y_mm}, {b.x_mm, b.y_mm}, f.frame_from, f.frame_to);
-        se += (edge.rel_change - truth) * (edge.rel_change - truth);
-        st += truth * truth;
-        ++e.edges;
-      }
-    }
-    std::sort(counts.begin(), counts.end());
-    e.median_points = counts[counts.size() / 2];
-    e.rms_error = std::sqrt(se / static_cast<double>(e.edges));
-    e.rms_truth = std::sqrt(st / static_cast<double>(e.edges));
-    std::printf("span %d: %ld edges, RMS error %.5f, RMS true strain %.5f, median %d points\n",
+    const Errors e = edge_errors(movie, *spec_);
+    std::printf("span %d: %ld edges, RMS error %.5f, RMS true strain %.5f, median %zu points\n",
                 span, e.edges, e.rms_error, e.rms_truth, e.median_points);
     return e;
   }
@@ -158,7 +168,7 @@ TEST_F(BumpPipeline, ConsecutiveFrameStrainErrorIsBelowHalfAPercent) {
   EXPECT_GT(e.edges, 1000);
   EXPECT_LT(e.rms_error, 0.005);
   EXPECT_LT(e.rms_error, 0.6 * e.rms_truth);
-  EXPECT_GE(e.median_points, 100);
+  EXPECT_GE(e.median_points, 100u);
 }
 
 // Over 10 frames the true strain (~1.4 % RMS) must stand well above the error: the measurement
@@ -241,25 +251,11 @@ TEST(Pipeline, HoleSceneStrainBeatsTheTruthSignal) {
   p.min_track_frames = 20;
   p.span_frames = 5;
   const StrainMovie movie = measure_strain(seq.frames, seq.calibration, spec.frame_rate_hz, p);
-  double se = 0, st = 0;
-  long n = 0;
-  for (const auto& f : movie.frames) {
-    std::map<std::int32_t, TrackedPoint> at;
-    for (const auto& pt : f.points_from) at[pt.track_id] = pt;
-    for (const auto& e : f.edges) {
-      const auto& a = at.at(e.track_a);
-      const auto& b = at.at(e.track_b);
-      const double truth =
-          true_rel_change(spec, {a.x_mm, a.y_mm}, {b.x_mm, b.y_mm}, f.frame_from, f.frame_to);
-      se += (e.rel_change - truth) * (e.rel_change - truth);
-      st += truth * truth;
-      ++n;
-    }
-  }
-  ASSERT_GT(n, 1000);
-  std::printf("hole, span 5: RMS error %.5f, RMS true %.5f over %ld edges\n",
-              std::sqrt(se / double(n)), std::sqrt(st / double(n)), n);
-  EXPECT_LT(std::sqrt(se / double(n)), 0.4 * std::sqrt(st / double(n)));
+  const EdgeErrors e = edge_errors(movie, spec);
+  ASSERT_GT(e.edges, 1000);
+  std::printf("hole, span 5: RMS error %.5f, RMS true %.5f over %ld edges\n", e.rms_error,
+              e.rms_truth, e.edges);
+  EXPECT_LT(e.rms_error, 0.4 * e.rms_truth);
 }
 
 // The issue's acceptance figures for every scene with strain, on a 60-frame sequence (the bump
@@ -278,34 +274,16 @@ TEST_P(SceneAcceptance, ConsecutiveFrameErrorAndYieldMeetTheIssueTargets) {
     p.min_track_frames = 20;
     p.span_frames = span;
     const StrainMovie movie = measure_strain(seq.frames, seq.calibration, spec.frame_rate_hz, p);
-    double se = 0, st = 0;
-    long n = 0;
-    std::vector<std::size_t> counts;
-    for (const auto& f : movie.frames) {
-      counts.push_back(f.points_from.size());
-      std::map<std::int32_t, TrackedPoint> at;
-      for (const auto& pt : f.points_from) at[pt.track_id] = pt;
-      for (const auto& e : f.edges) {
-        const auto& a = at.at(e.track_a);
-        const auto& b = at.at(e.track_b);
-        const double truth =
-            true_rel_change(spec, {a.x_mm, a.y_mm}, {b.x_mm, b.y_mm}, f.frame_from, f.frame_to);
-        se += (e.rel_change - truth) * (e.rel_change - truth);
-        st += truth * truth;
-        ++n;
-      }
-    }
-    ASSERT_GT(n, 1000);
-    std::sort(counts.begin(), counts.end());
-    const double rms_error = std::sqrt(se / double(n)), rms_truth = std::sqrt(st / double(n));
+    const EdgeErrors e = edge_errors(movie, spec);
+    ASSERT_GT(e.edges, 1000);
     std::printf("%s, span %d: RMS error %.5f, RMS true %.5f, median %zu points\n", GetParam(), span,
-                rms_error, rms_truth, counts[counts.size() / 2]);
+                e.rms_error, e.rms_truth, e.median_points);
     if (span == 1) {
-      EXPECT_LT(rms_error, 0.005);
-      EXPECT_GE(counts[counts.size() / 2], 100u);
+      EXPECT_LT(e.rms_error, 0.005);
+      EXPECT_GE(e.median_points, 100u);
     } else {
-      EXPECT_GT(rms_truth, 0.003);
-      EXPECT_LT(rms_error, 0.3 * rms_truth);
+      EXPECT_GT(e.rms_truth, 0.003);
+      EXPECT_LT(e.rms_error, 0.3 * e.rms_truth);
     }
   }
 }
