@@ -1,9 +1,11 @@
 #pragma once
 // A simple simulated BioTac-style fingertip (docs/perception-models.md): an elastic pad, locally
-// indented by the plate (Winkler foundation, saturating at the fluid layer's thickness); fluid
-// pressure follows the displaced volume, each electrode's impedance the indentation, bending
-// and stretch of the skin over its face, and vibration the AC-coupled rate of change of the load
-// plus sliding-friction noise. Output is a SensorRecording in raw counts, like a real recording.
+// indented by the plate (Winkler foundation, saturating at the fluid layer's thickness) under a
+// skin that cannot curve more sharply than its minimum bending radius; fluid pressure follows
+// the displaced volume, each electrode's impedance the indentation, bending and stretch of the
+// skin over its receptive field, and vibration the AC-coupled rate of change of the load plus
+// skin ringing and sliding-friction noise. Output is a SensorRecording in integer raw counts,
+// like a real recording.
 
 #include <cstdint>
 
@@ -18,10 +20,13 @@ struct SensorModel {
   double depth_transfer = 0.3;    // fraction of the commanded depth that indents the pad
   double fluid_layer_mm = 3.0;    // indentation saturates here (skin meets the core)
   double pressure_baseline = 2000, pressure_per_mm3 = 3.0, pressure_noise = 0.5;
-  double electrode_baseline = 3000, electrode_per_mm = 80.0, electrode_noise = 2.0;
+  double electrode_baseline = 3000, electrode_per_mm = 80.0, electrode_noise = 0.8;
   double electrode_per_bending_mm = 1000.0;  // counts per 1/mm of skin curvature at an electrode
   double electrode_per_strain = 10000.0;  // counts per unit stretch of the skin over an electrode
-  double vibration_offset = 2048, vibration_gain = 0.4, vibration_noise = 2.0;
+  double electrode_field_mm = 0.4;   // sigma of an electrode's receptive field (face + gap margin)
+  int electrode_field_samples = 9;   // grid points across the field (odd), out to 2 sigma
+  double skin_bend_radius_mm = 0.1;  // the skin cannot curve more sharply than this
+  double vibration_offset = 2048, vibration_gain = 0.4, vibration_noise = 4.0;
   double edge_gain = 2000.0;              // skin ringing per mm of slope change per sample
   double friction_noise_per_unit = 0.02;  // sliding noise per pressure count per mm/s
   double baseline_spread = 20.0;          // trial-to-trial spread of baselines (counts)
