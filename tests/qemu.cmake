@@ -23,6 +23,8 @@ set(m4_flags -mcpu=cortex-m4 -mthumb -mfloat-abi=soft -std=c11 -O2 -g -Wall -Wex
              -Werror -ffunction-sections -fdata-sections)
 set(m4_dir ${CMAKE_CURRENT_BINARY_DIR}/firmware_m4)
 set(m4_elf ${m4_dir}/firmware_checks_m4.elf)
+# Made at configure time: Makefile generators enter WORKING_DIRECTORY before any COMMAND runs.
+file(MAKE_DIRECTORY ${m4_dir})
 # The firmware core alone, as objects, so that its own flash and RAM footprint is printed
 # (text = flash; data + bss = RAM, almost all of it the frame FIFO).
 set(m4_core_objects "")
