@@ -1,5 +1,5 @@
-// Contact mechanics of the simulated fingertip (see sensor_contact.hpp): the same equations as
-// sensor_model.cpp.
+// Contact mechanics of the simulated fingertip (see sensor_contact.hpp), shared by the sensor's
+// channels (sensor_model.cpp) and the skin's strain (sensor_strain.cpp).
 
 #include "sensor_contact.hpp"
 
@@ -122,12 +122,16 @@ double arm_stiffness(Procedure procedure, const SensorModel& m) {
   return plate_volume_mm3(flat_depth, m) / (commanded - flat_depth);
 }
 
+double displaced_volume_mm3(const SurfaceFeature& f, const Pose& p, const SensorModel& m) {
+  return std::max(0.0, plate_volume_mm3(p.depth_mm, m) + feature_volume_mm3(f, p, m));
+}
+
 double balance_depth(const SurfaceFeature& f, Pose p, double commanded_mm, double depth,
                      const SensorModel& m, double kappa) {
   if (commanded_mm <= 0) return 0.0;
   for (int it = 0; it < 2; ++it) {
     p.depth_mm = depth;
-    const double v = std::max(0.0, plate_volume_mm3(depth, m) + feature_volume_mm3(f, p, m));
+    const double v = displaced_volume_mm3(f, p, m);
     const double g = v - kappa * (commanded_mm - depth);
     const double slope =
         2 * std::numbers::pi * std::sqrt(m.pad_radius_x_mm * m.pad_radius_y_mm) * depth + kappa;

@@ -2,9 +2,8 @@
 // The contact mechanics of the simulated fingertip, for models that need more than the sensor's
 // channels (sensor_strain.cpp: the skin's strain). Private to capture.
 //
-// These are the kinematics, pad indentation and arm balance of sensor_model.cpp, which keeps its
-// own copy in an anonymous namespace while another change is in progress there; the two must stay
-// identical (docs/perception-models.md, "Skin strain"), and sensor_model.cpp should call these.
+// The kinematics, displaced volume and arm balance are those the sensor's channels use
+// (sensor_model.cpp calls these), so the skin strain and the sensor see the same trial.
 
 #include <vector>
 
@@ -29,6 +28,10 @@ std::vector<Pose> plan(Procedure procedure, const TrialVariation& v, const Senso
 // Indentation of the pad at pad point (x, y), saturating at the fluid layer's thickness.
 double indentation_mm(const SurfaceFeature& f, const Pose& p, const SensorModel& m, double x,
                       double y);
+
+// Displaced volume (mm^3) of the pad at pose p: the flat plate's paraboloid cap plus the feature's
+// extra volume (negative for pits), never below zero.
+double displaced_volume_mm3(const SurfaceFeature& f, const Pose& p, const SensorModel& m);
 
 // Arm stiffness (mm^3 of displaced volume per mm of arm compression) for which a flat plate
 // indents the pad by depth_transfer of the commanded depth.

@@ -2,6 +2,8 @@
 
 #include "tactile/capture/sensor_model.hpp"
 
+#include "sensor_contact.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,128 +15,7 @@
 namespace tactile::capture {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr double kReferenceAngleDeg = 25.0;  // contact centred on the pad at this angle
-
-// One 100 Hz step of a trial: indentation depth, where the pad's contact centre is and where
-// the feature's centre is, both in pad coordinates (mm), and the sliding speed.
-struct Pose {
-  double depth_mm = 0;  // plan: commanded descent; simulation: pad indentation
-  double contact_x_mm = 0, contact_y_mm = 0;
-  double feature_x_mm = 0, feature_y_mm = 0;
-  double slide_mm_s = 0;
-};
-
-double smoothstep(double s) {
-  s = std::clamp(s, 0.0, 1.0);
-  return s * s * (3 - 2 * s);
-}
-
-std::vector<Pose> plan(Procedure procedure, const TrialVariation& v, const SensorModel& m,
-                       double rate_hz) {
-  const ProcedureKinematics k = paper_kinematics(procedure);
-  const double speed = k.speed_mm_s * v.speed_scale;
-  double motion_s = k.hold_s;
-  if (procedure == Procedure::distal_proximal || procedure == Procedure::radial_ulnar)
-    motion_s = k.stroke_mm / speed;
-  else if (procedure == Procedure::roll)
-    motion_s = k.roll_s / v.speed_scale;
-  const double depth = -k.commanded_depth_mm * v.depth_scale;  // commanded descent
-  const double angle_shift_mm =
-      m.pad_radius_x_mm * (k.contact_angle_deg + v.angle_deg - kReferenceAngleDeg) * kDegToRad;
-  const double total_s = 2 * k.rest_s + 2 * k.approach_s + motion_s;
-  const auto n = static_cast<std::size_t>(std::ceil(total_s * rate_hz));
-  std::vector<Pose> poses(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / rate_hz;
-    const double t_press = t - k.rest_s;           // press ramp starts
-    const double t_move = t_press - k.approach_s;  // motion starts
-    const double t_release = t_move - motion_s;    // release ramp starts
-    Pose& p = poses[i];
-    p.depth_mm =
-        depth * (smoothstep(t_press / k.approach_s) - smoothstep(t_release / k.approach_s));
-    const double s = std::clamp(t_move / motion_s, 0.0, 1.0);  // motion progress
-    const bool moving = t_move > 0 && t_move < motion_s;
-    p.contact_x_mm = angle_shift_mm;
-    p.feature_x_mm = angle_shift_mm + v.offset_x_mm;
-    p.feature_y_mm = v.offset_y_mm;
-    switch (procedure) {
-      case Procedure::static_contact:
-        break;
-      case Procedure::distal_proximal:
-        p.feature_x_mm += k.stroke_mm * (s - 0.5);
-        p.slide_mm_s = moving ? speed : 0;
-        break;
-      case Procedure::radial_ulnar:
-        p.feature_y_mm += k.stroke_mm * (s - 0.5);
-        p.slide_mm_s = moving ? speed : 0;
-        break;
-      case Procedure::roll: {
-        // Rolling without slip: the feature stays on the same pad point (where the contact was
-        // at the start) while the contact centre travels R * angle across the pad.
-        const double half = 0.5 * k.roll_deg * kDegToRad * m.pad_radius_y_mm;
-        p.feature_y_mm += -half;
-        p.contact_y_mm = -half + 2 * half * s;
-        break;
-      }
-    }
-  }
-  return poses;
-}
-
-// Displaced volume (mm^3) of the flat plate alone: the paraboloid cap pi sqrt(Rx Ry) depth^2
-// (the fluid layer's saturation is neglected for the plate; it matters only on tall bumps).
-double plate_volume_mm3(double depth_mm, const SensorModel& m) {
-  if (depth_mm <= 0) return 0.0;
-  return std::numbers::pi * std::sqrt(m.pad_radius_x_mm * m.pad_radius_y_mm) * depth_mm * depth_mm;
-}
-
-// Extra displaced volume (mm^3, negative for pits) due to the feature: only its footprint,
-// sampled with 12 samples across, and only where the pad can touch.
-double feature_volume_mm3(const SurfaceFeature& f, const Pose& p, const SensorModel& m) {
-  if (p.depth_mm <= 0) return 0.0;
-  const double a = 0.5 * f.footprint_mm;
-  // Beyond the reach of the pad (depth plus the tallest bump) nothing touches.
-  const double reach = p.depth_mm + std::max(0.0, f.height_mm);
-  const double reach_x = std::sqrt(2 * m.pad_radius_x_mm * reach);
-  const double reach_y = std::sqrt(2 * m.pad_radius_y_mm * reach);
-  if (std::abs(p.feature_x_mm - p.contact_x_mm) > reach_x + a ||
-      std::abs(p.feature_y_mm - p.contact_y_mm) > reach_y + a)
-    return 0.0;
-  const double step = f.footprint_mm / 12;
-  double volume = 0;
-  for (double dx = -a + step / 2; dx < a; dx += step)
-    for (double dy = -a + step / 2; dy < a; dy += step) {
-      const double r = std::sqrt(dx * dx + dy * dy);
-      if (r >= a) continue;
-      const double cx = p.feature_x_mm + dx - p.contact_x_mm;
-      const double cy = p.feature_y_mm + dy - p.contact_y_mm;
-      const double free =
-          p.depth_mm - cx * cx / (2 * m.pad_radius_x_mm) - cy * cy / (2 * m.pad_radius_y_mm);
-      const double with = free + f.surface_mm(r);
-      const double u_with = with <= 0 ? 0.0 : m.fluid_layer_mm * std::tanh(with / m.fluid_layer_mm);
-      volume += u_with - std::max(0.0, free);
-    }
-  return volume * step * step;
-}
-
-// Pad indentation where the arm's spring balances the pad: the commanded descent d is shared
-// between the arm (kappa (d - depth)) and the pad (its displaced volume V). kappa is set so that
-// a flat plate takes depth_transfer of the commanded depth. Two Newton steps per 10 ms from the
-// previous depth (slope of the flat plate's volume), so the finger follows a moving balance.
-double balance_depth(const SurfaceFeature& f, Pose p, double commanded_mm, double depth,
-                     const SensorModel& m, double kappa) {
-  if (commanded_mm <= 0) return 0.0;
-  for (int it = 0; it < 2; ++it) {
-    p.depth_mm = depth;
-    const double v = std::max(0.0, plate_volume_mm3(depth, m) + feature_volume_mm3(f, p, m));
-    const double g = v - kappa * (commanded_mm - depth);
-    const double slope =
-        2 * std::numbers::pi * std::sqrt(m.pad_radius_x_mm * m.pad_radius_y_mm) * depth + kappa;
-    depth = std::clamp(depth - g / slope, 0.0, commanded_mm);
-  }
-  return depth;
-}
+using contact::Pose;
 
 // The skin over the feature: an elastic sheet cannot curve more sharply than its minimum
 // bending radius rho, so it tents over narrow bumps and sharp edges and bridges narrow pits
@@ -304,15 +185,13 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
   SensorRecording r;
   r.source = fmt::format("simulated {} trial {} of feature {:+g} mm", procedure_name(procedure),
                          seed, feature.signed_footprint_mm());
-  const std::vector<Pose> poses = plan(procedure, variation, m, r.rate_hz);
+  const std::vector<Pose> poses = contact::plan(procedure, variation, m, r.rate_hz);
   const auto electrodes = sensor_electrode_positions();
   const double p0 = m.pressure_baseline + m.baseline_spread * unit(rng);
   std::array<double, kElectrodeCount> e0{};
   for (double& e : e0) e = m.electrode_baseline + m.baseline_spread * unit(rng);
 
-  const double commanded = -paper_kinematics(procedure).commanded_depth_mm;
-  const double flat_depth = commanded * m.depth_transfer;
-  const double kappa = plate_volume_mm3(flat_depth, m) / (commanded - flat_depth);
+  const double kappa = contact::arm_stiffness(procedure, m);
   const SkinProfile skin(feature, m.skin_bend_radius_mm);
   const std::vector<FieldSample> field = field_weights(m);
   double depth = 0;
@@ -320,11 +199,10 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
   std::vector<double> depth_at(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     Pose p = poses[i];
-    depth = balance_depth(feature, p, p.depth_mm, depth, m, kappa);
+    depth = contact::balance_depth(feature, p, p.depth_mm, depth, m, kappa);
     p.depth_mm = depth;
     depth_at[i] = depth;
-    load[i] = m.pressure_per_mm3 *
-              std::max(0.0, plate_volume_mm3(depth, m) + feature_volume_mm3(feature, p, m));
+    load[i] = m.pressure_per_mm3 * contact::displaced_volume_mm3(feature, p, m);
     r.t_s.push_back(static_cast<double>(i) / r.rate_hz);
     r.temperature_dc.push_back(2.0);
     r.temperature_ac.push_back(0.0);
