@@ -10,6 +10,7 @@
 #include "cv_image.hpp"
 #include "pore_blobs.hpp"
 #include "run_components.hpp"
+#include "skeleton_repair.hpp"
 #include "tactile/common/csv.hpp"
 #include "thinning.hpp"
 
@@ -169,6 +170,7 @@ void find_minutiae(const Prepared& r, const cv::Mat& pore_mask, double px_per_mm
   // fall inside the border margin) instead of forking into the background's own skeleton.
   valley.setTo(0, r.near_background);
   cv::Mat skeleton = zhang_suen_thinning(valley);
+  repair_skeleton(skeleton, px_per_mm);
   std::vector<Feature> found;
   cv::Mat fork = cv::Mat::zeros(skeleton.size(), CV_8U);
   for (int y = 1; y < skeleton.rows - 1; ++y) {
@@ -206,7 +208,7 @@ void find_minutiae(const Prepared& r, const cv::Mat& pore_mask, double px_per_mm
     found.push_back(
         {FeatureType::bifurcation, centroids.at<double>(i, 0), centroids.at<double>(i, 1), 0.0});
   }
-  // Over-dense minutiae are spurs, bridges and breaks, not anatomy: drop every member.
+  // Over-dense minutiae left after the repair are still artefacts, not anatomy: drop them all.
   const double min_sep = p.minutia_min_separation_mm * px_per_mm;
   std::vector<char> drop(found.size(), 0);
   for (std::size_t i = 0; i < found.size(); ++i) {
