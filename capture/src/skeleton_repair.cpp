@@ -67,31 +67,28 @@ Graph build_graph(const cv::Mat& s) {
   Graph g;
   cv::Mat node_id(s.size(), CV_32S, cv::Scalar(-1));
   cv::Mat fork = cv::Mat::zeros(s.size(), CV_8U);
-  for (int y = 0; y < s.rows; ++y) {
-    for (int x = 0; x < s.cols; ++x) {
-      if (!on(s, x, y)) continue;
-      const int c = crossings(s, x, y);
-      if (c >= 3) {
-        fork.at<std::uint8_t>(y, x) = 1;
-      } else if (c == 1 || (c == 0 && isolated(s, x, y))) {  // isolated: a zero-length valley
-        node_id.at<int>(y, x) = static_cast<int>(g.nodes.size());
-        g.nodes.push_back({{cv::Point(x, y)}, cv::Point2d(x, y), true, {}});
-      }
+  // A skeleton covers a few per cent of the image: visit its pixels, not the whole grid.
+  std::vector<cv::Point> skeleton_px, fork_px;
+  cv::findNonZero(s, skeleton_px);
+  for (const cv::Point p : skeleton_px) {
+    const int c = crossings(s, p.x, p.y);
+    if (c >= 3) {
+      fork.at<std::uint8_t>(p) = 1;
+      fork_px.push_back(p);
+    } else if (c == 1 || (c == 0 && isolated(s, p.x, p.y))) {  // isolated: zero-length valley
+      node_id.at<int>(p) = static_cast<int>(g.nodes.size());
+      g.nodes.push_back({{p}, cv::Point2d(p.x, p.y), true, {}});
     }
   }
   // Adjacent fork pixels are one fork.
   cv::Mat labels;
-  const int n = cv::connectedComponents(fork, labels, 8, CV_32S);
+  const int n = fork_px.empty() ? 1 : cv::connectedComponents(fork, labels, 8, CV_32S);
   const int first_fork = static_cast<int>(g.nodes.size());
   g.nodes.resize(g.nodes.size() + static_cast<std::size_t>(std::max(0, n - 1)));
-  for (int y = 0; y < s.rows; ++y) {
-    for (int x = 0; x < s.cols; ++x) {
-      const int l = labels.at<int>(y, x);
-      if (l == 0) continue;
-      const int id = first_fork + l - 1;
-      node_id.at<int>(y, x) = id;
-      g.nodes[static_cast<std::size_t>(id)].pixels.emplace_back(x, y);
-    }
+  for (const cv::Point p : fork_px) {
+    const int id = first_fork + labels.at<int>(p) - 1;
+    node_id.at<int>(p) = id;
+    g.nodes[static_cast<std::size_t>(id)].pixels.push_back(p);
   }
   for (auto& node : g.nodes) {
     cv::Point2d sum(0, 0);
@@ -179,8 +176,7 @@ double axis_angle(double a, double b) {
   return std::min(d, std::numbers::pi - d);
 }
 
-int join_gaps(cv::Mat& s, double px_per_mm, const SkeletonRepairParams& p) {
-  const Graph g = build_graph(s);
+int join_gaps(cv::Mat& s, const Graph& g, double px_per_mm, const SkeletonRepairParams& p) {
   const double reach = p.direction_mm * px_per_mm;
   const double max_gap = p.gap_max_mm * px_per_mm;
   struct End {
@@ -195,6 +191,8 @@ int join_gaps(cv::Mat& s, double px_per_mm, const SkeletonRepairParams& p) {
     // An ending points away from the valley it ends.
     ends.push_back({n.pixels[0], -direction_along(g, n.segments[0], i, reach), n.segments[0]});
   }
+  // Sorted by x, so that each ending is compared only with those within reach along x.
+  std::sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.at.x < b.at.x; });
   struct Pair {
     double d;
     std::size_t i, j;
@@ -202,7 +200,7 @@ int join_gaps(cv::Mat& s, double px_per_mm, const SkeletonRepairParams& p) {
   std::vector<Pair> pairs;
   const double cos_max = std::cos(p.gap_max_angle_rad);
   for (std::size_t i = 0; i < ends.size(); ++i) {
-    for (std::size_t j = i + 1; j < ends.size(); ++j) {
+    for (std::size_t j = i + 1; j < ends.size() && ends[j].at.x - ends[i].at.x < max_gap; ++j) {
       if (ends[i].segment == ends[j].segment) continue;
       const cv::Point2d v(ends[j].at.x - ends[i].at.x, ends[j].at.y - ends[i].at.y);
       const double d = std::hypot(v.x, v.y);
@@ -219,7 +217,21 @@ int join_gaps(cv::Mat& s, double px_per_mm, const SkeletonRepairParams& p) {
   for (const Pair& pr : pairs) {
     if (used[pr.i] || used[pr.j]) continue;
     used[pr.i] = used[pr.j] = 1;
-    cv::line(s, ends[pr.i].at, ends[pr.j].at, cv::Scalar(1), 1, cv::LINE_8);
+    const cv::Point a = ends[pr.i].at, b = ends[pr.j].at;
+    cv::line(s, a, b, cv::Scalar(1), 1, cv::LINE_8);
+    // A drawn join can leave a staircase corner at its ends that reads as a fork: thin again
+    // around it only (a whole-image pass would double the cost of the thinning). The window's
+    // outer pixels see a cut-off neighbourhood, so only its inner part is written back.
+    constexpr int kMargin = 4;
+    const cv::Rect image(0, 0, s.cols, s.rows);
+    const cv::Rect box(std::min(a.x, b.x), std::min(a.y, b.y), std::abs(a.x - b.x) + 1,
+                       std::abs(a.y - b.y) + 1);
+    const cv::Rect outer =
+        (box + cv::Size(4 * kMargin, 4 * kMargin) - cv::Point(2 * kMargin, 2 * kMargin)) & image;
+    const cv::Rect inner =
+        (box + cv::Size(2 * kMargin, 2 * kMargin) - cv::Point(kMargin, kMargin)) & image;
+    const cv::Mat thinned = zhang_suen_thinning(s(outer));
+    thinned(inner - outer.tl()).copyTo(s(inner));
     ++joined;
   }
   return joined;
@@ -227,8 +239,8 @@ int join_gaps(cv::Mat& s, double px_per_mm, const SkeletonRepairParams& p) {
 
 // One round of removals; each node takes part in at most one, since a removal changes what
 // its node is (a fork losing a branch becomes a plain valley point).
-SkeletonRepairCounts remove_round(cv::Mat& s, double px_per_mm, const SkeletonRepairParams& p) {
-  const Graph g = build_graph(s);
+SkeletonRepairCounts remove_round(cv::Mat& s, const Graph& g, double px_per_mm,
+                                  const SkeletonRepairParams& p) {
   SkeletonRepairCounts counts;
   std::vector<char> touched(g.nodes.size(), 0);
   for (const Node& n : g.nodes) {
@@ -307,13 +319,15 @@ SkeletonRepairCounts repair_skeleton(cv::Mat& skeleton, double px_per_mm,
   SkeletonRepairCounts total;
   if (skeleton.empty()) return total;
   skeleton.setTo(1, skeleton > 1);
-  total.gaps_joined = join_gaps(skeleton, px_per_mm, params);
-  // A drawn join can leave a staircase corner that reads as a fork.
-  if (total.gaps_joined > 0) skeleton = zhang_suen_thinning(skeleton);
+  // Tracing the graph is most of the cost: it is traced again only after a change.
+  Graph graph = build_graph(skeleton);
+  total.gaps_joined = join_gaps(skeleton, graph, px_per_mm, params);
+  if (total.gaps_joined > 0) graph = build_graph(skeleton);
   // Each round removes at least one segment or stops; a few rounds suffice in practice, the
   // bound only guards against a pathological skeleton.
   for (int round = 0; round < 8; ++round) {
-    const SkeletonRepairCounts c = remove_round(skeleton, px_per_mm, params);
+    if (round > 0) graph = build_graph(skeleton);
+    const SkeletonRepairCounts c = remove_round(skeleton, graph, px_per_mm, params);
     total.spurs += c.spurs;
     total.short_valleys += c.short_valleys;
     total.bridges += c.bridges;

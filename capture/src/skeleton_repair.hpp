@@ -41,7 +41,7 @@ struct SkeletonRepairCounts {
 
 // Repairs a CV_8U 0/1 one-pixel skeleton in place: joins broken valleys first (so a valley
 // broken twice is not shortened by losing its middle piece), then removes spurs, bridges and
-// short valleys until none is left (removing one can reveal another), and thins again.
+// short valleys until none is left (removing one can reveal another).
 SkeletonRepairCounts repair_skeleton(cv::Mat& skeleton, double px_per_mm,
                                      const SkeletonRepairParams& params = {});
 

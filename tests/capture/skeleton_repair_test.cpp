@@ -134,6 +134,20 @@ TEST(SkeletonRepair, BrokenValleyWithFacingEndingsIsJoined) {
   EXPECT_EQ(kinds(s).endings, 2);
 }
 
+// Offset by 3 px (17 degrees off the axis, inside 30): joined into one valley with no fork
+// where the join meets the two pieces.
+TEST(SkeletonRepair, SlightlyOffsetBrokenValleyIsJoinedWithoutForks) {
+  cv::Mat s = blank();
+  draw(s, {5, 30}, {35, 30});
+  draw(s, {45, 33}, {75, 33});
+  const auto c = repair_skeleton(s, kPxPerMm);
+  EXPECT_EQ(c.gaps_joined, 1);
+  EXPECT_EQ(kinds(s).endings, 2);
+  EXPECT_EQ(kinds(s).forks, 0);
+  EXPECT_EQ(s.at<std::uint8_t>(30, 5), 1);
+  EXPECT_EQ(s.at<std::uint8_t>(33, 75), 1);
+}
+
 TEST(SkeletonRepair, EndingsThatDoNotFaceEachOtherOrAreFarStayApart) {
   // Side by side (0.16 mm apart, both pointing +x), a V whose endings point 53 degrees off the
   // line between them, and a facing pair 0.4 mm apart.
