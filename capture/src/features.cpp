@@ -176,25 +176,18 @@ void find_minutiae(const Prepared& r, const cv::Mat& pore_mask, double px_per_mm
   for (int y = 1; y < skeleton.rows - 1; ++y) {
     for (int x = 1; x < skeleton.cols - 1; ++x) {
       if (!skeleton.at<std::uint8_t>(y, x) || !r.foreground.at<std::uint8_t>(y, x)) continue;
-      // Crossing number (0->1 transitions around the ring of 8 neighbours) rather than the
-      // paper's plain neighbour count: on a thinned staircase a valley pixel can have three
-      // neighbours without any fork, which made every diagonal valley a "bifurcation".
-      static constexpr int kRing[8][2] = {{1, 0},  {1, 1},   {0, 1},  {-1, 1},
-                                          {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
-      int crossings = 0;
-      double dx = 0, dy = 0;
-      for (int k = 0; k < 8; ++k) {
-        const bool on = skeleton.at<std::uint8_t>(y + kRing[k][1], x + kRing[k][0]) != 0;
-        const bool next =
-            skeleton.at<std::uint8_t>(y + kRing[(k + 1) % 8][1], x + kRing[(k + 1) % 8][0]) != 0;
-        crossings += (!on && next) ? 1 : 0;
-        if (on) {
-          dx += kRing[k][0];
-          dy += kRing[k][1];
-        }
-      }
+      const int crossings = crossing_number(skeleton, x, y);
       if (crossings == 1) {
         // The ending points away from the valley it terminates.
+        double dx = 0, dy = 0;
+        for (int j = -1; j <= 1; ++j) {
+          for (int i = -1; i <= 1; ++i) {
+            if ((i || j) && skeleton.at<std::uint8_t>(y + j, x + i)) {
+              dx += i;
+              dy += j;
+            }
+          }
+        }
         found.push_back({FeatureType::ending, double(x), double(y), std::atan2(-dy, -dx)});
       } else if (crossings >= 3) {
         fork.at<std::uint8_t>(y, x) = 1;

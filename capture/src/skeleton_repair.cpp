@@ -17,8 +17,6 @@ namespace {
 // Ring of 8 neighbours, 4-neighbours first so that walks go round a staircase's corner pixels
 // instead of cutting them (a cut corner would survive the removal of its segment).
 constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-// The same neighbours in ring order, for crossing numbers.
-constexpr int kRing[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
 
 struct Node {
   std::vector<cv::Point> pixels;
@@ -45,19 +43,8 @@ bool on(const cv::Mat& s, int x, int y) {
   return x >= 0 && y >= 0 && x < s.cols && y < s.rows && s.at<std::uint8_t>(y, x) != 0;
 }
 
-// 0->1 transitions round the pixel: 1 = ending, 2 = valley, 3+ = fork (as features.cpp).
-int crossings(const cv::Mat& s, int x, int y) {
-  int n = 0;
-  for (int k = 0; k < 8; ++k) {
-    const bool a = on(s, x + kRing[k][0], y + kRing[k][1]);
-    const bool b = on(s, x + kRing[(k + 1) % 8][0], y + kRing[(k + 1) % 8][1]);
-    n += (!a && b) ? 1 : 0;
-  }
-  return n;
-}
-
 bool isolated(const cv::Mat& s, int x, int y) {
-  for (const auto& d : kRing) {
+  for (const auto& d : kSteps) {
     if (on(s, x + d[0], y + d[1])) return false;
   }
   return true;
@@ -71,7 +58,7 @@ Graph build_graph(const cv::Mat& s) {
   std::vector<cv::Point> skeleton_px, fork_px;
   cv::findNonZero(s, skeleton_px);
   for (const cv::Point p : skeleton_px) {
-    const int c = crossings(s, p.x, p.y);
+    const int c = crossing_number(s, p.x, p.y);
     if (c >= 3) {
       fork.at<std::uint8_t>(p) = 1;
       fork_px.push_back(p);

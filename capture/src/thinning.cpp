@@ -63,4 +63,18 @@ cv::Mat zhang_suen_thinning(const cv::Mat& binary) {
   return img(cv::Rect(1, 1, binary.cols, binary.rows)).clone();
 }
 
+int crossing_number(const cv::Mat& skeleton, int x, int y) {
+  static constexpr int kRing[8][2] = {{1, 0},  {1, 1},   {0, 1},  {-1, 1},
+                                      {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+  auto on = [&](int k) {
+    const int xx = x + kRing[k % 8][0];
+    const int yy = y + kRing[k % 8][1];
+    return xx >= 0 && yy >= 0 && xx < skeleton.cols && yy < skeleton.rows &&
+           skeleton.at<std::uint8_t>(yy, xx) != 0;
+  };
+  int n = 0;
+  for (int k = 0; k < 8; ++k) n += (!on(k) && on(k + 1)) ? 1 : 0;
+  return n;
+}
+
 }  // namespace tactile::capture
