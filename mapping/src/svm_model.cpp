@@ -5,6 +5,7 @@
 #include <libsvm/svm.h>
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -89,7 +90,10 @@ struct SvmModel::Impl {
     param.nr_weight = 0;
     if (const char* error = svm_check_parameter(&problem, &param))
       throw std::invalid_argument(std::string("svm: ") + error);
-    svm_set_print_string_function(&silent);
+    // libsvm's print hook is process-wide and read by every svm_train: set it once, before any
+    // training, so models trained on several threads (run_table2) do not race on it.
+    static std::once_flag quiet;
+    std::call_once(quiet, [] { svm_set_print_string_function(&silent); });
     model = svm_train(&problem, &param);
   }
 };
