@@ -60,11 +60,17 @@ capture::SensorRecording movie_signals(const display::TactileMovie& movie,
     for (std::size_t k = 0; k < c.size(); ++k) cluster[f][k] = c[k] / members[k];
   }
 
-  // 100 Hz rows: the mean of the display frames starting within each row's 10 ms.
+  // 100 Hz rows: the mean of the display frames starting within each row's 10 ms. A movie
+  // slower than 100 Hz has rows in which no frame starts: they hold the frame on show then.
   for (std::size_t i = 0; i < rows; ++i) {
-    const auto f0 = static_cast<std::size_t>(std::ceil(static_cast<double>(i) * frames_per_row));
-    const auto f1 = std::min(
+    auto f0 = static_cast<std::size_t>(std::ceil(static_cast<double>(i) * frames_per_row));
+    auto f1 = std::min(
         frames, static_cast<std::size_t>(std::ceil(static_cast<double>(i + 1) * frames_per_row)));
+    if (f1 <= f0) {
+      f0 = std::min(frames - 1,
+                    static_cast<std::size_t>(std::floor(static_cast<double>(i) * frames_per_row)));
+      f1 = f0 + 1;
+    }
     double a = 0;
     std::array<double, kElectrodeClusterCount> c{};
     for (std::size_t f = f0; f < f1; ++f) {

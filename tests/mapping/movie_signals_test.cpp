@@ -77,6 +77,23 @@ TEST(MovieSignals, ClusterMeansAndActivityOfAConstantPattern) {
   for (double v : r.vibration) EXPECT_DOUBLE_EQ(v, 0.0);  // a constant movie does not change
 }
 
+TEST(MovieSignals, AMovieSlowerThanTheRowsHoldsEachFrameOnShow) {
+  // 40 Hz: frame f starts at 25f ms and every contactor of it is at (f + 1) um. A 10 ms row
+  // takes the frame that starts within it (rows 0, 2, 5, 7: frames 0, 1, 2, 3), and a row in
+  // which none starts holds the frame on show.
+  auto m = movie_2x12(4);
+  m.rate_hz = 40;
+  for (std::int32_t f = 0; f < m.frame_count; ++f)
+    for (auto& v : m.frame(f)) v = static_cast<float>(f + 1);
+  const auto r = movie_signals(m, "slow");
+  ASSERT_EQ(r.rows(), 10u);  // 4 frames at 40 Hz = 0.1 s
+  const double expected[10] = {1, 1, 2, 2, 2, 3, 3, 4, 4, 4};
+  for (std::size_t i = 0; i < r.rows(); ++i) {
+    EXPECT_NEAR(r.pressure[i], expected[i], 1e-9) << "row " << i;
+    EXPECT_NEAR(r.electrodes[0][i], expected[i], 1e-9) << "row " << i;
+  }
+}
+
 TEST(MovieSignals, RowsAverageTheirFramesAndVibrationIsTheActivityChange) {
   // Every contactor at f um in frame f (a ramp): activity f, change 1 um per frame after frame 0.
   // Row i averages frames 7i .. 7i + 6: activity 7i + 3.
