@@ -5,8 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "../../capture/src/pore_model.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
 
@@ -71,13 +75,15 @@ std::vector<Print> read_prints() {
 
 constexpr double kPxPerMm = 47.0;
 
-// Scores every print; prints per-image and overall figures.
-std::vector<Score> score_prints(const std::vector<Print>& prints, const FeatureParams& p,
+// Scores every print, with the parameters `params_for` gives for it; prints per-image and
+// overall figures.
+template <class ParamsFor>
+std::vector<Score> score_prints(const std::vector<Print>& prints, ParamsFor params_for,
                                 const char* label, Score& total) {
   std::vector<Score> scores;
   for (std::size_t i = 0; i < prints.size(); ++i) {
-    const Score s =
-        score(extract_features(prints[i].image, kPxPerMm, p), prints[i].truth, 0.15 * kPxPerMm);
+    const Score s = score(extract_features(prints[i].image, kPxPerMm, params_for(i)),
+                          prints[i].truth, 0.15 * kPxPerMm);
     std::printf("%s image_%02zu: %d true, %d found, TDR %.3f, FDR %.3f\n", label, i + 1, s.truth,
                 s.found, double(s.matched) / s.truth,
                 1.0 - double(s.matched) / std::max(1, s.found));
@@ -102,37 +108,107 @@ TEST(RealPores, PaperRuleBaselineOnPolyUHrf) {
   p.find_minutiae = false;
   p.border_margin_mm = 0.0;  // the ground truth covers the whole image
   Score total;
-  score_prints(prints, p, "paper rule", total);
+  score_prints(
+      prints, [&](std::size_t) { return p; }, "paper rule", total);
   EXPECT_GT(double(total.matched) / total.truth, 0.2);
   EXPECT_LT(1.0 - double(total.matched) / total.found, 0.05);
 }
 
-// The ridge-level detector against the target, TDR >= 0.85 and FDR <= 0.15 with
-// one-to-one mutual nearest neighbours within 0.15 mm, overall and per image. Two prints are
-// still short of it and are held to the figure they reach (so a regression there fails too):
-// image 10, whose pores are small, packed 0.05-0.1 mm apart and often open at the ridge edge
-// (TDR 0.78), and image 13, whose very dark, noisy ridges carry faint bright specks that are
-// not marked as pores (FDR 0.17). docs/capture-models.md section 5b gives the figures.
-TEST(RealPores, RidgeBlobDetectorOnPolyUHrf) {
-  const auto prints = read_prints();
+FeatureParams ridge_blob_params() {
   FeatureParams p;
   p.pore_detector = PoreDetector::ridge_blob;
   p.find_minutiae = false;
   p.border_margin_mm = 0.0;
-  Score total;
-  const auto scores = score_prints(prints, p, "ridge blob", total);
+  return p;
+}
+
+std::vector<PoreTrainingPrint> training_prints(const std::vector<Print>& prints,
+                                               std::size_t left_out) {
+  std::vector<PoreTrainingPrint> out;
+  for (std::size_t i = 0; i < prints.size(); ++i) {
+    if (i != left_out) out.push_back({prints[i].image, prints[i].truth});
+  }
+  return out;
+}
+
+// The target, TDR >= 0.85 and FDR <= 0.15 with one-to-one mutual nearest neighbours
+// within 0.15 mm, on every print and overall.
+void expect_target(const std::vector<Score>& scores, const Score& total) {
   EXPECT_GE(double(total.matched) / total.truth, 0.85);
   EXPECT_LE(1.0 - double(total.matched) / total.found, 0.15);
-  int within_target = 0;
   for (std::size_t i = 0; i < scores.size(); ++i) {
-    const int image = static_cast<int>(i) + 1;
-    const double tdr = double(scores[i].matched) / scores[i].truth;
-    const double fdr = 1.0 - double(scores[i].matched) / scores[i].found;
-    within_target += tdr >= 0.85 && fdr <= 0.15;
-    EXPECT_GE(tdr, image == 10 ? 0.76 : 0.85) << "image " << image;
-    EXPECT_LE(fdr, image == 13 ? 0.18 : 0.15) << "image " << image;
+    EXPECT_GE(double(scores[i].matched) / scores[i].truth, 0.85) << "image " << i + 1;
+    EXPECT_LE(1.0 - double(scores[i].matched) / scores[i].found, 0.15) << "image " << i + 1;
   }
-  EXPECT_GE(within_target, 13);
+}
+
+// Held out: each print is scored with a pore model trained on the other 14 only, so these
+// figures say how the detector does on a print it has not seen (the model's coefficients are
+// fitted; the detector's other parameters were chosen on all 15, docs/capture-models.md 5b).
+TEST(RealPores, RidgeBlobHeldOutOnPolyUHrf) {
+  const auto prints = read_prints();
+  std::vector<FeatureParams> params(prints.size(), ridge_blob_params());
+  for (std::size_t i = 0; i < prints.size(); ++i) {
+    params[i].ridge_blob.model =
+        train_pore_model(training_prints(prints, i), kPxPerMm, params[i].ridge_blob);
+  }
+  Score total;
+  const auto scores = score_prints(
+      prints, [&](std::size_t i) { return params[i]; }, "held out", total);
+  expect_target(scores, total);
+}
+
+// The shipped model (trained on all 15 prints): training figures, for the record and against
+// regressions of the shipped detector.
+TEST(RealPores, RidgeBlobDetectorOnPolyUHrf) {
+  const auto prints = read_prints();
+  Score total;
+  const auto scores = score_prints(
+      prints, [](std::size_t) { return ridge_blob_params(); }, "ridge blob", total);
+  expect_target(scores, total);
+}
+
+// The committed coefficients are what the documented training gives on the 15 prints (not hand
+// edits); after a change to the measures, this prints the table to paste into
+// capture/src/pore_model_coefficients.cpp.
+TEST(RealPores, ShippedPoreModelIsTrainedOnAllPrints) {
+  const auto prints = read_prints();
+  const auto trained = train_pore_model(training_prints(prints, prints.size()), kPxPerMm,
+                                        ridge_blob_params().ridge_blob);
+  const auto shipped = shipped_pore_model();
+  ASSERT_EQ(trained.size(), shipped.size());
+  bool same = true;
+  for (std::size_t i = 0; i < trained.size(); ++i) {
+    same = same && std::abs(trained[i] - shipped[i]) <= 1e-6 * (1.0 + std::abs(trained[i]));
+  }
+  if (!same) {
+    for (double w : trained) std::printf("%.17g,\n", w);
+  }
+  EXPECT_TRUE(same) << "capture/src/pore_model_coefficients.cpp is out of date";
+}
+
+// Malformed input to the ridge-blob detector: no crash, no pores from nothing, a clear error
+// for a model of the wrong size.
+TEST(RealPores, RidgeBlobDetectorOnOddImages) {
+  FeatureParams p = ridge_blob_params();
+  for (const auto& [w, h] : {std::pair{1, 1}, {3, 3}, {5, 200}, {64, 48}}) {
+    GrayImage flat{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), 128)};
+    EXPECT_TRUE(extract_features(flat, kPxPerMm, p).empty()) << w << " x " << h;
+  }
+  GrayImage noise{64, 48, std::vector<std::uint8_t>(64 * 48)};
+  for (std::size_t i = 0; i < noise.pixels.size(); ++i) {
+    noise.pixels[i] = static_cast<std::uint8_t>((i * 2654435761u) >> 24);
+  }
+  for (const auto& f : extract_features(noise, kPxPerMm, p)) {
+    EXPECT_TRUE(f.x_px >= 0 && f.x_px < 64 && f.y_px >= 0 && f.y_px < 48);
+  }
+  p.ridge_blob.model = {1.0, 2.0};
+  try {
+    extract_features(noise, kPxPerMm, p);
+    ADD_FAILURE() << "a 2-coefficient model was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pore model has 2 coefficients"), std::string::npos);
+  }
 }
 
 }  // namespace

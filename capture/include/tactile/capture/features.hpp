@@ -13,11 +13,13 @@ namespace tactile::capture {
 // How pores are found. `paper`: bright 4-connected blobs of the binarised image (the first
 // paper's rule; misses every pore that opens into a valley). `ridge_blob`: bright spots above
 // the grey level of their own ridge (the image smoothed along the local ridge direction on
-// both sides of the spot), kept only in the inner part of the ridges.
+// both sides of the spot), each described by a few measures (brightness against the print's
+// ridge noise and against its own pores, place across the ridge, size) that a small logistic
+// model trained on hand-marked real prints turns into a pore probability.
 enum class PoreDetector { paper, ridge_blob };
 
-// Parameters of PoreDetector::ridge_blob (millimetres; chosen on the PolyU HRF prints, about
-// 47 px/mm; docs/capture-models.md says how).
+// Parameters of PoreDetector::ridge_blob (millimetres; chosen at about 47 px/mm on the PolyU HRF
+// prints; docs/capture-models.md section 5b says how).
 struct RidgeBlobParams {
   double orientation_sigma_mm = 0.106;   // structure-tensor smoothing (orientation field)
   double along_sigma_mm = 0.106;         // ridge level: smoothing along the ridge ...
@@ -26,9 +28,14 @@ struct RidgeBlobParams {
   int orientations = 12;                 // quantised ridge directions
   double pore_sigma_mm = 0.015;          // smoothing of the brightness above the ridge level
   double window_mm = 0.53;               // ridge/valley envelope window (about one ridge period)
-  double min_ridge_depth = 0.65;         // 0 = valley level, 1 = ridge bottom: inner ridge only
-  double suppression_radius_mm = 0.064;  // one pore per disc of this radius
-  double min_relative_response = 0.15;   // peak / median candidate peak of the image
+  double min_ridge_depth = 0.3;          // candidates: 0 = valley level, 1 = ridge bottom
+  double noise_ridge_depth = 0.65;       // ridge noise is measured on pixels this deep ...
+  double noise_block_mm = 0.85;          // ... over the print and in blocks of this size
+  double suppression_radius_mm = 0.064;  // one pore per disc of this radius (strongest kept)
+  double min_log_odds = -0.5;            // keep a candidate whose pore log-odds exceed this
+  // Coefficients of the pore model (pore_model.hpp); empty = the shipped model, trained on all
+  // 15 PolyU HRF prints.
+  std::vector<double> model;
 };
 
 struct FeatureParams {
