@@ -3,8 +3,11 @@
 #include "tactile/mapping/perception_eval.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
+#include "parallel_for.hpp"
 #include "tactile/mapping/svm_model.hpp"
 
 namespace tactile::mapping {
@@ -27,24 +30,37 @@ std::vector<std::string> perception_input_names() {
 }
 
 PerceptionDataset build_dataset(const std::vector<capture::SurfaceFeature>& features,
-                                int trials_per_feature, const TrialSource& source) {
+                                int trials_per_feature, const TrialSource& source,
+                                const DatasetBuild& build) {
   if (trials_per_feature < 2)
     throw std::invalid_argument("perception: need >= 2 trials per feature");
   PerceptionDataset d;
   d.names = perception_input_names();
-  for (std::size_t f = 0; f < features.size(); ++f)
-    for (int t = 0; t < trials_per_feature; ++t) {
-      PerceptionSample s;
-      s.feature = static_cast<int>(f);
-      s.trial = t;
-      s.curvature = static_cast<int>(features[f].curvature);
-      s.footprint_mm = features[f].signed_footprint_mm();
-      for (Procedure p : kProcedures) {
-        const auto in = procedure_inputs(source(features[f], p, t), p);
-        s.inputs.insert(s.inputs.end(), in.begin(), in.end());
-      }
-      d.samples.push_back(std::move(s));
+  const auto trials = static_cast<std::size_t>(trials_per_feature);
+  d.samples.resize(features.size() * trials);
+  const int total = static_cast<int>(d.samples.size());
+  int done = 0;
+  std::mutex progress_mutex;
+  const int threads = build.threads > 0
+                          ? build.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Each worker fills its own sample, so the data set does not depend on the thread count.
+  parallel_for(d.samples.size(), threads, [&](std::size_t i) {
+    const std::size_t f = i / trials;
+    PerceptionSample& s = d.samples[i];
+    s.feature = static_cast<int>(f);
+    s.trial = static_cast<int>(i % trials);
+    s.curvature = static_cast<int>(features[f].curvature);
+    s.footprint_mm = features[f].signed_footprint_mm();
+    for (Procedure p : kProcedures) {
+      const auto in = procedure_inputs(source(features[f], p, s.trial), p);
+      s.inputs.insert(s.inputs.end(), in.begin(), in.end());
     }
+    if (build.progress) {
+      const std::lock_guard lock(progress_mutex);
+      build.progress(++done, total);
+    }
+  });
   return d;
 }
 
@@ -57,12 +73,14 @@ std::uint64_t simulated_trial_seed(const capture::SurfaceFeature& f, Procedure p
 }
 
 PerceptionDataset simulate_dataset(int trials_per_feature, std::uint64_t seed,
-                                   const capture::SensorModel& model) {
+                                   const capture::SensorModel& model, const DatasetBuild& build) {
   const auto features = capture::paper_features();
   return build_dataset(
-      features, trials_per_feature, [&](const capture::SurfaceFeature& f, Procedure p, int trial) {
+      features, trials_per_feature,
+      [&](const capture::SurfaceFeature& f, Procedure p, int trial) {
         return capture::simulate_trial(f, p, simulated_trial_seed(f, p, trial, seed), model);
-      });
+      },
+      build);
 }
 
 PerceptionSplit split_per_block(const PerceptionDataset& d, double test_fraction) {

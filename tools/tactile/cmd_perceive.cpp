@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "progress.hpp"
 #include "tactile/capture/sensor_csv.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/mapping/perception_report.hpp"
@@ -76,6 +77,7 @@ void add_perceive(CLI::App& app, Action& action) {
     std::uint64_t seed = 1;
     std::filesystem::path recordings;
     bool export_recordings = false;
+    int threads = 0;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -89,6 +91,11 @@ void add_perceive(CLI::App& app, Action& action) {
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
       ->check(CLI::Range(2, 1000));
   sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
+  sub->add_option("--threads", opt->threads,
+                  "Worker threads simulating and analysing trials (0: all cores); the results do "
+                  "not depend on it")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
   sub->add_option("--recordings", opt->recordings, "Folder of real *_bio.csv recordings")
       ->check(CLI::ExistingDirectory);
   sub->add_flag("--export-recordings", opt->export_recordings,
@@ -98,7 +105,12 @@ void add_perceive(CLI::App& app, Action& action) {
       std::filesystem::create_directories(opt->out_dir);
       if (!opt->recordings.empty()) return analyse_recordings(opt->recordings, opt->out_dir);
       const auto t0 = std::chrono::steady_clock::now();
-      const auto d = mapping::simulate_dataset(opt->trials, opt->seed);
+      Progress progress;
+      mapping::DatasetBuild build;
+      build.threads = opt->threads;
+      build.progress = [&](int done, int total) { progress("simulating", done, total); };
+      const auto d = mapping::simulate_dataset(opt->trials, opt->seed, {}, build);
+      progress.finish();
       const double sim_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       fmt::print(

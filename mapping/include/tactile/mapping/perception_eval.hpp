@@ -35,16 +35,27 @@ std::vector<std::string> perception_input_names();
 using TrialSource = std::function<capture::SensorRecording(const capture::SurfaceFeature&,
                                                            capture::Procedure, int trial)>;
 
+// How a data set is built: trials are independent, so they run on `threads` workers (0 = all
+// cores; `source` must then be safe to call from several threads). `progress(done, total)`, if
+// set, is called after each sample, one call at a time.
+struct DatasetBuild {
+  int threads = 1;
+  std::function<void(int done, int total)> progress;
+};
+
 // Inputs of every feature x trial; `source` defaults to the simulated sensor with seeds derived
-// from (feature, procedure, trial, seed).
+// from (feature, procedure, trial, seed). The samples are in feature-then-trial order whatever
+// the thread count. An exception from `source` or the analysis stops the build and is rethrown.
 PerceptionDataset build_dataset(const std::vector<capture::SurfaceFeature>& features,
-                                int trials_per_feature, const TrialSource& source);
+                                int trials_per_feature, const TrialSource& source,
+                                const DatasetBuild& build = {});
 // Seed of one simulated trial (what simulate_dataset passes to capture::simulate_trial), so other
 // models of the same trials (capture::simulate_skin_strain) see the same variation.
 std::uint64_t simulated_trial_seed(const capture::SurfaceFeature& feature,
                                    capture::Procedure procedure, int trial, std::uint64_t seed);
 PerceptionDataset simulate_dataset(int trials_per_feature, std::uint64_t seed = 1,
-                                   const capture::SensorModel& model = {});
+                                   const capture::SensorModel& model = {},
+                                   const DatasetBuild& build = {});
 
 // Per feature (block), the last ceil(test_fraction * trials) trials are held out.
 struct PerceptionSplit {
