@@ -184,14 +184,16 @@ std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::M
       const double dy = (y > 0 && y + 1 < gray.rows)
                             ? offset(response.at<float>(y - 1, x), response.at<float>(y + 1, x))
                             : 0.0;
-      const double noise = print_noise;
+      // Measures 4, 13-15 need every candidate's response first (below).
       PoreCandidate c{x + dx, y + dy, {}};
       auto& m = c.measures;
-      m[0] = v / noise;
+      m[0] = v / print_noise;
       m[1] = v / block_noise.at<double>(y / block, x / block);
       m[2] = depth[x];
-      m[3] = envelope.contrast.at<float>(y, x) / noise;
-      for (std::size_t k = 0; k < blob.size(); ++k) m[5 + k] = blob[k].at<float>(y, x) / noise;
+      m[3] = envelope.contrast.at<float>(y, x) / print_noise;
+      for (std::size_t k = 0; k < blob.size(); ++k) {
+        m[5 + k] = blob[k].at<float>(y, x) / print_noise;
+      }
       found.push_back(c);
     }
   }

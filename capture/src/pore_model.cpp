@@ -7,6 +7,8 @@
 #include <Eigen/Dense>
 #include <opencv2/core.hpp>
 
+#include "cv_image.hpp"
+
 namespace tactile::capture {
 
 namespace {
@@ -46,9 +48,8 @@ std::vector<double> train_pore_model(const std::vector<PoreTrainingPrint>& print
   const double radius = label_radius_mm * px_per_mm;
   for (const auto& print : prints) {
     cv::Mat gray;
-    cv::Mat(print.image.height_px, print.image.width_px, CV_8U,
-            const_cast<std::uint8_t*>(print.image.pixels.data()))
-        .convertTo(gray, CV_32F);
+    as_mat(print.image).convertTo(gray, CV_32F);
+    // The whole image: the marked pores cover it, and more candidates only help the fit.
     const cv::Mat everywhere = cv::Mat::ones(gray.size(), CV_8U);
     for (const auto& c : find_pore_candidates(gray, everywhere, px_per_mm, params)) {
       bool pore = false;
