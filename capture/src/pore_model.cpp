@@ -40,24 +40,44 @@ double pore_log_odds(const std::array<double, kPoreMeasures>& measures,
   return f.dot(Eigen::Map<const Eigen::VectorXd>(model.data(), f.size()));
 }
 
+LabelledCandidates label_pore_candidates(const PoreTrainingPrint& print, double px_per_mm,
+                                         const RidgeBlobParams& params, double label_radius_mm) {
+  cv::Mat gray;
+  as_mat(print.image).convertTo(gray, CV_32F);
+  // The whole image: the marked pores cover it, and more candidates only help the fit.
+  const cv::Mat everywhere = cv::Mat::ones(gray.size(), CV_8U);
+  LabelledCandidates out;
+  out.candidates = find_pore_candidates(gray, everywhere, px_per_mm, params);
+  const double radius = label_radius_mm * px_per_mm;
+  for (const auto& c : out.candidates) {
+    bool pore = false;
+    for (const auto& t : print.pores_px) {
+      pore = pore || std::hypot(t[0] - c.x_px, t[1] - c.y_px) <= radius;
+    }
+    out.is_pore.push_back(pore ? 1 : 0);
+  }
+  return out;
+}
+
 std::vector<double> train_pore_model(const std::vector<PoreTrainingPrint>& prints, double px_per_mm,
                                      const RidgeBlobParams& params, double label_radius_mm,
                                      double l2) {
+  std::vector<LabelledCandidates> sets;
+  for (const auto& print : prints) {
+    sets.push_back(label_pore_candidates(print, px_per_mm, params, label_radius_mm));
+  }
+  std::vector<const LabelledCandidates*> pointers;
+  for (const auto& s : sets) pointers.push_back(&s);
+  return fit_pore_model(pointers, l2);
+}
+
+std::vector<double> fit_pore_model(const std::vector<const LabelledCandidates*>& sets, double l2) {
   std::vector<Eigen::VectorXd> rows;
   std::vector<double> labels;
-  const double radius = label_radius_mm * px_per_mm;
-  for (const auto& print : prints) {
-    cv::Mat gray;
-    as_mat(print.image).convertTo(gray, CV_32F);
-    // The whole image: the marked pores cover it, and more candidates only help the fit.
-    const cv::Mat everywhere = cv::Mat::ones(gray.size(), CV_8U);
-    for (const auto& c : find_pore_candidates(gray, everywhere, px_per_mm, params)) {
-      bool pore = false;
-      for (const auto& t : print.pores_px) {
-        pore = pore || std::hypot(t[0] - c.x_px, t[1] - c.y_px) <= radius;
-      }
-      rows.push_back(expand(c.measures));
-      labels.push_back(pore ? 1.0 : 0.0);
+  for (const auto* set : sets) {
+    for (std::size_t i = 0; i < set->candidates.size(); ++i) {
+      rows.push_back(expand(set->candidates[i].measures));
+      labels.push_back(set->is_pore[i] ? 1.0 : 0.0);
     }
   }
   const auto n = static_cast<Eigen::Index>(rows.size());

@@ -28,9 +28,23 @@ struct PoreTrainingPrint {
   std::vector<std::array<double, 2>> pores_px;  // hand-marked pores, x and y (0-based)
 };
 
+// A print's candidates (the whole image), each labelled a pore when a marked pore lies
+// within `label_radius_mm`.
+struct LabelledCandidates {
+  std::vector<PoreCandidate> candidates;
+  std::vector<char> is_pore;
+};
+
+LabelledCandidates label_pore_candidates(const PoreTrainingPrint& print, double px_per_mm,
+                                         const RidgeBlobParams& params,
+                                         double label_radius_mm = 0.064);
+
 // Maximum-likelihood logistic model (Newton's method, L2 penalty `l2` on every coefficient but
-// the intercept) of "a marked pore lies within `label_radius_mm`" over every candidate of
-// every print.
+// the intercept) of the labels over every candidate of every set.
+std::vector<double> fit_pore_model(const std::vector<const LabelledCandidates*>& sets,
+                                   double l2 = 1.0);
+
+// label_pore_candidates on each print, then fit_pore_model.
 std::vector<double> train_pore_model(const std::vector<PoreTrainingPrint>& prints, double px_per_mm,
                                      const RidgeBlobParams& params, double label_radius_mm = 0.064,
                                      double l2 = 1.0);
