@@ -64,7 +64,7 @@ std::vector<NamedMethod> methods(bool quick) {
     capture::CaptureParams with_minutiae;
     with_minutiae.features.find_minutiae = true;
     m.push_back({"pores + minutiae", pipeline(with_minutiae)});
-    // The ridge-blob pore detector (tuned on real 1200 dpi prints) is left out: at about
+    // The ridge-blob pore detector (trained on real 1200 dpi prints) is left out: at about
     // 3 frames/s on 640 x 484 it is a detector for single images, not for sequences.
   }
   m.push_back({"Lucas-Kanade", [](const Frames& f, const capture::Calibration& c, double rate) {
