@@ -2,6 +2,7 @@
 
 #include "tactile/mapping/perception_eval.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <stdexcept>

@@ -48,6 +48,10 @@ TEST(PerceiveCli, MalformedRecordingFailsNamingFileAndProblem) {
 TEST(PerceiveCli, UsageErrors) {
   EXPECT_EQ(run_tactile("perceive --out /tmp/x --trials 1").exit_code, 2);
   EXPECT_EQ(run_tactile("perceive --trials 5").exit_code, 2);  // --out missing
+  const auto t = run_tactile("perceive --out /tmp/x --threads -1");
+  EXPECT_EQ(t.exit_code, 2);
+  EXPECT_NE(t.output.find("--threads"), std::string::npos) << t.output;
+  EXPECT_EQ(run_tactile("perceive --out /tmp/x --threads many").exit_code, 2);
   const auto r = run_tactile("perceive --out /tmp/x --recordings /nonexistent/dir");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("/nonexistent/dir"), std::string::npos) << r.output;
