@@ -10,7 +10,6 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "experiment_plots.hpp"
 #include "parallel_for.hpp"
@@ -70,8 +69,7 @@ std::string strain_key(std::size_t source, const MappingParams& p) {
 ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int threads,
                                 const std::function<void(const std::string&)>& progress) {
   ExperimentReport report;
-  report.threads =
-      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  report.threads = worker_count(threads);
   const auto say = [&](const std::string& s) {
     if (progress) progress(s);
   };

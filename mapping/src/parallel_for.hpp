@@ -13,6 +13,12 @@
 
 namespace tactile::mapping {
 
+// Workers for a requested count: the count itself, or every core for 0 (or less).
+inline int worker_count(int requested) {
+  return requested > 0 ? requested
+                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 // Runs task(0..count-1) on `threads` workers; the first exception is rethrown after all stop.
 inline void parallel_for(std::size_t count, int threads,
                          const std::function<void(std::size_t)>& task) {

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "parallel_for.hpp"
 #include "tactile/mapping/svm_model.hpp"
@@ -42,11 +41,8 @@ PerceptionDataset build_dataset(const std::vector<capture::SurfaceFeature>& feat
   const int total = static_cast<int>(d.samples.size());
   int done = 0;
   std::mutex progress_mutex;
-  const int threads = build.threads > 0
-                          ? build.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // Each worker fills its own sample, so the data set does not depend on the thread count.
-  parallel_for(d.samples.size(), threads, [&](std::size_t i) {
+  parallel_for(d.samples.size(), worker_count(build.threads), [&](std::size_t i) {
     const std::size_t f = i / trials;
     PerceptionSample& s = d.samples[i];
     s.feature = static_cast<int>(f);

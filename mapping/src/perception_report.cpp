@@ -5,13 +5,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <exception>
 #include <fstream>
 #include <stdexcept>
-#include <thread>
 
+#include "parallel_for.hpp"
 #include "tactile/common/csv.hpp"
 
 namespace tactile::mapping {
@@ -32,29 +30,12 @@ std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const Perceptio
   // The rows are independent models on read-only data, so they run on every core; each row's
   // time is its own training and testing, as a single-threaded run would measure it.
   std::vector<TimedCascade> rows(jobs.size());
-  std::vector<std::exception_ptr> errors(jobs.size());
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < jobs.size(); i = next++) {
-      try {
-        const auto t0 = std::chrono::steady_clock::now();
-        CascadeResult r = evaluate_cascade(d, split, jobs[i].inputs, jobs[i].degree);
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        rows[i] = {std::move(r), s};
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1,
-                                                      jobs.size() ? jobs.size() : 1);
-  std::vector<std::jthread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  pool.clear();  // joins
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  parallel_for(jobs.size(), worker_count(0), [&](std::size_t i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    CascadeResult r = evaluate_cascade(d, split, jobs[i].inputs, jobs[i].degree);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    rows[i] = {std::move(r), s};
+  });
   return rows;
 }
 
