@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "parallel_for.hpp"
@@ -16,6 +17,22 @@ namespace tactile::mapping {
 namespace {
 constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
 constexpr const char* kColours[3] = {"#1f77b4", "#d62728", "#2ca02c"};
+
+std::ofstream open_svg(const std::filesystem::path& path, double width, double height) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  out << fmt::format(
+      "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' "
+      "font-family='sans-serif' font-size='13'>\n<rect width='100%' height='100%' fill='white'/>\n",
+      width, height);
+  return out;
+}
+
+void finish_svg(std::ofstream& out, const std::filesystem::path& path) {
+  out << "</svg>\n";
+  out.flush();
+  if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
+}
 }  // namespace
 
 std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const PerceptionSplit& split,
@@ -76,12 +93,7 @@ void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& r
   constexpr double kSize = 480, kMargin = 60, kRange = 25;
   const auto px = [&](double mm) { return kMargin + (mm + kRange) / (2 * kRange) * kSize; };
   const auto py = [&](double mm) { return kMargin + (kRange - mm) / (2 * kRange) * kSize; };
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  out << fmt::format(
-      "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' "
-      "font-family='sans-serif' font-size='13'>\n<rect width='100%' height='100%' fill='white'/>\n",
-      kSize + 2 * kMargin, kSize + 2 * kMargin + 20);
+  std::ofstream out = open_svg(path, kSize + 2 * kMargin, kSize + 2 * kMargin + 20);
   out << fmt::format(
       "<text x='{}' y='25' text-anchor='middle' font-size='15'>Predicted vs true signed "
       "footprint ({} inputs, exponent {}): {}/{} curvature correct</text>\n",
@@ -115,9 +127,94 @@ void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& r
         "{7:.2f} mm</text>\n",
         kMargin + 15, kMargin + 15 + 20 * c, kColours[c], kMargin + 26, kMargin + 20 + 20 * c,
         kCurvatureNames[c], r.r2[c], r.rms_mm[c]);
-  out << "</svg>\n";
-  out.flush();
-  if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
+  finish_svg(out, path);
+}
+
+std::vector<FootprintAccuracy> accuracy_by_footprint(const CascadeResult& result) {
+  std::vector<FootprintAccuracy> out;
+  for (const auto& p : result.predictions) {
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const FootprintAccuracy& a) { return a.footprint_mm == p.true_mm; });
+    if (it == out.end()) it = out.insert(out.end(), FootprintAccuracy{p.true_mm, 0, 0});
+    ++it->tested;
+    if (p.predicted_curvature == p.curvature) ++it->correct;
+  }
+  std::sort(out.begin(), out.end(), [](const FootprintAccuracy& a, const FootprintAccuracy& b) {
+    return a.footprint_mm < b.footprint_mm;
+  });
+  return out;
+}
+
+void write_accuracy_by_footprint_csv(const std::filesystem::path& path,
+                                     const std::vector<TimedCascade>& rows) {
+  auto out = csv::open_with_header(path, "inputs,degree,footprint_mm,correct,tested,accuracy");
+  for (const auto& row : rows)
+    for (const auto& a : accuracy_by_footprint(row.result))
+      out << fmt::format("{},{},{:g},{},{},{:.4f}\n", row.result.inputs, row.result.degree,
+                         a.footprint_mm, a.correct, a.tested,
+                         a.tested ? double(a.correct) / a.tested : 0.0);
+  csv::finish(out, path);
+}
+
+void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
+                                     const std::vector<TimedCascade>& rows, int degree) {
+  constexpr const char* kSetColours[] = {"#000000", "#ff7f0e", "#1f77b4", "#2ca02c",
+                                         "#9467bd", "#8c564b", "#e377c2"};
+  // Footprints span 1.25 to 20 mm, so the axis is ordinal (one slot per footprint in the data),
+  // not linear: the small features, where the classifier fails, would otherwise share a pixel.
+  std::vector<double> footprints;
+  for (const auto& row : rows)
+    if (row.result.degree == degree)
+      for (const auto& a : accuracy_by_footprint(row.result))
+        if (std::find(footprints.begin(), footprints.end(), a.footprint_mm) == footprints.end())
+          footprints.push_back(a.footprint_mm);
+  std::sort(footprints.begin(), footprints.end());
+  constexpr double kWidth = 640, kHeight = 320, kMargin = 60;
+  const double slot = kWidth / std::max<std::size_t>(1, footprints.size());
+  const auto px = [&](double mm) {
+    const auto i = std::find(footprints.begin(), footprints.end(), mm) - footprints.begin();
+    return kMargin + (static_cast<double>(i) + 0.5) * slot;
+  };
+  const auto py = [&](double fraction) { return kMargin + (1 - fraction) * kHeight; };
+  std::ofstream out = open_svg(path, kWidth + 2 * kMargin + 120, kHeight + 2 * kMargin + 20);
+  out << fmt::format(
+      "<text x='{}' y='25' text-anchor='middle' font-size='15'>Held-out curvature accuracy per "
+      "footprint (kernel exponent {})</text>\n",
+      kMargin + kWidth / 2, degree);
+  out << fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='black'/>\n",
+                     kMargin, kMargin, kWidth, kHeight);
+  for (int pct = 0; pct <= 100; pct += 25)
+    out << fmt::format(
+        "<line x1='{0}' y1='{1}' x2='{2}' y2='{1}' stroke='#dddddd'/><text x='{3}' y='{4}' "
+        "text-anchor='end'>{5} %</text>\n",
+        kMargin, py(pct / 100.0), kMargin + kWidth, kMargin - 6, py(pct / 100.0) + 4, pct);
+  out << fmt::format(
+      "<line x1='{0}' y1='{1:.1f}' x2='{2}' y2='{1:.1f}' stroke='grey' stroke-dasharray='4 4'/>"
+      "<text x='{3}' y='{4:.1f}' fill='grey' font-size='11'>chance</text>\n",
+      kMargin, py(1.0 / 3), kMargin + kWidth, kMargin + 4, py(1.0 / 3) - 4);
+  for (double mm : footprints)
+    out << fmt::format("<text x='{}' y='{}' text-anchor='middle' font-size='11'>{:+g}</text>\n",
+                       px(mm), kMargin + kHeight + 16, mm);
+  out << fmt::format(
+      "<text x='{}' y='{}' text-anchor='middle'>true signed footprint (mm, + bump, - pit)"
+      "</text>\n",
+      kMargin + kWidth / 2, kMargin + kHeight + 40);
+  int set = 0;
+  for (const auto& row : rows) {
+    if (row.result.degree != degree) continue;
+    const char* colour = kSetColours[set % std::size(kSetColours)];
+    std::string points;
+    for (const auto& a : accuracy_by_footprint(row.result))
+      points += fmt::format("{:.1f},{:.1f} ", px(a.footprint_mm),
+                            py(a.tested ? double(a.correct) / a.tested : 0.0));
+    out << fmt::format(
+        "<polyline points='{}' fill='none' stroke='{}' stroke-width='{}'/>\n<text x='{}' "
+        "y='{}' fill='{}'>{} ({}/{})</text>\n",
+        points, colour, row.result.inputs == "all" ? 2.5 : 1.2, kMargin + kWidth + 10,
+        kMargin + 14 + 18 * set, colour, row.result.inputs, row.result.correct, row.result.tested);
+    ++set;
+  }
+  finish_svg(out, path);
 }
 
 std::string table2_line(const TimedCascade& row) {

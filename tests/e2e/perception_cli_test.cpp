@@ -18,7 +18,31 @@ std::filesystem::path fresh_dir(const std::string& name) {
   return dir;
 }
 
+int line_count(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  return lines;
+}
+
 }  // namespace
+
+// The simulated evaluation end to end, small (2 trials per feature: one trains, one is held
+// out): every file it promises, with one row per Table 2 row, held-out trial and footprint.
+TEST(PerceiveCli, WritesTable2Figure7AndAccuracyPerFootprint) {
+  const auto out = fresh_dir("simulated");
+  const auto r = run_tactile("perceive --out " + out.string() + " --trials 2 --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Table 2 (48 training / 48 held-out samples)"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(line_count(out / "table2.csv"), 1 + 5 * 2);     // 5 input sets x 2 kernels
+  EXPECT_EQ(line_count(out / "figure7.csv"), 1 + 10 * 48);  // every held-out trial
+  EXPECT_EQ(line_count(out / "accuracy_by_footprint.csv"), 1 + 10 * 16);  // 16 footprints
+  for (const char* svg : {"figure7_all_exp1.svg", "figure7_roll_exp2.svg",
+                          "accuracy_by_footprint_exp1.svg", "accuracy_by_footprint_exp2.svg"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / svg)) << svg;
+  std::filesystem::remove_all(out);
+}
 
 TEST(PerceiveCli, AnalysesEveryRealRecording) {
   const auto out = fresh_dir("real");
@@ -26,10 +50,7 @@ TEST(PerceiveCli, AnalysesEveryRealRecording) {
                              TACTILE_SHARED_DATA_DIR + "/biotac-slide");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("9 of 9 recordings analysed"), std::string::npos) << r.output;
-  std::ifstream csv(out / "recordings.csv");
-  int lines = 0;
-  for (std::string line; std::getline(csv, line);) ++lines;
-  EXPECT_EQ(lines, 10);  // header + 9 recordings
+  EXPECT_EQ(line_count(out / "recordings.csv"), 10);  // header + 9 recordings
   std::filesystem::remove_all(out);
 }
 

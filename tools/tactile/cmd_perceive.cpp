@@ -85,8 +85,9 @@ void add_perceive(CLI::App& app, Action& action) {
       "Perception evaluation of paper 2 (Ponce Wong et al.): 48 features x 4 exploratory\n"
       "procedures on the simulated fingertip sensor, 76 inputs, SVC for the order of curvature\n"
       "then curvature-specific SVR for the signed footprint (90/10 split per feature).\n"
-      "Writes table2.csv, figure7.csv and figure7_<inputs>_exp<k>.svg. With --recordings DIR,\n"
-      "analyses real BioTac-style recordings instead (recordings.csv).");
+      "Writes table2.csv, figure7.csv and figure7_<inputs>_exp<k>.svg, and the classifier's\n"
+      "held-out accuracy per footprint (accuracy_by_footprint.csv, _exp<k>.svg). With\n"
+      "--recordings DIR, analyses real BioTac-style recordings instead (recordings.csv).");
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
       ->check(CLI::Range(2, 1000));
@@ -128,6 +129,10 @@ void add_perceive(CLI::App& app, Action& action) {
         mapping::write_figure7_svg(opt->out_dir / fmt::format("figure7_{}_exp{}.svg",
                                                               row.result.inputs, row.result.degree),
                                    row.result);
+      mapping::write_accuracy_by_footprint_csv(opt->out_dir / "accuracy_by_footprint.csv", rows);
+      for (int degree : {1, 2})
+        mapping::write_accuracy_by_footprint_svg(
+            opt->out_dir / fmt::format("accuracy_by_footprint_exp{}.svg", degree), rows, degree);
       if (opt->export_recordings) {
         const auto dir = opt->out_dir / "recordings";
         std::filesystem::create_directories(dir);
@@ -141,7 +146,8 @@ void add_perceive(CLI::App& app, Action& action) {
                 capture::simulate_trial(f, proc, static_cast<std::uint64_t>(p)));
           }
       }
-      fmt::print("perceive: table2.csv, figure7.csv and plots -> {}\n", opt->out_dir.string());
+      fmt::print("perceive: table2.csv, figure7.csv, accuracy_by_footprint.csv and plots -> {}\n",
+                 opt->out_dir.string());
       return 0;
     };
   });

@@ -2,7 +2,8 @@
 // Files of the perception evaluation (docs/formats.md, "Perception results"): Table 2 as CSV
 // (one row per input set and kernel: accuracy, confusion matrix, R^2 and RMS error per
 // curvature), Figure 7 as CSV (every held-out prediction) and as SVG plots (predicted against
-// true signed footprint, one colour per curvature).
+// true signed footprint, one colour per curvature), and the classifier's accuracy per footprint
+// (where it fails is as telling as how often).
 
 #include <filesystem>
 #include <string>
@@ -25,6 +26,20 @@ std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const Perceptio
 void write_table2_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
 void write_figure7_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
 void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& result);
+
+// Held-out curvature accuracy of one row per signed footprint, ordered by footprint.
+struct FootprintAccuracy {
+  double footprint_mm = 0;  // signed: + bump, - pit
+  int correct = 0, tested = 0;
+};
+std::vector<FootprintAccuracy> accuracy_by_footprint(const CascadeResult& result);
+
+// CSV `inputs,degree,footprint_mm,correct,tested,accuracy` for every row, and an SVG of the
+// rows with kernel exponent `degree`: accuracy against footprint, one line per input set.
+void write_accuracy_by_footprint_csv(const std::filesystem::path& path,
+                                     const std::vector<TimedCascade>& rows);
+void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
+                                     const std::vector<TimedCascade>& rows, int degree);
 
 // One line per row of Table 2, for the terminal.
 std::string table2_line(const TimedCascade& row);
