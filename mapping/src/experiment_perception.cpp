@@ -223,6 +223,9 @@ std::vector<PerceptionTable> run_perception(
     const fs::path path = dir / fmt::format("table2-{}.csv", tables[t].id);
     write_table2_csv(path, tables[t].rows);
     files.push_back(path);
+    const fs::path by_footprint = dir / fmt::format("accuracy_by_footprint-{}.csv", tables[t].id);
+    write_accuracy_by_footprint_csv(by_footprint, tables[t].rows);
+    files.push_back(by_footprint);
     for (const auto& row : tables[t].rows)
       say(fmt::format("perception {}: {}", tables[t].id, table2_line(row)));
   }

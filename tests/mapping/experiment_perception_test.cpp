@@ -125,6 +125,8 @@ TEST(ExperimentPerception, SmallRunGivesOneTable2PerMappingAndTheSensors) {
       EXPECT_LE(row.result.correct, 6);
     }
     EXPECT_TRUE(fs::exists(out / "perception" / ("table2-" + t.id + ".csv"))) << t.id;
+    EXPECT_TRUE(fs::exists(out / "perception" / ("accuracy_by_footprint-" + t.id + ".csv")))
+        << t.id;
   }
   EXPECT_TRUE(fs::exists(out / "perception" / "summary.csv"));
   EXPECT_TRUE(fs::exists(out / "plots" / "perception.png"));
