@@ -62,13 +62,7 @@ LabelledCandidates label_pore_candidates(const PoreTrainingPrint& print, double 
 std::vector<double> train_pore_model(const std::vector<PoreTrainingPrint>& prints, double px_per_mm,
                                      const RidgeBlobParams& params, double label_radius_mm,
                                      double l2) {
-  std::vector<LabelledCandidates> sets;
-  for (const auto& print : prints) {
-    sets.push_back(label_pore_candidates(print, px_per_mm, params, label_radius_mm));
-  }
-  std::vector<const LabelledCandidates*> pointers;
-  for (const auto& s : sets) pointers.push_back(&s);
-  return fit_pore_model(pointers, l2);
+  return train_pore_models(prints, {px_per_mm, label_radius_mm, l2, params}, false).model;
 }
 
 std::vector<double> fit_pore_model(const std::vector<const LabelledCandidates*>& sets, double l2) {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "pore_blobs.hpp"
-#include "tactile/capture/image.hpp"
+#include "tactile/capture/pore_training.hpp"
 
 namespace tactile::capture {
 
@@ -22,11 +22,6 @@ double pore_log_odds(const std::array<double, kPoreMeasures>& measures,
 
 // Trained on all 15 PolyU HRF prints by train_pore_model (pore_model_coefficients.cpp).
 std::span<const double> shipped_pore_model();
-
-struct PoreTrainingPrint {
-  GrayImage image;
-  std::vector<std::array<double, 2>> pores_px;  // hand-marked pores, x and y (0-based)
-};
 
 // A print's candidates (the whole image), each labelled a pore when a marked pore lies
 // within `label_radius_mm`.
@@ -44,7 +39,7 @@ LabelledCandidates label_pore_candidates(const PoreTrainingPrint& print, double 
 std::vector<double> fit_pore_model(const std::vector<const LabelledCandidates*>& sets,
                                    double l2 = 1.0);
 
-// label_pore_candidates on each print, then fit_pore_model.
+// label_pore_candidates on each print, then fit_pore_model (train_pore_models without folds).
 std::vector<double> train_pore_model(const std::vector<PoreTrainingPrint>& prints, double px_per_mm,
                                      const RidgeBlobParams& params, double label_radius_mm = 0.064,
                                      double l2 = 1.0);

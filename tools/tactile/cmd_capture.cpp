@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
+#include "tactile/capture/pore_model_io.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
@@ -56,18 +58,52 @@ void require_calibration(const std::optional<fs::path>& calib_file,
 }
 
 // --pores paper|ridge-blob: the paper's binarised blobs (fast, for sequences) or the learned
-// ridge-blob detector (for real high-resolution prints, about 0.1 s CPU per 320 x 240 print).
-void add_pore_option(CLI::App& sub, std::string& pores) {
+// ridge-blob detector (for real high-resolution prints, about 0.1 s CPU per 320 x 240 print);
+// --pore-model: a model from `tactile train-pores` instead of the shipped one.
+void add_pore_options(CLI::App& sub, std::string& pores, std::optional<fs::path>& pore_model) {
   sub.add_option("--pores", pores,
                  "Pore detector: paper (binarised blobs; fast) or ridge-blob (bright spots above\n"
                  "their own ridge, kept by a pore model trained on hand-marked 1200 dpi prints;\n"
                  "finds open pores on real prints at about 47 px/mm, slower)")
       ->check(CLI::IsMember({"paper", "ridge-blob"}))
       ->capture_default_str();
+  sub.add_option("--pore-model", pore_model,
+                 "Pore model file from `tactile train-pores` (with --pores ridge-blob), used\n"
+                 "with its threshold instead of the shipped model")
+      ->check(CLI::ExistingFile);
 }
 
-capture::PoreDetector pore_detector(const std::string& name) {
-  return name == "ridge-blob" ? capture::PoreDetector::ridge_blob : capture::PoreDetector::paper;
+// Runs at parse time: the paper's rule has no model, so a model given with it would be ignored.
+void require_ridge_blob_for_model(const std::string& pores,
+                                  const std::optional<fs::path>& pore_model) {
+  if (pore_model && pores != "ridge-blob") {
+    throw CLI::ValidationError("--pore-model",
+                               "goes with --pores ridge-blob (the paper's rule has no model)");
+  }
+}
+
+// Read before any image so that a bad model file fails at once, before heavy work.
+std::optional<capture::PoreModelFile> pore_model_file(const std::optional<fs::path>& path) {
+  if (path) return capture::read_pore_model_json(*path);
+  return std::nullopt;
+}
+
+// The chosen pore detector (and model) in `fp`; px_per_mm is the image's scale.
+void use_pore_detector(const std::string& pores, const std::optional<capture::PoreModelFile>& model,
+                       double px_per_mm, const char* command, capture::FeatureParams& fp) {
+  fp.pore_detector =
+      pores == "ridge-blob" ? capture::PoreDetector::ridge_blob : capture::PoreDetector::paper;
+  if (!model) return;
+  fp.ridge_blob.model = model->coefficients;
+  fp.ridge_blob.min_log_odds = model->min_log_odds;
+  // The model's measures are in pixels at its training scale (sizes, Laplacian scales), so
+  // far from that scale its probabilities mean little.
+  if (std::abs(px_per_mm / model->px_per_mm - 1.0) > 0.1) {
+    fmt::print(stderr,
+               "{}: warning: the pore model was trained at {:.1f} px/mm but the image is at "
+               "{:.1f} px/mm; its measures are in pixels at the training scale\n",
+               command, model->px_per_mm, px_per_mm);
+  }
 }
 
 void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress& progress) {
@@ -129,6 +165,7 @@ void add_features(CLI::App& app, Action& action) {
     std::optional<double> px_per_mm;
     std::optional<fs::path> csv;
     std::string pores = "paper";
+    std::optional<fs::path> pore_model;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -140,16 +177,18 @@ void add_features(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   add_calibration_options(*sub, opt->calib, opt->px_per_mm);
   sub->add_option("--csv", opt->csv, "Write the features to this CSV file");
-  add_pore_option(*sub, opt->pores);
+  add_pore_options(*sub, opt->pores, opt->pore_model);
   sub->callback([opt, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
+    require_ridge_blob_for_model(opt->pores, opt->pore_model);
     action = [opt] {
       const auto from_file = calibration_file(opt->calib);
+      const auto model = pore_model_file(opt->pore_model);
       const capture::GrayImage image = capture::read_image(opt->image);
       const capture::Calibration c =
           calibration_for(from_file, opt->px_per_mm, image.width_px, image.height_px);
       capture::FeatureParams fp;
-      fp.pore_detector = pore_detector(opt->pores);
+      use_pore_detector(opt->pores, model, 1.0 / c.mm_per_px, "features", fp);
       const auto features = capture::extract_features(image, 1.0 / c.mm_per_px, fp);
       int counts[3] = {0, 0, 0};
       for (const auto& f : features) ++counts[static_cast<int>(f.type)];
@@ -176,6 +215,7 @@ void add_capture(CLI::App& app, Action& action) {
     double rate_hz = 60;
     int min_track_frames = 30;
     std::string pores = "paper";
+    std::optional<fs::path> pore_model;
     std::string assignment = "greedy";
   };
   auto opt = std::make_shared<Options>();
@@ -202,7 +242,7 @@ void add_capture(CLI::App& app, Action& action) {
   sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
       ->check(CLI::Range(2, 100000))
       ->capture_default_str();
-  add_pore_option(*sub, opt->pores);
+  add_pore_options(*sub, opt->pores, opt->pore_model);
   sub->add_option("--assignment", opt->assignment,
                   "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "
                   "confidence, Hungarian method)")
@@ -210,16 +250,18 @@ void add_capture(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->callback([opt, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
+    require_ridge_blob_for_model(opt->pores, opt->pore_model);
     action = [opt] {
       Progress progress;
       const auto from_file = calibration_file(opt->calib);
+      const auto model = pore_model_file(opt->pore_model);
       const auto frames = capture::read_frames(opt->image_dir);
       const capture::Calibration c =
           calibration_for(from_file, opt->px_per_mm, frames[0].width_px, frames[0].height_px);
       capture::CaptureParams params;
       params.span_frames = opt->span;
       params.min_track_frames = opt->min_track_frames;
-      params.features.pore_detector = pore_detector(opt->pores);
+      use_pore_detector(opt->pores, model, 1.0 / c.mm_per_px, "capture", params.features);
       params.assignment =
           opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;
       const auto t0 = std::chrono::steady_clock::now();

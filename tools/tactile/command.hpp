@@ -16,6 +16,7 @@ void add_synth(CLI::App& app, Action& action);
 void add_calibrate(CLI::App& app, Action& action);
 void add_features(CLI::App& app, Action& action);
 void add_capture(CLI::App& app, Action& action);
+void add_train_pores(CLI::App& app, Action& action);
 void add_evaluate(CLI::App& app, Action& action);
 void add_map(CLI::App& app, Action& action);
 void add_experiment(CLI::App& app, Action& action);

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_calibrate(app, action);
   tactile::cli::add_features(app, action);
   tactile::cli::add_capture(app, action);
+  tactile::cli::add_train_pores(app, action);
   tactile::cli::add_evaluate(app, action);
   tactile::cli::add_map(app, action);
   tactile::cli::add_experiment(app, action);

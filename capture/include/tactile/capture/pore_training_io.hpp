@@ -1,0 +1,20 @@
+#pragma once
+// Hand-marked prints in the PolyU HRF layout, for training the pore model: a directory of
+// image_NN.<jpg|jpeg|png|bmp|tif|tiff> with pores_NN.txt beside each, one marked pore per line
+// as `row col` (1-based pixel coordinates, separated by white space).
+
+#include <filesystem>
+#include <vector>
+
+#include "tactile/capture/pore_training.hpp"
+
+namespace tactile::capture {
+
+// Every image/marks pair of `dir`, in order of NN, pores converted to 0-based x, y. Throws
+// tactile::FormatError naming the file (and line) for: a missing directory or one without
+// pairs, an image without its marks file or marks without their image, a line that is not two
+// numbers or has extra columns, a mark outside its image, a marks file without marks, an
+// unreadable image.
+std::vector<PoreTrainingPrint> read_pore_training_prints(const std::filesystem::path& dir);
+
+}  // namespace tactile::capture
