@@ -66,7 +66,7 @@ PoreModelFile read_pore_model_json(const std::filesystem::path& path) {
   nlohmann::json j;
   try {
     in >> j;
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers beyond a double
     throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
   }
   if (!j.is_object()) throw FormatError(fmt::format("{}: expected a JSON object", where));
