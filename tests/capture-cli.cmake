@@ -1,5 +1,6 @@
-# `tactile evaluate` and `tactile bench capture` on bad input, through the real binary: usage
-# errors exit 2, failed runs exit 1 with a message naming the problem (label e2e).
+# `tactile evaluate`, `tactile bench capture` and `tactile train-pores` on bad input, through the
+# real binary: usage errors exit 2, failed runs exit 1 with a message naming the problem (label
+# e2e).
 set(cc_dir ${CMAKE_CURRENT_BINARY_DIR}/capture-cli)
 set(cc_expect ${CMAKE_CURRENT_SOURCE_DIR}/capture/cli_expect.sh)
 set(cc_tactile $<TARGET_FILE:tactile>)
@@ -34,3 +35,49 @@ capture_cli_expect(capture_bad_assignment 2 "assignment" capture ${cc_dir}/seq -
 capture_cli_expect(synth_bad_scene 2 "scene" synth ${cc_dir}/never --scene volcano)
 capture_cli_expect(synth_rotation_too_large 1 "rotation_deg" synth ${cc_dir}/never
                    --scene flat-rotate --rotation 40 --frames 2)
+
+# `tactile train-pores` on 3 of the marked PolyU prints (a few seconds), the model it writes used
+# by `tactile features` on a 4th print, and bad input (train_pores_cli.sh builds the folders).
+set(tp_dir ${CMAKE_CURRENT_BINARY_DIR}/train-pores-cli)
+add_test(NAME train_pores_cli.train
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/capture/train_pores_cli.sh ${cc_tactile}
+                 ${TACTILE_SHARED_DATA_DIR}/polyu-hrf-pores ${tp_dir})
+set_tests_properties(train_pores_cli.train PROPERTIES LABELS e2e FIXTURES_SETUP train_pores_cli
+                     TIMEOUT 120)
+
+function(train_pores_cli_expect name code pattern)
+  add_test(NAME train_pores_cli.${name}
+           COMMAND sh ${cc_expect} ${code} ${pattern} ${cc_tactile} ${ARGN})
+  set_tests_properties(train_pores_cli.${name} PROPERTIES LABELS e2e
+                       FIXTURES_REQUIRED train_pores_cli TIMEOUT 120)
+endfunction()
+
+set(tp_print4 ${TACTILE_SHARED_DATA_DIR}/polyu-hrf-pores/image_04.jpg)
+# image_04 has 517 marked pores (the shipped model detects 528): a model from 3 other prints
+# should find a few hundred.
+train_pores_cli_expect(features_with_model 0 "features: [3-6][0-9]{2} pores" features
+                       ${tp_print4} --px-per-mm 47 --pores ridge-blob
+                       --pore-model ${tp_dir}/model.json)
+train_pores_cli_expect(model_scale_warning 0 "warning: the pore model was trained at 47.0 px/mm"
+                       features ${tp_print4} --px-per-mm 60 --pores ridge-blob
+                       --pore-model ${tp_dir}/model.json)
+train_pores_cli_expect(help_shows_marks 0 "row col" train-pores --help)
+train_pores_cli_expect(missing_dir 1 "nowhere: no such directory" train-pores
+                       --prints ${tp_dir}/nowhere --px-per-mm 47 --out ${tp_dir}/never.json)
+train_pores_cli_expect(empty_dir 1 "empty: no marked prints" train-pores --prints ${tp_dir}/empty
+                       --px-per-mm 47 --out ${tp_dir}/never.json)
+train_pores_cli_expect(broken_marks 1 "pores_01.txt:2: extra columns" train-pores
+                       --prints ${tp_dir}/broken --px-per-mm 47 --out ${tp_dir}/never.json)
+train_pores_cli_expect(held_out_one_print 1 "at least 2 prints" train-pores
+                       --prints ${tp_dir}/one --px-per-mm 47 --out ${tp_dir}/never.json --held-out)
+train_pores_cli_expect(missing_out 2 "--out is required" train-pores --prints ${tp_dir}/three
+                       --px-per-mm 47)
+train_pores_cli_expect(bad_scale 2 "px-per-mm" train-pores --prints ${tp_dir}/three
+                       --px-per-mm abc --out ${tp_dir}/never.json)
+train_pores_cli_expect(negative_l2 2 "l2" train-pores --prints ${tp_dir}/three --px-per-mm 47
+                       --out ${tp_dir}/never.json --l2 -1)
+train_pores_cli_expect(corrupt_model 1 "corrupt.json: not valid JSON" features ${tp_print4}
+                       --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/corrupt.json)
+train_pores_cli_expect(model_with_paper_rule 2 "pore-model: goes with --pores ridge-blob"
+                       features ${tp_print4} --px-per-mm 47 --pores paper
+                       --pore-model ${tp_dir}/model.json)

@@ -62,7 +62,8 @@ void add_train_pores(CLI::App& app, Action& action) {
       "train-pores",
       "Train the ridge-blob pore model (--pores ridge-blob) on your own hand-marked prints and\n"
       "write it as a model file for --pore-model.\n"
-      "DIR holds pairs image_NN.<jpg|png|bmp|tif> + pores_NN.txt (the PolyU HRF layout). A\n"
+      "The --prints folder holds pairs image_NN.<jpg|png|bmp|tif> + pores_NN.txt (the PolyU HRF "
+      "layout). A\n"
       "marks file has one marked pore per line, `row col`, 1-based pixel coordinates separated\n"
       "by white space, e.g.\n"
       "    42 17\n"
@@ -72,18 +73,30 @@ void add_train_pores(CLI::App& app, Action& action) {
       "matched / marked / detected per print, pairing detections and marks one-to-one as\n"
       "mutual nearest neighbours within 0.15 mm; --held-out also scores each print with a\n"
       "model trained on the other prints, which says whether the model generalises.");
-  sub->add_option("--prints", opt->prints_dir, "Directory of marked prints")->required();
+  sub->add_option("--prints", opt->prints_dir, "Folder of marked prints")
+      ->type_name("DIR")
+      ->required();
   sub->add_option("--px-per-mm", opt->px_per_mm,
                   "Scale of the prints, pixels per millimetre (PolyU HRF: 47)")
       ->required()
       ->check(CLI::PositiveNumber);
-  sub->add_option("--out", opt->out, "Model file to write (JSON)")->required();
+  sub->add_option("--out", opt->out, "Model file to write (JSON)")
+      ->type_name("MODEL.json")
+      ->required();
   sub->add_option("--label-radius-mm", opt->label_radius_mm,
                   "A candidate this close to a marked pore counts as a pore")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->add_option("--l2", opt->l2, "L2 penalty on every coefficient but the intercept")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            // CLI11's NonNegativeNumber names the largest double in its message.
+            double l2 = 0;
+            return CLI::detail::lexical_cast(value, l2) && l2 >= 0
+                       ? std::string()
+                       : "must be a number >= 0, got " + value;
+          },
+          "NON-NEGATIVE"))
       ->capture_default_str();
   sub->add_flag("--held-out", opt->held_out,
                 "Also score each print with a model trained on the others (leave one print out)");
