@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "json_field.hpp"
+#include "json_file.hpp"
 #include "pore_model.hpp"
 #include "tactile/common/error.hpp"
 
@@ -43,33 +43,12 @@ void write_pore_model_json(const std::filesystem::path& path, const PoreModelFil
   j["min_log_odds"] = model.min_log_odds;
   j["trained_on"] = model.trained_on;
   j["coefficients"] = model.coefficients;
-  // Written beside the target and renamed, so a failed write never destroys a model that was
-  // already there (the rule of every file the project writes).
-  const std::filesystem::path tmp = path.string() + ".partial";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << '\n';
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-    }
-  }
-  std::filesystem::rename(tmp, path);
+  write_file_atomically(path, j.dump(2) + '\n');
 }
 
 PoreModelFile read_pore_model_json(const std::filesystem::path& path) {
   const std::string where = path.string();
-  std::ifstream in(path);
-  if (!in) throw FormatError(fmt::format("{}: cannot open pore model file", where));
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers beyond a double
-    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
-  }
-  if (!j.is_object()) throw FormatError(fmt::format("{}: expected a JSON object", where));
+  const nlohmann::json j = read_json_object(path, "pore model file");
   if (json_field<std::string>(j, "format", where) != kFormat) {
     throw FormatError(fmt::format("{}: 'format' is not {}", where, kFormat));
   }

@@ -1,0 +1,19 @@
+#pragma once
+// JSON documents on disk for the capture module's small files (model, calibration, scene):
+// atomic writes and a strict first step of reading.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace tactile::capture {
+
+// `text` written to NAME.partial and renamed over `path`, so a failed write never destroys a
+// file that was already there. Throws std::runtime_error naming the file.
+void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+
+// The JSON object in `path`. Throws tactile::FormatError "<path>: cannot open <what>", "not valid
+// JSON (...)" (also for a number beyond a double) or "expected a JSON object".
+nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what);
+
+}  // namespace tactile::capture
