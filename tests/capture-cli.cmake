@@ -58,6 +58,16 @@ set(tp_print4 ${TACTILE_SHARED_DATA_DIR}/polyu-hrf-pores/image_04.jpg)
 train_pores_cli_expect(features_with_model 0 "features: [3-6][0-9]{2} pores" features
                        ${tp_print4} --px-per-mm 47 --pores ridge-blob
                        --pore-model ${tp_dir}/model.json)
+train_pores_cli_expect(features_with_strict_model 0 "features: 0 pores" features ${tp_print4}
+                       --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/strict.json)
+train_pores_cli_expect(capture_with_model 0 "capture: 3 frames" capture ${tp_dir}/three
+                       --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/model.json
+                       --min-track 2 --out ${tp_dir}/three.h5)
+train_pores_cli_expect(capture_model_with_paper_rule 2 "pore-model: goes with --pores ridge-blob"
+                       capture ${tp_dir}/three --px-per-mm 47 --pore-model ${tp_dir}/model.json
+                       --out ${tp_dir}/never.h5)
+train_pores_cli_expect(out_folder_missing 1 "nowhere: no such folder for --out" train-pores
+                       --prints ${tp_dir}/three --px-per-mm 47 --out ${tp_dir}/nowhere/m.json)
 train_pores_cli_expect(model_scale_warning 0 "warning: the pore model was trained at 47.0 px/mm"
                        features ${tp_print4} --px-per-mm 60 --pores ridge-blob
                        --pore-model ${tp_dir}/model.json)

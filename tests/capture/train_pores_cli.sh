@@ -33,4 +33,8 @@ awk '/"coefficients": \[/ { on = 1; next }
      END { if (n != 153 || bad > 0) { print "coefficients: " n ", not numbers: " bad; exit 1 } }' \
   "$work/model.json" || fail "model.json does not hold 153 finite coefficients"
 grep -q '"coefficient_count": 153' "$work/model.json" || fail "no coefficient_count 153"
+# The same model with a threshold no candidate reaches: features must then find no pore, which
+# shows that --pore-model applies the file's threshold, not the built-in one.
+sed 's/"min_log_odds": -0.5,/"min_log_odds": 1000.0,/' "$work/model.json" > "$work/strict.json"
+grep -q '"min_log_odds": 1000.0' "$work/strict.json" || fail "could not write strict.json"
 echo "train_pores_cli: model and table as expected"

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,10 +63,9 @@ void add_train_pores(CLI::App& app, Action& action) {
       "train-pores",
       "Train the ridge-blob pore model (--pores ridge-blob) on your own hand-marked prints and\n"
       "write it as a model file for --pore-model.\n"
-      "The --prints folder holds pairs image_NN.<jpg|png|bmp|tif> + pores_NN.txt (the PolyU HRF "
-      "layout). A\n"
-      "marks file has one marked pore per line, `row col`, 1-based pixel coordinates separated\n"
-      "by white space, e.g.\n"
+      "The --prints folder holds pairs image_NN.<jpg|png|bmp|tif> + pores_NN.txt (the PolyU\n"
+      "HRF layout). A marks file has one marked pore per line, `row col`, 1-based pixel\n"
+      "coordinates separated by white space, e.g.\n"
       "    42 17\n"
       "    86 120\n"
       "Mark every pore of the image: unmarked pores teach the model that they are not pores.\n"
@@ -103,6 +103,12 @@ void add_train_pores(CLI::App& app, Action& action) {
   sub->callback([opt, &action] {
     action = [opt] {
       const auto t0 = std::chrono::steady_clock::now();
+      // Checked first: training takes seconds to minutes, and its result would be lost.
+      const fs::path out_dir = opt->out.parent_path();
+      if (!out_dir.empty() && !fs::is_directory(out_dir)) {
+        throw std::runtime_error(
+            fmt::format("{}: no such folder for --out {}", out_dir.string(), opt->out.string()));
+      }
       const auto prints = capture::read_pore_training_prints(opt->prints_dir);
       std::size_t marked = 0;
       for (const auto& p : prints) marked += p.pores_px.size();
