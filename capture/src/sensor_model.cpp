@@ -156,7 +156,7 @@ std::array<PadPoint, kElectrodeCount> sensor_electrode_positions() {
            {1.5, 0.0}}};
 }
 
-TrialVariation draw_variation(std::uint64_t seed, double scale) {
+TrialVariation draw_variation(std::uint64_t seed, const VariationScale& scale) {
   // Repeatability of a robot arm replaying a trajectory, as measured on the real recordings'
   // arm poses (../shared/data/biotac-slide/*_cp.csv, trials 2-4 of each material): across
   // trials the cross-track position differs by <= 0.02 mm (std), the lowest height by <= 0.03 mm,
@@ -168,17 +168,17 @@ TrialVariation draw_variation(std::uint64_t seed, double scale) {
   std::uniform_real_distribution<double> offset(-0.1, 0.1), angle(-0.1, 0.1);
   std::normal_distribution<double> depth(1.0, 0.03), speed(1.0, 0.005);
   TrialVariation v;
-  v.offset_x_mm = scale * offset(rng);
-  v.offset_y_mm = scale * offset(rng);
-  v.depth_scale = 1 + scale * (depth(rng) - 1);
-  v.speed_scale = 1 + scale * (speed(rng) - 1);
-  v.angle_deg = scale * angle(rng);
+  v.offset_x_mm = scale.position * offset(rng);
+  v.offset_y_mm = scale.position * offset(rng);
+  v.depth_scale = 1 + scale.depth * (depth(rng) - 1);
+  v.speed_scale = 1 + scale.speed * (speed(rng) - 1);
+  v.angle_deg = scale.position * angle(rng);
   return v;
 }
 
 SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedure,
                                std::uint64_t seed, const SensorModel& m) {
-  const TrialVariation variation = draw_variation(seed, m.variation_scale);
+  const TrialVariation variation = draw_variation(seed, m.variation);
   std::mt19937_64 rng(seed ^ 0xD1B54A32D192ED03ull);
   std::normal_distribution<double> unit(0.0, 1.0);
 

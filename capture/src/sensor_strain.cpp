@@ -39,7 +39,7 @@ StrainMovie simulate_skin_strain(const SurfaceFeature& feature, Procedure proced
         fmt::format("skin strain: grid spacing {} mm and half extents {} x {} mm must be positive",
                     o.grid_spacing_mm, o.half_length_mm, o.half_width_mm));
   constexpr double kRateHz = 100.0;  // the sensor's row rate: the balance steps at this rate
-  const TrialVariation variation = draw_variation(seed, m.variation_scale);
+  const TrialVariation variation = draw_variation(seed, m.variation);
   std::vector<contact::Pose> poses = contact::plan(procedure, variation, m, kRateHz);
   const double kappa = contact::arm_stiffness(procedure, m);
 

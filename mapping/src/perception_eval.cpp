@@ -70,8 +70,8 @@ std::uint64_t simulated_trial_seed(const capture::SurfaceFeature& f, Procedure p
 }
 
 PerceptionDataset simulate_dataset(int trials_per_feature, std::uint64_t seed,
-                                   const capture::SensorModel& model, const DatasetBuild& build) {
-  const auto features = capture::paper_features();
+                                   const capture::SensorModel& model, const DatasetBuild& build,
+                                   const std::vector<capture::SurfaceFeature>& features) {
   return build_dataset(
       features, trials_per_feature,
       [&](const capture::SurfaceFeature& f, Procedure p, int trial) {

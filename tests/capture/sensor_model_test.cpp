@@ -91,9 +91,26 @@ TEST(SensorModel, TrialVariationHasTheDocumentedSpread) {
   EXPECT_NEAR(sd(speed_sum, speed_sq), 0.005, 0.005 * 0.1);
   EXPECT_NEAR(depth_sum / n, 1.0, 0.003);
   // No variation at scale 0.
-  const auto z = cap::draw_variation(9, 0.0);
+  const auto z = cap::draw_variation(9, {0, 0, 0});
   EXPECT_EQ(z.offset_x_mm, 0.0);
   EXPECT_EQ(z.depth_scale, 1.0);
+}
+
+// Each part of the variation scales on its own: position (and angle), depth, speed.
+TEST(SensorModel, TrialVariationScalesEachPartAlone) {
+  for (std::uint64_t s = 1; s < 50; ++s) {
+    const auto full = cap::draw_variation(s);
+    const auto position = cap::draw_variation(s, {0.25, 1, 1});
+    EXPECT_DOUBLE_EQ(position.offset_x_mm, 0.25 * full.offset_x_mm);
+    EXPECT_DOUBLE_EQ(position.offset_y_mm, 0.25 * full.offset_y_mm);
+    EXPECT_DOUBLE_EQ(position.angle_deg, 0.25 * full.angle_deg);
+    EXPECT_EQ(position.depth_scale, full.depth_scale);
+    EXPECT_EQ(position.speed_scale, full.speed_scale);
+    const auto depth = cap::draw_variation(s, {1, 2, 0});
+    EXPECT_NEAR(depth.depth_scale - 1, 2 * (full.depth_scale - 1), 1e-12);
+    EXPECT_EQ(depth.speed_scale, 1.0);
+    EXPECT_EQ(depth.offset_x_mm, full.offset_x_mm);
+  }
 }
 
 // Electrode noise in free air matches the real recordings (second differences of ele1..ele19 at

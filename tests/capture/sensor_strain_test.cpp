@@ -18,7 +18,7 @@ const SurfaceFeature kFlat{Curvature::planar, 1.25, 0.0};
 
 SensorModel still_model() {
   SensorModel m;
-  m.variation_scale = 0;
+  m.variation = {0, 0, 0};
   return m;
 }
 

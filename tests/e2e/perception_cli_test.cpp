@@ -44,6 +44,21 @@ TEST(PerceiveCli, WritesTable2Figure7AndAccuracyPerFootprint) {
   std::filesystem::remove_all(out);
 }
 
+// A subset of footprints and other trial-to-trial spreads (the sensitivity study of
+// docs/perception-models.md): only the chosen features are simulated.
+TEST(PerceiveCli, FootprintSubsetAndVariationScales) {
+  const auto out = fresh_dir("subset");
+  const auto r = run_tactile("perceive --out " + out.string() +
+                             " --trials 2 --footprints 1.25,20 --position-variation 0.3 "
+                             "--depth-variation 0 --speed-variation 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("12 features x 2 trials"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Table 2 (12 training / 12 held-out samples)"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(line_count(out / "accuracy_by_footprint.csv"), 1 + 10 * 4);  // -20 -1.25 1.25 20
+  std::filesystem::remove_all(out);
+}
+
 TEST(PerceiveCli, AnalysesEveryRealRecording) {
   const auto out = fresh_dir("real");
   const auto r = run_tactile("perceive --out " + out.string() + " --recordings " +
@@ -73,6 +88,16 @@ TEST(PerceiveCli, UsageErrors) {
   EXPECT_EQ(t.exit_code, 2);
   EXPECT_NE(t.output.find("--threads"), std::string::npos) << t.output;
   EXPECT_EQ(run_tactile("perceive --out /tmp/x --threads many").exit_code, 2);
+  const auto f = run_tactile("perceive --out /tmp/x --footprints 1.25,3");
+  EXPECT_EQ(f.exit_code, 2);
+  EXPECT_NE(f.output.find("--footprints: 3 not in"), std::string::npos) << f.output;
+  for (const char* v :
+       {"--position-variation -1", "--depth-variation x", "--speed-variation 1e9"}) {
+    const auto e = run_tactile(std::string("perceive --out /tmp/x ") + v);
+    EXPECT_EQ(e.exit_code, 2) << v;
+    EXPECT_NE(e.output.find(std::string(v).substr(0, std::string(v).find(' '))), std::string::npos)
+        << e.output;
+  }
   const auto r = run_tactile("perceive --out /tmp/x --recordings /nonexistent/dir");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("/nonexistent/dir"), std::string::npos) << r.output;

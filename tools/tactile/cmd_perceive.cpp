@@ -78,6 +78,8 @@ void add_perceive(CLI::App& app, Action& action) {
     std::filesystem::path recordings;
     bool export_recordings = false;
     int threads = 0;
+    capture::VariationScale variation;
+    std::vector<double> footprints_mm;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -97,6 +99,24 @@ void add_perceive(CLI::App& app, Action& action) {
                   "not depend on it")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
+  sub->add_option("--position-variation", opt->variation.position,
+                  "Scale of the trial-to-trial spread of the feature's position (+-0.1 mm) and of "
+                  "the contact angle (+-0.1 degree); 0 = none")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  sub->add_option("--depth-variation", opt->variation.depth,
+                  "Scale of the spread of the commanded depth (3 %); 0 = none")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  sub->add_option("--speed-variation", opt->variation.speed,
+                  "Scale of the spread of the speed (0.5 %); 0 = none")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  sub->add_option("--footprints", opt->footprints_mm,
+                  "Only features of these footprints (mm, of 1.25 2.5 3.75 5 7.5 10 15 20; "
+                  "bumps and pits of all three curvatures each), e.g. --footprints 1.25,2.5")
+      ->delimiter(',')
+      ->check(CLI::IsMember({1.25, 2.5, 3.75, 5.0, 7.5, 10.0, 15.0, 20.0}));
   sub->add_option("--recordings", opt->recordings, "Folder of real *_bio.csv recordings")
       ->check(CLI::ExistingDirectory);
   sub->add_flag("--export-recordings", opt->export_recordings,
@@ -110,14 +130,22 @@ void add_perceive(CLI::App& app, Action& action) {
       mapping::DatasetBuild build;
       build.threads = opt->threads;
       build.progress = [&](int done, int total) { progress("simulating", done, total); };
-      const auto d = mapping::simulate_dataset(opt->trials, opt->seed, {}, build);
+      std::vector<capture::SurfaceFeature> features;
+      for (const auto& f : capture::paper_features())
+        if (opt->footprints_mm.empty() ||
+            std::find(opt->footprints_mm.begin(), opt->footprints_mm.end(), f.footprint_mm) !=
+                opt->footprints_mm.end())
+          features.push_back(f);
+      capture::SensorModel model;
+      model.variation = opt->variation;
+      const auto d = mapping::simulate_dataset(opt->trials, opt->seed, model, build, features);
       progress.finish();
       const double sim_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       fmt::print(
-          "perceive: {} samples (48 features x {} trials, 4 procedures each), {} inputs, "
+          "perceive: {} samples ({} features x {} trials, 4 procedures each), {} inputs, "
           "simulated and analysed in {:.1f} s\n",
-          d.samples.size(), opt->trials, d.names.size(), sim_s);
+          d.samples.size(), features.size(), opt->trials, d.names.size(), sim_s);
       const auto split = mapping::split_per_block(d);
       const auto rows = mapping::run_table2(d, split);
       fmt::print("Table 2 ({} training / {} held-out samples):\n", split.train.size(),

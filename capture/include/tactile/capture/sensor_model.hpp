@@ -14,6 +14,13 @@
 
 namespace tactile::capture {
 
+// Scales of the trial-to-trial variation drawn by draw_variation, each relative to the spreads
+// documented in docs/perception-models.md (1 = as documented, 0 = none): where the arm puts the
+// finger (the feature's position and the contact angle), the commanded depth, and the speed.
+struct VariationScale {
+  double position = 1.0, depth = 1.0, speed = 1.0;
+};
+
 struct SensorModel {
   double pad_radius_x_mm = 15.0;  // curvature of the pad along the finger (distal-proximal)
   double pad_radius_y_mm = 8.0;   // across the finger (radial-ulnar)
@@ -30,7 +37,7 @@ struct SensorModel {
   double edge_gain = 2000.0;              // skin ringing per mm of slope change per sample
   double friction_noise_per_unit = 0.02;  // sliding noise per pressure count per mm/s
   double baseline_spread = 20.0;          // trial-to-trial spread of baselines (counts)
-  double variation_scale = 1.0;           // scales the trial-to-trial variation of the motion
+  VariationScale variation;               // trial-to-trial variation (draw_variation)
 };
 
 // x (distal +) and y (ulnar +) of the 19 electrodes on the pad, mm from its centre.
@@ -40,7 +47,7 @@ struct PadPoint {
 std::array<PadPoint, kElectrodeCount> sensor_electrode_positions();
 
 // Draws the trial-to-trial variation of trial `seed` (deterministic).
-TrialVariation draw_variation(std::uint64_t seed, double scale = 1.0);
+TrialVariation draw_variation(std::uint64_t seed, const VariationScale& scale = {});
 
 SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedure,
                                std::uint64_t seed, const SensorModel& model = {});

@@ -53,9 +53,10 @@ PerceptionDataset build_dataset(const std::vector<capture::SurfaceFeature>& feat
 // models of the same trials (capture::simulate_skin_strain) see the same variation.
 std::uint64_t simulated_trial_seed(const capture::SurfaceFeature& feature,
                                    capture::Procedure procedure, int trial, std::uint64_t seed);
-PerceptionDataset simulate_dataset(int trials_per_feature, std::uint64_t seed = 1,
-                                   const capture::SensorModel& model = {},
-                                   const DatasetBuild& build = {});
+PerceptionDataset simulate_dataset(
+    int trials_per_feature, std::uint64_t seed = 1, const capture::SensorModel& model = {},
+    const DatasetBuild& build = {},
+    const std::vector<capture::SurfaceFeature>& features = capture::paper_features());
 
 // Per feature (block), the last ceil(test_fraction * trials) trials are held out.
 struct PerceptionSplit {
