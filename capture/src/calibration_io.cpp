@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "json_field.hpp"
+#include "json_file.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {
@@ -21,33 +22,12 @@ void write_calibration_json(const std::filesystem::path& path, const Calibration
   j["image_width_px"] = calibration.image_width_px;
   j["image_height_px"] = calibration.image_height_px;
   j["method"] = calibration.method;
-  // Written beside the target and renamed, so a failed write never destroys a calibration
-  // that was already there (the same rule as the HDF5 files).
-  const std::filesystem::path tmp = path.string() + ".partial";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << '\n';
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-    }
-  }
-  std::filesystem::rename(tmp, path);
+  write_file_atomically(path, j.dump(2) + "\n");
 }
 
 Calibration read_calibration_json(const std::filesystem::path& path) {
   const std::string where = path.string();
-  std::ifstream in(path);
-  if (!in) throw FormatError(fmt::format("{}: cannot open calibration file", where));
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::parse_error& e) {
-    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
-  }
-  if (!j.is_object()) throw FormatError(fmt::format("{}: expected a JSON object", where));
+  const nlohmann::json j = read_json_object(path, "calibration file");
   if (json_field<std::string>(j, "format", where) != "tactile-calibration") {
     throw FormatError(fmt::format("{}: 'format' is not tactile-calibration", where));
   }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "json_field.hpp"
+#include "json_file.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/common/error.hpp"
 
@@ -15,15 +16,8 @@ namespace {
 
 void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   const std::string where = path.string();
-  std::ifstream in(path);
-  if (!in) throw FormatError(fmt::format("{}: cannot open (not a `tactile synth` folder?)", where));
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::parse_error& e) {
-    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
-  }
-  if (!j.is_object() || j.value("format", std::string()) != "tactile-synthetic-scene") {
+  const nlohmann::json j = read_json_object(path, "scene (not a `tactile synth` folder?)");
+  if (j.value("format", std::string()) != "tactile-synthetic-scene") {
     throw FormatError(fmt::format("{}: 'format' is not tactile-synthetic-scene", where));
   }
   const auto s = json_field<nlohmann::json>(j, "spec", where);
