@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
 
 namespace tactile::capture {
@@ -132,6 +133,116 @@ std::vector<FieldSample> field_weights(const SensorModel& m) {
   return field;
 }
 
+// ElectrodeField::sheet. The current leaves the electrode's face and spreads radially through the
+// thin fluid layer, so the resistance of the annulus at radius r goes as dr / (r x gap): a change
+// of the gap there weighs as 1 / r^2 (1 / face^2 over the face), out to where the current leaves
+// for the other electrodes (the reach, tapered over +-0.5 mm so that nothing jumps as the skin
+// moves). A small feature is then seen by every electrode within a few millimetres, and smoothly
+// in its position, where the Gaussian field sees it only on a steep flank.
+class SheetField {
+ public:
+  explicit SheetField(const SensorModel& m)
+      : face_mm_(m.sheet_face_mm), cut_mm_(m.sheet_reach_mm), taper_mm_(0.5) {
+    // Normalised so that the weights integrate to 1, as the Gaussian's sum to 1.
+    constexpr double h = 0.02;
+    double total = 0;
+    for (double x = -reach_mm(); x <= reach_mm(); x += h)
+      for (double y = -reach_mm(); y <= reach_mm(); y += h)
+        total += weight_per_mm2(std::hypot(x, y));
+    norm_ = total * h * h;
+    // The flat plate's part is smooth, so 0.5 mm cells, each with its integrated weight, suffice.
+    constexpr double cell = 0.5;
+    const int n = static_cast<int>(std::ceil(reach_mm() / cell));
+    for (int i = -n; i <= n; ++i)
+      for (int j = -n; j <= n; ++j) {
+        double w = 0;
+        for (int a = -2; a <= 2; ++a)
+          for (int b = -2; b <= 2; ++b)
+            w += weight_per_mm2(std::hypot((i + a / 5.0) * cell, (j + b / 5.0) * cell));
+        if (w > 0) cells_.push_back({i * cell, j * cell, w * cell * cell / 25});
+      }
+  }
+  double weight_per_mm2(double r_mm) const {
+    const double s = (r_mm - (cut_mm_ - taper_mm_)) / (2 * taper_mm_);
+    if (s >= 1) return 0.0;
+    const double rr = std::max(r_mm, face_mm_);
+    const double taper = s > 0 ? 1 - s * s * (3 - 2 * s) : 1.0;
+    return taper / (rr * rr * norm_);
+  }
+  double reach_mm() const { return cut_mm_ + taper_mm_; }
+  const std::vector<FieldSample>& cells() const { return cells_; }
+
+ private:
+  double face_mm_, cut_mm_, taper_mm_, norm_ = 1.0;
+  std::vector<FieldSample> cells_;
+};
+
+// Counts of the skin at one point: the local indentation closes the gap (u / (L - u)), the skin's
+// bending and its stretch redistribute the fluid.
+double skin_counts(const SkinState& k, const SensorModel& m) {
+  if (k.indentation_mm <= 0) return 0.0;
+  const double u = std::min(k.indentation_mm, 0.8 * m.fluid_layer_mm);
+  return m.electrode_per_mm * m.fluid_layer_mm * u / (m.fluid_layer_mm - u) +
+         m.electrode_per_bending_mm * k.bending_per_mm + m.electrode_per_strain * k.stretch;
+}
+
+// The electrodes' impedance change at one pose. The sheet field reaches millimetres, so it is
+// the flat plate's smooth part on coarse cells plus the feature's difference from it on samples
+// fixed to the feature (the same shape sampling wherever the feature is).
+class ElectrodeModel {
+ public:
+  ElectrodeModel(const SurfaceFeature& feature, const SensorModel& m)
+      : m_(m),
+        skin_(feature, m.skin_bend_radius_mm),
+        plate_(SurfaceFeature{Curvature::planar, feature.footprint_mm, 0.0}, m.skin_bend_radius_mm),
+        gaussian_(field_weights(m)) {
+    if (m.electrode_field == ElectrodeField::sheet) sheet_.emplace(m);
+    feature_reach_mm_ = 0.5 * feature.footprint_mm +
+                        std::sqrt(2 * m.skin_bend_radius_mm * std::abs(feature.height_mm)) + 0.04;
+    const double step = std::clamp(feature_reach_mm_ / 12, 0.03, 0.6);
+    feature_cell_mm2_ = step * step;
+    const int n = static_cast<int>(std::ceil(feature_reach_mm_ / step));
+    for (int i = -n; i <= n; ++i)
+      for (int j = -n; j <= n; ++j)
+        if (std::hypot(i * step, j * step) <= feature_reach_mm_)
+          feature_samples_.push_back({i * step, j * step});
+  }
+
+  double counts(const Pose& p, const PadPoint& e) const {
+    double c = 0;
+    if (m_.electrode_field == ElectrodeField::gaussian) {
+      for (const FieldSample& w : gaussian_)
+        c += w.weight *
+             skin_counts(skin_state(skin_, p, m_, e.x_mm + w.dx_mm, e.y_mm + w.dy_mm), m_);
+      return c;
+    }
+    for (const FieldSample& w : sheet_->cells())
+      c +=
+          w.weight * skin_counts(skin_state(plate_, p, m_, e.x_mm + w.dx_mm, e.y_mm + w.dy_mm), m_);
+    if (std::hypot(p.feature_x_mm - e.x_mm, p.feature_y_mm - e.y_mm) >=
+        sheet_->reach_mm() + feature_reach_mm_)
+      return c;
+    for (const auto& [dx, dy] : feature_samples_) {
+      const double x = p.feature_x_mm + dx, y = p.feature_y_mm + dy;
+      const double w = sheet_->weight_per_mm2(std::hypot(x - e.x_mm, y - e.y_mm));
+      if (w <= 0) continue;
+      c += w * feature_cell_mm2_ *
+           (skin_counts(skin_state(skin_, p, m_, x, y), m_) -
+            skin_counts(skin_state(plate_, p, m_, x, y), m_));
+    }
+    return c;
+  }
+  const SkinProfile& skin() const { return skin_; }
+
+ private:
+  const SensorModel& m_;
+  SkinProfile skin_, plate_;
+  std::vector<FieldSample> gaussian_;
+  std::optional<SheetField> sheet_;  // only for ElectrodeField::sheet
+  double feature_reach_mm_ = 0, feature_cell_mm2_ = 0;
+  std::vector<std::array<double, 2>> feature_samples_;
+};
+
 }  // namespace
 
 std::array<PadPoint, kElectrodeCount> sensor_electrode_positions() {
@@ -192,8 +303,8 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
   for (double& e : e0) e = m.electrode_baseline + m.baseline_spread * unit(rng);
 
   const double kappa = contact::arm_stiffness(procedure, m);
-  const SkinProfile skin(feature, m.skin_bend_radius_mm);
-  const std::vector<FieldSample> field = field_weights(m);
+  const ElectrodeModel electrode_model(feature, m);
+  const SkinProfile& skin = electrode_model.skin();
   double depth = 0;
   std::vector<double> load(poses.size());  // pressure above baseline, noiseless
   std::vector<double> depth_at(poses.size());
@@ -208,19 +319,7 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
     r.temperature_ac.push_back(0.0);
     r.pressure.push_back(std::round(p0 + load[i] + m.pressure_noise * unit(rng)));
     for (int e = 0; e < kElectrodeCount; ++e) {
-      // Impedance follows the fluid gap over the electrode's receptive field (weights from
-      // field_weights): the local indentation closes the gap (u / (L - u)), the skin's bending
-      // and its stretch redistribute the fluid.
-      const auto [x, y] = electrodes[e];
-      double gap = 0;
-      for (const FieldSample& w : field) {
-        const SkinState k = skin_state(skin, p, m, x + w.dx_mm, y + w.dy_mm);
-        if (k.indentation_mm <= 0) continue;
-        const double u = std::min(k.indentation_mm, 0.8 * m.fluid_layer_mm);
-        gap += w.weight *
-               (m.electrode_per_mm * m.fluid_layer_mm * u / (m.fluid_layer_mm - u) +
-                m.electrode_per_bending_mm * k.bending_per_mm + m.electrode_per_strain * k.stretch);
-      }
+      const double gap = electrode_model.counts(p, electrodes[e]);
       r.electrodes[e].push_back(
           std::round(e0[e] + gap + 0.05 * load[i] + m.electrode_noise * unit(rng)));
     }

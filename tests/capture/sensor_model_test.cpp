@@ -133,3 +133,42 @@ TEST(SensorModel, ElectrodeNoiseInFreeAirIsAboutOneCount) {
   EXPECT_GT(sigma, 0.5);
   EXPECT_LT(sigma, 1.2);
 }
+
+// A 1.25 mm bump pressed statically between the two centre electrodes 1.5 mm on either side of
+// it, with only the position spread (+-0.1 mm) varying from trial to trial. Its response on
+// those electrodes (the trial minus the same trial on a bare plate: same seed, same noise) must
+// be steady with the sheet field, whose weight falls as 1 / r^2 (relative slope 2 / r = 1.3 per
+// mm there), and is erratic with the Gaussian one, whose flank falls as exp(-r^2 / 2 sigma^2)
+// (relative slope r / sigma^2 = 9 per mm, and the feature's edge terms change sign across it).
+TEST(SensorModel, SheetFieldSeesASmallFeatureSmoothlyInItsPosition) {
+  const cap::SurfaceFeature bump{cap::Curvature::planar, 1.25, 0.625};
+  const cap::SurfaceFeature bare{cap::Curvature::planar, 1.25, 0.0};
+  const auto spread = [&](cap::ElectrodeField field, double& mean_counts) {
+    cap::SensorModel m;
+    m.electrode_field = field;
+    m.variation = {1, 0, 0};
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+      const auto a = cap::simulate_trial(bump, cap::Procedure::static_contact, seed, m);
+      const auto b = cap::simulate_trial(bare, cap::Procedure::static_contact, seed, m);
+      const std::size_t lo = a.rows() * 2 / 5, hi = a.rows() * 3 / 5;
+      for (int e : {17, 18}) {  // the centre column's electrodes at x = -1.5 and +1.5 mm
+        double d = 0;
+        for (std::size_t i = lo; i < hi; ++i) d += a.electrodes[e][i] - b.electrodes[e][i];
+        d /= static_cast<double>(hi - lo);
+        sum += d;
+        sum2 += d * d;
+        ++n;
+      }
+    }
+    mean_counts = sum / n;
+    return std::sqrt(std::max(0.0, sum2 / n - mean_counts * mean_counts)) / std::abs(mean_counts);
+  };
+  double sheet_mean = 0, gaussian_mean = 0;
+  const double sheet = spread(cap::ElectrodeField::sheet, sheet_mean);
+  const double gaussian = spread(cap::ElectrodeField::gaussian, gaussian_mean);
+  EXPECT_GT(sheet_mean, 100.0);  // the bump is seen 1.5 mm away
+  EXPECT_LT(sheet, 0.25) << sheet_mean;
+  EXPECT_LT(sheet * 4, gaussian) << sheet << " " << gaussian << " " << gaussian_mean;
+}

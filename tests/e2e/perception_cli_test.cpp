@@ -59,6 +59,17 @@ TEST(PerceiveCli, FootprintSubsetAndVariationScales) {
   std::filesystem::remove_all(out);
 }
 
+// The sheet electrode field (slower: it weighs the skin out to 3.5 mm), on the smallest features.
+TEST(PerceiveCli, SheetElectrodeField) {
+  const auto out = fresh_dir("sheet");
+  const auto r = run_tactile("perceive --out " + out.string() +
+                             " --trials 2 --footprints 1.25 --electrode-field sheet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("6 features x 2 trials"), std::string::npos) << r.output;
+  EXPECT_EQ(line_count(out / "table2.csv"), 1 + 5 * 2);
+  std::filesystem::remove_all(out);
+}
+
 TEST(PerceiveCli, AnalysesEveryRealRecording) {
   const auto out = fresh_dir("real");
   const auto r = run_tactile("perceive --out " + out.string() + " --recordings " +
@@ -88,6 +99,9 @@ TEST(PerceiveCli, UsageErrors) {
   EXPECT_EQ(t.exit_code, 2);
   EXPECT_NE(t.output.find("--threads"), std::string::npos) << t.output;
   EXPECT_EQ(run_tactile("perceive --out /tmp/x --threads many").exit_code, 2);
+  const auto g = run_tactile("perceive --out /tmp/x --electrode-field wide");
+  EXPECT_EQ(g.exit_code, 2);
+  EXPECT_NE(g.output.find("--electrode-field: wide not in"), std::string::npos) << g.output;
   const auto f = run_tactile("perceive --out /tmp/x --footprints 1.25,3");
   EXPECT_EQ(f.exit_code, 2);
   EXPECT_NE(f.output.find("--footprints: 3 not in"), std::string::npos) << f.output;

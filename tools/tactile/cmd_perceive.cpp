@@ -80,6 +80,7 @@ void add_perceive(CLI::App& app, Action& action) {
     int threads = 0;
     capture::VariationScale variation;
     std::vector<double> footprints_mm;
+    std::string electrode_field = "gaussian";
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -112,6 +113,12 @@ void add_perceive(CLI::App& app, Action& action) {
                   "Scale of the spread of the speed (0.5 %); 0 = none")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  sub->add_option("--electrode-field", opt->electrode_field,
+                  "How an electrode weighs the skin: gaussian (its face and a 0.4 mm margin) or "
+                  "sheet (the fluid as a thin conducting sheet: 1/r^2 out to 3 mm, smooth in the "
+                  "position of a small feature)")
+      ->check(CLI::IsMember({"gaussian", "sheet"}))
+      ->capture_default_str();
   sub->add_option("--footprints", opt->footprints_mm,
                   "Only features of these footprints (mm, of 1.25 2.5 3.75 5 7.5 10 15 20; "
                   "bumps and pits of all three curvatures each), e.g. --footprints 1.25,2.5")
@@ -138,6 +145,7 @@ void add_perceive(CLI::App& app, Action& action) {
           features.push_back(f);
       capture::SensorModel model;
       model.variation = opt->variation;
+      if (opt->electrode_field == "sheet") model.electrode_field = capture::ElectrodeField::sheet;
       const auto d = mapping::simulate_dataset(opt->trials, opt->seed, model, build, features);
       progress.finish();
       const double sim_s =

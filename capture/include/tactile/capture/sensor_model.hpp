@@ -21,6 +21,12 @@ struct VariationScale {
   double position = 1.0, depth = 1.0, speed = 1.0;
 };
 
+// How an electrode weighs the skin around it (docs/perception-models.md): `gaussian`, its face
+// and a margin about the gap's thickness (sigma electrode_field_mm); `sheet`, the fluid as a thin
+// conducting sheet, in which a change of the gap at distance r weighs as 1 / r^2 out to
+// sheet_reach_mm (1 / face^2 over the face of radius sheet_face_mm).
+enum class ElectrodeField { gaussian, sheet };
+
 struct SensorModel {
   double pad_radius_x_mm = 15.0;  // curvature of the pad along the finger (distal-proximal)
   double pad_radius_y_mm = 8.0;   // across the finger (radial-ulnar)
@@ -30,9 +36,11 @@ struct SensorModel {
   double electrode_baseline = 3000, electrode_per_mm = 80.0, electrode_noise = 0.8;
   double electrode_per_bending_mm = 1000.0;  // counts per 1/mm of skin curvature at an electrode
   double electrode_per_strain = 10000.0;  // counts per unit stretch of the skin over an electrode
-  double electrode_field_mm = 0.4;   // sigma of an electrode's receptive field (face + gap margin)
-  int electrode_field_samples = 9;   // grid points across the field (odd), out to 2 sigma
-  double skin_bend_radius_mm = 0.1;  // the skin cannot curve more sharply than this
+  double electrode_field_mm = 0.4;  // sigma of an electrode's receptive field (face + gap margin)
+  int electrode_field_samples = 9;  // grid points across the field (odd), out to 2 sigma
+  ElectrodeField electrode_field = ElectrodeField::gaussian;
+  double sheet_face_mm = 0.5, sheet_reach_mm = 3.0;  // ElectrodeField::sheet (assumed)
+  double skin_bend_radius_mm = 0.1;                  // the skin cannot curve more sharply than this
   double vibration_offset = 2048, vibration_gain = 0.4, vibration_noise = 4.0;
   double edge_gain = 2000.0;              // skin ringing per mm of slope change per sample
   double friction_noise_per_unit = 0.02;  // sliding noise per pressure count per mm/s
