@@ -50,12 +50,18 @@ TEST(PerceiveCli, FootprintSubsetAndVariationScales) {
   const auto out = fresh_dir("subset");
   const auto r = run_tactile("perceive --out " + out.string() +
                              " --trials 2 --footprints 1.25,20 --position-variation 0.3 "
-                             "--depth-variation 0 --speed-variation 2");
+                             "--depth-variation 0 --speed-variation 2 --export-recordings");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("12 features x 2 trials"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Table 2 (12 training / 12 held-out samples)"), std::string::npos)
       << r.output;
   EXPECT_EQ(line_count(out / "accuracy_by_footprint.csv"), 1 + 10 * 4);  // -20 -1.25 1.25 20
+  // Trial 0 of each of the 12 features and 4 procedures, in the real recordings' format: the
+  // recordings analysis reads every one back.
+  const auto back = run_tactile("perceive --out " + (out / "back").string() + " --recordings " +
+                                (out / "recordings").string());
+  EXPECT_EQ(back.exit_code, 0) << back.output;
+  EXPECT_NE(back.output.find("48 of 48 recordings analysed"), std::string::npos) << back.output;
   std::filesystem::remove_all(out);
 }
 

@@ -172,14 +172,16 @@ void add_perceive(CLI::App& app, Action& action) {
       if (opt->export_recordings) {
         const auto dir = opt->out_dir / "recordings";
         std::filesystem::create_directories(dir);
-        for (const auto& f : capture::paper_features())
+        // Trial 0 of the data set itself: same seed, same sensor model.
+        for (const auto& f : features)
           for (int p = 0; p < capture::kProcedureCount; ++p) {
             const auto proc = static_cast<capture::Procedure>(p);
             capture::write_sensor_csv(
                 dir / fmt::format("{}_{:+g}mm_{}_bio.csv",
                                   kCurvatureNames[static_cast<int>(f.curvature)],
                                   f.signed_footprint_mm(), capture::procedure_name(proc)),
-                capture::simulate_trial(f, proc, static_cast<std::uint64_t>(p)));
+                capture::simulate_trial(
+                    f, proc, mapping::simulated_trial_seed(f, proc, 0, opt->seed), model));
           }
       }
       fmt::print("perceive: table2.csv, figure7.csv, accuracy_by_footprint.csv and plots -> {}\n",
