@@ -12,6 +12,7 @@
 #include <numbers>
 #include <optional>
 #include <random>
+#include <stdexcept>
 
 namespace tactile::capture {
 namespace {
@@ -143,6 +144,10 @@ class SheetField {
  public:
   explicit SheetField(const SensorModel& m)
       : face_mm_(m.sheet_face_mm), cut_mm_(m.sheet_reach_mm), taper_mm_(0.5) {
+    if (!(face_mm_ > 0 && cut_mm_ > face_mm_ + taper_mm_ && cut_mm_ < 50))
+      throw std::invalid_argument(fmt::format(
+          "sheet electrode field: face {} mm and reach {} mm need 0 < face < reach - 0.5 < 50 mm",
+          face_mm_, cut_mm_));
     // Normalised so that the weights integrate to 1, as the Gaussian's sum to 1.
     constexpr double h = 0.02;
     double total = 0;

@@ -2,6 +2,7 @@
 // direction follows from the physics (a bump displaces more fluid than a pit, contact starts
 // when the press ramp starts).
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -171,4 +172,18 @@ TEST(SensorModel, SheetFieldSeesASmallFeatureSmoothlyInItsPosition) {
   EXPECT_GT(sheet_mean, 100.0);  // the bump is seen 1.5 mm away
   EXPECT_LT(sheet, 0.25) << sheet_mean;
   EXPECT_LT(sheet * 4, gaussian) << sheet << " " << gaussian << " " << gaussian_mean;
+}
+
+TEST(SensorModel, SheetFieldRefusesImpossibleSizes) {
+  const cap::SurfaceFeature bump{cap::Curvature::planar, 5, 2.5};
+  for (const auto& [face, reach] : {std::pair{0.0, 3.0}, {-1.0, 3.0}, {0.5, 0.8}, {0.5, 100.0}}) {
+    cap::SensorModel m;
+    m.electrode_field = cap::ElectrodeField::sheet;
+    m.sheet_face_mm = face;
+    m.sheet_reach_mm = reach;
+    EXPECT_THAT([&] { cap::simulate_trial(bump, cap::Procedure::static_contact, 1, m); },
+                ::testing::ThrowsMessage<std::invalid_argument>(
+                    ::testing::HasSubstr("sheet electrode field")))
+        << face << " " << reach;
+  }
 }
