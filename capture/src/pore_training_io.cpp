@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include "tactile/capture/image.hpp"
 #include "tactile/common/error.hpp"
@@ -39,9 +40,16 @@ std::optional<std::string> number_after(const std::string& stem, const std::stri
   return nn;
 }
 
+// `ext` (".jpg", lower case) is one of kImageExtensions.
 bool is_image_extension(const std::string& ext) {
-  return ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".bmp" || ext == ".tif" ||
-         ext == ".tiff";
+  if (ext.size() < 2 || ext[0] != '.') return false;
+  const std::string_view list = kImageExtensions, name = std::string_view(ext).substr(1);
+  for (std::size_t at = 0; at <= list.size();) {
+    const std::size_t bar = std::min(list.find('|', at), list.size());
+    if (list.substr(at, bar - at) == name) return true;
+    at = bar + 1;
+  }
+  return false;
 }
 
 struct Pair {

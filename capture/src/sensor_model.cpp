@@ -200,8 +200,10 @@ class ElectrodeModel {
       : m_(m),
         skin_(feature, m.skin_bend_radius_mm),
         plate_(SurfaceFeature{Curvature::planar, feature.footprint_mm, 0.0}, m.skin_bend_radius_mm),
-        gaussian_(field_weights(m)) {
-    if (m.electrode_field == ElectrodeField::sheet) sheet_.emplace(m);
+        gaussian_(m.electrode_field == ElectrodeField::gaussian ? field_weights(m)
+                                                                : std::vector<FieldSample>{}) {
+    if (m.electrode_field != ElectrodeField::sheet) return;
+    sheet_.emplace(m);
     feature_reach_mm_ = 0.5 * feature.footprint_mm +
                         std::sqrt(2 * m.skin_bend_radius_mm * std::abs(feature.height_mm)) + 0.04;
     const double step = std::clamp(feature_reach_mm_ / 12, 0.03, 0.6);

@@ -162,12 +162,19 @@ void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
                                          "#9467bd", "#8c564b", "#e377c2"};
   // Footprints span 1.25 to 20 mm, so the axis is ordinal (one slot per footprint in the data),
   // not linear: the small features, where the classifier fails, would otherwise share a pixel.
+  struct Line {
+    const CascadeResult* result;
+    std::vector<FootprintAccuracy> points;
+  };
+  std::vector<Line> lines;
   std::vector<double> footprints;
-  for (const auto& row : rows)
-    if (row.result.degree == degree)
-      for (const auto& a : accuracy_by_footprint(row.result))
-        if (std::find(footprints.begin(), footprints.end(), a.footprint_mm) == footprints.end())
-          footprints.push_back(a.footprint_mm);
+  for (const auto& row : rows) {
+    if (row.result.degree != degree) continue;
+    lines.push_back({&row.result, accuracy_by_footprint(row.result)});
+    for (const auto& a : lines.back().points)
+      if (std::find(footprints.begin(), footprints.end(), a.footprint_mm) == footprints.end())
+        footprints.push_back(a.footprint_mm);
+  }
   std::sort(footprints.begin(), footprints.end());
   constexpr double kWidth = 640, kHeight = 320, kMargin = 60;
   const double slot = kWidth / std::max<std::size_t>(1, footprints.size());
@@ -199,20 +206,18 @@ void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
       "<text x='{}' y='{}' text-anchor='middle'>true signed footprint (mm, + bump, - pit)"
       "</text>\n",
       kMargin + kWidth / 2, kMargin + kHeight + 40);
-  int set = 0;
-  for (const auto& row : rows) {
-    if (row.result.degree != degree) continue;
+  for (std::size_t set = 0; set < lines.size(); ++set) {
+    const CascadeResult& r = *lines[set].result;
     const char* colour = kSetColours[set % std::size(kSetColours)];
     std::string points;
-    for (const auto& a : accuracy_by_footprint(row.result))
+    for (const auto& a : lines[set].points)
       points += fmt::format("{:.1f},{:.1f} ", px(a.footprint_mm),
                             py(a.tested ? double(a.correct) / a.tested : 0.0));
     out << fmt::format(
         "<polyline points='{}' fill='none' stroke='{}' stroke-width='{}'/>\n<text x='{}' "
         "y='{}' fill='{}'>{} ({}/{})</text>\n",
-        points, colour, row.result.inputs == "all" ? 2.5 : 1.2, kMargin + kWidth + 10,
-        kMargin + 14 + 18 * set, colour, row.result.inputs, row.result.correct, row.result.tested);
-    ++set;
+        points, colour, r.inputs == "all" ? 2.5 : 1.2, kMargin + kWidth + 10,
+        kMargin + 14 + 18 * static_cast<double>(set), colour, r.inputs, r.correct, r.tested);
   }
   finish_svg(out, path);
 }
