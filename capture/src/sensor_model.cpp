@@ -3,6 +3,7 @@
 #include "tactile/capture/sensor_model.hpp"
 
 #include "sensor_contact.hpp"
+#include "tactile/capture/skin_ringing.hpp"
 
 #include <fmt/format.h>
 
@@ -75,6 +76,15 @@ class SkinProfile {
     // Near the centre h'/r tends to h''.
     s.laplacian_per_mm = curvature + (r_mm > 2 * kStepMm ? s.slope / r_mm : curvature);
     return s;
+  }
+
+  // Radial slope of the height as interpolated between table points: constant over each
+  // 0.02 mm cell, so a kink of the skin (the foot of a tent) stays within one cell.
+  double cell_slope(double r_mm) const {
+    const double x = r_mm / kStepMm;
+    if (!(x >= 0) || x >= static_cast<double>(height_.size() - 1)) return 0.0;
+    const auto i = static_cast<std::size_t>(x);
+    return (height_[i + 1] - height_[i]) / kStepMm;
   }
 
  private:
@@ -333,15 +343,13 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
   }
 
   // Vibration: the AC-coupled change of the load between 2200 Hz samples (load interpolated
-  // linearly between rows); the skin ringing (a 150 Hz resonator, Q = 3) when the pad centre
-  // passes a change of the surface's slope (edges, rims, apexes: the profile's second
-  // difference along the path); friction noise while sliding (proportional to load and speed,
-  // smoothed by the skin: one-pole low-pass at 400 Hz); and sensor noise.
+  // linearly between rows); the skin ringing where the skin meets a change of the surface's
+  // slope (SkinRinging); friction noise while sliding (proportional to load and speed, smoothed
+  // by the skin: one-pole low-pass at 400 Hz); and sensor noise.
   const double fs = r.vibration_rate_hz;
   const double alpha = 1.0 - std::exp(-2 * std::numbers::pi * 400.0 / fs);
-  const double w0 = 2 * std::numbers::pi * 150.0 / fs, damping = std::exp(-w0 / (2 * 3.0));
-  const double a1 = 2 * damping * std::cos(w0), a2 = -damping * damping;
-  double previous = 0, friction = 0, h1 = 0, h2 = 0, y1 = 0, y2 = 0;
+  SkinRinging ringing(fs, m.edge_gain);
+  double previous = 0, friction = 0;
   const std::size_t n = poses.size() * kVibrationPerRow;
   r.vibration.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -352,25 +360,25 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
     const double l = (1 - w) * load[i0] + w * load[i1];
     const double slide = poses[i0].slide_mm_s;
     friction += alpha * (m.friction_noise_per_unit * l * slide * unit(rng) * 10 - friction);
-    // Slope changes ring the skin where it first meets them: the leading edge of the contact
-    // patch (half-lengths from the depth), on the side the surface comes from.
+    // The skin meets the surface first at the leading edge of the contact patch (half-lengths
+    // from the depth), on the side the surface comes from; the slope there is the skin's, along
+    // the direction of sliding (x for the distal-proximal stroke, y for the others).
     const Pose& p0 = poses[i0];
-    const double lead_x = std::sqrt(2 * m.pad_radius_x_mm * std::max(0.0, depth_at[i0]));
-    const double lead_y = std::sqrt(2 * m.pad_radius_y_mm * std::max(0.0, depth_at[i0]));
-    double sx = p0.contact_x_mm, sy = p0.contact_y_mm;
+    const Pose& p1 = poses[i1];
+    const double d = (1 - w) * depth_at[i0] + w * depth_at[i1];
+    const double lead_x = std::sqrt(2 * m.pad_radius_x_mm * std::max(0.0, d));
+    const double lead_y = std::sqrt(2 * m.pad_radius_y_mm * std::max(0.0, d));
+    double sx = (1 - w) * p0.contact_x_mm + w * p1.contact_x_mm;
+    double sy = (1 - w) * p0.contact_y_mm + w * p1.contact_y_mm;
     if (procedure == Procedure::distal_proximal) sx -= lead_x;
     if (procedure == Procedure::radial_ulnar) sy -= lead_y;
     if (procedure == Procedure::roll) sy += lead_y;
-    const Pose& p1 = poses[i1];
-    const double fx = (1 - w) * p0.feature_x_mm + w * p1.feature_x_mm;
-    const double fy = (1 - w) * p0.feature_y_mm + w * p1.feature_y_mm;
-    const double h = l > 0 ? skin.at(std::hypot(fx - sx, fy - sy)).height_mm : 0.0;
-    const double kink = k >= 2 ? h - 2 * h1 + h2 : 0.0;
-    const double ring = a1 * y1 + a2 * y2 + m.edge_gain * kink;
-    h2 = h1;
-    h1 = h;
-    y2 = y1;
-    y1 = ring;
+    const double mx = (1 - w) * p0.feature_x_mm + w * p1.feature_x_mm - sx;
+    const double my = (1 - w) * p0.feature_y_mm + w * p1.feature_y_mm - sy;
+    const double mr = std::hypot(mx, my);
+    const double along = procedure == Procedure::distal_proximal ? mx : my;
+    const double slope = mr > 0 ? skin.cell_slope(mr) * along / mr : 0.0;
+    const double ring = ringing.step(l > 0, slope);
     r.vibration.push_back(std::round(m.vibration_offset +
                                      m.vibration_gain * fs / 100 * (l - previous) + ring +
                                      friction + m.vibration_noise * unit(rng)));

@@ -187,3 +187,29 @@ TEST(SensorModel, SheetFieldRefusesImpossibleSizes) {
         << face << " " << reach;
   }
 }
+
+TEST(SensorModel, VibrationRingsWhereAStrokeMeetsAnEdgeNotInAStaticPress) {
+  // Without friction noise or sensor noise, a trial's vibration with the skin's ringing minus the
+  // same trial's without it is the ringing alone. A distal-proximal stroke over a 20 mm planar
+  // bump meets its 2.5 mm edges, whose tented skin changes slope by sqrt(2 h / rho) = 7.1 at the
+  // foot: a kick of 7.1 x edge_gain, which a Q = 3 resonator rings to at most twice that (less as
+  // the kink is crossed over a few samples). A static press meets no edge.
+  cap::SensorModel quiet;
+  quiet.friction_noise_per_unit = 0;
+  quiet.vibration_noise = 0;
+  cap::SensorModel silent = quiet;
+  silent.edge_gain = 0;
+  const cap::SurfaceFeature bump{cap::Curvature::planar, 20, 2.5};
+  const auto ringing = [&](cap::Procedure p) {
+    const auto with = cap::simulate_trial(bump, p, 1, quiet);
+    const auto without = cap::simulate_trial(bump, p, 1, silent);
+    double peak = 0;
+    for (std::size_t i = 0; i < with.vibration.size(); ++i)
+      peak = std::max(peak, std::abs(with.vibration[i] - without.vibration[i]));
+    return peak;
+  };
+  const double stroke = ringing(cap::Procedure::distal_proximal);
+  EXPECT_GT(stroke, 1.2 * 7.1 * quiet.edge_gain);
+  EXPECT_LT(stroke, 2.0 * 7.1 * quiet.edge_gain + 1);  // + rounding to counts
+  EXPECT_EQ(ringing(cap::Procedure::static_contact), 0.0);
+}

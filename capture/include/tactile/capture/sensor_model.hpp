@@ -42,7 +42,7 @@ struct SensorModel {
   double sheet_face_mm = 0.5, sheet_reach_mm = 3.0;  // ElectrodeField::sheet (assumed)
   double skin_bend_radius_mm = 0.1;                  // the skin cannot curve more sharply than this
   double vibration_offset = 2048, vibration_gain = 0.4, vibration_noise = 4.0;
-  double edge_gain = 2000.0;              // skin ringing per mm of slope change per sample
+  double edge_gain = 50.0;  // skin ringing kick per unit change of slope (SkinRinging; assumed)
   double friction_noise_per_unit = 0.02;  // sliding noise per pressure count per mm/s
   double baseline_spread = 20.0;          // trial-to-trial spread of baselines (counts)
   VariationScale variation;               // trial-to-trial variation (draw_variation)
