@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -231,6 +232,32 @@ std::string table2_line(const TimedCascade& row) {
       r.inputs, r.degree, r.correct, r.tested, r.tested ? 100.0 * r.correct / r.tested : 0.0,
       r.r2[0], r.r2[1], r.r2[2], r.rms_mm[0], r.rms_mm[1], r.rms_mm[2], r.cascade_rms_mm,
       row.train_test_s);
+}
+
+std::string misclassified_line(const CascadeResult& result) {
+  std::vector<FootprintAccuracy> by_size;  // footprint_mm unsigned here
+  for (const auto& a : accuracy_by_footprint(result)) {
+    const double size_mm = std::abs(a.footprint_mm);
+    auto it = std::find_if(by_size.begin(), by_size.end(),
+                           [&](const FootprintAccuracy& b) { return b.footprint_mm == size_mm; });
+    if (it == by_size.end()) it = by_size.insert(by_size.end(), FootprintAccuracy{size_mm, 0, 0});
+    it->correct += a.correct;
+    it->tested += a.tested;
+  }
+  std::erase_if(by_size, [](const FootprintAccuracy& a) { return a.correct == a.tested; });
+  // Largest share wrong first; equal shares by size.
+  std::sort(by_size.begin(), by_size.end(),
+            [](const FootprintAccuracy& a, const FootprintAccuracy& b) {
+              const double wrong_a = double(a.tested - a.correct) / a.tested;
+              const double wrong_b = double(b.tested - b.correct) / b.tested;
+              return wrong_a != wrong_b ? wrong_a > wrong_b : a.footprint_mm < b.footprint_mm;
+            });
+  std::string line = fmt::format("{} exp {}: curvature wrong on {} of {}", result.inputs,
+                                 result.degree, result.tested - result.correct, result.tested);
+  for (std::size_t i = 0; i < by_size.size(); ++i)
+    line += fmt::format("{}{:g} mm {} of {}", i == 0 ? ": " : ", ", by_size[i].footprint_mm,
+                        by_size[i].tested - by_size[i].correct, by_size[i].tested);
+  return line;
 }
 
 }  // namespace tactile::mapping

@@ -35,6 +35,9 @@ TEST(PerceiveCli, WritesTable2Figure7AndAccuracyPerFootprint) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Table 2 (48 training / 48 held-out samples)"), std::string::npos)
       << r.output;
+  // Where the all-inputs classifier errs, for both kernels, out of the 48 held-out trials.
+  for (const char* kernel : {"all exp 1: curvature wrong on ", "all exp 2: curvature wrong on "})
+    EXPECT_NE(r.output.find(kernel), std::string::npos) << r.output;
   EXPECT_EQ(line_count(out / "table2.csv"), 1 + 5 * 2);     // 5 input sets x 2 kernels
   EXPECT_EQ(line_count(out / "figure7.csv"), 1 + 10 * 48);  // every held-out trial
   EXPECT_EQ(line_count(out / "accuracy_by_footprint.csv"), 1 + 10 * 16);  // 16 footprints

@@ -64,6 +64,17 @@ TEST(AccuracyByFootprint, CountsEachSignedFootprintInOrder) {
   EXPECT_TRUE(map::accuracy_by_footprint(map::CascadeResult{}).empty());
 }
 
+TEST(AccuracyByFootprint, MisclassifiedLineJoinsBumpsAndPitsWorstShareFirst) {
+  // 1.25 mm: 2 bumps + 2 pits, 3 wrong; 2.5 mm: 2 bumps, 1 wrong; 5 mm: 4 pits, 2 wrong;
+  // 20 mm: 1 bump, right (not listed). 5 and 2.5 mm tie at half: smaller first.
+  const auto r = result("all", 2, {1.25, -1.25, 1.25, -1.25, 2.5, 2.5, -5, -5, -5, -5, 20},
+                        {0, 1, 3, 4, 6, 9});
+  EXPECT_EQ(map::misclassified_line(r),
+            "all exp 2: curvature wrong on 6 of 11: 1.25 mm 3 of 4, 2.5 mm 1 of 2, 5 mm 2 of 4");
+  EXPECT_EQ(map::misclassified_line(result("dp", 1, {1.25, 20}, {})),
+            "dp exp 1: curvature wrong on 0 of 2");
+}
+
 TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
   const fs::path dir = fs::temp_directory_path() / "tactile_accuracy_by_footprint_test";
   fs::create_directories(dir);

@@ -159,6 +159,9 @@ void add_perceive(CLI::App& app, Action& action) {
       fmt::print("Table 2 ({} training / {} held-out samples):\n", split.train.size(),
                  split.test.size());
       for (const auto& row : rows) fmt::print("  {}\n", mapping::table2_line(row));
+      for (const auto& row : rows)
+        if (row.result.inputs == "all")
+          fmt::print("  {}\n", mapping::misclassified_line(row.result));
       mapping::write_table2_csv(opt->out_dir / "table2.csv", rows);
       mapping::write_figure7_csv(opt->out_dir / "figure7.csv", rows);
       for (const auto& row : rows)
