@@ -365,9 +365,9 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
     // the direction of sliding (x for the distal-proximal stroke, y for the others).
     const Pose& p0 = poses[i0];
     const Pose& p1 = poses[i1];
-    const double d = (1 - w) * depth_at[i0] + w * depth_at[i1];
-    const double lead_x = std::sqrt(2 * m.pad_radius_x_mm * std::max(0.0, d));
-    const double lead_y = std::sqrt(2 * m.pad_radius_y_mm * std::max(0.0, d));
+    const double pad_depth_mm = (1 - w) * depth_at[i0] + w * depth_at[i1];
+    const double lead_x = std::sqrt(2 * m.pad_radius_x_mm * std::max(0.0, pad_depth_mm));
+    const double lead_y = std::sqrt(2 * m.pad_radius_y_mm * std::max(0.0, pad_depth_mm));
     double sx = (1 - w) * p0.contact_x_mm + w * p1.contact_x_mm;
     double sy = (1 - w) * p0.contact_y_mm + w * p1.contact_y_mm;
     if (procedure == Procedure::distal_proximal) sx -= lead_x;
