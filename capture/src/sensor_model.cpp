@@ -357,24 +357,24 @@ SensorRecording simulate_trial(const SurfaceFeature& feature, Procedure procedur
     const auto i0 = static_cast<std::size_t>(row);
     const std::size_t i1 = std::min(i0 + 1, poses.size() - 1);
     const double w = row - static_cast<double>(i0);
-    const double l = (1 - w) * load[i0] + w * load[i1];
+    const auto lerp = [w](double a, double b) { return (1 - w) * a + w * b; };
+    const double l = lerp(load[i0], load[i1]);
     const double slide = poses[i0].slide_mm_s;
     friction += alpha * (m.friction_noise_per_unit * l * slide * unit(rng) * 10 - friction);
-    // The skin meets the surface first at the leading edge of the contact patch (half-lengths
+    // The skin meets the surface first at the leading edge of the contact patch (half-length
     // from the depth), on the side the surface comes from; the slope there is the skin's, along
     // the direction of sliding (x for the distal-proximal stroke, y for the others).
     const Pose& p0 = poses[i0];
     const Pose& p1 = poses[i1];
-    const double pad_depth_mm = (1 - w) * depth_at[i0] + w * depth_at[i1];
-    const double lead_x = std::sqrt(2 * m.pad_radius_x_mm * std::max(0.0, pad_depth_mm));
-    const double lead_y = std::sqrt(2 * m.pad_radius_y_mm * std::max(0.0, pad_depth_mm));
-    double sx = (1 - w) * p0.contact_x_mm + w * p1.contact_x_mm;
-    double sy = (1 - w) * p0.contact_y_mm + w * p1.contact_y_mm;
-    if (procedure == Procedure::distal_proximal) sx -= lead_x;
-    if (procedure == Procedure::radial_ulnar) sy -= lead_y;
-    if (procedure == Procedure::roll) sy += lead_y;
-    const double mx = (1 - w) * p0.feature_x_mm + w * p1.feature_x_mm - sx;
-    const double my = (1 - w) * p0.feature_y_mm + w * p1.feature_y_mm - sy;
+    const double pad_depth_mm = std::max(0.0, lerp(depth_at[i0], depth_at[i1]));
+    double sx = lerp(p0.contact_x_mm, p1.contact_x_mm);
+    double sy = lerp(p0.contact_y_mm, p1.contact_y_mm);
+    if (procedure == Procedure::distal_proximal)
+      sx -= std::sqrt(2 * m.pad_radius_x_mm * pad_depth_mm);
+    if (procedure == Procedure::radial_ulnar) sy -= std::sqrt(2 * m.pad_radius_y_mm * pad_depth_mm);
+    if (procedure == Procedure::roll) sy += std::sqrt(2 * m.pad_radius_y_mm * pad_depth_mm);
+    const double mx = lerp(p0.feature_x_mm, p1.feature_x_mm) - sx;
+    const double my = lerp(p0.feature_y_mm, p1.feature_y_mm) - sy;
     const double mr = std::hypot(mx, my);
     const double along = procedure == Procedure::distal_proximal ? mx : my;
     const double slope = mr > 0 ? skin.cell_slope(mr) * along / mr : 0.0;
