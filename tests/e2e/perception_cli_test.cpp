@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "run.hpp"
 
@@ -23,6 +25,20 @@ int line_count(const std::filesystem::path& path) {
   int lines = 0;
   for (std::string line; std::getline(in, line);) ++lines;
   return lines;
+}
+
+// Field number `index` (from 0) of every data line of a CSV.
+std::vector<std::string> column(const std::filesystem::path& path, int index) {
+  std::ifstream in(path);
+  std::vector<std::string> values;
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::size_t from = 0;
+    for (int i = 0; i < index; ++i) from = line.find(',', from) + 1;
+    values.push_back(line.substr(from, line.find(',', from) - from));
+  }
+  return values;
 }
 
 }  // namespace
@@ -79,6 +95,36 @@ TEST(PerceiveCli, SheetElectrodeField) {
   std::filesystem::remove_all(out);
 }
 
+// --seeds: every seed's Table 2 is the one a run of that seed alone gives, the first seed's is
+// also table2.csv, and the spread is printed for every row.
+TEST(PerceiveCli, SeedsRepeatTable2OnEachSeed) {
+  const auto out = fresh_dir("seeds");
+  const std::string common = " --trials 2 --footprints 1.25,20 --threads 2";
+  const auto r = run_tactile("perceive --out " + out.string() + common + " --seed 4 --seeds 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Table 2 over 2 seeds (4-5)"), std::string::npos) << r.output;
+  for (const char* row : {"all exp 1: ", "all exp 2: ", "static exp 1: ", "roll exp 2: "})
+    EXPECT_NE(r.output.find(std::string(row)), std::string::npos) << row;
+  EXPECT_NE(r.output.find("of 12 correct over 2 seeds (mean "), std::string::npos) << r.output;
+  const auto seeds_csv = out / "table2_seeds.csv";
+  ASSERT_EQ(line_count(seeds_csv), 1 + 2 * 10);
+  const auto seeds = column(seeds_csv, 0);
+  const auto correct = column(seeds_csv, 3);
+  EXPECT_EQ(std::vector<std::string>(seeds.begin(), seeds.begin() + 10),
+            std::vector<std::string>(10, "4"));
+  EXPECT_EQ(std::vector<std::string>(seeds.begin() + 10, seeds.end()),
+            std::vector<std::string>(10, "5"));
+  // table2.csv: inputs,degree,correct,...; the same rows in the same order.
+  EXPECT_EQ(std::vector<std::string>(correct.begin(), correct.begin() + 10),
+            column(out / "table2.csv", 2));
+  const auto alone = fresh_dir("seed5");
+  ASSERT_EQ(run_tactile("perceive --out " + alone.string() + common + " --seed 5").exit_code, 0);
+  EXPECT_EQ(std::vector<std::string>(correct.begin() + 10, correct.end()),
+            column(alone / "table2.csv", 2));
+  std::filesystem::remove_all(out);
+  std::filesystem::remove_all(alone);
+}
+
 TEST(PerceiveCli, AnalysesEveryRealRecording) {
   const auto out = fresh_dir("real");
   const auto r = run_tactile("perceive --out " + out.string() + " --recordings " +
@@ -121,6 +167,16 @@ TEST(PerceiveCli, UsageErrors) {
     EXPECT_NE(e.output.find(std::string(v).substr(0, std::string(v).find(' '))), std::string::npos)
         << e.output;
   }
+  for (const char* v : {"--seeds 0", "--seeds few", "--seeds 1001"}) {
+    const auto e = run_tactile(std::string("perceive --out /tmp/x ") + v);
+    EXPECT_EQ(e.exit_code, 2) << v;
+    EXPECT_NE(e.output.find("--seeds"), std::string::npos) << e.output;
+  }
+  // Real recordings are analysed once; seeds are for the simulated data set.
+  const auto both = run_tactile("perceive --out /tmp/x --seeds 2 --recordings " +
+                                std::string(TACTILE_SHARED_DATA_DIR) + "/biotac-slide");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.output.find("excludes"), std::string::npos) << both.output;
   const auto r = run_tactile("perceive --out /tmp/x --recordings /nonexistent/dir");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("/nonexistent/dir"), std::string::npos) << r.output;

@@ -13,6 +13,7 @@
 #include "tactile/capture/sensor_csv.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/mapping/perception_report.hpp"
+#include "tactile/mapping/perception_seeds.hpp"
 
 namespace tactile::cli {
 namespace {
@@ -75,6 +76,7 @@ void add_perceive(CLI::App& app, Action& action) {
     std::filesystem::path out_dir;
     int trials = 20;
     std::uint64_t seed = 1;
+    int seeds = 1;
     std::filesystem::path recordings;
     bool export_recordings = false;
     int threads = 0;
@@ -90,11 +92,17 @@ void add_perceive(CLI::App& app, Action& action) {
       "then curvature-specific SVR for the signed footprint (90/10 split per feature).\n"
       "Writes table2.csv, figure7.csv and figure7_<inputs>_exp<k>.svg, and the classifier's\n"
       "held-out accuracy per footprint (accuracy_by_footprint.csv, _exp<k>.svg). With\n"
-      "--recordings DIR, analyses real BioTac-style recordings instead (recordings.csv).");
+      "--recordings DIR, analyses real BioTac-style recordings instead (recordings.csv).\n"
+      "With --seeds N, repeats Table 2 on N data sets (seeds SEED..SEED+N-1) and reports each\n"
+      "row's spread (table2_seeds.csv): one split holds out only 96 trials.");
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
       ->check(CLI::Range(2, 1000));
   sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
+  auto* seeds = sub->add_option("--seeds", opt->seeds,
+                                "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
+                                "the other files are those of the first")
+                    ->check(CLI::Range(1, 1000));
   sub->add_option("--threads", opt->threads,
                   "Worker threads simulating and analysing trials (0: all cores); the results do "
                   "not depend on it")
@@ -125,18 +133,14 @@ void add_perceive(CLI::App& app, Action& action) {
       ->delimiter(',')
       ->check(CLI::IsMember({1.25, 2.5, 3.75, 5.0, 7.5, 10.0, 15.0, 20.0}));
   sub->add_option("--recordings", opt->recordings, "Folder of real *_bio.csv recordings")
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingDirectory)
+      ->excludes(seeds);
   sub->add_flag("--export-recordings", opt->export_recordings,
                 "Also write trial 0 of every feature and procedure as BioTac-style CSV");
   sub->callback([opt, &action] {
     action = [opt] {
       std::filesystem::create_directories(opt->out_dir);
       if (!opt->recordings.empty()) return analyse_recordings(opt->recordings, opt->out_dir);
-      const auto t0 = std::chrono::steady_clock::now();
-      Progress progress;
-      mapping::DatasetBuild build;
-      build.threads = opt->threads;
-      build.progress = [&](int done, int total) { progress("simulating", done, total); };
       std::vector<capture::SurfaceFeature> features;
       for (const auto& f : capture::paper_features())
         if (opt->footprints_mm.empty() ||
@@ -146,14 +150,24 @@ void add_perceive(CLI::App& app, Action& action) {
       capture::SensorModel model;
       model.variation = opt->variation;
       if (opt->electrode_field == "sheet") model.electrode_field = capture::ElectrodeField::sheet;
-      const auto d = mapping::simulate_dataset(opt->trials, opt->seed, model, build, features);
-      progress.finish();
-      const double sim_s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fmt::print(
-          "perceive: {} samples ({} features x {} trials, 4 procedures each), {} inputs, "
-          "simulated and analysed in {:.1f} s\n",
-          d.samples.size(), features.size(), opt->trials, d.names.size(), sim_s);
+      const auto simulate = [&](std::uint64_t seed) {
+        const auto t0 = std::chrono::steady_clock::now();
+        Progress progress;
+        mapping::DatasetBuild build;
+        build.threads = opt->threads;
+        const std::string stage =
+            opt->seeds > 1 ? fmt::format("simulating seed {}", seed) : "simulating";
+        build.progress = [&](int done, int total) { progress(stage, done, total); };
+        auto d = mapping::simulate_dataset(opt->trials, seed, model, build, features);
+        progress.finish();
+        fmt::print(
+            "perceive: {} samples ({} features x {} trials, 4 procedures each), {} inputs, "
+            "simulated and analysed in {:.1f} s\n",
+            d.samples.size(), features.size(), opt->trials, d.names.size(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        return d;
+      };
+      const auto d = simulate(opt->seed);
       const auto split = mapping::split_per_block(d);
       const auto rows = mapping::run_table2(d, split);
       fmt::print("Table 2 ({} training / {} held-out samples):\n", split.train.size(),
@@ -189,6 +203,23 @@ void add_perceive(CLI::App& app, Action& action) {
       }
       fmt::print("perceive: table2.csv, figure7.csv, accuracy_by_footprint.csv and plots -> {}\n",
                  opt->out_dir.string());
+      if (opt->seeds == 1) return 0;
+      std::vector<mapping::SeedTable2> runs{{opt->seed, rows}};
+      for (int k = 1; k < opt->seeds; ++k) {
+        const std::uint64_t seed = opt->seed + static_cast<std::uint64_t>(k);
+        const auto dk = simulate(seed);
+        runs.push_back({seed, mapping::run_table2(dk, mapping::split_per_block(dk))});
+        for (const auto& row : runs.back().rows)
+          if (row.result.inputs == "all")
+            fmt::print("  seed {}: all exp {} {}/{}\n", seed, row.result.degree, row.result.correct,
+                       row.result.tested);
+      }
+      fmt::print("Table 2 over {} seeds ({}-{}), curvature correct on held-out trials:\n",
+                 opt->seeds, opt->seed, runs.back().seed);
+      for (const auto& line : mapping::seed_spread_lines(runs)) fmt::print("  {}\n", line);
+      mapping::write_table2_seeds_csv(opt->out_dir / "table2_seeds.csv", runs);
+      fmt::print("perceive: every seed's Table 2 -> {}\n",
+                 (opt->out_dir / "table2_seeds.csv").string());
       return 0;
     };
   });
