@@ -15,16 +15,21 @@ std::vector<std::string> seed_spread_lines(const std::vector<SeedTable2>& runs) 
   std::vector<std::string> lines;
   if (runs.empty()) return lines;
   const auto& first = runs.front().rows;
+  const auto other_table = [&](const SeedTable2& run) {
+    return std::invalid_argument(
+        fmt::format("Table 2 of seed {} has other rows or held-out trials than that of seed {}",
+                    run.seed, runs.front().seed));
+  };
+  for (const SeedTable2& run : runs)
+    if (run.rows.size() != first.size()) throw other_table(run);
   for (std::size_t i = 0; i < first.size(); ++i) {
     const CascadeResult& r0 = first[i].result;
     int lowest = r0.correct, highest = r0.correct, sum = 0;
     for (const SeedTable2& run : runs) {
       // A row that differs is another table, and a spread across it would mean nothing.
-      if (run.rows.size() != first.size() || run.rows[i].result.inputs != r0.inputs ||
-          run.rows[i].result.degree != r0.degree || run.rows[i].result.tested != r0.tested)
-        throw std::invalid_argument(
-            fmt::format("Table 2 of seed {} has other rows or held-out trials than that of seed {}",
-                        run.seed, runs.front().seed));
+      if (run.rows[i].result.inputs != r0.inputs || run.rows[i].result.degree != r0.degree ||
+          run.rows[i].result.tested != r0.tested)
+        throw other_table(run);
       const int c = run.rows[i].result.correct;
       lowest = std::min(lowest, c);
       highest = std::max(highest, c);

@@ -67,6 +67,9 @@ TEST(SeedSpread, RefusesTablesWithOtherRows) {
   runs = three_seeds();
   runs[1].rows.pop_back();
   EXPECT_THROW(map::seed_spread_lines(runs), std::invalid_argument);
+  runs = three_seeds();
+  runs[0].rows.clear();  // an empty first table is no reason to accept the others
+  EXPECT_THROW(map::seed_spread_lines(runs), std::invalid_argument);
 }
 
 TEST(SeedSpread, CsvHasEveryRowOfEverySeed) {
