@@ -7,13 +7,14 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "csv_rows.hpp"
 #include "run.hpp"
 
 namespace fs = std::filesystem;
+using tactile::test::read_csv_rows;
 using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 
@@ -33,19 +34,6 @@ std::string experiment(const std::string& perception) {
   "parameters": {"strain": "accumulated", "gain_um_per_strain": 250}, "write_movies": false,
   "perception": )" +
          perception + "}";
-}
-
-std::vector<std::vector<std::string>> read_csv(const fs::path& path, bool skip_comment) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (skip_comment && line.starts_with("#")) continue;
-    std::vector<std::string> fields;
-    std::stringstream s(line);
-    for (std::string f; std::getline(s, f, ',');) fields.push_back(f);
-    rows.push_back(fields);
-  }
-  return rows;
 }
 
 }  // namespace
@@ -79,7 +67,7 @@ TEST(ExperimentPerceptionCli, Table2FromMoviesPerMappingBesideTheSensors) {
       ",r2_planar,r2_conical,r2_spherical,rms_planar_mm,rms_conical_mm,rms_spherical_mm,"
       "cascade_rms_mm,train_test_s";
   for (const auto& id : tables) {
-    const auto rows = read_csv(d / "out" / "perception" / ("table2-" + id + ".csv"), false);
+    const auto rows = read_csv_rows(d / "out" / "perception" / ("table2-" + id + ".csv"), false);
     ASSERT_EQ(rows.size(), 11u) << id;  // header + 5 input sets x 2 exponents
     std::string header;
     for (const auto& f : rows[0]) header += (header.empty() ? "" : ",") + f;
@@ -94,7 +82,7 @@ TEST(ExperimentPerceptionCli, Table2FromMoviesPerMappingBesideTheSensors) {
     }
   }
   // Summary: one row per mapping (the sensor first) and exponent.
-  const auto summary = read_csv(d / "out" / "perception" / "summary.csv", true);
+  const auto summary = read_csv_rows(d / "out" / "perception" / "summary.csv", true);
   ASSERT_EQ(summary.size(), 1u + 3 * 2);
   EXPECT_EQ(summary[0][0], "mapping");
   EXPECT_EQ(summary[1][0], "sensor");

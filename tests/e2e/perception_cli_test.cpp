@@ -4,11 +4,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "csv_rows.hpp"
 #include "run.hpp"
 
+using tactile::test::read_csv_rows;
 using tactile::test::run_tactile;
 
 namespace {
@@ -28,16 +31,10 @@ int line_count(const std::filesystem::path& path) {
 }
 
 // Field number `index` (from 0) of every data line of a CSV.
-std::vector<std::string> column(const std::filesystem::path& path, int index) {
-  std::ifstream in(path);
+std::vector<std::string> column(const std::filesystem::path& path, std::size_t index) {
+  const auto rows = read_csv_rows(path);
   std::vector<std::string> values;
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::size_t from = 0;
-    for (int i = 0; i < index; ++i) from = line.find(',', from) + 1;
-    values.push_back(line.substr(from, line.find(',', from) - from));
-  }
+  for (std::size_t i = 1; i < rows.size(); ++i) values.push_back(rows[i].at(index));
   return values;
 }
 
@@ -103,9 +100,18 @@ TEST(PerceiveCli, SeedsRepeatTable2OnEachSeed) {
   const auto r = run_tactile("perceive --out " + out.string() + common + " --seed 4 --seeds 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Table 2 over 2 seeds (4-5)"), std::string::npos) << r.output;
-  for (const char* row : {"all exp 1: ", "all exp 2: ", "static exp 1: ", "roll exp 2: "})
-    EXPECT_NE(r.output.find(std::string(row)), std::string::npos) << row;
-  EXPECT_NE(r.output.find("of 12 correct over 2 seeds (mean "), std::string::npos) << r.output;
+  // One spread line per Table 2 row ("all exp 1: " alone would also match the misclassified
+  // line that every run prints).
+  std::vector<std::string> spread;
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find(" of 12 correct over 2 seeds (mean ") != std::string::npos)
+      spread.push_back(line.substr(0, line.find(':')));
+  EXPECT_EQ(spread,
+            (std::vector<std::string>{"  all exp 1", "  all exp 2", "  static exp 1",
+                                      "  static exp 2", "  dp exp 1", "  dp exp 2", "  ru exp 1",
+                                      "  ru exp 2", "  roll exp 1", "  roll exp 2"}))
+      << r.output;
   const auto seeds_csv = out / "table2_seeds.csv";
   ASSERT_EQ(line_count(seeds_csv), 1 + 2 * 10);
   const auto seeds = column(seeds_csv, 0);
