@@ -41,7 +41,7 @@ capture_cli_expect(synth_rotation_too_large 1 "rotation_deg" synth ${cc_dir}/nev
 set(tp_dir ${CMAKE_CURRENT_BINARY_DIR}/train-pores-cli)
 add_test(NAME train_pores_cli.train
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/capture/train_pores_cli.sh ${cc_tactile}
-                 ${TACTILE_SHARED_DATA_DIR}/polyu-hrf-pores ${tp_dir})
+                 ${TACTILE_TEST_DATA_DIR}/polyu-hrf-pores ${tp_dir})
 set_tests_properties(train_pores_cli.train PROPERTIES LABELS e2e FIXTURES_SETUP train_pores_cli
                      TIMEOUT 120)
 
@@ -52,7 +52,7 @@ function(train_pores_cli_expect name code pattern)
                        FIXTURES_REQUIRED train_pores_cli TIMEOUT 120)
 endfunction()
 
-set(tp_print4 ${TACTILE_SHARED_DATA_DIR}/polyu-hrf-pores/image_04.jpg)
+set(tp_print4 ${TACTILE_TEST_DATA_DIR}/polyu-hrf-pores/image_04.jpg)
 # image_04 has 517 marked pores (the shipped model detects 528): a model from 3 other prints
 # should find a few hundred.
 train_pores_cli_expect(features_with_model 0 "features: [3-6][0-9]{2} pores" features

@@ -1,5 +1,5 @@
 // The shipped pore model: train_pore_model (pore_model.cpp) on all 15 PolyU HRF prints of
-// ../shared/data/polyu-hrf-pores with the default RidgeBlobParams, label radius 0.064 mm, L2
+// tests/data/polyu-hrf-pores with the default RidgeBlobParams, label radius 0.064 mm, L2
 // penalty 1. RealPores.ShippedPoreModelIsTrainedOnAllPrints (tests/capture/real_pores_test.cpp)
 // retrains it and prints this table when it no longer matches. Order: intercept, the 16
 // measures of pore_blobs.cpp, then the products m[i] m[j] for i <= j.

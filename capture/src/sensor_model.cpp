@@ -286,7 +286,7 @@ std::array<PadPoint, kElectrodeCount> sensor_electrode_positions() {
 
 TrialVariation draw_variation(std::uint64_t seed, const VariationScale& scale) {
   // Repeatability of a robot arm replaying a trajectory, as measured on the real recordings'
-  // arm poses (../shared/data/biotac-slide/*_cp.csv, trials 2-4 of each material): across
+  // arm poses (tests/data/biotac-slide/*_cp.csv, trials 2-4 of each material): across
   // trials the cross-track position differs by <= 0.02 mm (std), the lowest height by <= 0.03 mm,
   // the speed by 0.03 % and the orientation by ~0.01 degree. We allow five to twenty times that
   // for a different arm. The depth is the exception: the same trials' pressure differs by

@@ -21,7 +21,7 @@ namespace tactile::capture {
 namespace {
 
 std::vector<PoreTrainingPrint> read_prints() {
-  return read_pore_training_prints(std::filesystem::path(TACTILE_SHARED_DATA_DIR) /
+  return read_pore_training_prints(std::filesystem::path(TACTILE_TEST_DATA_DIR) /
                                    "polyu-hrf-pores");
 }
 

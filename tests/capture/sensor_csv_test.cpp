@@ -109,7 +109,7 @@ TEST(SensorCsv, MalformedFilesNameTheProblem) {
 }
 
 TEST(SensorCsv, ReadsEveryRealRecording) {
-  const std::filesystem::path dir = std::filesystem::path(TACTILE_SHARED_DATA_DIR) / "biotac-slide";
+  const std::filesystem::path dir = std::filesystem::path(TACTILE_TEST_DATA_DIR) / "biotac-slide";
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().filename().string().find("_bio.csv") == std::string::npos) continue;

@@ -115,7 +115,7 @@ TEST(SensorModel, TrialVariationScalesEachPartAlone) {
 }
 
 // Electrode noise in free air matches the real recordings (second differences of ele1..ele19 at
-// rest in ../shared/data/biotac-slide: 0.6-1.0 counts), which are integer counts.
+// rest in tests/data/biotac-slide: 0.6-1.0 counts), which are integer counts.
 TEST(SensorModel, ElectrodeNoiseInFreeAirIsAboutOneCount) {
   const auto r =
       cap::simulate_trial({cap::Curvature::planar, 5, 2.5}, cap::Procedure::static_contact, 21);

@@ -134,7 +134,7 @@ TEST(PerceiveCli, SeedsRepeatTable2OnEachSeed) {
 TEST(PerceiveCli, AnalysesEveryRealRecording) {
   const auto out = fresh_dir("real");
   const auto r = run_tactile("perceive --out " + out.string() + " --recordings " +
-                             TACTILE_SHARED_DATA_DIR + "/biotac-slide");
+                             TACTILE_TEST_DATA_DIR + "/biotac-slide");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("9 of 9 recordings analysed"), std::string::npos) << r.output;
   EXPECT_EQ(line_count(out / "recordings.csv"), 10);  // header + 9 recordings
@@ -180,7 +180,7 @@ TEST(PerceiveCli, UsageErrors) {
   }
   // Real recordings are analysed once; seeds are for the simulated data set.
   const auto both = run_tactile("perceive --out /tmp/x --seeds 2 --recordings " +
-                                std::string(TACTILE_SHARED_DATA_DIR) + "/biotac-slide");
+                                std::string(TACTILE_TEST_DATA_DIR) + "/biotac-slide");
   EXPECT_EQ(both.exit_code, 2);
   EXPECT_NE(both.output.find("excludes"), std::string::npos) << both.output;
   const auto r = run_tactile("perceive --out /tmp/x --recordings /nonexistent/dir");

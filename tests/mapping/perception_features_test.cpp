@@ -114,7 +114,7 @@ TEST(PerceptionFeatures, SeventySixInputsFromTheSimulatedSensor) {
 TEST(PerceptionFeatures, RealRecordingsBeginInContact) {
   // biotac-slide: trials start in contact and end released; baseline from the end.
   const auto path =
-      std::filesystem::path(TACTILE_SHARED_DATA_DIR) / "biotac-slide" / "mat14_2_bio.csv";
+      std::filesystem::path(TACTILE_TEST_DATA_DIR) / "biotac-slide" / "mat14_2_bio.csv";
   const auto r = cap::read_sensor_csv(path);
   map::ContactOptions o;
   o.baseline_at = map::ContactOptions::BaselineAt::end;

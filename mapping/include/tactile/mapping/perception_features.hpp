@@ -23,7 +23,7 @@ namespace tactile::mapping {
 
 struct ContactOptions {
   // Where the free-air baseline is: at the start (the paper: before contact), or at the end
-  // (recordings that begin in contact, like ../shared/data/biotac-slide).
+  // (recordings that begin in contact, like tests/data/biotac-slide).
   enum class BaselineAt { start, end } baseline_at = BaselineAt::start;
   double baseline_s = 0.2;            // duration averaged for the baseline
   double threshold_fraction = 0.002;  // contact: pressure above baseline by 0.2 % of baseline
