@@ -7,6 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
 jobs=$(nproc)
+# ccache keys on paths relative to the repository, so a fresh copy of the same sources (CI's)
+# reuses what an earlier build in another folder compiled.
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 
 echo "== release build and tests"
 cmake --preset release >/dev/null
