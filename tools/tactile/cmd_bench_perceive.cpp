@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "command.hpp"
-#include "tactile/mapping/perception_arff.hpp"
-#include "tactile/mapping/perception_report.hpp"
+#include "tactile/perception/arff.hpp"
+#include "tactile/perception/report.hpp"
 
 namespace tactile::cli {
 namespace {
@@ -70,15 +70,15 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
   sub->callback([opt, &action] {
     action = [opt] {
       auto t0 = std::chrono::steady_clock::now();
-      mapping::DatasetBuild build;
+      perception::DatasetBuild build;
       build.threads = 0;  // all cores: the data set is the same, and its making is not timed
-      const auto d = mapping::simulate_dataset(opt->trials, 1, {}, build);
-      const auto split = mapping::split_per_block(d);
+      const auto d = perception::simulate_dataset(opt->trials, 1, {}, build);
+      const auto split = perception::split_per_block(d);
       fmt::print(
           "bench perceive: {} samples simulated and analysed in {:.1f} s (not timed below)\n",
           d.samples.size(), seconds_since(t0));
       t0 = std::chrono::steady_clock::now();
-      const auto rows = mapping::run_table2(d, split);
+      const auto rows = perception::run_table2(d, split);
       const double ours_s = seconds_since(t0);
       double summed_s = 0;
       for (const auto& row : rows) summed_s += row.train_test_s;
@@ -98,15 +98,15 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
       double built_s = 0;
       int runs = 0;
       t0 = std::chrono::steady_clock::now();
-      for (const auto& set : mapping::table2_input_sets(d))
+      for (const auto& set : perception::table2_input_sets(d))
         for (int degree : {1, 2}) {
           const std::string kernel = fmt::format(
               "-K \"weka.classifiers.functions.supportVector.PolyKernel -C 250007 -E {}.0\"",
               degree);
-          mapping::write_arff(dir / "train.arff", d, split.train, set.columns,
-                              mapping::ArffTarget::curvature);
-          mapping::write_arff(dir / "test.arff", d, split.test, set.columns,
-                              mapping::ArffTarget::curvature);
+          perception::write_arff(dir / "train.arff", d, split.train, set.columns,
+                                 perception::ArffTarget::curvature);
+          perception::write_arff(dir / "test.arff", d, split.test, set.columns,
+                                 perception::ArffTarget::curvature);
           built_s += run_weka(opt->java, opt->weka_jar,
                               "weka.classifiers.functions.SMO -C 1.0 -L 0.001 -P 1.0E-12 -N 0 "
                               "-V -1 -W 1 " +
@@ -119,10 +119,10 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
               if (d.samples[i].curvature == c) train.push_back(i);
             for (auto i : split.test)
               if (d.samples[i].curvature == c) test.push_back(i);
-            mapping::write_arff(dir / "train.arff", d, train, set.columns,
-                                mapping::ArffTarget::footprint);
-            mapping::write_arff(dir / "test.arff", d, test, set.columns,
-                                mapping::ArffTarget::footprint);
+            perception::write_arff(dir / "train.arff", d, train, set.columns,
+                                   perception::ArffTarget::footprint);
+            perception::write_arff(dir / "test.arff", d, test, set.columns,
+                                   perception::ArffTarget::footprint);
             built_s += run_weka(opt->java, opt->weka_jar,
                                 "weka.classifiers.functions.SMOreg -C 1.0 -N 0 " + kernel,
                                 dir / "train.arff", dir / "test.arff");

@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "command.hpp"
-#include "tactile/mapping/experiment.hpp"
+#include "tactile/experiments/experiment.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -42,13 +42,13 @@ void add_experiment(CLI::App& app, Action& action) {
   sub->callback([opt, &action] {
     action = [opt] {
       const auto t0 = std::chrono::steady_clock::now();
-      mapping::Experiment ex = mapping::read_experiment(opt->file);
+      experiments::Experiment ex = experiments::read_experiment(opt->file);
       const fs::path out = opt->out.value_or(fs::path(ex.name + "-results"));
       fmt::print("experiment '{}': {} sources x {} layouts -> {} runs, checked; writing {}\n",
                  ex.name, ex.sources.size(), ex.layouts.size(), ex.runs.size(), out.string());
       std::mutex print_mutex;
       const auto report =
-          mapping::run_experiment(ex, out, opt->threads, [&](const std::string& message) {
+          experiments::run_experiment(ex, out, opt->threads, [&](const std::string& message) {
             if (opt->quiet) return;
             const std::lock_guard lock(print_mutex);
             fmt::print("  {}\n", message);
