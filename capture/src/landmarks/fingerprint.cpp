@@ -1,4 +1,4 @@
-#include "fingerprint.hpp"
+#include "landmarks/fingerprint.hpp"
 
 #include <algorithm>
 #include <array>

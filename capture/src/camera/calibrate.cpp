@@ -9,7 +9,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "cv_image.hpp"
+#include "camera/cv_image.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {

@@ -1,4 +1,4 @@
-#include "assignment.hpp"
+#include "tracking/assignment.hpp"
 
 #include <algorithm>
 #include <limits>

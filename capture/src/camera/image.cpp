@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "cv_image.hpp"
+#include "camera/cv_image.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {

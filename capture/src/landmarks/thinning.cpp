@@ -1,4 +1,4 @@
-#include "thinning.hpp"
+#include "landmarks/thinning.hpp"
 
 #include <array>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // penalty 1. RealPores.ShippedPoreModelIsTrainedOnAllPrints (tests/capture/real_pores_test.cpp)
 // retrains it and prints this table when it no longer matches. Order: intercept, the 16
 // measures of pore_blobs.cpp, then the products m[i] m[j] for i <= j.
-#include "pore_model.hpp"
+#include "pores/pore_model.hpp"
 
 namespace tactile::capture {
 

@@ -1,4 +1,4 @@
-#include "pore_blobs.hpp"
+#include "pores/pore_blobs.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "pore_model.hpp"
+#include "pores/pore_model.hpp"
 
 namespace tactile::capture {
 

@@ -1,4 +1,4 @@
-#include "run_components.hpp"
+#include "landmarks/run_components.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "skeleton_repair.hpp"
+#include "landmarks/skeleton_repair.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "thinning.hpp"
+#include "landmarks/thinning.hpp"
 
 namespace tactile::capture {
 

@@ -11,9 +11,9 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "cv_image.hpp"
-#include "fingerprint.hpp"
-#include "scene_model.hpp"
+#include "camera/cv_image.hpp"
+#include "landmarks/fingerprint.hpp"
+#include "synthetic/scene_model.hpp"
 #include "tactile/common/csv.hpp"
 
 namespace tactile::capture {

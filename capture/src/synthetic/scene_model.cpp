@@ -1,4 +1,4 @@
-#include "scene_model.hpp"
+#include "synthetic/scene_model.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "pore_model.hpp"
+#include "pores/pore_model.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <opencv2/core.hpp>
 
-#include "cv_image.hpp"
+#include "camera/cv_image.hpp"
 
 namespace tactile::capture {
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "assignment.hpp"
+#include "tracking/assignment.hpp"
 
 namespace tactile::capture {
 

@@ -7,12 +7,12 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
-#include "cv_image.hpp"
-#include "pore_blobs.hpp"
-#include "run_components.hpp"
-#include "skeleton_repair.hpp"
+#include "camera/cv_image.hpp"
+#include "landmarks/run_components.hpp"
+#include "landmarks/skeleton_repair.hpp"
+#include "landmarks/thinning.hpp"
+#include "pores/pore_blobs.hpp"
 #include "tactile/common/csv.hpp"
-#include "thinning.hpp"
 
 namespace tactile::capture {
 

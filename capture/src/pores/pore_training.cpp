@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "pore_model.hpp"
+#include "pores/pore_model.hpp"
 
 namespace tactile::capture {
 

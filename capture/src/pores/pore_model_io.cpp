@@ -8,7 +8,7 @@
 
 #include "json_field.hpp"
 #include "json_file.hpp"
-#include "pore_model.hpp"
+#include "pores/pore_model.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {

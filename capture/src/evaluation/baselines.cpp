@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
-#include "cv_image.hpp"
+#include "camera/cv_image.hpp"
 
 namespace tactile::capture {
 

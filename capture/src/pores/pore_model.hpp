@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "pore_blobs.hpp"
+#include "pores/pore_blobs.hpp"
 #include "tactile/capture/pore_training.hpp"
 
 namespace tactile::capture {
