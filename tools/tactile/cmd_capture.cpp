@@ -10,6 +10,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
@@ -45,7 +46,7 @@ void add_calibration_options(CLI::App& sub, std::optional<fs::path>& calib_file,
                 ->check(CLI::ExistingFile);
   auto* p = sub.add_option("--px-per-mm", px_per_mm,
                            "Uniform scale instead of a calibration file (pixels per millimetre)")
-                ->check(CLI::PositiveNumber);
+                ->check(positive());
   c->excludes(p);
 }
 
@@ -142,7 +143,7 @@ void add_calibrate(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--spacing-mm", opt->spacing_mm, "Dot spacing in mm")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Calibration file to write (JSON)")->capture_default_str();
   sub->callback([opt, &action] {
@@ -234,13 +235,13 @@ void add_capture(CLI::App& app, Action& action) {
                   "Also draw each strain frame as strain_NNN.png in this folder (edges black = "
                   "most compressed .. white = most stretched, one scale for the whole movie)");
   sub->add_option("--span", opt->span, "Frames between the two ends of each strain measurement")
-      ->check(CLI::Range(1, 10000))
+      ->check(within(1, 10000))
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->rate_hz, "Camera frame rate")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
-      ->check(CLI::Range(2, 100000))
+      ->check(within(2, 100000))
       ->capture_default_str();
   add_pore_options(*sub, opt->pores, opt->pore_model);
   sub->add_option("--assignment", opt->assignment,

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/mapping/experiment.hpp"
 
 namespace tactile::cli {
@@ -36,7 +37,7 @@ void add_experiment(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   sub->add_option("--out", opt->out, "Output folder (default: <experiment name>-results)");
   sub->add_option("--threads", opt->threads, "Worker threads (0: all cores)")
-      ->check(CLI::Range(0, 256))
+      ->check(within(0, 256))
       ->capture_default_str();
   sub->add_flag("--quiet", opt->quiet, "Print only the summary");
   sub->callback([opt, &action] {

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/version.hpp"
@@ -60,7 +61,7 @@ void add_map(CLI::App& app, Action& action) {
                   "Camera frame the accumulated strain starts from (-1: the first)")
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->params.rate_hz, "Display frame rate")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
   sub->callback([opt, &action] {

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "tactile/capture/sensor_csv.hpp"
 #include "tactile/common/csv.hpp"
@@ -97,29 +98,29 @@ void add_perceive(CLI::App& app, Action& action) {
       "row's spread (table2_seeds.csv): one split holds out only 96 trials.");
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
-      ->check(CLI::Range(2, 1000));
+      ->check(within(2, 1000));
   sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
   auto* seeds = sub->add_option("--seeds", opt->seeds,
                                 "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
                                 "the other files are those of the first")
-                    ->check(CLI::Range(1, 1000));
+                    ->check(within(1, 1000));
   sub->add_option("--threads", opt->threads,
                   "Worker threads simulating and analysing trials (0: all cores); the results do "
                   "not depend on it")
-      ->check(CLI::Range(0, 256))
+      ->check(within(0, 256))
       ->capture_default_str();
   sub->add_option("--position-variation", opt->variation.position,
                   "Scale of the trial-to-trial spread of the feature's position (+-0.1 mm) and of "
                   "the contact angle (+-0.1 degree); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--depth-variation", opt->variation.depth,
                   "Scale of the spread of the commanded depth (3 %); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--speed-variation", opt->variation.speed,
                   "Scale of the spread of the speed (0.5 %); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--electrode-field", opt->electrode_field,
                   "How an electrode weighs the skin: gaussian (its face and a 0.4 mm margin) or "

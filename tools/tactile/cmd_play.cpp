@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "playback.hpp"
 #include "strain_panel.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
@@ -37,7 +38,7 @@ void add_play(CLI::App& app, Action& action) {
   sub->add_option("--preview", opt->choice.preview_png, "Preview image written when headless")
       ->capture_default_str();
   sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
-      ->check(CLI::Range(1, 1000000))
+      ->check(within(1, 1000000))
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] { return play_anywhere(display::read_tactile_movie(opt->movie), opt->choice); };
@@ -71,7 +72,7 @@ void add_view(CLI::App& app, Action& action) {
       ->excludes(strain);
   sub->add_flag("--loop", opt->viewer.loop, "Loop the movie");
   sub->add_option("--at", opt->viewer.start_s, "Start at this movie time (s)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   sub->add_option("--screenshot", opt->screenshot,
                   "Draw the window once (at --at), write it to this PNG and quit");
   sub->callback([opt, &action] {
