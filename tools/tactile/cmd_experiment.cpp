@@ -45,6 +45,11 @@ void add_experiment(CLI::App& app, Action& action) {
       const auto t0 = std::chrono::steady_clock::now();
       mapping::Experiment ex = mapping::read_experiment(opt->file);
       const fs::path out = opt->out.value_or(fs::path(ex.name + "-results"));
+      std::vector<NamedPath> inputs = {{"EXP_JSON", opt->file}};
+      for (const auto& s : ex.sources)
+        if (!s.path.empty()) inputs.push_back({"source '" + s.name + "'", s.path});
+      for (const auto& layout : ex.layout_files) inputs.push_back({"layout", layout});
+      refuse_output_over_input({mapping::experiment_output("--out", out)}, inputs);
       fmt::print("experiment '{}': {} sources x {} layouts -> {} runs, checked; writing {}\n",
                  ex.name, ex.sources.size(), ex.layouts.size(), ex.runs.size(), out.string());
       std::mutex print_mutex;

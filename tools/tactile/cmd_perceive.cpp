@@ -13,6 +13,7 @@
 #include "progress.hpp"
 #include "tactile/capture/sensor_csv.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/mapping/perception_report.hpp"
 #include "tactile/mapping/perception_seeds.hpp"
 
@@ -21,8 +22,8 @@ namespace {
 
 constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
 
-// Every *.csv in `dir` with the BioTac header: read, segment, window, HHT; one CSV row each.
-int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::path& out_dir) {
+// The *_bio.csv recordings of `dir`, in name order.
+std::vector<std::filesystem::path> recording_files(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().extension() == ".csv" && e.path().stem().string().ends_with("_bio"))
@@ -30,6 +31,13 @@ int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::
   std::sort(files.begin(), files.end());
   if (files.empty())
     throw std::runtime_error(fmt::format("{}: no *_bio.csv recordings", dir.string()));
+  return files;
+}
+
+// Every recording of `files` with the BioTac header: read, segment, window, HHT; one CSV row
+// each.
+int analyse_recordings(const std::vector<std::filesystem::path>& files,
+                       const std::filesystem::path& out_dir) {
   mapping::ContactOptions o;
   o.baseline_at = mapping::ContactOptions::BaselineAt::end;  // they begin in contact
   o.feature_from_kinematics = false;                         // textures: all contact is feature
@@ -140,8 +148,16 @@ void add_perceive(CLI::App& app, Action& action) {
                 "Also write trial 0 of every feature and procedure as BioTac-style CSV");
   sub->callback([opt, &action] {
     action = [opt] {
+      if (!opt->recordings.empty()) {
+        const auto files = recording_files(opt->recordings);
+        std::vector<NamedPath> inputs = {{"--recordings", opt->recordings}};
+        for (const auto& f : files) inputs.push_back({"--recordings", f});
+        refuse_output_over_input({output_folder("--out", opt->out_dir, {"recordings.csv"})},
+                                 inputs);
+        std::filesystem::create_directories(opt->out_dir);
+        return analyse_recordings(files, opt->out_dir);
+      }
       std::filesystem::create_directories(opt->out_dir);
-      if (!opt->recordings.empty()) return analyse_recordings(opt->recordings, opt->out_dir);
       std::vector<capture::SurfaceFeature> features;
       for (const auto& f : capture::paper_features())
         if (opt->footprints_mm.empty() ||

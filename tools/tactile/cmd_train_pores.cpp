@@ -17,6 +17,7 @@
 #include "tactile/capture/pore_score.hpp"
 #include "tactile/capture/pore_training.hpp"
 #include "tactile/capture/pore_training_io.hpp"
+#include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -102,6 +103,10 @@ void add_train_pores(CLI::App& app, Action& action) {
         throw std::runtime_error(
             fmt::format("{}: no such folder for --out {}", out_dir.string(), opt->out.string()));
       }
+      std::vector<NamedPath> inputs = {{"--prints", opt->prints_dir}};
+      for (const auto& file : capture::pore_training_files(opt->prints_dir))
+        inputs.push_back({"--prints", file});
+      refuse_output_over_input({output_file("--out", opt->out)}, inputs);
       const auto prints = capture::read_pore_training_prints(opt->prints_dir);
       std::size_t marked = 0;
       for (const auto& p : prints) marked += p.pores_px.size();
