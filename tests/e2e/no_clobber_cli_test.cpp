@@ -19,9 +19,9 @@ using ::testing::HasSubstr;
 
 namespace {
 
-const fs::path kDemo = TACTILE_E2E_DEMO_DIR;
-const fs::path kPrints = fs::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores";
-const fs::path kRecordings = fs::path(TACTILE_TEST_DATA_DIR) / "biotac-slide";
+const fs::path kDemo = tactile::test::demo_dir();
+const fs::path kPrints = tactile::test::test_data("polyu-hrf-pores");
+const fs::path kRecordings = tactile::test::test_data("biotac-slide");
 
 std::string bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

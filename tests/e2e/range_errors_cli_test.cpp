@@ -4,20 +4,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <regex>
 #include <string>
 
 #include "run.hpp"
 
-namespace fs = std::filesystem;
+using tactile::test::demo_dir;
 using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 
 namespace {
-
-const fs::path kDemo = TACTILE_E2E_DEMO_DIR;
-const fs::path kPrints = fs::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores";
 
 // Exit 2 with `message` and no number of 20 digits or more.
 void expect_readable_range_error(const std::string& args, const std::string& message) {
@@ -28,21 +24,24 @@ void expect_readable_range_error(const std::string& args, const std::string& mes
 }
 
 TEST(RangeErrors, ReadLikeAPersonWroteThem) {
-  const std::string image = (kPrints / "image_01.jpg").string();
+  const std::string image = (tactile::test::test_data("polyu-hrf-pores") / "image_01.jpg").string();
   expect_readable_range_error("features " + image + " --px-per-mm 0",
                               "--px-per-mm: 0 is out of range: must be > 0");
-  expect_readable_range_error("map " + (kDemo / "strain.h5").string() + " --out x.h5 --rate-hz -5",
-                              "--rate-hz: -5 is out of range: must be > 0");
   expect_readable_range_error(
-      "train-pores --prints " + kPrints.string() + " --px-per-mm 47 --out x.json --l2 -1",
-      "--l2: -1 is out of range: must be >= 0");
-  expect_readable_range_error("view " + (kDemo / "movie.h5").string() + " --at -0.5",
+      "map " + (demo_dir() / "strain.h5").string() + " --out x.h5 --rate-hz -5",
+      "--rate-hz: -5 is out of range: must be > 0");
+  expect_readable_range_error("train-pores --prints " +
+                                  tactile::test::test_data("polyu-hrf-pores").string() +
+                                  " --px-per-mm 47 --out x.json --l2 -1",
+                              "--l2: -1 is out of range: must be >= 0");
+  expect_readable_range_error("view " + (demo_dir() / "movie.h5").string() + " --at -0.5",
                               "--at: -0.5 is out of range: must be >= 0");
   expect_readable_range_error("synth x --speed 1000",
                               "--speed: 1000 is out of range: must be from "
                               "0 to 100");
-  expect_readable_range_error("capture " + kDemo.string() + " --px-per-mm 62 --out x.h5 --span 0",
-                              "--span: 0 is out of range: must be from 1 to 10000");
+  expect_readable_range_error(
+      "capture " + demo_dir().string() + " --px-per-mm 62 --out x.h5 --span 0",
+      "--span: 0 is out of range: must be from 1 to 10000");
   expect_readable_range_error("bench stream --seconds 0.01",
                               "--seconds: 0.01 is out of range: must be from 0.1 to 600");
   expect_readable_range_error("synth x --frames 2.5", "--frames: 2.5 is not a whole number");
