@@ -302,6 +302,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         std::filesystem::path(ref).is_relative()) {
       ref = (base_dir / ref).string();
     }
+    if (std::filesystem::path(ref).extension() == ".json") ex.layout_files.emplace_back(ref);
     try {
       ex.layouts.push_back(display::resolve_layout(ref));
     } catch (const std::exception& e) {

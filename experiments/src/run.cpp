@@ -71,6 +71,13 @@ std::string strain_key(std::size_t source, const MappingParams& p) {
 
 }  // namespace
 
+// The names run_experiment below and run_perception write: keep the three lists alike.
+Output experiment_output(std::string option, const fs::path& out_dir) {
+  return output_folder(std::move(option), out_dir,
+                       {"experiment.json", "resolved.json", "metrics.csv"},
+                       {"movies", "plots", "perception"});
+}
+
 ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int threads,
                                 const std::function<void(const std::string&)>& progress) {
   ExperimentReport report;

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -100,6 +101,16 @@ TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
   EXPECT_EQ(a.frame_count, 34);
   ASSERT_EQ(report.results.size(), 8u);
   EXPECT_GT(report.results[2].metrics.compared_pairs, 0);
+  // experiment_output names every file written, so that no input can be among them unnoticed.
+  const Output output = experiment_output("--out", one);
+  for (const auto& file : report.files) {
+    const fs::path relative = fs::path(file).lexically_relative(one);
+    const bool named =
+        std::find(output.files.begin(), output.files.end(), relative) != output.files.end() ||
+        std::find(output.subfolders.begin(), output.subfolders.end(), *relative.begin()) !=
+            output.subfolders.end();
+    EXPECT_TRUE(named) << file;
+  }
   fs::remove_all(one);
   fs::remove_all(two);
 }
@@ -174,6 +185,7 @@ TEST(Experiment, CustomLayoutFilesResolveFromTheExperimentsFolder) {
   const auto ok = parse_experiment(slower, "ok.json", dir);
   EXPECT_EQ(ok.layouts[1].name, "slow");
   EXPECT_EQ(ok.layouts[1].rows, 4);
+  EXPECT_EQ(ok.layout_files, std::vector<fs::path>{dir / "slow.json"});
   fs::remove_all(dir);
 }
 

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/perception/arff.hpp"
 #include "tactile/perception/report.hpp"
 
@@ -62,7 +63,7 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
       "Time training + testing every model of one Table 2 (paper 2) on the simulated sensor:\n"
       "target <= 1 s; WEKA's SMO and SMOreg timed on the same data in the same run.");
   sub->add_option("--trials", opt->trials, "Trials per feature (paper: 20)")
-      ->check(CLI::Range(2, 1000))
+      ->check(within(2, 1000))
       ->capture_default_str();
   sub->add_option("--java", opt->java, "Java launcher")->capture_default_str();
   sub->add_option("--weka-jar", opt->weka_jar, "weka.jar")->capture_default_str();

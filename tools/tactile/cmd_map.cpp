@@ -8,8 +8,10 @@
 #include <optional>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/display/layout_json.hpp"
 #include "tactile/display/movie_io.hpp"
@@ -60,11 +62,16 @@ void add_map(CLI::App& app, Action& action) {
                   "Camera frame the accumulated strain starts from (-1: the first)")
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->params.rate_hz, "Display frame rate")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
   sub->callback([opt, &action] {
     action = [opt] {
+      std::vector<NamedPath> inputs = {{"STRAIN_H5", opt->strain}};
+      if (fs::path(opt->layout).extension() == ".json") inputs.push_back({"--layout", opt->layout});
+      std::vector<Output> outputs = {output_file("--out", opt->out)};
+      if (opt->csv) outputs.push_back(output_file("--csv", *opt->csv));
+      refuse_output_over_input(outputs, inputs);
       const display::Layout layout = display::resolve_layout(opt->layout);
       mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
       const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);

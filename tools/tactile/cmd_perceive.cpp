@@ -9,8 +9,10 @@
 #include <memory>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/report.hpp"
 #include "tactile/perception/seeds.hpp"
@@ -20,8 +22,8 @@ namespace {
 
 constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
 
-// Every *.csv in `dir` with the BioTac header: read, segment, window, HHT; one CSV row each.
-int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::path& out_dir) {
+// The *_bio.csv recordings of `dir`, in name order.
+std::vector<std::filesystem::path> recording_files(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().extension() == ".csv" && e.path().stem().string().ends_with("_bio"))
@@ -29,6 +31,13 @@ int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::
   std::sort(files.begin(), files.end());
   if (files.empty())
     throw std::runtime_error(fmt::format("{}: no *_bio.csv recordings", dir.string()));
+  return files;
+}
+
+// Every recording of `files` with the BioTac header: read, segment, window, HHT; one CSV row
+// each.
+int analyse_recordings(const std::vector<std::filesystem::path>& files,
+                       const std::filesystem::path& out_dir) {
   perception::ContactOptions o;
   o.baseline_at = perception::ContactOptions::BaselineAt::end;  // they begin in contact
   o.feature_from_kinematics = false;                            // textures: all contact is feature
@@ -97,29 +106,29 @@ void add_perceive(CLI::App& app, Action& action) {
       "row's spread (table2_seeds.csv): one split holds out only 96 trials.");
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
-      ->check(CLI::Range(2, 1000));
+      ->check(within(2, 1000));
   sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
   auto* seeds = sub->add_option("--seeds", opt->seeds,
                                 "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
                                 "the other files are those of the first")
-                    ->check(CLI::Range(1, 1000));
+                    ->check(within(1, 1000));
   sub->add_option("--threads", opt->threads,
                   "Worker threads simulating and analysing trials (0: all cores); the results do "
                   "not depend on it")
-      ->check(CLI::Range(0, 256))
+      ->check(within(0, 256))
       ->capture_default_str();
   sub->add_option("--position-variation", opt->variation.position,
                   "Scale of the trial-to-trial spread of the feature's position (+-0.1 mm) and of "
                   "the contact angle (+-0.1 degree); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--depth-variation", opt->variation.depth,
                   "Scale of the spread of the commanded depth (3 %); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--speed-variation", opt->variation.speed,
                   "Scale of the spread of the speed (0.5 %); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--electrode-field", opt->electrode_field,
                   "How an electrode weighs the skin: gaussian (its face and a 0.4 mm margin) or "
@@ -139,8 +148,16 @@ void add_perceive(CLI::App& app, Action& action) {
                 "Also write trial 0 of every feature and procedure as BioTac-style CSV");
   sub->callback([opt, &action] {
     action = [opt] {
+      if (!opt->recordings.empty()) {
+        const auto files = recording_files(opt->recordings);
+        std::vector<NamedPath> inputs = {{"--recordings", opt->recordings}};
+        for (const auto& f : files) inputs.push_back({"--recordings", f});
+        refuse_output_over_input({output_folder("--out", opt->out_dir, {"recordings.csv"})},
+                                 inputs);
+        std::filesystem::create_directories(opt->out_dir);
+        return analyse_recordings(files, opt->out_dir);
+      }
       std::filesystem::create_directories(opt->out_dir);
-      if (!opt->recordings.empty()) return analyse_recordings(opt->recordings, opt->out_dir);
       std::vector<perception::SurfaceFeature> features;
       for (const auto& f : perception::paper_features())
         if (opt->footprints_mm.empty() ||

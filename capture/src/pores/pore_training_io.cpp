@@ -145,6 +145,18 @@ std::vector<std::array<double, 2>> read_marks(const fs::path& path, int width_px
 
 }  // namespace
 
+std::vector<fs::path> pore_training_files(const fs::path& dir) {
+  std::vector<fs::path> files;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return files;
+  for (const auto& [key, pair] : find_pairs(dir)) {
+    for (const fs::path* file : {&pair.image, &pair.marks}) {
+      if (!file->empty()) files.push_back(*file);
+    }
+  }
+  return files;
+}
+
 std::vector<PoreTrainingPrint> read_pore_training_prints(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {

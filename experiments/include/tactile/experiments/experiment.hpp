@@ -12,6 +12,7 @@
 
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/fidelity.hpp"
 #include "tactile/mapping/map.hpp"
@@ -59,6 +60,7 @@ struct Experiment {
   bool write_movies = true;
   std::vector<ExperimentSource> sources;
   std::vector<display::Layout> layouts;
+  std::vector<std::filesystem::path> layout_files;  // the layouts read from files
   std::vector<ExperimentRun> runs;
   std::optional<ExperimentPerception> perception;
 };
@@ -115,6 +117,11 @@ struct ExperimentReport {
 ExperimentReport run_experiment(Experiment experiment, const std::filesystem::path& out_dir,
                                 int threads,
                                 const std::function<void(const std::string&)>& progress = {});
+
+// What run_experiment writes into out_dir (given by `option`), for a caller that must not write
+// over the experiment's inputs: the files at its top, and the sub-folders whose files it names
+// after runs, sources, layouts and mappings.
+Output experiment_output(std::string option, const std::filesystem::path& out_dir);
 
 // The perception section alone (run_experiment calls it after the runs): one Table 2 per distinct
 // (layout, parameters) of the strain-driven runs ("profile" renders a capture scene's Gaussian
