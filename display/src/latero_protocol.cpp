@@ -29,6 +29,21 @@ std::uint32_t get32(std::span<const std::uint8_t> b, std::size_t at) {
   return (std::uint32_t{get16(b, at)} << 16) | get16(b, at + 2);
 }
 
+// RAW requests and replies share their body: command, address, data.
+void put_raw(std::vector<std::uint8_t>& b, std::uint8_t command, std::uint16_t address,
+             std::uint16_t data) {
+  b[5] = command;
+  put16(b, 6, address);
+  put16(b, 8, data);
+}
+
+template <class Packet>
+void get_raw(std::span<const std::uint8_t> b, Packet& p) {
+  p.raw_command = b[5];
+  p.raw_address = get16(b, 6);
+  p.raw_data = get16(b, 8);
+}
+
 std::vector<std::uint8_t> header(LateroPacketType type, std::uint16_t sequence) {
   std::vector<std::uint8_t> b(kLateroDatagramBytes, 0);
   b[0] = kLateroMagic;
@@ -38,18 +53,41 @@ std::vector<std::uint8_t> header(LateroPacketType type, std::uint16_t sequence) 
   return b;
 }
 
-// Checks what every datagram shares; `needed` maps a known type to its length, or 0 for a
-// type that does not belong in this direction.
-template <class Needed>
-LateroPacketError check_header(std::span<const std::uint8_t> bytes, Needed needed) {
-  if (bytes.size() > kLateroDatagramBytes) return LateroPacketError::oversized;
-  if (bytes.size() < kLateroHeaderBytes) return LateroPacketError::too_short;
-  if (bytes[0] != kLateroMagic) return LateroPacketError::bad_magic;
-  if (bytes[1] != kLateroVersion) return LateroPacketError::bad_version;
-  const std::size_t n = needed(bytes[2]);
-  if (n == 0) return LateroPacketError::bad_type;
-  if (bytes.size() < n) return LateroPacketError::too_short;
-  return LateroPacketError::none;
+// Bytes a packet of `type` needs, or 0 when `type` does not travel in this direction.
+std::size_t needed_bytes(std::uint8_t type, bool request) {
+  switch (type) {
+    case 0x01:
+      return request ? kLateroFullRequestBytes : 0;
+    case 0x02:
+      return request ? kLateroIoRequestBytes : 0;
+    case 0x03:
+      return request ? kLateroRawBytes : 0;
+    case 0x81:
+    case 0x82:
+      return request ? 0 : kLateroFullReplyBytes;
+    case 0x83:
+      return request ? 0 : kLateroRawBytes;
+    default:
+      return 0;
+  }
+}
+
+// Checks what every datagram shares, then lets `body` read the type's own fields.
+template <class Packet, class Body>
+LateroDecoded<Packet> decode(std::span<const std::uint8_t> bytes, bool request, Body body) {
+  auto fail = [](LateroPacketError e) { return LateroDecoded<Packet>{std::nullopt, e}; };
+  if (bytes.size() > kLateroDatagramBytes) return fail(LateroPacketError::oversized);
+  if (bytes.size() < kLateroHeaderBytes) return fail(LateroPacketError::too_short);
+  if (bytes[0] != kLateroMagic) return fail(LateroPacketError::bad_magic);
+  if (bytes[1] != kLateroVersion) return fail(LateroPacketError::bad_version);
+  const std::size_t n = needed_bytes(bytes[2], request);
+  if (n == 0) return fail(LateroPacketError::bad_type);
+  if (bytes.size() < n) return fail(LateroPacketError::too_short);
+  Packet p;
+  p.type = static_cast<LateroPacketType>(bytes[2]);
+  p.sequence = get16(bytes, 3);
+  body(p);
+  return {p, LateroPacketError::none};
 }
 
 }  // namespace
@@ -84,9 +122,7 @@ std::vector<std::uint8_t> encode_latero_request(const LateroRequest& r) {
       }
       break;
     case LateroPacketType::raw:
-      b[5] = r.raw_command;
-      put16(b, 6, r.raw_address);
-      put16(b, 8, r.raw_data);
+      put_raw(b, r.raw_command, r.raw_address, r.raw_data);
       break;
     default:
       throw std::invalid_argument(
@@ -107,9 +143,7 @@ std::vector<std::uint8_t> encode_latero_reply(const LateroReply& r) {
       for (std::size_t i = 0; i < 4; ++i) put16(b, 27 + 2 * i, r.adc[i]);
       break;
     case LateroPacketType::raw_reply:
-      b[5] = r.raw_command;
-      put16(b, 6, r.raw_address);
-      put16(b, 8, r.raw_data);
+      put_raw(b, r.raw_command, r.raw_address, r.raw_data);
       break;
     default:
       throw std::invalid_argument(
@@ -119,64 +153,31 @@ std::vector<std::uint8_t> encode_latero_reply(const LateroReply& r) {
 }
 
 LateroDecoded<LateroRequest> decode_latero_request(std::span<const std::uint8_t> bytes) {
-  const LateroPacketError e = check_header(bytes, [](std::uint8_t type) -> std::size_t {
-    switch (type) {
-      case 0x01:
-        return kLateroFullRequestBytes;
-      case 0x02:
-        return kLateroIoRequestBytes;
-      case 0x03:
-        return kLateroRawBytes;
-      default:
-        return 0;
+  return decode<LateroRequest>(bytes, true, [&](LateroRequest& r) {
+    if (r.type == LateroPacketType::raw) {
+      get_raw(bytes, r);
+      return;
     }
-  });
-  if (e != LateroPacketError::none) return {std::nullopt, e};
-  LateroRequest r;
-  r.type = static_cast<LateroPacketType>(bytes[2]);
-  r.sequence = get16(bytes, 3);
-  if (r.type == LateroPacketType::raw) {
-    r.raw_command = bytes[5];
-    r.raw_address = get16(bytes, 6);
-    r.raw_data = get16(bytes, 8);
-  } else {
     r.dio_out = get16(bytes, 5);
     for (std::size_t i = 0; i < 4; ++i) r.dac[i] = get16(bytes, 7 + 2 * i);
     if (r.type == LateroPacketType::full) {
       std::copy_n(bytes.begin() + 15, kLateroBlades, r.blade.begin());
     }
-  }
-  return {r, LateroPacketError::none};
+  });
 }
 
 LateroDecoded<LateroReply> decode_latero_reply(std::span<const std::uint8_t> bytes) {
-  const LateroPacketError e = check_header(bytes, [](std::uint8_t type) -> std::size_t {
-    switch (type) {
-      case 0x81:
-      case 0x82:
-        return kLateroFullReplyBytes;
-      case 0x83:
-        return kLateroRawBytes;
-      default:
-        return 0;
+  return decode<LateroReply>(bytes, false, [&](LateroReply& r) {
+    if (r.type == LateroPacketType::raw_reply) {
+      get_raw(bytes, r);
+      return;
     }
-  });
-  if (e != LateroPacketError::none) return {std::nullopt, e};
-  LateroReply r;
-  r.type = static_cast<LateroPacketType>(bytes[2]);
-  r.sequence = get16(bytes, 3);
-  if (r.type == LateroPacketType::raw_reply) {
-    r.raw_command = bytes[5];
-    r.raw_address = get16(bytes, 6);
-    r.raw_data = get16(bytes, 8);
-  } else {
     r.dio_in = get16(bytes, 5);
     r.controller_status = get16(bytes, 7);
     r.io_status = get16(bytes, 9);
     for (std::size_t i = 0; i < 4; ++i) r.encoder[i] = get32(bytes, 11 + 4 * i);
     for (std::size_t i = 0; i < 4; ++i) r.adc[i] = get16(bytes, 27 + 2 * i);
-  }
-  return {r, LateroPacketError::none};
+  });
 }
 
 LateroControllerStatus decode_controller_status(std::uint16_t word) {
@@ -236,12 +237,12 @@ void validate(const LateroBladeMapping& m) {
 
 std::uint8_t blade_raw(double deflection_um, const LateroBladeMapping& m) {
   if (!std::isfinite(deflection_um)) return centre_raw(m);
-  const double raw = std::round(m.centre_raw - m.raw_per_unit * deflection_um / m.full_scale_um);
+  const double raw = std::round(m.centre_raw + m.raw_per_unit * deflection_um / m.full_scale_um);
   return static_cast<std::uint8_t>(std::clamp(raw, 0.0, std::floor(m.max_raw)));
 }
 
 double blade_deflection_um(std::uint8_t raw, const LateroBladeMapping& m) {
-  return (m.centre_raw - raw) / m.raw_per_unit * m.full_scale_um;
+  return (raw - m.centre_raw) / m.raw_per_unit * m.full_scale_um;
 }
 
 std::uint8_t centre_raw(const LateroBladeMapping& m) {

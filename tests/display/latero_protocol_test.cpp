@@ -224,20 +224,20 @@ TEST(LateroProtocol, StatusWordsDecode) {
 
 TEST(LateroProtocol, BladeMappingFollowsOpenLateroByDefault) {
   const LateroBladeMapping m;
-  // raw = (0.5 - 0.5 v) * 150 with v = deflection / 100 um.
+  // raw = (0.5 - 0.5 v') * 150 with v' = -deflection / 100 um (TactileDisplay's sign).
   EXPECT_EQ(blade_raw(0, m), 75);
-  EXPECT_EQ(blade_raw(100, m), 0);
-  EXPECT_EQ(blade_raw(-100, m), 150);
-  EXPECT_EQ(blade_raw(50, m), 38);      // 37.5 rounds away from zero
-  EXPECT_EQ(blade_raw(-1000, m), 150);  // clamped to max_raw
-  EXPECT_EQ(blade_raw(1000, m), 0);
+  EXPECT_EQ(blade_raw(100, m), 150);
+  EXPECT_EQ(blade_raw(-100, m), 0);
+  EXPECT_EQ(blade_raw(50, m), 113);    // 112.5 rounds away from zero
+  EXPECT_EQ(blade_raw(1000, m), 150);  // clamped to max_raw
+  EXPECT_EQ(blade_raw(-1000, m), 0);
   EXPECT_NEAR(blade_deflection_um(blade_raw(-40, m), m), -40, 100.0 / 75);
   LateroBladeMapping c;
   c.centre_raw = 128;
   c.raw_per_unit = -100;
   c.max_raw = 255;
   EXPECT_EQ(blade_raw(0, c), 128);
-  EXPECT_EQ(blade_raw(100, c), 228);
+  EXPECT_EQ(blade_raw(100, c), 28);
   EXPECT_EQ(centre_raw(c), 128);
   c.centre_raw = 300;
   EXPECT_THROW(validate(c), std::invalid_argument);

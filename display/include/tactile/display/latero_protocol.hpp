@@ -115,16 +115,18 @@ std::uint16_t encode_controller_status(const LateroControllerStatus& status);
 std::string describe_controller_status(std::uint16_t word);
 std::string describe_io_status(std::uint16_t word);
 
-// Blade deflection to the raw byte the controller takes. OpenLatero maps a normalised
-// deflection v in [-1, 1] to raw = (0.5 - 0.5 v) * 150, i.e. centre 75 and 75 raw units per
-// unit of v, positive v towards lower raw values; its own code doubts both numbers (it parks
-// blades at 0x80 when it opens the device, and marks 150 as unverified), so every number is
-// a field here. v = deflection_um / full_scale_um.
+// Blade deflection to the raw byte the controller takes. OpenLatero's C library maps a
+// normalised deflection v in [-1, 1] to raw = (0.5 - 0.5 v) * 150, and its C++ TactileDisplay
+// passes it -v "so that -1 is to the left and +1 is to the right": a deflection towards +x
+// (the layout's columns, to the right) raises the raw value. Centre 75, 75 raw units per unit
+// of v. OpenLatero itself doubts both numbers (it parks blades at 0x80 when it opens the
+// device, and marks 150 as unverified), so every number is a field here:
+//   raw = clamp(round(centre_raw + raw_per_unit * deflection_um / full_scale_um), 0, max_raw)
 struct LateroBladeMapping {
   double centre_raw = 75;
-  double raw_per_unit = 75;    // raw units per unit of v; raw = centre_raw - raw_per_unit * v
+  double raw_per_unit = 75;    // raw units per unit of v (negative: +x lowers the raw value)
   double max_raw = 150;        // raw values are clamped to [0, max_raw]
-  double full_scale_um = 100;  // deflection at v = 1
+  double full_scale_um = 100;  // deflection at v = 1 (the latero layout's range)
 };
 // Throws std::invalid_argument naming the inconsistent field (centre outside [0, max_raw],
 // max_raw above 255, non-positive scale, non-finite values).
