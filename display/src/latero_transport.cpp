@@ -261,7 +261,8 @@ void LateroTransport::start(double rate_hz) {
   unanswered_since_ = {};
   rate_hz_ = rate_hz;
   period_ = nanoseconds(static_cast<std::int64_t>(std::llround(1e9 / rate_hz)));
-  next_slot_ = Clock::now() + period_;
+  started_at_ = Clock::now();
+  next_slot_ = started_at_ + period_;
   streaming_ = true;
 }
 
@@ -280,12 +281,16 @@ void LateroTransport::send_at_slot(const std::array<std::uint8_t, kLateroBlades>
   if (is_frame) {
     ++stats_.frames_sent;
     stats_.send_offset_s.push_back(std::chrono::duration<double>(sent - slot).count());
+    stats_.send_time_s.push_back(std::chrono::duration<double>(sent - started_at_).count());
   }
-  if (sent - slot > period_) {
-    // Too late to catch up: a device without a queue would only see the backlog as a burst.
-    ++stats_.late_frames;
+  if (sent - slot > period_) ++stats_.late_frames;
+  if (sent - slot > options_.max_catch_up) {
+    // Too far behind: catching up would send a long burst that a device without a queue
+    // shows as a jump, so the clock starts again from now.
+    ++stats_.clock_restarts;
     next_slot_ = sent + period_;
   } else {
+    // A little behind: keep the schedule, so that the movie keeps its length and rate.
     next_slot_ = slot + period_;
   }
 }
@@ -355,6 +360,61 @@ void LateroTransport::wait(std::chrono::nanoseconds duration) {
   if (streaming_) until = std::min(until, next_slot_ - kSpin);
   drain(until);
   check_link();
+}
+
+namespace {
+
+// Nearest-rank percentile (p in 0..100) of values already sorted.
+double sorted_percentile(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return 0;
+  const double rank = std::ceil(p / 100.0 * static_cast<double>(sorted.size()));
+  const auto i =
+      static_cast<std::size_t>(std::clamp(rank, 1.0, static_cast<double>(sorted.size())));
+  return sorted[i - 1];
+}
+
+}  // namespace
+
+LateroTiming summarize_timing(const LateroLinkStats& stats, double rate_hz) {
+  LateroTiming t;
+  t.frames = stats.send_time_s.size();
+  std::vector<double> offsets_us;
+  for (const double s : stats.send_offset_s) offsets_us.push_back(1e6 * s);
+  std::sort(offsets_us.begin(), offsets_us.end());
+  t.offset_p50_us = sorted_percentile(offsets_us, 50);
+  t.offset_p99_us = sorted_percentile(offsets_us, 99);
+  t.offset_max_us = offsets_us.empty() ? 0 : offsets_us.back();
+  const auto& times = stats.send_time_s;
+  if (times.size() >= 2) {
+    t.achieved_rate_hz = static_cast<double>(times.size() - 1) / (times.back() - times.front());
+    std::vector<double> jitter_us;
+    for (std::size_t i = 1; i < times.size(); ++i) {
+      jitter_us.push_back(1e6 * std::abs(times[i] - times[i - 1] - 1.0 / rate_hz));
+    }
+    std::sort(jitter_us.begin(), jitter_us.end());
+    t.interval_jitter_p50_us = sorted_percentile(jitter_us, 50);
+    t.interval_jitter_p99_us = sorted_percentile(jitter_us, 99);
+  }
+  return t;
+}
+
+std::string format_latero_link(const LateroLinkStats& stats, double rate_hz) {
+  const LateroTiming t = summarize_timing(stats, rate_hz);
+  std::string out = fmt::format(
+      "frames      {} sent at {:.2f} Hz achieved ({:g} Hz asked), {} more than a period late, "
+      "{} clock restarts\n",
+      t.frames, t.achieved_rate_hz, rate_hz, stats.late_frames, stats.clock_restarts);
+  out += fmt::format(
+      "jitter      send time after its slot p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
+      "interval error p50 {:.1f} us, p99 {:.1f} us\n",
+      t.offset_p50_us, t.offset_p99_us, t.offset_max_us, t.interval_jitter_p50_us,
+      t.interval_jitter_p99_us);
+  out += fmt::format(
+      "replies     {} requests, {} replies, {} missed ({} of them came late), {} malformed, "
+      "{} unplayable frames\n",
+      stats.requests_sent, stats.replies_received, stats.missed_replies, stats.late_replies,
+      stats.malformed_replies, stats.unplayable_frames);
+  return out;
 }
 
 }  // namespace tactile::display

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "latero_cli.hpp"
 #include "playback.hpp"
 #include "strain_panel.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
@@ -23,6 +24,7 @@ void add_play(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
     PlayChoice choice;
+    std::string latero;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -39,8 +41,15 @@ void add_play(CLI::App& app, Action& action) {
   sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
+  sub->add_option("--latero", opt->latero,
+                  "Play on the Latero at HOST[:PORT] (UDP, port 8900 by default)")
+      ->check(latero_address_check());
   sub->callback([opt, &action] {
-    action = [opt] { return play_anywhere(display::read_tactile_movie(opt->movie), opt->choice); };
+    action = [opt] {
+      const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      if (!opt->latero.empty()) return play_on_latero(movie, opt->latero, opt->choice.loops);
+      return play_anywhere(movie, opt->choice);
+    };
   });
 }
 
@@ -114,10 +123,15 @@ void add_view(CLI::App& app, Action& action) {
 }
 
 void add_devices(CLI::App& app, Action& action) {
+  auto latero = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand(
       "devices", "List attached tactile displays (USB vendor/product 1209:0001) and their state.");
-  sub->callback([&action] {
-    action = [] {
+  sub->add_option("--latero", *latero,
+                  "Probe the Latero at HOST[:PORT] instead: FPGA versions, high voltage, buttons")
+      ->check(latero_address_check());
+  sub->callback([latero, &action] {
+    action = [latero] {
+      if (!latero->empty()) return print_latero_device(*latero);
       const auto devices = display::list_usb_devices();
       if (devices.empty()) {
         fmt::print("devices: none attached (looking for USB {:04x}:{:04x})\n",

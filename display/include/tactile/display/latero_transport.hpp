@@ -36,6 +36,9 @@ struct LateroTransportOptions {
   // No reply at all for this long (to the probe in info(), or while streaming): the device is
   // gone and the stream fails with a TransportError naming the address.
   std::chrono::milliseconds link_timeout{500};
+  // A frame this late (host busy) restarts the schedule from now; less late ones are sent at
+  // once and the schedule kept, so the movie keeps its rate and length.
+  std::chrono::milliseconds max_catch_up{20};
   // stop() ramps the blades from where they are to centre over this time.
   std::chrono::milliseconds stop_ramp{20};
   std::uint16_t dio_out = 0x1000;  // what OpenLatero sends: one LED on
@@ -50,12 +53,26 @@ struct LateroLinkStats {
   std::uint64_t late_replies = 0;       // replies that came after their request was missed
   std::uint64_t malformed_replies = 0;  // datagrams from the device that did not decode
   std::uint64_t unplayable_frames = 0;  // frames handed to send_frame that were not valid
-  std::uint64_t late_frames = 0;  // sent more than one period after their slot (clock re-anchored)
-  // Send time of every frame relative to its slot on the host clock (s), in order.
+  std::uint64_t late_frames = 0;        // sent more than one period after their slot
+  std::uint64_t clock_restarts = 0;     // times the schedule restarted (max_catch_up exceeded)
+  // Every frame's send time relative to its slot on the host clock, and since start() (s).
   std::vector<double> send_offset_s;
+  std::vector<double> send_time_s;
   LateroReply last_reply;
   bool any_reply = false;
 };
+
+// How well the frames kept to the host clock.
+struct LateroTiming {
+  std::uint64_t frames = 0;
+  double achieved_rate_hz = 0;  // (frames - 1) / (last send - first send)
+  // Lateness of each send after its slot, and |interval between sends - period|, in us.
+  double offset_p50_us = 0, offset_p99_us = 0, offset_max_us = 0;
+  double interval_jitter_p50_us = 0, interval_jitter_p99_us = 0;
+};
+LateroTiming summarize_timing(const LateroLinkStats& stats, double rate_hz);
+// Lines for people: frames and rate, jitter, replies (missed, late, malformed).
+std::string format_latero_link(const LateroLinkStats& stats, double rate_hz);
 
 class LateroTransport : public Transport {
  public:
@@ -107,6 +124,7 @@ class LateroTransport : public Transport {
   // Time of the first request sent since the last reply (zero: none waiting).
   std::chrono::steady_clock::time_point unanswered_since_{};
   bool refused_ = false;  // the host reported the port unreachable
+  std::chrono::steady_clock::time_point started_at_{};
   std::chrono::steady_clock::time_point next_slot_{};
   std::chrono::nanoseconds period_{0};
   std::array<std::uint8_t, kLateroBlades> last_blades_{};
