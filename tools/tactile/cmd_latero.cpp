@@ -1,6 +1,7 @@
 // The Latero on the command line: play, probe, emulate and benchmark (latero_cli.hpp).
 
 #include <fmt/format.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/signalfd.h>
 #include <unistd.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <thread>
 
 #include "command.hpp"
@@ -16,6 +18,7 @@
 #include "tactile/display/latero_emulator.hpp"
 #include "tactile/display/latero_transport.hpp"
 #include "tactile/display/player.hpp"
+#include "tactile/display/viewer.hpp"
 
 namespace tactile::cli {
 namespace {
@@ -47,6 +50,50 @@ int stop_signal_fd() {
   sigaddset(&set, SIGTERM);
   if (sigprocmask(SIG_BLOCK, &set, nullptr) != 0) return -1;
   return signalfd(-1, &set, SFD_CLOEXEC);
+}
+
+// The emulator served on a thread for as long as this lives.
+class ServingThread {
+ public:
+  ServingThread(display::LateroEmulator& emulator, Clock::time_point until, int stop_fd = -1)
+      : emulator_(emulator), thread_([this, until, stop_fd] { emulator_.serve(until, stop_fd); }) {}
+  ~ServingThread() {
+    emulator_.request_stop();
+    thread_.join();
+  }
+  ServingThread(const ServingThread&) = delete;
+  ServingThread& operator=(const ServingThread&) = delete;
+
+ private:
+  display::LateroEmulator& emulator_;
+  std::thread thread_;
+};
+
+// Serves on a thread while the window (which must own the main thread) shows the blades as
+// deflections through the default blade mapping, until the window closes, `until`, or a
+// signal on `stop_fd`.
+void show_live(display::LateroEmulator& emulator, Clock::time_point until, int stop_fd) {
+  const ServingThread server(emulator, until, stop_fd);
+  const display::LateroBladeMapping mapping;
+  const auto next = [&]() -> std::optional<display::LiveFrame> {
+    pollfd p{stop_fd, POLLIN, 0};
+    if (Clock::now() >= until || (stop_fd >= 0 && ::poll(&p, 1, 0) > 0)) return std::nullopt;
+    display::LiveFrame f;
+    for (const std::uint8_t raw : emulator.blades()) {
+      f.deflection_um.push_back(static_cast<float>(display::blade_deflection_um(raw, mapping)));
+    }
+    const auto c = emulator.counters();
+    f.lines.push_back(fmt::format("emulated Latero on {} (UDP)", emulator.address()));
+    f.lines.push_back(fmt::format("{} FULL (frames played), {} IO, {} RAW, {} malformed",
+                                  c.full_requests, c.io_requests, c.raw_requests, c.malformed));
+    f.lines.push_back(
+        fmt::format("{} replies sent, {} left out; blades as deflection: raw {:g} "
+                    "= centre, {:g} raw per {:g} um",
+                    c.replies_sent, c.replies_dropped, mapping.centre_raw, mapping.raw_per_unit,
+                    mapping.full_scale_um));
+    return f;
+  };
+  display::run_live_viewer(display::latero_layout(), next);
 }
 
 }  // namespace
@@ -99,6 +146,7 @@ void add_emulate(CLI::App& app, Action& action) {
     display::LateroEmulatorOptions emulator;
     double seconds = 0;
     bool no_io_board = false;
+    bool window = false;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -122,9 +170,14 @@ void add_emulate(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_flag("--no-io-board", opt->no_io_board,
                 "Report no IO board (status 0), as a Latero with its IO board unplugged");
+  sub->add_flag("--window", opt->window,
+                "Show the emulated blades live in the viewer window (closing it stops)");
   sub->callback([opt, &action] {
     action = [opt] {
       if (opt->no_io_board) opt->emulator.io_status = 0;
+      if (opt->window && !display::screen_available()) {
+        throw std::runtime_error("--window: no screen (DISPLAY is unset or cannot be opened)");
+      }
       display::LateroEmulator emulator(opt->emulator);
       const int stop_fd = stop_signal_fd();
       fmt::print("emulate: Latero answering on {} (UDP){}\n", emulator.address(),
@@ -134,7 +187,11 @@ void add_emulate(CLI::App& app, Action& action) {
                              ? Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                   std::chrono::duration<double>(opt->seconds))
                              : Clock::time_point::max();
-      emulator.serve(until, stop_fd);
+      if (opt->window) {
+        show_live(emulator, until, stop_fd);
+      } else {
+        emulator.serve(until, stop_fd);
+      }
       if (stop_fd >= 0) ::close(stop_fd);
       fmt::print("emulate: stopped\n{}", display::format_latero_counters(emulator.counters()));
       return 0;
@@ -167,7 +224,7 @@ void add_bench_latero(CLI::App& bench, Action& action) {
       e.port = 0;
       e.drop_every_nth_reply = opt->drop_every;
       display::LateroEmulator emulator(e);
-      std::thread server([&] { emulator.serve(Clock::time_point::max()); });
+
       display::TactileMovie movie;
       movie.layout = display::latero_layout();
       movie.rate_hz = opt->rate_hz;
@@ -181,17 +238,12 @@ void add_bench_latero(CLI::App& bench, Action& action) {
       }
       display::LateroLinkStats stats;
       display::PlaybackReport report;
-      try {
+      {
+        const ServingThread server(emulator, Clock::time_point::max());
         display::LateroTransport latero({"127.0.0.1", emulator.port()});
         report = display::play_movie(movie, latero);
         stats = latero.stats();
-      } catch (...) {
-        emulator.request_stop();
-        server.join();
-        throw;
       }
-      emulator.request_stop();
-      server.join();
       const auto c = emulator.counters();
       fmt::print("bench latero: {} frames ({:g} s at {:g} Hz, {} of them ramps) to {}\n",
                  report.frames_sent, opt->seconds, opt->rate_hz, report.ramp_frames,
