@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <memory>
 #include <thread>
 
 #include "tactile/display/frame_codec.hpp"
@@ -195,6 +196,25 @@ TEST(LateroTransport, ProbeDescribesTheDevice) {
   EXPECT_EQ(info.layout.name, "latero");
   EXPECT_EQ(emulator->counters().io_requests, 1u);
   EXPECT_EQ(emulator->counters().full_requests, 0u);  // probing moves no blade
+}
+
+TEST(LateroTransport, WorksOverIpv6Loopback) {
+  LateroEmulatorOptions o;
+  o.bind_address = "::1";
+  o.port = 0;
+  std::unique_ptr<LateroEmulator> emulator;
+  try {
+    emulator = std::make_unique<LateroEmulator>(o);
+  } catch (const std::runtime_error& e) {
+    GTEST_SKIP() << "no IPv6 loopback here: " << e.what();
+  }
+  EXPECT_EQ(emulator->address(), "[::1]:" + std::to_string(emulator->port()));
+  std::thread server([&] { emulator->serve(Clock::now() + std::chrono::seconds(10)); });
+  LateroTransport t(parse_latero_address(emulator->address()), patient());
+  EXPECT_THAT(t.info().name, HasSubstr("[::1]:"));
+  emulator->request_stop();
+  server.join();
+  EXPECT_EQ(emulator->counters().io_requests, 1u);
 }
 
 TEST(LateroTransport, PlaysEveryFramePacedByTheHostClockAndStopsAtCentre) {
