@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-#include <thread>
 
 #include "latero_udp.hpp"
 #include "tactile/display/frame_codec.hpp"
