@@ -86,6 +86,7 @@ const std::string kLink =
 const std::string kDatagrams =
     R"(datagrams\s+(\d+) received: (\d+) FULL \(frames played\), (\d+) IO, (\d+) RAW, (\d+) malformed)";
 const std::string kEmulatorReplies = R"(replies\s+(\d+) sent, (\d+) left out)";
+const std::string kBladesLeft = R"(blades\s+left at raw (\d+)\.\.(\d+))";
 
 // Starts the emulator in the background, runs `client_args`, stops the emulator with SIGINT and
 // returns everything both printed (the client first).
@@ -126,6 +127,24 @@ TEST(LateroCli, PlaysTenSecondsAt750HzAndTheEmulatorCountsAgree) {
   const auto replies = numbers(out, kEmulatorReplies);  // sent, left out
   EXPECT_EQ(replies[0], link[1] + 1);
   EXPECT_EQ(replies[1], 0);
+  // The clean stop left every blade at OpenLatero's centre.
+  EXPECT_EQ(numbers(out, kBladesLeft), (std::vector<double>{75, 75}));
+}
+
+TEST(LateroCli, BladeMappingIsTheUsersToSet) {
+  const fs::path d = scratch("mapping");
+  const int port = free_udp_port();
+  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 75);
+  const std::string play = "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port);
+  const auto r = with_emulator(port, "", play + " --blade-centre-raw 128 --blade-max-raw 255", d);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("raw 128 at rest"));
+  EXPECT_EQ(numbers(r.output, kBladesLeft), (std::vector<double>{128, 128}));
+  // A centre above the largest raw value is refused before anything is sent.
+  const auto bad = run_tactile(play + " --blade-centre-raw 200");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.output, HasSubstr("centre_raw 200 is outside [0, max_raw 150]"));
+  EXPECT_EQ(run_tactile(play + " --blade-max-raw 300").exit_code, 2);
 }
 
 TEST(LateroCli, MissedRepliesAreCountedByTheSender) {

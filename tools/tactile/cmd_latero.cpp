@@ -6,6 +6,7 @@
 #include <sys/signalfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -111,11 +112,39 @@ CLI::Validator latero_address_check() {
       "HOST[:PORT]");
 }
 
-int play_on_latero(const display::TactileMovie& movie, const std::string& address, int loops) {
+void add_latero_play_options(CLI::App& play, LateroPlayOptions& o) {
+  play.add_option("--latero", o.address,
+                  "Play on the Latero at HOST[:PORT] (UDP, port 8900 by default)")
+      ->check(latero_address_check());
+  // Defaults from OpenLatero; a lab that has measured its blades sets its own
+  // (docs/protocol.md, "Blade values").
+  play.add_option("--blade-centre-raw", o.mapping.centre_raw, "Latero: raw blade value at rest")
+      ->check(CLI::Range(0.0, 255.0))
+      ->capture_default_str();
+  play.add_option("--blade-raw-per-unit", o.mapping.raw_per_unit,
+                  "Latero: raw units for a deflection of +full scale (negative: +x lowers it)")
+      ->check(CLI::Range(-255.0, 255.0))
+      ->capture_default_str();
+  play.add_option("--blade-max-raw", o.mapping.max_raw, "Latero: largest raw blade value sent")
+      ->check(CLI::Range(1.0, 255.0))
+      ->capture_default_str();
+  play.add_option("--blade-full-scale-um", o.mapping.full_scale_um,
+                  "Latero: deflection that moves a blade by raw-per-unit")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+int play_on_latero(const display::TactileMovie& movie, const LateroPlayOptions& o, int loops) {
   check_latero_movie(movie);
-  display::LateroTransport latero(display::parse_latero_address(address));
-  fmt::print("play: streaming to the Latero at {} at {:g} Hz (paced by this computer's clock)\n",
-             latero.address().text(), movie.rate_hz);
+  display::LateroTransportOptions transport;
+  transport.mapping = o.mapping;
+  display::validate(transport.mapping);
+  display::LateroTransport latero(display::parse_latero_address(o.address), transport);
+  fmt::print(
+      "play: streaming to the Latero at {} at {:g} Hz (paced by this computer's clock); blades: "
+      "raw {:g} at rest, {:+g} per {:g} um, at most {:g}\n",
+      latero.address().text(), movie.rate_hz, o.mapping.centre_raw, o.mapping.raw_per_unit,
+      o.mapping.full_scale_um, o.mapping.max_raw);
   display::PlayOptions options;
   options.loops = loops;
   const display::PlaybackReport report = display::play_movie(movie, latero, options);
@@ -194,6 +223,10 @@ void add_emulate(CLI::App& app, Action& action) {
       }
       if (stop_fd >= 0) ::close(stop_fd);
       fmt::print("emulate: stopped\n{}", display::format_latero_counters(emulator.counters()));
+      // Where the blades were left: a client that stopped cleanly leaves them all at centre.
+      const auto blades = emulator.blades();
+      const auto [lo, hi] = std::minmax_element(blades.begin(), blades.end());
+      fmt::print("blades      left at raw {}..{}\n", *lo, *hi);
       return 0;
     };
   });

@@ -24,7 +24,7 @@ void add_play(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
     PlayChoice choice;
-    std::string latero;
+    LateroPlayOptions latero;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -41,13 +41,13 @@ void add_play(CLI::App& app, Action& action) {
   sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  sub->add_option("--latero", opt->latero,
-                  "Play on the Latero at HOST[:PORT] (UDP, port 8900 by default)")
-      ->check(latero_address_check());
+  add_latero_play_options(*sub, opt->latero);
   sub->callback([opt, &action] {
     action = [opt] {
       const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
-      if (!opt->latero.empty()) return play_on_latero(movie, opt->latero, opt->choice.loops);
+      if (!opt->latero.address.empty()) {
+        return play_on_latero(movie, opt->latero, opt->choice.loops);
+      }
       return play_anywhere(movie, opt->choice);
     };
   });

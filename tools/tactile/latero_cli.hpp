@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "tactile/display/latero_protocol.hpp"
 #include "tactile/display/tactile_movie.hpp"
 
 namespace tactile::cli {
@@ -13,8 +14,16 @@ namespace tactile::cli {
 // Checks HOST[:PORT] at parse time, so that a bad address is a usage error (exit 2).
 CLI::Validator latero_address_check();
 
-// Plays `movie` on the Latero at `address` (HOST[:PORT]) and prints the link's figures.
-int play_on_latero(const display::TactileMovie& movie, const std::string& address, int loops);
+struct LateroPlayOptions {
+  std::string address;  // HOST[:PORT]; empty: not playing on a Latero
+  display::LateroBladeMapping mapping;
+};
+
+// Registers --latero HOST[:PORT] and the blade mapping's options on `play`.
+void add_latero_play_options(CLI::App& play, LateroPlayOptions& options);
+
+// Plays `movie` on the Latero at options.address and prints the link's figures.
+int play_on_latero(const display::TactileMovie& movie, const LateroPlayOptions& options, int loops);
 
 // Probes the Latero at `address` and prints what it reports.
 int print_latero_device(const std::string& address);
