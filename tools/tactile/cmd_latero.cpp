@@ -71,11 +71,11 @@ class ServingThread {
 };
 
 // Serves on a thread while the window (which must own the main thread) shows the blades as
-// deflections through the default blade mapping, until the window closes, `until`, or a
+// deflections through `mapping`, until the window closes, `until`, or a
 // signal on `stop_fd`.
-void show_live(display::LateroEmulator& emulator, Clock::time_point until, int stop_fd) {
+void show_live(display::LateroEmulator& emulator, const display::LateroBladeMapping& mapping,
+               Clock::time_point until, int stop_fd) {
   const ServingThread server(emulator, until, stop_fd);
-  const display::LateroBladeMapping mapping;
   const auto next = [&]() -> std::optional<display::LiveFrame> {
     pollfd p{stop_fd, POLLIN, 0};
     if (Clock::now() >= until || (stop_fd >= 0 && ::poll(&p, 1, 0) > 0)) return std::nullopt;
@@ -116,19 +116,25 @@ void add_latero_play_options(CLI::App& play, LateroPlayOptions& o) {
   play.add_option("--latero", o.address,
                   "Play on the Latero at HOST[:PORT] (UDP, port 8900 by default)")
       ->check(latero_address_check());
+  add_blade_mapping_options(play, o.mapping);
+}
+
+void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& mapping) {
   // Defaults from OpenLatero; a lab that has measured its blades sets its own
   // (docs/protocol.md, "Blade values").
-  play.add_option("--blade-centre-raw", o.mapping.centre_raw, "Latero: raw blade value at rest")
+  command.add_option("--blade-centre-raw", mapping.centre_raw, "Latero: raw blade value at rest")
       ->check(CLI::Range(0.0, 255.0))
       ->capture_default_str();
-  play.add_option("--blade-raw-per-unit", o.mapping.raw_per_unit,
+  command
+      .add_option("--blade-raw-per-unit", mapping.raw_per_unit,
                   "Latero: raw units for a deflection of +full scale (negative: +x lowers it)")
       ->check(CLI::Range(-255.0, 255.0))
       ->capture_default_str();
-  play.add_option("--blade-max-raw", o.mapping.max_raw, "Latero: largest raw blade value sent")
+  command.add_option("--blade-max-raw", mapping.max_raw, "Latero: largest raw blade value sent")
       ->check(CLI::Range(1.0, 255.0))
       ->capture_default_str();
-  play.add_option("--blade-full-scale-um", o.mapping.full_scale_um,
+  command
+      .add_option("--blade-full-scale-um", mapping.full_scale_um,
                   "Latero: deflection that moves a blade by raw-per-unit")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -176,6 +182,7 @@ void add_emulate(CLI::App& app, Action& action) {
     double seconds = 0;
     bool no_io_board = false;
     bool window = false;
+    display::LateroBladeMapping mapping;  // how --window turns blade bytes into deflections
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -201,6 +208,7 @@ void add_emulate(CLI::App& app, Action& action) {
                 "Report no IO board (status 0), as a Latero with its IO board unplugged");
   sub->add_flag("--window", opt->window,
                 "Show the emulated blades live in the viewer window (closing it stops)");
+  add_blade_mapping_options(*sub, opt->mapping);
   sub->callback([opt, &action] {
     action = [opt] {
       if (opt->no_io_board) opt->emulator.io_status = 0;
@@ -217,7 +225,8 @@ void add_emulate(CLI::App& app, Action& action) {
                                                   std::chrono::duration<double>(opt->seconds))
                              : Clock::time_point::max();
       if (opt->window) {
-        show_live(emulator, until, stop_fd);
+        display::validate(opt->mapping);
+        show_live(emulator, opt->mapping, until, stop_fd);
       } else {
         emulator.serve(until, stop_fd);
       }

@@ -21,6 +21,8 @@ struct LateroPlayOptions {
 
 // Registers --latero HOST[:PORT] and the blade mapping's options on `play`.
 void add_latero_play_options(CLI::App& play, LateroPlayOptions& options);
+// Registers the blade mapping's options (--blade-centre-raw, ...) on `command`.
+void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& mapping);
 
 // Plays `movie` on the Latero at options.address and prints the link's figures.
 int play_on_latero(const display::TactileMovie& movie, const LateroPlayOptions& options, int loops);
