@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "latero_cli.hpp"
 #include "number_checks.hpp"
 #include "playback.hpp"
 #include "strain_panel.hpp"
@@ -25,6 +26,7 @@ void add_play(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
     PlayChoice choice;
+    LateroPlayOptions latero;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -41,13 +43,18 @@ void add_play(CLI::App& app, Action& action) {
   sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
       ->check(within(1, 1000000))
       ->capture_default_str();
+  add_latero_play_options(*sub, opt->latero);
   sub->callback([opt, &action] {
     action = [opt] {
       // Checked even if the movie ends up on a device: whether it plays headless (the one case
       // that writes the preview) is decided only while playing.
       refuse_output_over_input({output_file("--preview", opt->choice.preview_png)},
                                {{"MOVIE_H5", opt->movie}});
-      return play_anywhere(display::read_tactile_movie(opt->movie), opt->choice);
+      const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      if (!opt->latero.address.empty()) {
+        return play_on_latero(movie, opt->latero, opt->choice.loops);
+      }
+      return play_anywhere(movie, opt->choice);
     };
   });
 }
@@ -128,10 +135,15 @@ void add_view(CLI::App& app, Action& action) {
 }
 
 void add_devices(CLI::App& app, Action& action) {
+  auto latero = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand(
       "devices", "List attached tactile displays (USB vendor/product 1209:0001) and their state.");
-  sub->callback([&action] {
-    action = [] {
+  sub->add_option("--latero", *latero,
+                  "Probe the Latero at HOST[:PORT] instead: FPGA versions, high voltage, buttons")
+      ->check(latero_address_check());
+  sub->callback([latero, &action] {
+    action = [latero] {
+      if (!latero->empty()) return print_latero_device(*latero);
       const auto devices = display::list_usb_devices();
       if (devices.empty()) {
         fmt::print("devices: none attached (looking for USB {:04x}:{:04x})\n",

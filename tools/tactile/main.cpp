@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_view(app, action);
   tactile::cli::add_devices(app, action);
   tactile::cli::add_info(app, action);
+  tactile::cli::add_emulate(app, action);
   tactile::cli::add_bench(app, action);
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
