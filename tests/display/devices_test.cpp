@@ -1,5 +1,5 @@
 // USB listing. Without a device attached (CI, containers) the real libusb and hidapi calls
-// must come back empty rather than fail; issue 4 adds a umockdev fake device that is found.
+// must come back empty rather than fail; tests/usb finds a fake device under umockdev.
 #include <gtest/gtest.h>
 
 #include "tactile/display/devices.hpp"

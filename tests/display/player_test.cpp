@@ -71,7 +71,7 @@ TEST(Player, LateroAt750HzPlaysEveryFrameInOrder) {
 }
 
 TEST(Player, SixtySecondsAt1kHzWithoutUnderrunInSimulatedTime) {
-  Layout layout = stress_layout();  // 100 contactors, as issue 4 asks
+  Layout layout = stress_layout();  // 100 contactors, the STReSS grid
   layout.max_rate_hz = 1000;
   EmulatedDeviceOptions o = device_for(layout);
   o.record_outputs = false;

@@ -1,6 +1,6 @@
 // Mapping the exact strain of the synthetic bump scene (capture's scene model, no images, no
 // measurement noise): the "integrated" method must put the source strain between neighbouring
-// contactors (the acceptance test of issue 5, run early on the first version).
+// contactors.
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// `tactile bench map`: how long the mapping of a demo-sized strain movie takes (issue 5 target:
+// `tactile bench map`: how long the mapping of a demo-sized strain movie takes (target:
 // 180 frames of about 500 landmarks onto 10 x 10 at 700 Hz in <= 50 ms).
 
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-// The `tactile` command line: one program, one subcommand per job (DESIGN.md section 2).
+// The `tactile` command line: one program, one subcommand per job.
 // Exit codes: 0 success, 1 the work failed (bad file, device error), 2 wrong usage.
 
 #include <fmt/format.h>

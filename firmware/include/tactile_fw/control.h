@@ -3,7 +3,7 @@
 /*
  * Replies to the control requests "device information" and "status", as fixed-size
  * little-endian byte blocks shared by the firmware (encode) and the host (decode). The USB
- * request codes and descriptors around them are defined with the USB glue (issue 4); the
+ * request codes and descriptors around them are defined with the USB glue (usb.h); the
  * emulated device already answers through these encodings so that the host code paths are
  * the same for both.
  *

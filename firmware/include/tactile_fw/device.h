@@ -2,7 +2,7 @@
 #define TACTILE_FW_DEVICE_H
 /*
  * The device core: receives frames into a FIFO and plays them at the device's own rate, with
- * the safety rules the host cannot bypass (DESIGN.md section 4):
+ * the safety rules the host cannot bypass:
  *   - clamp: every output stays within [deflection_min, deflection_max];
  *   - slew limit: no output moves more than max_slew_per_tick between two ticks;
  *   - watchdog: when no frame has been played for watchdog_timeout_ms, every contactor ramps

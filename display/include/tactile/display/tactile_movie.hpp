@@ -57,7 +57,7 @@ struct TactileMovie {
   double duration_s() const { return rate_hz > 0 ? frame_count / rate_hz : 0.0; }
 };
 
-// Built-in layouts of the STReSS family (DESIGN.md section 1).
+// Built-in layouts of the STReSS family.
 Layout stress_layout();   // 10 x 10, 1 mm pitch, 700 Hz
 Layout stress2_layout();  // 8 x 8, 1.2 mm x 1.4 mm
 Layout latero_layout();   // 8 x 8, 1.2 mm x 1.6125 mm, contactors 0.5 x 1.4 mm, 750 Hz

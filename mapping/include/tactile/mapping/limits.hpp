@@ -1,6 +1,6 @@
 #pragma once
 // Deflection limits applied to every mapped movie. The firmware enforces the same two limits on
-// the device (DESIGN.md section 4); applying them here too means the movie file shows what the
+// the device (its safety rules); applying them here too means the movie file shows what the
 // skin will actually get.
 
 #include "tactile/display/emulated_device.hpp"

@@ -5,7 +5,7 @@
 // by its centre, a rotation (counter-clockwise in the x-right/y-down frame as drawn on screen:
 // positive angles turn +x towards +y) and a scale (1 = physical size: one millimetre of contactor
 // pitch samples one millimetre of skin). The grid stays fixed in the image plane for the whole
-// movie (Eulerian sampling); following the skin (Lagrangian placement) is left to issue 5.
+// movie (Eulerian sampling); following the skin (Lagrangian) is `strain = accumulated`.
 
 #include <cstdint>
 #include <vector>
