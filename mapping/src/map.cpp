@@ -7,8 +7,8 @@
 #include <cmath>
 #include <exception>
 #include <stdexcept>
-#include <thread>
 
+#include "tactile/common/parallel_for.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/mapping/methods.hpp"
 #include "tactile/mapping/resample.hpp"
@@ -87,35 +87,20 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   camera.values_per_frame = layout.contactor_count();
   camera.t_s.resize(movie.frames.size());
   camera.values.resize(movie.frames.size() * n);
-  // Frames are independent: each worker builds its own fields and writes its own rows.
-  const auto worker_count = static_cast<std::size_t>(
-      std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
-                 static_cast<int>(std::max<std::size_t>(movie.frames.size() / 16, 1))));
-  std::vector<std::exception_ptr> errors(worker_count);
-  const auto work = [&](std::size_t w) {
-    try {
-      for (std::size_t k = w; k < movie.frames.size(); k += worker_count) {
-        const auto deflection_um =
-            method ? method(build_strain_field(movie.frames[k], params.field, needed), layout,
-                            placement, params.gain_um_per_strain)
-                   : profile_frame(*params.profile, layout, movie.frames[k].t_s,
-                                   params.gain_um_per_strain);
-        camera.t_s[k] = movie.frames[k].t_s;
-        std::copy(deflection_um.begin(), deflection_um.end(),
-                  camera.values.begin() + static_cast<std::ptrdiff_t>(k * n));
-      }
-    } catch (...) {
-      errors[w] = std::current_exception();
-    }
-  };
-  {
-    std::vector<std::jthread> threads;
-    for (std::size_t w = 1; w < worker_count; ++w) threads.emplace_back(work, w);
-    work(0);
-  }
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  // Frames are independent: each builds its own fields and writes its own rows. Below 16 frames
+  // per worker, threads cost more than they save.
+  const int workers = std::clamp(
+      worker_count(0), 1, static_cast<int>(std::max<std::size_t>(movie.frames.size() / 16, 1)));
+  parallel_for(movie.frames.size(), workers, [&](std::size_t k) {
+    const auto deflection_um =
+        method ? method(build_strain_field(movie.frames[k], params.field, needed), layout,
+                        placement, params.gain_um_per_strain)
+               : profile_frame(*params.profile, layout, movie.frames[k].t_s,
+                               params.gain_um_per_strain);
+    camera.t_s[k] = movie.frames[k].t_s;
+    std::copy(deflection_um.begin(), deflection_um.end(),
+              camera.values.begin() + static_cast<std::ptrdiff_t>(k * n));
+  });
 
   double factor = 1.0;
   if (params.normalisation != "none") {

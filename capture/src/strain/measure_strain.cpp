@@ -3,11 +3,11 @@
 #include <exception>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "tactile/capture/strain.hpp"
+#include "tactile/common/parallel_for.hpp"
 
 namespace tactile::capture {
 
@@ -82,33 +82,18 @@ StrainMovie measure_strain(
   const int n = static_cast<int>(frames.size());
   const double px_per_mm = 1.0 / cal.mm_per_px;
   std::vector<std::vector<Feature>> features(frames.size());
-  // Frames are independent: workers take the next frame from a shared counter. Only the
-  // calling thread reports progress (the callback need not be thread-safe).
-  const int threads = std::max(
-      1, std::min(n, params.threads > 0 ? params.threads
-                                        : static_cast<int>(std::thread::hardware_concurrency())));
-  std::atomic<int> next{0};
+  // Frames are independent. Progress is reported under a lock (the callback need not be
+  // thread-safe), in the order frames finish.
   std::atomic<int> done{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto work = [&](bool report) {
-    for (int i = next++; i < n; i = next++) {
-      try {
-        features[static_cast<std::size_t>(i)] =
-            extract_features(frames[static_cast<std::size_t>(i)], px_per_mm, params.features);
-      } catch (...) {
-        const std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
-      ++done;
-      if (report && progress) progress("extract", done.load(), n);
+  std::mutex progress_mutex;
+  parallel_for(frames.size(), worker_count(params.threads), [&](std::size_t i) {
+    features[i] = extract_features(frames[i], px_per_mm, params.features);
+    const int finished = ++done;
+    if (progress) {
+      const std::lock_guard lock(progress_mutex);
+      progress("extract", finished, n);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, false);
-  work(true);
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  });
   if (progress) progress("extract", done.load(), n);
 
   TrackParams tp;
