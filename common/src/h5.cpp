@@ -7,6 +7,8 @@
 #include <fstream>
 #include <system_error>
 
+#include "tactile/common/atomic_write.hpp"
+
 namespace tactile::h5 {
 namespace {
 
@@ -92,22 +94,14 @@ std::vector<T> read_any(const H5::Group& group, const std::string& name, std::si
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(H5::H5File&)>& fill) {
   silence_hdf5();
-  const std::filesystem::path tmp = path.string() + ".partial";
   try {
-    {
-      H5::H5File file(tmp.string(), H5F_ACC_TRUNC);
+    write_atomically(path, [&](const std::filesystem::path& partial) {
+      H5::H5File file(partial.string(), H5F_ACC_TRUNC);
       fill(file);
       file.close();
-    }
-    std::filesystem::rename(tmp, path);
+    });
   } catch (const H5::Exception& e) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
     throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), describe(e)));
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
   }
 }
 

@@ -6,11 +6,11 @@
 
 #include <cmath>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "tactile/common/error.hpp"
+#include "tactile/common/json.hpp"
 
 namespace tactile::display {
 namespace {
@@ -18,18 +18,11 @@ namespace {
 using nlohmann::json;
 
 const json& field(const json& j, const char* name, const std::string& where) {
-  const auto it = j.find(name);
-  if (it == j.end()) throw FormatError(fmt::format("{}: missing field '{}'", where, name));
-  return *it;
+  return json_required(JsonOrigin{where}, j, name, "");
 }
 
 double number(const json& v, const std::string& what, const std::string& where) {
-  if (!v.is_number()) {
-    throw FormatError(fmt::format("{}: '{}' must be a number, got {}", where, what, v.dump()));
-  }
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) throw FormatError(fmt::format("{}: '{}' is not finite", where, what));
-  return x;
+  return json_number(JsonOrigin{where}, v, what);
 }
 
 double positive(const json& v, const std::string& what, const std::string& where) {
@@ -39,10 +32,7 @@ double positive(const json& v, const std::string& what, const std::string& where
 }
 
 std::int32_t count(const json& v, const char* what, const std::string& where) {
-  if (!v.is_number_integer()) {
-    throw FormatError(fmt::format("{}: '{}' must be an integer, got {}", where, what, v.dump()));
-  }
-  const auto n = v.get<std::int64_t>();
+  const auto n = json_integer(JsonOrigin{where}, v, what);
   // 256 x 256 is far beyond any pin array built; it also keeps rows * cols in range.
   if (n < 1 || n > 256) {
     throw FormatError(
@@ -63,12 +53,7 @@ std::pair<double, double> pair_of(const json& v, const char* what, const std::st
 }  // namespace
 
 Layout parse_layout_json(const std::string& text, const std::string& where) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
-  }
+  const json j = parse_json(JsonOrigin{where}, text);
   if (!j.is_object()) throw FormatError(fmt::format("{}: a layout must be a JSON object", where));
   static const std::set<std::string> known = {"name",
                                               "rows",

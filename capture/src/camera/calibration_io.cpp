@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "json_field.hpp"
-#include "json_file.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/json.hpp"
 
 namespace tactile::capture {
 
@@ -22,7 +22,7 @@ void write_calibration_json(const std::filesystem::path& path, const Calibration
   j["image_width_px"] = calibration.image_width_px;
   j["image_height_px"] = calibration.image_height_px;
   j["method"] = calibration.method;
-  write_file_atomically(path, j.dump(2) + "\n");
+  write_text_atomically(path, j.dump(2) + "\n");
 }
 
 Calibration read_calibration_json(const std::filesystem::path& path) {

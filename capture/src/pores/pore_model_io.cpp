@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "json_field.hpp"
-#include "json_file.hpp"
 #include "pores/pore_model.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/json.hpp"
 
 namespace tactile::capture {
 
@@ -43,7 +43,7 @@ void write_pore_model_json(const std::filesystem::path& path, const PoreModelFil
   j["min_log_odds"] = model.min_log_odds;
   j["trained_on"] = model.trained_on;
   j["coefficients"] = model.coefficients;
-  write_file_atomically(path, j.dump(2) + '\n');
+  write_text_atomically(path, j.dump(2) + '\n');
 }
 
 PoreModelFile read_pore_model_json(const std::filesystem::path& path) {

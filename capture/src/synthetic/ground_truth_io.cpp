@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "json_field.hpp"
-#include "json_file.hpp"
 #include "tactile/capture/evaluate.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/json.hpp"
 
 namespace tactile::capture {
 

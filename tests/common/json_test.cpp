@@ -1,0 +1,106 @@
+// The strict JSON reader and the atomic writer every module uses: each malformed document gets
+// a FormatError that names its origin and what is wrong; a failed write leaves the old file.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "tactile/common/atomic_write.hpp"
+#include "tactile/common/json.hpp"
+
+namespace tactile {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const FormatError& e) {
+    return e.what();
+  }
+  return "no FormatError";
+}
+
+TEST(Json, ParseErrorsNameTheOrigin) {
+  const JsonOrigin at{"doc.json"};
+  EXPECT_THAT(message_of([&] { parse_json(at, "{\"a\": "); }),
+              HasSubstr("doc.json: not valid JSON"));
+  // A number beyond a double is nlohmann's out_of_range, not a parse error: still a FormatError.
+  EXPECT_THAT(message_of([&] { parse_json(at, "{\"a\": 1e999}"); }),
+              HasSubstr("doc.json: not valid JSON"));
+}
+
+TEST(Json, FieldsAreCheckedForWhatAPersonMeant) {
+  const JsonOrigin at{"doc.json"};
+  const auto j = parse_json(at, R"({"n": "3", "i": 2.5, "s": "", "x": 1, "nan": null})");
+  EXPECT_THAT(message_of([&] { json_number(at, j["n"], "n"); }),
+              HasSubstr("doc.json: 'n' must be a number, got \"3\""));
+  EXPECT_THAT(message_of([&] { json_integer(at, j["i"], "i"); }),
+              HasSubstr("doc.json: 'i' must be an integer, got 2.5"));
+  EXPECT_THAT(message_of([&] { json_string(at, j["s"], "s"); }),
+              HasSubstr("'s' must be a non-empty string"));
+  EXPECT_THAT(message_of([&] { json_required(at, j, "missing", "the doc"); }),
+              HasSubstr("doc.json: the doc: missing field 'missing'"));
+  EXPECT_THAT(message_of([&] { json_required(at, j, "missing", ""); }),
+              HasSubstr("doc.json: missing field 'missing'"));
+  EXPECT_THAT(message_of([&] {
+                json_only_keys(at, j, "the doc", {"n", "i", "s", "nan"});
+              }),
+              HasSubstr("the doc: unknown field 'x'"));
+  EXPECT_THAT(message_of([&] { json_field<int>(j, "s", "doc.json"); }),
+              HasSubstr("field 's' has the wrong type"));
+  EXPECT_DOUBLE_EQ(json_number(at, j["x"], "x"), 1.0);
+  EXPECT_EQ(json_integer(at, j["x"], "x"), 1);
+}
+
+class Files : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("tactile_json_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(Files, ReadJsonObjectRefusesWhatIsNotAnObject) {
+  EXPECT_THAT(message_of([&] { read_json_object(dir_ / "none.json", "a calibration"); }),
+              HasSubstr("none.json: cannot open a calibration"));
+  std::ofstream(dir_ / "list.json") << "[1, 2]";
+  EXPECT_THAT(message_of([&] { read_json_object(dir_ / "list.json", "a calibration"); }),
+              HasSubstr("list.json: expected a JSON object"));
+  std::ofstream(dir_ / "empty.json") << "";
+  EXPECT_THAT(message_of([&] { read_json_object(dir_ / "empty.json", "a calibration"); }),
+              HasSubstr("empty.json: not valid JSON"));
+}
+
+TEST_F(Files, AFailedWriteLeavesTheOldFileAndNoPartial) {
+  const fs::path p = dir_ / "kept.txt";
+  write_text_atomically(p, "old\n");
+  EXPECT_THROW(write_atomically(p,
+                                [](const fs::path& partial) {
+                                  std::ofstream(partial) << "half";
+                                  throw std::runtime_error("interrupted");
+                                }),
+               std::runtime_error);
+  std::stringstream text;
+  text << std::ifstream(p).rdbuf();
+  EXPECT_EQ(text.str(), "old\n");
+  EXPECT_FALSE(fs::exists(p.string() + ".partial"));
+  write_text_atomically(p, "new\n");
+  std::stringstream again;
+  again << std::ifstream(p).rdbuf();
+  EXPECT_EQ(again.str(), "new\n");
+  EXPECT_THROW(write_text_atomically(dir_ / "no" / "such" / "dir.txt", "x"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace tactile
