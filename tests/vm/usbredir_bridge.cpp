@@ -175,6 +175,8 @@ struct UsbredirBridge::Impl {
   std::deque<std::uint32_t> arrival_ticks;  // device tick at which each queued frame arrived
   std::uint32_t last_received = 0;
   double queue_ticks_sum = 0;
+  bool stream_filled = false;
+  std::uint32_t last_ticks = 0;
 
   void run();
   void accept_connection();
@@ -298,6 +300,11 @@ void UsbredirBridge::Impl::accept_connection() {
   receiving.fill(false);
   arrival_ticks.clear();
   last_received = 0;
+  last_ticks = 0;
+  stream_filled = false;
+  local.underruns_at_start = 0;  // per connection: each plug-in is a new device
+  local.underruns_steady = 0;
+  local.underrun_ticks.clear();
   connected_at = Clock::now();
   next_tick = connected_at;
   ++local.connections;
@@ -348,9 +355,20 @@ void UsbredirBridge::Impl::run_ticks() {
   const auto now = Clock::now();
   int ticks = 0;
   while (next_tick <= now && ticks < 100) {
-    const std::uint32_t played_before = device->status().frames_played;
+    const tfw_status before = device->status();
+    const std::uint32_t played_before = before.frames_played;
     device->tick();
     const tfw_status s = device->status();
+    if (before.ticks < last_ticks) stream_filled = false;  // a start reset the counters
+    last_ticks = s.ticks;
+    if (s.fifo_fill >= s.fifo_capacity / 2) stream_filled = true;
+    if (s.underruns > before.underruns) {
+      ++(stream_filled ? local.underruns_steady : local.underruns_at_start);
+      if (s.underruns <= 10) {
+        local.underrun_ticks +=
+            std::to_string(s.ticks) + "@" + std::to_string(s.frames_played) + " ";
+      }
+    }
     if (s.frames_played > played_before && !arrival_ticks.empty()) {
       queue_ticks_sum += static_cast<double>(s.ticks - arrival_ticks.front());
       arrival_ticks.pop_front();
