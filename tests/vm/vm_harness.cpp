@@ -21,7 +21,6 @@
 #include <cstring>
 #include <map>
 #include <optional>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -56,9 +55,13 @@ void check(bool ok, const std::string& what) {
 
 // "key=value" from a line; empty when absent.
 std::string field(const std::string& line, const std::string& key) {
-  const std::regex re("(^|\\s)" + key + "=(\\S*)");
-  std::smatch m;
-  return std::regex_search(line, m, re) ? m[2].str() : std::string();
+  const std::string k = key + "=";
+  for (std::size_t at = line.find(k); at != std::string::npos; at = line.find(k, at + 1)) {
+    if (at > 0 && line[at - 1] != ' ') continue;
+    const std::size_t begin = at + k.size();
+    return line.substr(begin, line.find(' ', begin) - begin);
+  }
+  return {};
 }
 
 double num(const std::string& line, const std::string& key) {
@@ -215,7 +218,7 @@ void check_play(const std::vector<Line>& lines, const std::string& backend, doub
       backend + ": fill reports arrive on the interrupt IN endpoint and decode");
   std::printf(
       "FIGURE bridge bulk_transfers=%llu hid_reports=%llu naks=%llu fill_reports_sent=%llu "
-      "mean_queue_ticks=%.1f bridge_cpu_us_per_frame=%.1f\n",
+      "mean_queue_ticks=%.1f bridge_cpu_us_per_frame=%.1f (host CPU while streaming)\n",
       static_cast<unsigned long long>(bridge.bulk_transfers),
       static_cast<unsigned long long>(bridge.hid_reports),
       static_cast<unsigned long long>(bridge.naks),
@@ -310,7 +313,7 @@ int run(const Options& o) {
   std::string partial;
   double unplug_at = -1, unplugged_sent = -1, replugged = -1;
   bool done = false;
-  tactile::vm::BridgeStats play_stats;
+  tactile::vm::BridgeStats playing_stats, play_stats;
   while (!done && now_s() < o.timeout_s) {
     pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {mon_out, POLLIN, 0}};
     poll(fds, 2, 5);
@@ -332,7 +335,11 @@ int run(const Options& o) {
         const double t = now_s();
         std::printf("[%8.3f] %s\n", t, text.c_str());
         lines.push_back({t, text});
-        if (text.rfind("VM: played", 0) == 0) play_stats = bridge->stats();
+        if (text.rfind("VM: playing", 0) == 0) playing_stats = bridge->stats();
+        if (text.rfind("VM: played", 0) == 0) {
+          play_stats = bridge->stats();
+          play_stats.bridge_cpu_s -= playing_stats.bridge_cpu_s;  // this stream's share
+        }
         if (text == "VM: done") done = true;
         if (o.scenario == "unplug") {
           if (unplug_at < 0 && text.rfind("VM: playing", 0) == 0) unplug_at = t + 1.5;
