@@ -363,7 +363,10 @@ void UsbredirBridge::Impl::run_ticks() {
     last_ticks = s.ticks;
     if (s.fifo_fill >= s.fifo_capacity / 2) stream_filled = true;
     if (s.underruns > before.underruns) {
-      ++(stream_filled ? local.underruns_steady : local.underruns_at_start);
+      // The start is the first FIFO's worth of frames, and only until the FIFO first filled:
+      // a link too slow ever to fill it is counted as steady state.
+      const bool start = !stream_filled && s.frames_played <= s.fifo_capacity;
+      ++(start ? local.underruns_at_start : local.underruns_steady);
       if (s.underruns <= 10) {
         local.underrun_ticks +=
             std::to_string(s.ticks) + "@" + std::to_string(s.frames_played) + " ";

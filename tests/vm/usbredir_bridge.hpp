@@ -55,8 +55,9 @@ struct BridgeStats {
   double mean_queue_ticks = 0;
   std::uint64_t queue_samples = 0;
   double bridge_cpu_s = 0;  // CPU time of the bridge thread
-  // Underruns split by when they happened in a stream: before its FIFO first reached half
-  // full (the start, while the host is still filling it) or after (steady state).
+  // Underruns split by when they happened in a stream: at its start (within the first FIFO's
+  // worth of frames played and before the FIFO first reached half full, while the host is
+  // still filling it) or after (steady state).
   std::uint64_t underruns_at_start = 0;
   std::uint64_t underruns_steady = 0;
   // Where underruns happened, for the log: "tick@frames_played" of the first few.

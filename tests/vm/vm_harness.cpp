@@ -199,9 +199,8 @@ void check_play(const std::vector<Line>& lines, const std::string& backend, doub
               bridge.underrun_ticks.c_str());
   check(num(played->text, "malformed") == 0, backend + ": 0 malformed frames");
   const double device_s = num(played->text, "device_s");
-  const double wall_s = num(played->text, "wall_s");
-  check(wall_s > 0 && wall_s < device_s * 1.25 + 1,
-        backend + ": sustained the device rate (wall time close to device time)");
+  check(device_s > 0 && num(played->text, "rate_achieved") >= 0.98 * rate_hz,
+        backend + ": sustained the device rate (frames sent per wall-clock second >= 98 %)");
   std::printf("FIGURE %s rate_hz=%.0f achieved_hz=%s cpu_us_per_frame=%s wall_s=%s\n",
               backend.c_str(), rate_hz, field(played->text, "rate_achieved").c_str(),
               field(played->text, "cpu_us_per_frame").c_str(),
