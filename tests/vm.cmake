@@ -63,11 +63,15 @@ add_test(NAME vm.enumerate_defect COMMAND ${vm_run} --defect enumerate)
 # over hidraw at 200 Hz on the full-speed device (what hidraw's one-report-per-write sustains
 # there, below the bus's 250 Hz) and at 700 Hz on a high-speed one.
 add_test(NAME vm.play_libusb COMMAND ${vm_run} play-libusb)
+# A 4 x 6 display: 64-byte frames, one full packet each, so every frame ends with libusb's
+# zero-length packet, which the guest's xHCI driver sends as a transfer of its own.
+add_test(NAME vm.play_libusb_zlp COMMAND ${vm_run} --grid 4x6 play-libusb)
 add_test(NAME vm.play_hidraw COMMAND ${vm_run} play-hidraw)
 add_test(NAME vm.play_hidraw_high_speed COMMAND ${vm_run} --high-speed play-hidraw)
 # device_del in QEMU's monitor while playing, then the display plugged back in.
 add_test(NAME vm.unplug_replug COMMAND ${vm_run} unplug)
 # Serial: each guest needs a whole core under TCG, and the play tests time a 700 Hz clock.
-set_tests_properties(vm.enumerate vm.enumerate_defect vm.play_libusb vm.play_hidraw
+set_tests_properties(vm.enumerate vm.enumerate_defect vm.play_libusb vm.play_libusb_zlp
+                     vm.play_hidraw
                      vm.play_hidraw_high_speed vm.unplug_replug
                      PROPERTIES LABELS vm TIMEOUT 200 RUN_SERIAL TRUE)

@@ -49,7 +49,9 @@ int ep_index(std::uint8_t ep) {
 class Device {
  public:
   Device(const BridgeOptions& options) : defect_(options.defect_hid_interval) {
-    const tfw_config config = tfw_test_stress_config();
+    tfw_config config = tfw_test_stress_config();
+    config.rows = options.rows;
+    config.cols = options.cols;
     if (tfw_device_init(&dev_, &config, nullptr) != TFW_CONFIG_OK) {
       throw std::logic_error("bridge: bad device configuration");
     }
@@ -414,6 +416,8 @@ void UsbredirBridge::Impl::serve_pending() {
       }
       const auto n = static_cast<std::uint16_t>(p.data.size());
       if (ep == TFW_USB_EP_FRAMES_OUT) {
+        // Full packets, then the short rest; a zero-length transfer is the zero-length packet
+        // (the guest's xHCI driver queues it as a transfer of its own).
         static const std::uint8_t kNothing[1] = {0};
         const std::uint16_t max = device->bulk_packet();
         std::uint16_t at = 0;
@@ -421,7 +425,6 @@ void UsbredirBridge::Impl::serve_pending() {
           const auto chunk = static_cast<std::uint16_t>(std::min<int>(max, n - at));
           device->bulk_out(chunk > 0 ? p.data.data() + at : kNothing, chunk);
           at = static_cast<std::uint16_t>(at + chunk);
-          if (chunk == max && at == n) device->bulk_out(kNothing, 0);  // the folded ZLP
         } while (at < n);
         usb_redir_bulk_packet_header h{};
         h.endpoint = ep;

@@ -4,9 +4,8 @@
 // (libusbredirparser) over a unix socket, and this bridge is the "USB host" end of it, the
 // part that usbredirserver plays for a real device. The bridge is the device controller:
 //   - control packets become SETUP packets for tfw_usb_setup (its reply, or a stall);
-//   - a bulk packet on EP 0x01 is one transfer: split into max-size packets for
-//     tfw_usb_bulk_out, plus a zero-length packet when the transfer is an exact multiple
-//     (QEMU folds the guest's zero-length TRB into the transfer, so the bridge restores it);
+//   - a bulk packet on EP 0x01 is one transfer: split into max-size packets (and a short
+//     rest) for tfw_usb_bulk_out; a zero-length transfer is a zero-length packet;
 //   - an interrupt packet on EP 0x02 is one HID output report for tfw_usb_hid_out;
 //   - OUT packets wait unanswered while the firmware NAKs their endpoint (FIFO full): the
 //     guest's transfer stays pending, exactly as on a real bus;
@@ -26,6 +25,10 @@ namespace tactile::vm {
 struct BridgeOptions {
   std::string socket_path;  // unix socket the bridge listens on; QEMU connects to it
   bool high_speed = false;  // announce a high-speed device (default full speed)
+  // Contactor grid (the STReSS-like test device otherwise): 4 x 6 makes a frame of exactly
+  // one full-speed packet, so every frame ends with a zero-length packet.
+  std::uint16_t rows = 10;
+  std::uint16_t cols = 10;
   // A deliberate defect for the test that shows the enumeration test can fail: the
   // configuration descriptor sent to the host has bInterval 0 on the HID IN endpoint 0x82,
   // which USB 2.0 forbids for interrupt endpoints.

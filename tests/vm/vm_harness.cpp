@@ -41,6 +41,7 @@ struct Options {
   std::string qemu, kernel, initrd, scenario;
   bool defect = false;
   bool high_speed = false;
+  int rows = 10, cols = 10;
   double rate_hz = 0;  // 0: the scenario's own
   double seconds = 10;
   double timeout_s = 150;
@@ -239,6 +240,8 @@ int run(const Options& o) {
   bo.socket_path = sock;
   bo.defect_hid_interval = o.defect;
   bo.high_speed = o.high_speed;
+  bo.rows = static_cast<std::uint16_t>(o.rows);
+  bo.cols = static_cast<std::uint16_t>(o.cols);
   bo.serial = serial;
   auto bridge = std::make_unique<tactile::vm::UsbredirBridge>(bo);
   mkfifo((mon + ".in").c_str(), 0600);
@@ -280,8 +283,8 @@ int run(const Options& o) {
   } else {
     args.insert(args.begin() + 1, {"-accel", "tcg"});
   }
-  std::printf("vm: %s, scenario %s, %s-speed device%s\n", kvm ? "KVM" : "no /dev/kvm: TCG",
-              o.scenario.c_str(), o.high_speed ? "high" : "full",
+  std::printf("vm: %s, scenario %s, %s-speed %d x %d device%s\n", kvm ? "KVM" : "no /dev/kvm: TCG",
+              o.scenario.c_str(), o.high_speed ? "high" : "full", o.rows, o.cols,
               o.defect ? ", with a descriptor defect" : "");
   int out_pipe[2];
   if (pipe2(out_pipe, O_CLOEXEC) != 0) return 1;
@@ -436,6 +439,10 @@ int main(int argc, char** argv) {
       o.initrd = value();
     } else if (a == "--defect") {
       o.defect = true;
+    } else if (a == "--grid") {  // ROWSxCOLS
+      const std::string g = value();
+      o.rows = std::atoi(g.c_str());
+      o.cols = std::atoi(g.c_str() + std::min(g.size(), g.find('x') + 1));
     } else if (a == "--high-speed") {
       o.high_speed = true;
     } else if (a == "--rate") {
@@ -449,10 +456,11 @@ int main(int argc, char** argv) {
     }
   }
   if (o.qemu.empty() || o.kernel.empty() || o.initrd.empty() || run_steps(o).empty()) {
-    std::fprintf(stderr,
-                 "usage: vm_harness --qemu Q --kernel K --initrd I [--defect] [--high-speed] "
-                 "[--rate HZ] [--seconds S] [--timeout S] "
-                 "enumerate|play-libusb|play-hidraw|unplug\n");
+    std::fprintf(
+        stderr,
+        "usage: vm_harness --qemu Q --kernel K --initrd I [--defect] [--high-speed] [--grid RxC] "
+        "[--rate HZ] [--seconds S] [--timeout S] "
+        "enumerate|play-libusb|play-hidraw|unplug\n");
     return 2;
   }
   signal(SIGPIPE, SIG_IGN);
