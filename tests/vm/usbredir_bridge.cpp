@@ -68,7 +68,8 @@ class Device {
     ready_.fill(true);
   }
 
-  // A SETUP packet with its OUT data; returns the IN reply, or nullopt-like false on a stall.
+  // A SETUP packet with its OUT data: false when the firmware stalled it, else true with the
+  // IN data stage (if any) in `reply`.
   bool control(const std::uint8_t setup[8], const std::uint8_t* data, std::uint16_t len,
                std::vector<std::uint8_t>& reply) {
     ep0_.clear();

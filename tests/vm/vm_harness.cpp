@@ -15,11 +15,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -381,8 +382,10 @@ int run(const Options& o) {
     std::printf("FIGURE boot_to_init_s=%.2f (host wall clock)\n", boot->t);
   }
   if (stats.enumeration_s > 0) {
-    std::printf("FIGURE bridge connect_to_set_configuration_s=%.2f (includes the guest's boot)\n",
-                stats.enumeration_s);
+    std::printf(
+        "FIGURE bridge connect_to_set_configuration_s=%.2f (of the last plug-in; the first "
+        "includes the guest's boot)\n",
+        stats.enumeration_s);
   }
   if (o.scenario == "enumerate") {
     check_enumeration(lines, serial);
