@@ -70,8 +70,9 @@ add_test(NAME vm.play_hidraw COMMAND ${vm_run} play-hidraw)
 add_test(NAME vm.play_hidraw_high_speed COMMAND ${vm_run} --high-speed play-hidraw)
 # device_del in QEMU's monitor while playing, then the display plugged back in.
 add_test(NAME vm.unplug_replug COMMAND ${vm_run} unplug)
+add_test(NAME vm.unplug_replug_hidraw COMMAND ${vm_run} unplug-hidraw)
 # Serial: each guest needs a whole core under TCG, and the play tests time a 700 Hz clock.
 set_tests_properties(vm.enumerate vm.enumerate_defect vm.play_libusb vm.play_libusb_zlp
                      vm.play_hidraw
-                     vm.play_hidraw_high_speed vm.unplug_replug
+                     vm.play_hidraw_high_speed vm.unplug_replug vm.unplug_replug_hidraw
                      PROPERTIES LABELS vm TIMEOUT 200 RUN_SERIAL TRUE)

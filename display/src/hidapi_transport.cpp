@@ -6,6 +6,8 @@
 #include <hidapi.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cwchar>
 #include <string>
 #include <thread>
@@ -115,6 +117,12 @@ class HidapiTransport final : public Transport {
     const std::string e = dev_ != nullptr ? narrow(hid_error(dev_)) : std::string();
     const bool useful =
         !e.empty() && e != "Success" && e.find("not implemented") == std::string::npos;
+    // The kernel removed the device: ENODEV for a call after the removal, ESHUTDOWN for a
+    // transfer it cut short. Say so as the libusb transport does.
+    if (e == std::strerror(ENODEV) || e == std::strerror(ESHUTDOWN)) {
+      throw TransportError("hidapi: " + what + ": the display was unplugged (" + e + ") (" +
+                           where_ + ")");
+    }
     throw TransportError("hidapi: " + what + (useful ? ": " + e : std::string()) + " (" + where_ +
                          "; unplugged?)");
   }

@@ -4,7 +4,7 @@
 // for unplug and replug), reads the guest's "VM:" lines from the serial console and checks them.
 //
 //   vm_harness --qemu Q --kernel K --initrd I SCENARIO [--defect]
-//   SCENARIO: enumerate | play-libusb | play-hidraw | unplug
+//   SCENARIO: enumerate | play-libusb | play-hidraw | unplug | unplug-hidraw
 // Exit 0 when every check passed. With --defect the bridge corrupts one descriptor field and
 // the enumeration checks are expected to fail (exit 0 only if they do, for that reason).
 #include <fcntl.h>
@@ -103,7 +103,8 @@ int dmesg_level(const std::string& line) {
 // real kernel"), unless the device is high speed.
 double scenario_rate(const Options& o) {
   if (o.rate_hz > 0) return o.rate_hz;
-  if (o.scenario == "play-hidraw" && !o.high_speed) return 200;
+  const bool hid = o.scenario == "play-hidraw" || o.scenario == "unplug-hidraw";
+  if (hid && !o.high_speed) return 200;
   return 700;
 }
 
@@ -114,6 +115,9 @@ std::string run_steps(const Options& o) {
   if (o.scenario == "play-libusb") return "play:libusb:" + rate + ":" + secs;
   if (o.scenario == "play-hidraw") return "play:hidapi:" + rate + ":" + secs;
   if (o.scenario == "unplug") return "play:libusb:" + rate + ":60+replay:libusb:" + rate + ":2";
+  if (o.scenario == "unplug-hidraw") {
+    return "play:hidapi:" + rate + ":60+replay:hidapi:" + rate + ":2";
+  }
   return "";
 }
 
@@ -344,7 +348,7 @@ int run(const Options& o) {
           play_stats.bridge_cpu_s -= playing_stats.bridge_cpu_s;  // this stream's share
         }
         if (text == "VM: done") done = true;
-        if (o.scenario == "unplug") {
+        if (o.scenario.rfind("unplug", 0) == 0) {
           if (unplug_at < 0 && text.rfind("VM: playing", 0) == 0) unplug_at = t + 1.5;
           if (unplugged_sent >= 0 && replugged < 0 && text.rfind("VM: step=play:", 0) == 0) {
             // The display is plugged in again: a new connection, a freshly powered device.
@@ -403,7 +407,8 @@ int run(const Options& o) {
     check_play(lines, "libusb", scenario_rate(o), o.seconds, play_stats);
   } else if (o.scenario == "play-hidraw") {
     check_play(lines, "hidapi", scenario_rate(o), o.seconds, play_stats);
-  } else if (o.scenario == "unplug") {
+  } else if (o.scenario.rfind("unplug", 0) == 0) {
+    const std::string backend = o.scenario == "unplug" ? "libusb" : "hidapi";
     check(unplugged_sent >= 0, "device_del sent while playing");
     const auto err = first(lines, "VM: error=", unplugged_sent);
     check(err && err->text.find("the display was unplugged") != std::string::npos,
@@ -415,10 +420,10 @@ int run(const Options& o) {
     }
     const auto exit1 = first(lines, "VM: step=play:");
     check(exit1 && field(exit1->text, "exit") == "1", "the client exits 1");
-    const auto again = first(lines, "VM: played backend=libusb", unplugged_sent);
+    const auto again = first(lines, "VM: played backend=" + backend, unplugged_sent);
     check(replugged >= 0 && again && num(again->text, "played") == num(again->text, "sent"),
           "plugged back in: plays again (every frame sent is played)");
-    if (again) check_play(lines, "libusb", scenario_rate(o), 2, play_stats);
+    if (again) check_play(lines, backend, scenario_rate(o), 2, play_stats);
     check(stats.connections == 2, "the bridge saw the device plugged in twice");
   }
   std::printf("vm: %s in %.1f s wall: %s\n", o.scenario.c_str(), wall,
