@@ -118,8 +118,9 @@ class HidapiTransport final : public Transport {
     const bool useful =
         !e.empty() && e != "Success" && e.find("not implemented") == std::string::npos;
     // The kernel removed the device: ENODEV for a call after the removal, ESHUTDOWN for a
-    // transfer it cut short. Say so as the libusb transport does.
-    if (e == std::strerror(ENODEV) || e == std::strerror(ESHUTDOWN)) {
+    // transfer it cut short; hidapi may put the call before it ("ioctl (GFEATURE): ...").
+    // Say so as the libusb transport does.
+    if (e.ends_with(std::strerror(ENODEV)) || e.ends_with(std::strerror(ESHUTDOWN))) {
       throw TransportError("hidapi: " + what + ": the display was unplugged (" + e + ") (" +
                            where_ + ")");
     }
