@@ -60,8 +60,8 @@ add_test(NAME vm.enumerate COMMAND ${vm_run} enumerate)
 # The same checks against a bridge that corrupts one descriptor field: they must fail.
 add_test(NAME vm.enumerate_defect COMMAND ${vm_run} --defect enumerate)
 # A 10 x 10 movie for 10 s through the guest kernel: libusb (vendor bulk) at 700 Hz; hidapi
-# over hidraw at 200 Hz on the full-speed device (what hidraw's one-report-per-write sustains
-# there, below the bus's 250 Hz) and at 700 Hz on a high-speed one.
+# over hidraw at 160 Hz on the full-speed device (hidraw's one report per write sustains about
+# 210 Hz there, below the bus's 250 Hz) and at 500 Hz on a high-speed one (vm_harness.cpp).
 add_test(NAME vm.play_libusb COMMAND ${vm_run} play-libusb)
 # A 4 x 6 display: 64-byte frames, one full packet each, so every frame ends with libusb's
 # zero-length packet, which the guest's xHCI driver sends as a transfer of its own.

@@ -307,6 +307,7 @@ void UsbredirBridge::Impl::accept_connection() {
   stream_filled = false;
   local.underruns_at_start = 0;  // per connection: each plug-in is a new device
   local.underruns_steady = 0;
+  local.max_tick_late_ms = 0;
   local.underrun_ticks.clear();
   connected_at = Clock::now();
   next_tick = connected_at;
@@ -356,6 +357,10 @@ void UsbredirBridge::Impl::run_ticks() {
   const auto period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / device->rate_hz()));
   const auto now = Clock::now();
+  if (device->status().state == TFW_STATE_STREAMING && now > next_tick) {
+    const double late_ms = std::chrono::duration<double, std::milli>(now - next_tick).count();
+    local.max_tick_late_ms = std::max(local.max_tick_late_ms, late_ms);
+  }
   int ticks = 0;
   while (next_tick <= now && ticks < 100) {
     const tfw_status before = device->status();

@@ -63,6 +63,9 @@ struct BridgeStats {
   // still filling it) or after (steady state).
   std::uint64_t underruns_at_start = 0;
   std::uint64_t underruns_steady = 0;
+  // Longest the bridge's thread ran late for a tick while a stream played: more than a few
+  // milliseconds means the host machine was starved by other work (per connection).
+  double max_tick_late_ms = 0;
   // Where underruns happened, for the log: "tick@frames_played" of the first few.
   std::string underrun_ticks;
 };

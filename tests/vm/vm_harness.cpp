@@ -49,6 +49,10 @@ struct Options {
 };
 
 int failures = 0;
+// A bridge tick this late means the host machine was busy with other work: the guest and the
+// device clock were starved, not the USB path.
+constexpr double kStarvedMs = 10;
+bool starved = false;
 
 void check(bool ok, const std::string& what) {
   std::printf("CHECK %s: %s\n", ok ? "ok  " : "FAIL", what.c_str());
@@ -98,14 +102,15 @@ int dmesg_level(const std::string& line) {
   return lt == std::string::npos ? 7 : std::atoi(line.c_str() + lt + 1);
 }
 
-// Playout rate of a scenario: the STReSS rate on the vendor interface; on the HID interface
-// the rate the guest kernel's hidraw sustains at full speed (docs/protocol.md, "Through a
-// real kernel"), unless the device is high speed.
+// Playout rate of a scenario: the STReSS rate on the vendor interface. On the HID interface,
+// where hidraw's one report per write is the limit (docs/protocol.md, "Measured through a real
+// kernel": about 210-237 Hz at full speed, 976 Hz at high speed under TCG), rates with room for
+// a host shared with other work: 160 Hz at full speed, 500 Hz at high speed, and 100 Hz for
+// the unplug, which needs a stream, not a ceiling.
 double scenario_rate(const Options& o) {
   if (o.rate_hz > 0) return o.rate_hz;
-  // Unplugging needs a stream, not the ceiling: half the rate leaves room for a slow host.
   if (o.scenario == "unplug-hidraw" && !o.high_speed) return 100;
-  if (o.scenario == "play-hidraw" && !o.high_speed) return 200;
+  if (o.scenario == "play-hidraw") return o.high_speed ? 500 : 160;
   return 700;
 }
 
@@ -200,10 +205,12 @@ void check_play(const std::vector<Line>& lines, const std::string& backend, doub
             static_cast<double>(bridge.underruns_at_start + bridge.underruns_steady),
         backend + ": the player reports the device's underruns");
   check(bridge.underruns_steady == 0, backend + ": 0 underruns once the FIFO had filled");
-  std::printf("FIGURE %s underruns_at_start=%llu underruns_steady=%llu at=[%s]\n", backend.c_str(),
-              static_cast<unsigned long long>(bridge.underruns_at_start),
-              static_cast<unsigned long long>(bridge.underruns_steady),
-              bridge.underrun_ticks.c_str());
+  std::printf(
+      "FIGURE %s underruns_at_start=%llu underruns_steady=%llu at=[%s] bridge_late_max_ms=%.1f\n",
+      backend.c_str(), static_cast<unsigned long long>(bridge.underruns_at_start),
+      static_cast<unsigned long long>(bridge.underruns_steady), bridge.underrun_ticks.c_str(),
+      bridge.max_tick_late_ms);
+  if (bridge.max_tick_late_ms > kStarvedMs) starved = true;
   check(num(played->text, "malformed") == 0, backend + ": 0 malformed frames");
   const double device_s = num(played->text, "device_s");
   check(device_s > 0 && num(played->text, "rate_achieved") >= 0.98 * rate_hz,
@@ -473,5 +480,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   signal(SIGPIPE, SIG_IGN);
+  const int rc = run(o);
+  if (rc == 0 || !starved) return rc;
+  // Only a run whose failure came with a starved host is repeated, once; both are printed.
+  std::printf(
+      "vm: the host machine starved the bridge (a tick over %.0f ms late) during a "
+      "failed run; running the scenario once more\n",
+      kStarvedMs);
+  failures = 0;
+  starved = false;
   return run(o);
 }
