@@ -41,6 +41,7 @@ add_custom_command(
   OUTPUT ${vm_initrd}
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/vm/make_initramfs.sh ${vm_initrd}
           $<TARGET_FILE:vm_client> ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init ${TACTILE_VM_MODULES}
+          ${TACTILE_BUSYBOX}
   DEPENDS vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/make_initramfs.sh
           ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init
   COMMENT "Building the VM test initramfs (busybox, USB/HID modules, vm_client)"

@@ -2,13 +2,13 @@
 # Builds the test guest's initramfs (uncompressed newc cpio) from installed files only:
 # busybox-static, the USB host and HID modules of the installed Debian kernel, and the guest
 # client with the shared libraries it needs (and the dynamic loader).
-#   make_initramfs.sh OUT.cpio CLIENT INIT MODULES_DIR
+#   make_initramfs.sh OUT.cpio CLIENT INIT MODULES_DIR BUSYBOX
 set -euo pipefail
-out=$1 client=$2 init=$3 moddir=$4
+out=$1 client=$2 init=$3 moddir=$4 busybox=$5
 root=$(mktemp -d)
 trap 'rm -rf "$root"' EXIT
 mkdir -p "$root"/{bin,dev,proc,sys,lib/modules,tmp}
-cp /bin/busybox "$root/bin/busybox"
+cp "$busybox" "$root/bin/busybox"
 cp "$init" "$root/init"
 chmod 755 "$root/init"
 cp "$client" "$root/bin/vm_client"
