@@ -73,7 +73,8 @@ add_test(NAME vm.play_hidraw_high_speed COMMAND ${vm_run} --high-speed play-hidr
 add_test(NAME vm.unplug_replug COMMAND ${vm_run} unplug)
 add_test(NAME vm.unplug_replug_hidraw COMMAND ${vm_run} unplug-hidraw)
 # Serial: each guest needs a whole core under TCG, and the play tests time a 700 Hz clock.
+# The harness stops a guest after 120 s and may run a scenario twice (vm_harness.cpp).
 set_tests_properties(vm.enumerate vm.enumerate_defect vm.play_libusb vm.play_libusb_zlp
                      vm.play_hidraw
                      vm.play_hidraw_high_speed vm.unplug_replug vm.unplug_replug_hidraw
-                     PROPERTIES LABELS vm TIMEOUT 200 RUN_SERIAL TRUE)
+                     PROPERTIES LABELS vm TIMEOUT 300 RUN_SERIAL TRUE)

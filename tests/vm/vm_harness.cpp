@@ -45,7 +45,7 @@ struct Options {
   int rows = 10, cols = 10;
   double rate_hz = 0;  // 0: the scenario's own
   double seconds = 10;
-  double timeout_s = 150;
+  double timeout_s = 120;
 };
 
 int failures = 0;
