@@ -3,7 +3,7 @@
 find_program(TACTILE_JAVA java)
 find_file(TACTILE_WEKA_JAR weka.jar PATHS /usr/share/java NO_DEFAULT_PATH)
 if(TACTILE_JAVA AND TACTILE_WEKA_JAR)
-  tactile_add_test_binary(weka_tests weka tactile_mapping)
+  tactile_add_test_binary(weka_tests weka tactile_perception)
   target_compile_definitions(weka_tests PRIVATE TACTILE_JAVA="${TACTILE_JAVA}"
                                                 TACTILE_WEKA_JAR="${TACTILE_WEKA_JAR}")
   # One process for the whole suite: the simulated data set is built once, not once per test.

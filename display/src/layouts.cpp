@@ -7,7 +7,9 @@
 //   STReSS2 (Wang & Hayward 2010): 8 x 8 contactors at 1.2 mm x 1.4 mm; deflection +-100 um
 //           ("0.1 mm"); 1 kHz refresh (assumption). Contactor 0.5 x 1.0 mm (assumption).
 //   Latero  (Levesque et al. 2007, Tactile Labs): 8 x 8 at 1.2 mm x 1.6125 mm, contactors
-//           0.5 x 1.4 mm; deflection +-100 um and 1 kHz refresh (assumption).
+//           0.5 x 1.4 mm; 750 Hz, the rate OpenLatero's demos run their loop at (the device
+//           has no FIFO and moves when a packet arrives); deflection +-100 um (assumption).
+//           Blade bytes: LateroBladeMapping (latero_protocol.hpp).
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -60,7 +62,7 @@ Layout latero_layout() {
   l.axis = DeflectionAxis::x;
   l.deflection_min_um = -100;
   l.deflection_max_um = 100;
-  l.max_rate_hz = 1000;
+  l.max_rate_hz = 750;
   return l;
 }
 

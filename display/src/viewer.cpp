@@ -228,6 +228,42 @@ struct ImGuiSession {
   GLFWwindow* window;
 };
 
+// Opens the window (after `session` initialised GLFW) and makes its GL context current.
+GLFWwindow* open_window(int width_px, int height_px, bool visible, bool vsync) {
+  glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(width_px, height_px, "tactile view", nullptr, nullptr);
+  if (window == nullptr) throw std::runtime_error("cannot open a window: " + g_last_glfw_error);
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(vsync ? 1 : 0);
+  return window;
+}
+
+// Starts an ImGui frame with the text strip's window over `pane` (close it with ImGui::End).
+void begin_info_strip(const PixelRect& pane) {
+  ImGui_ImplOpenGL2_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(pane.x), static_cast<float>(pane.y)));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(pane.width), static_cast<float>(pane.height)));
+  ImGui::Begin("info", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+}
+
+// Draws the text, counts the frame, reads the pixels back when it is the last one wanted and
+// shows it; true when the viewer should close.
+bool finish_frame(GLFWwindow* window, int fb_w, int fb_h, std::int64_t exit_after_frames,
+                  ViewerResult& result) {
+  ImGui::Render();
+  ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+  ++result.frames_drawn;
+  const bool last = exit_after_frames >= 0 && result.frames_drawn >= exit_after_frames;
+  if (last) result.last_image = read_pixels(fb_w, fb_h);
+  glfwSwapBuffers(window);
+  return last;
+}
+
 }  // namespace
 
 bool screen_available() {
@@ -259,14 +295,9 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
   g_last_glfw_error.clear();
   GlfwSession session;
   if (!session.ok) throw std::runtime_error("cannot start GLFW: " + g_last_glfw_error);
-  glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
-  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   const int width_px = options.field ? options.width_px * 2 : options.width_px;
   GLFWwindow* window =
-      glfwCreateWindow(width_px, options.height_px, "tactile view", nullptr, nullptr);
-  if (window == nullptr) throw std::runtime_error("cannot open a window: " + g_last_glfw_error);
-  glfwMakeContextCurrent(window);
-  glfwSwapInterval(options.fixed_step ? 0 : 1);
+      open_window(width_px, options.height_px, options.visible, !options.fixed_step);
 
   PlaybackState state;
   state.playing = !options.start_paused;
@@ -323,16 +354,7 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
     }
     draw_scrub(panes.scrub, frame, shown.frame_count);
 
-    ImGui_ImplOpenGL2_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    ImGui::SetNextWindowPos(
-        ImVec2(static_cast<float>(panes.info.x), static_cast<float>(panes.info.y)));
-    ImGui::SetNextWindowSize(
-        ImVec2(static_cast<float>(panes.info.width), static_cast<float>(panes.info.height)));
-    ImGui::Begin("info", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs |
-                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+    begin_info_strip(panes.info);
     ImGui::TextUnformatted(fmt::format("{}   t = {:.3f} s   frame {}/{}{}", shown.layout.name,
                                        movie_t_s, frame + 1, shown.frame_count,
                                        state.playing ? "" : "   (paused)")
@@ -370,16 +392,8 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
                       100 * options.field->full_scale)
               .c_str());
     }
-    ImGui::Render();
-    ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
-
     result.last_movie_frame = frame;
-    ++result.frames_drawn;
-    const bool last =
-        options.exit_after_frames >= 0 && result.frames_drawn >= options.exit_after_frames;
-    if (last) result.last_image = read_pixels(fb_w, fb_h);
-    glfwSwapBuffers(window);
-    if (last) break;
+    if (finish_frame(window, fb_w, fb_h, options.exit_after_frames, result)) break;
     glfwPollEvents();
     const double now = glfwGetTime();
     if (state.playing && !scrubbing) {
@@ -394,6 +408,42 @@ ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options)
       }
     }
     last_time = now;
+  }
+  return result;
+}
+
+ViewerResult run_live_viewer(const Layout& layout,
+                             const std::function<std::optional<LiveFrame>()>& next,
+                             const LiveViewerOptions& options) {
+  const double magnification =
+      options.magnification > 0 ? options.magnification : auto_magnification(layout);
+  // Neighbours at opposite ends of the range: full colour.
+  const double strain_scale = std::max(layout.deflection_max_um - layout.deflection_min_um, 1e-3) *
+                              1e-3 / std::min(layout.pitch_x_mm, layout.pitch_y_mm);
+  g_last_glfw_error.clear();
+  GlfwSession session;
+  if (!session.ok) throw std::runtime_error("cannot start GLFW: " + g_last_glfw_error);
+  GLFWwindow* window = open_window(options.width_px, options.height_px, options.visible, true);
+  ImGuiSession gui(window);
+  ViewerResult result;
+  const auto n = static_cast<std::size_t>(layout.contactor_count());
+  while (!glfwWindowShouldClose(window)) {
+    const std::optional<LiveFrame> frame = next();
+    if (!frame) break;
+    if (frame->deflection_um.size() != n) {
+      throw std::invalid_argument(fmt::format("live frame has {} deflections; layout '{}' has {}",
+                                              frame->deflection_um.size(), layout.name, n));
+    }
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(window, &fb_w, &fb_h);
+    const ViewerPanes panes = viewer_panes(fb_w, fb_h, false);
+    begin_pixels(fb_w, fb_h);
+    draw_contactors(layout, frame->deflection_um, magnification, strain_scale, panes.contactors);
+    begin_info_strip(panes.info);
+    for (const std::string& line : frame->lines) ImGui::TextUnformatted(line.c_str());
+    ImGui::End();
+    if (finish_frame(window, fb_w, fb_h, options.exit_after_frames, result)) break;
+    glfwPollEvents();
   }
   return result;
 }

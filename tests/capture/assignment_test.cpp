@@ -6,7 +6,7 @@
 #include <random>
 #include <set>
 
-#include "../../capture/src/assignment.hpp"
+#include "tracking/assignment.hpp"
 
 namespace tactile::capture {
 namespace {

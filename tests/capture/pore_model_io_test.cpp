@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "../../capture/src/pore_model.hpp"
+#include "pores/pore_model.hpp"
 #include "tactile/capture/pore_model_io.hpp"
 #include "tactile/common/error.hpp"
 #include "test_util.hpp"

@@ -68,6 +68,18 @@ TEST(PoreTrainingIo, ReadsPairsInNumericOrderAsZeroBasedXY) {
   EXPECT_DOUBLE_EQ(prints[1].pores_px[1][1], 9.0);
 }
 
+TEST(PoreTrainingIo, ListsTheFilesItWouldReadWithoutReadingThem) {
+  TempDir dir;
+  write_text(dir.path() / "image_1.png", "not decoded when listing");
+  write_text(dir.path() / "pores_1.txt", "1 1\n");
+  write_text(dir.path() / "pores_2.txt", "1 1\n");  // no image: listed all the same
+  write_text(dir.path() / "notes.txt", "not a marks file");
+  EXPECT_EQ(pore_training_files(dir.path()),
+            (std::vector<fs::path>{dir.path() / "image_1.png", dir.path() / "pores_1.txt",
+                                   dir.path() / "pores_2.txt"}));
+  EXPECT_TRUE(pore_training_files(dir.path() / "nowhere").empty());
+}
+
 TEST(PoreTrainingIo, MissingOrEmptyDirectory) {
   TempDir dir;
   expect_error(dir.path() / "nowhere", {"nowhere", "no such directory"});

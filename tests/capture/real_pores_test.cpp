@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "../../capture/src/pore_model.hpp"
+#include "pores/pore_model.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/pore_score.hpp"

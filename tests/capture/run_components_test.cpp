@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
-#include "../../capture/src/run_components.hpp"
+#include "landmarks/run_components.hpp"
 
 namespace tactile::capture {
 namespace {

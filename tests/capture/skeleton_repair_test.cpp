@@ -2,7 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "../../capture/src/skeleton_repair.hpp"
+#include "landmarks/skeleton_repair.hpp"
 
 namespace tactile::capture {
 namespace {

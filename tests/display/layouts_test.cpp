@@ -27,6 +27,7 @@ TEST(Layouts, MatchThePublishedGeometry) {
   EXPECT_DOUBLE_EQ(l.pitch_y_mm, 1.6125);
   EXPECT_DOUBLE_EQ(l.contactor_width_mm, 0.5);
   EXPECT_DOUBLE_EQ(l.contactor_height_mm, 1.4);
+  EXPECT_DOUBLE_EQ(l.max_rate_hz, 750);  // OpenLatero's loop rate
   for (const Layout& x : {s, s2, l}) {
     // Contactors must fit between their neighbours.
     EXPECT_LT(x.contactor_width_mm, x.pitch_x_mm) << x.name;

@@ -70,7 +70,7 @@ TEST_F(MovieIo, RoundTripKeepsEverything) {
   EXPECT_DOUBLE_EQ(r.layout.contactor_height_mm, 1.4);
   EXPECT_EQ(r.layout.axis, DeflectionAxis::y);
   EXPECT_DOUBLE_EQ(r.layout.deflection_min_um, -100);
-  EXPECT_DOUBLE_EQ(r.layout.max_rate_hz, 1000);
+  EXPECT_DOUBLE_EQ(r.layout.max_rate_hz, 750);
   EXPECT_DOUBLE_EQ(r.rate_hz, 1000);
   EXPECT_EQ(r.frame_count, 123);
   EXPECT_EQ(r.deflection_um, m.deflection_um);  // float32 on disk: bit-exact

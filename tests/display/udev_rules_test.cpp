@@ -13,10 +13,10 @@
 namespace tactile::display {
 namespace {
 
-// This file is tests/display/udev_rules_test.cpp (CMake passes absolute source paths).
+// The repository's root comes from CMake: __FILE__ may be relative to the build folder (ccache
+// rewrites paths under its base directory).
 const std::filesystem::path kRules =
-    std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "display" / "udev" /
-    "70-tactile-display.rules";
+    std::filesystem::path(TACTILE_SOURCE_DIR) / "display" / "udev" / "70-tactile-display.rules";
 
 TEST(UdevRules, SortBeforeSeatLateAndTagUaccessForOurIds) {
   // udev runs rules files in lexical order of their names.

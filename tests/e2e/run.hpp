@@ -1,6 +1,7 @@
 #pragma once
 // Runs the real `tactile` binary, capturing its exit code and everything it printed.
 
+#include <filesystem>
 #include <string>
 
 namespace tactile::test {
@@ -12,5 +13,19 @@ struct RunResult {
 
 // `args` is appended to the binary's path as is (the caller quotes what needs quoting).
 RunResult run_tactile(const std::string& args);
+
+// The folder the e2e.demo fixture fills (`demo --headless --keep`): frames, calibration, movies.
+inline std::filesystem::path demo_dir() {
+  return TACTILE_E2E_DEMO_DIR;
+}
+
+// A data set vendored under tests/data.
+inline std::filesystem::path test_data(const std::string& name) {
+  return std::filesystem::path(TACTILE_TEST_DATA_DIR) / name;
+}
+
+// An empty folder `prefix` + `name` under the system's temporary directory (emptied if it
+// was there).
+std::filesystem::path fresh_scratch_dir(const std::string& prefix, const std::string& name);
 
 }  // namespace tactile::test

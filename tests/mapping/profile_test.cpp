@@ -10,7 +10,6 @@
 #include "synthetic.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
-#include "tactile/mapping/experiment.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/mapping/profile.hpp"
 
@@ -121,34 +120,6 @@ TEST(Profile, MappingUsesTheStrainFramesOnlyForTheirTimes) {
   }
   params.profile->shape = "ridge";
   EXPECT_THROW(map_strain_movie(movie, layout, params), std::invalid_argument);
-}
-
-TEST(Profile, ExperimentsRefuseItOnFileSources) {
-  const auto dir = std::filesystem::temp_directory_path() / "tactile_profile_test";
-  std::filesystem::create_directories(dir);
-  auto movie = testing::make_movie(
-      testing::GridSpec{.width_mm = 4, .height_mm = 4, .spacing_mm = 1},
-      [](double, double, double) {
-        return capture::PointMm{0, 0};
-      },
-      5, 60.0);
-  // The file format wants every point's track in /tracks.
-  for (const auto& p : movie.frames.front().points_from) movie.tracks.push_back(p);
-  for (const auto& f : movie.frames) {
-    for (const auto& p : f.points_to) movie.tracks.push_back(p);
-  }
-  std::stable_sort(movie.tracks.begin(), movie.tracks.end(),
-                   [](const auto& a, const auto& b) { return a.track_id < b.track_id; });
-  capture::write_strain_movie(dir / "rec.h5", movie);
-  try {
-    parse_experiment(R"({"name": "p", "seed": 1, "sources": [{"name": "rec", "file": "rec.h5"}],
-                         "layouts": ["stress"], "methods": ["profile"]})",
-                     "p.json", dir);
-    FAIL() << "accepted";
-  } catch (const FormatError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("method 'profile' needs a scene, but source 'rec' is a file"));
-  }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

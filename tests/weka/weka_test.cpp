@@ -16,11 +16,11 @@
 #include <sstream>
 #include <string>
 
-#include "tactile/mapping/perception_arff.hpp"
-#include "tactile/mapping/perception_eval.hpp"
-#include "tactile/mapping/svm_model.hpp"
+#include "tactile/perception/arff.hpp"
+#include "tactile/perception/eval.hpp"
+#include "tactile/perception/svm_model.hpp"
 
-namespace map = tactile::mapping;
+namespace perception = tactile::perception;
 
 namespace {
 
@@ -70,8 +70,8 @@ std::string kernel(int degree) {
 class WekaGolden : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    data_ = new map::PerceptionDataset(map::simulate_dataset(4, 7));
-    split_ = new map::PerceptionSplit(map::split_per_block(*data_, 0.25));
+    data_ = new perception::PerceptionDataset(perception::simulate_dataset(4, 7));
+    split_ = new perception::PerceptionSplit(perception::split_per_block(*data_, 0.25));
     dir_ = new std::filesystem::path(std::filesystem::temp_directory_path() /
                                      ("tactile_weka_" + std::to_string(::getpid())));
     std::filesystem::create_directories(*dir_);
@@ -82,17 +82,17 @@ class WekaGolden : public ::testing::Test {
     delete split_;
     delete dir_;
   }
-  static map::InputSet inputs(const std::string& name) {
-    for (const auto& s : map::table2_input_sets(*data_))
+  static perception::InputSet inputs(const std::string& name) {
+    for (const auto& s : perception::table2_input_sets(*data_))
       if (s.name == name) return s;
     throw std::runtime_error("no input set " + name);
   }
-  static map::PerceptionDataset* data_;
-  static map::PerceptionSplit* split_;
+  static perception::PerceptionDataset* data_;
+  static perception::PerceptionSplit* split_;
   static std::filesystem::path* dir_;
 };
-map::PerceptionDataset* WekaGolden::data_ = nullptr;
-map::PerceptionSplit* WekaGolden::split_ = nullptr;
+perception::PerceptionDataset* WekaGolden::data_ = nullptr;
+perception::PerceptionSplit* WekaGolden::split_ = nullptr;
 std::filesystem::path* WekaGolden::dir_ = nullptr;
 
 }  // namespace
@@ -105,19 +105,21 @@ TEST_P(WekaSmo, SameClassesAsWekaSmo) {
   const auto set = inputs(set_name);
   const auto train = *dir_ / fmt_name(set_name, degree, "train");
   const auto test = *dir_ / fmt_name(set_name, degree, "test");
-  map::write_arff(train, *data_, split_->train, set.columns, map::ArffTarget::curvature);
-  map::write_arff(test, *data_, split_->test, set.columns, map::ArffTarget::curvature);
+  perception::write_arff(train, *data_, split_->train, set.columns,
+                         perception::ArffTarget::curvature);
+  perception::write_arff(test, *data_, split_->test, set.columns,
+                         perception::ArffTarget::curvature);
   const auto weka = weka_predictions(
       "weka.classifiers.functions.SMO -C 1.0 -L 0.001 -P 1.0E-12 -N 0 -V -1 -W 1 " + kernel(degree),
       train.string(), test.string());
 
   std::vector<int> labels;
   for (auto i : split_->train) labels.push_back(data_->samples[i].curvature);
-  map::SvmOptions o;
+  perception::SvmOptions o;
   o.degree = degree;
-  const auto model = map::SvmModel::train_classifier(
-      map::select_rows(*data_, split_->train, set.columns), labels, o);
-  const auto rows = map::select_rows(*data_, split_->test, set.columns);
+  const auto model = perception::SvmModel::train_classifier(
+      perception::select_rows(*data_, split_->train, set.columns), labels, o);
+  const auto rows = perception::select_rows(*data_, split_->test, set.columns);
   ASSERT_EQ(weka.size(), rows.size());
   int same = 0;
   for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -146,8 +148,8 @@ TEST_P(WekaSmoReg, FootprintWithinToleranceOfWekaSmoReg) {
     if (data_->samples[i].curvature == curvature) test.push_back(i);
   const auto train_path = *dir_ / fmt_name("reg", curvature, "train");
   const auto test_path = *dir_ / fmt_name("reg", curvature, "test");
-  map::write_arff(train_path, *data_, train, set.columns, map::ArffTarget::footprint);
-  map::write_arff(test_path, *data_, test, set.columns, map::ArffTarget::footprint);
+  perception::write_arff(train_path, *data_, train, set.columns, perception::ArffTarget::footprint);
+  perception::write_arff(test_path, *data_, test, set.columns, perception::ArffTarget::footprint);
   const auto weka = weka_predictions(
       "weka.classifiers.functions.SMOreg -C 1.0 -N 0 -I "
       "\"weka.classifiers.functions.supportVector.RegSMOImproved -L 0.001 -W 1 -P 1.0E-12 -T "
@@ -157,11 +159,11 @@ TEST_P(WekaSmoReg, FootprintWithinToleranceOfWekaSmoReg) {
 
   std::vector<double> target;
   for (auto i : train) target.push_back(data_->samples[i].footprint_mm);
-  map::SvmOptions tight;
+  perception::SvmOptions tight;
   tight.tolerance = 1e-5;
-  const auto model =
-      map::SvmModel::train_regressor(map::select_rows(*data_, train, set.columns), target, tight);
-  const auto rows = map::select_rows(*data_, test, set.columns);
+  const auto model = perception::SvmModel::train_regressor(
+      perception::select_rows(*data_, train, set.columns), target, tight);
+  const auto rows = perception::select_rows(*data_, test, set.columns);
   ASSERT_EQ(weka.size(), rows.size());
   double worst = 0;
   for (std::size_t k = 0; k < rows.size(); ++k) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/chart.hpp"
 #include "tactile/capture/evaluate.hpp"
@@ -193,7 +194,7 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       "and OUT/speed_accuracy.png; --sweeps also pushes each image condition until failure\n"
       "(OUT/sweeps.csv).");
   sub->add_option("--frames", opt->frames, "Frames per sequence")
-      ->check(CLI::Range(35, 2000))
+      ->check(within(35, 2000))
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Output folder")->capture_default_str();
   sub->add_flag("--sweeps", opt->sweeps, "Also run the stability sweeps (slow)");

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/ground_truth.hpp"
@@ -31,13 +32,13 @@ void add_bench_map(CLI::App& bench, Action& action) {
       "landmark grid, Delaunay-triangulated like a measured movie) onto STReSS 10 x 10 at\n"
       "700 Hz, for every method; target <= 50 ms per 180-frame movie.");
   sub->add_option("--repeats", opt->repeats, "Timed repetitions (the median is reported)")
-      ->check(CLI::Range(1, 1000))
+      ->check(within(1, 1000))
       ->capture_default_str();
   sub->add_option("--frames", opt->frames, "Camera frames of the strain movie")
-      ->check(CLI::Range(2, 100000))
+      ->check(within(2, 100000))
       ->capture_default_str();
   sub->add_option("--spacing-mm", opt->spacing_mm, "Landmark spacing (0.34 mm: ~500 per frame)")
-      ->check(CLI::Range(0.1, 5.0))
+      ->check(within(0.1, 5.0))
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {

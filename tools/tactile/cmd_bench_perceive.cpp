@@ -14,8 +14,9 @@
 #include <thread>
 
 #include "command.hpp"
-#include "tactile/mapping/perception_arff.hpp"
-#include "tactile/mapping/perception_report.hpp"
+#include "number_checks.hpp"
+#include "tactile/perception/arff.hpp"
+#include "tactile/perception/report.hpp"
 
 namespace tactile::cli {
 namespace {
@@ -62,7 +63,7 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
       "Time training + testing every model of one Table 2 (paper 2) on the simulated sensor:\n"
       "target <= 1 s; WEKA's SMO and SMOreg timed on the same data in the same run.");
   sub->add_option("--trials", opt->trials, "Trials per feature (paper: 20)")
-      ->check(CLI::Range(2, 1000))
+      ->check(within(2, 1000))
       ->capture_default_str();
   sub->add_option("--java", opt->java, "Java launcher")->capture_default_str();
   sub->add_option("--weka-jar", opt->weka_jar, "weka.jar")->capture_default_str();
@@ -70,15 +71,15 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
   sub->callback([opt, &action] {
     action = [opt] {
       auto t0 = std::chrono::steady_clock::now();
-      mapping::DatasetBuild build;
+      perception::DatasetBuild build;
       build.threads = 0;  // all cores: the data set is the same, and its making is not timed
-      const auto d = mapping::simulate_dataset(opt->trials, 1, {}, build);
-      const auto split = mapping::split_per_block(d);
+      const auto d = perception::simulate_dataset(opt->trials, 1, {}, build);
+      const auto split = perception::split_per_block(d);
       fmt::print(
           "bench perceive: {} samples simulated and analysed in {:.1f} s (not timed below)\n",
           d.samples.size(), seconds_since(t0));
       t0 = std::chrono::steady_clock::now();
-      const auto rows = mapping::run_table2(d, split);
+      const auto rows = perception::run_table2(d, split);
       const double ours_s = seconds_since(t0);
       double summed_s = 0;
       for (const auto& row : rows) summed_s += row.train_test_s;
@@ -98,15 +99,15 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
       double built_s = 0;
       int runs = 0;
       t0 = std::chrono::steady_clock::now();
-      for (const auto& set : mapping::table2_input_sets(d))
+      for (const auto& set : perception::table2_input_sets(d))
         for (int degree : {1, 2}) {
           const std::string kernel = fmt::format(
               "-K \"weka.classifiers.functions.supportVector.PolyKernel -C 250007 -E {}.0\"",
               degree);
-          mapping::write_arff(dir / "train.arff", d, split.train, set.columns,
-                              mapping::ArffTarget::curvature);
-          mapping::write_arff(dir / "test.arff", d, split.test, set.columns,
-                              mapping::ArffTarget::curvature);
+          perception::write_arff(dir / "train.arff", d, split.train, set.columns,
+                                 perception::ArffTarget::curvature);
+          perception::write_arff(dir / "test.arff", d, split.test, set.columns,
+                                 perception::ArffTarget::curvature);
           built_s += run_weka(opt->java, opt->weka_jar,
                               "weka.classifiers.functions.SMO -C 1.0 -L 0.001 -P 1.0E-12 -N 0 "
                               "-V -1 -W 1 " +
@@ -119,10 +120,10 @@ void add_bench_perceive(CLI::App& bench, Action& action) {
               if (d.samples[i].curvature == c) train.push_back(i);
             for (auto i : split.test)
               if (d.samples[i].curvature == c) test.push_back(i);
-            mapping::write_arff(dir / "train.arff", d, train, set.columns,
-                                mapping::ArffTarget::footprint);
-            mapping::write_arff(dir / "test.arff", d, test, set.columns,
-                                mapping::ArffTarget::footprint);
+            perception::write_arff(dir / "train.arff", d, train, set.columns,
+                                   perception::ArffTarget::footprint);
+            perception::write_arff(dir / "test.arff", d, test, set.columns,
+                                   perception::ArffTarget::footprint);
             built_s += run_weka(opt->java, opt->weka_jar,
                                 "weka.classifiers.functions.SMOreg -C 1.0 -N 0 " + kernel,
                                 dir / "train.arff", dir / "test.arff");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/usb_budget.hpp"
@@ -162,13 +163,13 @@ void add_bench_stream(CLI::App& bench, Action& action) {
       "Host CPU time per frame, highest sustained frame rate through the emulated device,\n"
       "spread of frame submission times on a real-time device, against the USB budget.");
   sub->add_option("--frames", opt->frames, "Frames pushed per array size for the throughput")
-      ->check(CLI::Range(100, 10000000))
+      ->check(within(100, 10000000))
       ->capture_default_str();
   sub->add_option("--seconds", opt->seconds, "Length of the real-time paced stream")
-      ->check(CLI::Range(0.1, 600.0))
+      ->check(within(0.1, 600.0))
       ->capture_default_str();
   sub->add_option("--rate", opt->rate_hz, "Rate of the real-time paced stream (Hz)")
-      ->check(CLI::Range(1.0, 10000.0))
+      ->check(within(1.0, 10000.0))
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
@@ -19,6 +20,7 @@
 #include "tactile/capture/strain.hpp"
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 
 namespace tactile::cli {
@@ -45,7 +47,7 @@ void add_calibration_options(CLI::App& sub, std::optional<fs::path>& calib_file,
                 ->check(CLI::ExistingFile);
   auto* p = sub.add_option("--px-per-mm", px_per_mm,
                            "Uniform scale instead of a calibration file (pixels per millimetre)")
-                ->check(CLI::PositiveNumber);
+                ->check(positive());
   c->excludes(p);
 }
 
@@ -106,6 +108,24 @@ void use_pore_detector(const std::string& pores, const std::optional<capture::Po
   }
 }
 
+// The image (or the folder and its frames), and the calibration and pore model files when given:
+// what a command of this file reads.
+std::vector<NamedPath> inputs_of(const char* image_option, const fs::path& image,
+                                 const std::optional<fs::path>& calib,
+                                 const std::optional<fs::path>& pore_model) {
+  std::vector<NamedPath> inputs = {{image_option, image}};
+  if (fs::is_directory(image)) {
+    for (const auto& frame : capture::list_frames(image)) inputs.push_back({image_option, frame});
+  }
+  if (calib) inputs.push_back({"--calib", *calib});
+  if (pore_model) inputs.push_back({"--pore-model", *pore_model});
+  return inputs;
+}
+
+std::string map_name(int frame_from) {
+  return fmt::format("strain_{:03d}.png", frame_from);
+}
+
 void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress& progress) {
   const double full_scale = capture::strain_map_full_scale(movie);
   if (!(full_scale > 0)) {
@@ -116,8 +136,8 @@ void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress
   const int total = static_cast<int>(movie.frames.size());
   for (int i = 0; i < total; ++i) {
     const auto& frame = movie.frames[static_cast<std::size_t>(i)];
-    capture::write_strain_map_png(dir / fmt::format("strain_{:03d}.png", frame.frame_from), frame,
-                                  movie.calibration, {.full_scale = full_scale});
+    capture::write_strain_map_png(dir / map_name(frame.frame_from), frame, movie.calibration,
+                                  {.full_scale = full_scale});
     progress("maps", i + 1, total);
   }
   progress.finish();
@@ -142,11 +162,13 @@ void add_calibrate(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--spacing-mm", opt->spacing_mm, "Dot spacing in mm")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Calibration file to write (JSON)")->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
+      refuse_output_over_input({output_file("--out", opt->out)},
+                               inputs_of("DOT_GRID_IMAGE", opt->image, {}, {}));
       const capture::GrayImage image = capture::read_image(opt->image);
       const capture::Calibration c = capture::calibrate_dot_grid(image, opt->spacing_mm);
       capture::write_calibration_json(opt->out, c);
@@ -182,6 +204,10 @@ void add_features(CLI::App& app, Action& action) {
     require_calibration(opt->calib, opt->px_per_mm);
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
     action = [opt] {
+      if (opt->csv) {
+        refuse_output_over_input({output_file("--csv", *opt->csv)},
+                                 inputs_of("IMAGE", opt->image, opt->calib, opt->pore_model));
+      }
       const auto from_file = calibration_file(opt->calib);
       const auto model = pore_model_file(opt->pore_model);
       const capture::GrayImage image = capture::read_image(opt->image);
@@ -234,13 +260,13 @@ void add_capture(CLI::App& app, Action& action) {
                   "Also draw each strain frame as strain_NNN.png in this folder (edges black = "
                   "most compressed .. white = most stretched, one scale for the whole movie)");
   sub->add_option("--span", opt->span, "Frames between the two ends of each strain measurement")
-      ->check(CLI::Range(1, 10000))
+      ->check(within(1, 10000))
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->rate_hz, "Camera frame rate")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
-      ->check(CLI::Range(2, 100000))
+      ->check(within(2, 100000))
       ->capture_default_str();
   add_pore_options(*sub, opt->pores, opt->pore_model);
   sub->add_option("--assignment", opt->assignment,
@@ -252,6 +278,19 @@ void add_capture(CLI::App& app, Action& action) {
     require_calibration(opt->calib, opt->px_per_mm);
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
     action = [opt] {
+      const auto inputs = inputs_of("IMAGE_DIR", opt->image_dir, opt->calib, opt->pore_model);
+      std::vector<Output> outputs = {output_file("--out", opt->out)};
+      if (opt->csv_dir) {
+        outputs.push_back(output_folder("--csv", *opt->csv_dir, {"tracks.csv", "edges.csv"}));
+      }
+      if (opt->maps_dir) {
+        // One map per strain frame, named by its first camera frame: at most one per input frame.
+        std::vector<fs::path> maps;
+        const auto frame_count = static_cast<int>(capture::list_frames(opt->image_dir).size());
+        for (int i = 0; i < frame_count; ++i) maps.emplace_back(map_name(i));
+        outputs.push_back(output_folder("--maps", *opt->maps_dir, maps));
+      }
+      refuse_output_over_input(outputs, inputs);
       Progress progress;
       const auto from_file = calibration_file(opt->calib);
       const auto model = pore_model_file(opt->pore_model);

@@ -62,6 +62,7 @@ class StageTimer {
 
 int run_demo(DemoOptions& opt) {
   const display::Layout layout = display::layout_by_name(opt.layout);
+  opt.mapping.rate_hz = layout.max_rate_hz;  // each layout at its own rate, as `tactile map`
   capture::validate(opt.scene);
   mapping::validate(opt.mapping, layout);
   fs::create_directories(opt.out);

@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -38,6 +39,14 @@ void add_evaluate(CLI::App& app, Action& action) {
   sub->add_flag("--per-frame", opt->per_frame, "Print the table for every frame pair");
   sub->callback([opt, &action] {
     action = [opt] {
+      if (opt->csv_dir) {
+        refuse_output_over_input(
+            {output_folder("--csv", *opt->csv_dir,
+                           {"evaluation_frames.csv", "evaluation_summary.csv"})},
+            {{"SEQ_DIR", opt->sequence_dir / "scene.json"},
+             {"SEQ_DIR", opt->sequence_dir / "landmarks.csv"},
+             {"STRAIN", opt->strain}});
+      }
       const capture::GroundTruth truth = capture::read_ground_truth(opt->sequence_dir);
       const capture::StrainMovie movie = capture::read_strain_movie(opt->strain);
       if (movie.camera_frame_count != truth.spec.frame_count) {

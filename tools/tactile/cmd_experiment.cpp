@@ -10,7 +10,8 @@
 #include <thread>
 
 #include "command.hpp"
-#include "tactile/mapping/experiment.hpp"
+#include "number_checks.hpp"
+#include "tactile/experiments/experiment.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -36,19 +37,24 @@ void add_experiment(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   sub->add_option("--out", opt->out, "Output folder (default: <experiment name>-results)");
   sub->add_option("--threads", opt->threads, "Worker threads (0: all cores)")
-      ->check(CLI::Range(0, 256))
+      ->check(within(0, 256))
       ->capture_default_str();
   sub->add_flag("--quiet", opt->quiet, "Print only the summary");
   sub->callback([opt, &action] {
     action = [opt] {
       const auto t0 = std::chrono::steady_clock::now();
-      mapping::Experiment ex = mapping::read_experiment(opt->file);
+      experiments::Experiment ex = experiments::read_experiment(opt->file);
       const fs::path out = opt->out.value_or(fs::path(ex.name + "-results"));
+      std::vector<NamedPath> inputs = {{"EXP_JSON", opt->file}};
+      for (const auto& s : ex.sources)
+        if (!s.path.empty()) inputs.push_back({"source '" + s.name + "'", s.path});
+      for (const auto& layout : ex.layout_files) inputs.push_back({"layout", layout});
+      refuse_output_over_input({experiments::experiment_output("--out", out)}, inputs);
       fmt::print("experiment '{}': {} sources x {} layouts -> {} runs, checked; writing {}\n",
                  ex.name, ex.sources.size(), ex.layouts.size(), ex.runs.size(), out.string());
       std::mutex print_mutex;
       const auto report =
-          mapping::run_experiment(ex, out, opt->threads, [&](const std::string& message) {
+          experiments::run_experiment(ex, out, opt->threads, [&](const std::string& message) {
             if (opt->quiet) return;
             const std::lock_guard lock(print_mutex);
             fmt::print("  {}\n", message);

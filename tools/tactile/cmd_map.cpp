@@ -8,8 +8,10 @@
 #include <optional>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/display/layout_json.hpp"
 #include "tactile/display/movie_io.hpp"
@@ -59,13 +61,22 @@ void add_map(CLI::App& app, Action& action) {
   sub->add_option("--reference-frame", opt->params.accumulate.reference_frame,
                   "Camera frame the accumulated strain starts from (-1: the first)")
       ->capture_default_str();
-  sub->add_option("--rate-hz", opt->params.rate_hz, "Display frame rate")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  CLI::Option* rate =
+      sub->add_option("--rate-hz", opt->params.rate_hz,
+                      "Display frame rate (default: the layout's own rate, e.g. stress 700 Hz,\n"
+                      "latero 750 Hz)")
+          ->check(positive());
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
-  sub->callback([opt, &action] {
-    action = [opt] {
+  sub->callback([opt, rate, &action] {
+    const bool rate_given = rate->count() > 0;
+    action = [opt, rate_given] {
+      std::vector<NamedPath> inputs = {{"STRAIN_H5", opt->strain}};
+      if (fs::path(opt->layout).extension() == ".json") inputs.push_back({"--layout", opt->layout});
+      std::vector<Output> outputs = {output_file("--out", opt->out)};
+      if (opt->csv) outputs.push_back(output_file("--csv", *opt->csv));
+      refuse_output_over_input(outputs, inputs);
       const display::Layout layout = display::resolve_layout(opt->layout);
+      if (!rate_given) opt->params.rate_hz = layout.max_rate_hz;
       mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
       const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);
       const auto t0 = std::chrono::steady_clock::now();

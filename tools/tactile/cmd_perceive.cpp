@@ -9,19 +9,21 @@
 #include <memory>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
-#include "tactile/capture/sensor_csv.hpp"
 #include "tactile/common/csv.hpp"
-#include "tactile/mapping/perception_report.hpp"
-#include "tactile/mapping/perception_seeds.hpp"
+#include "tactile/common/output_paths.hpp"
+#include "tactile/perception/recording_csv.hpp"
+#include "tactile/perception/report.hpp"
+#include "tactile/perception/seeds.hpp"
 
 namespace tactile::cli {
 namespace {
 
 constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
 
-// Every *.csv in `dir` with the BioTac header: read, segment, window, HHT; one CSV row each.
-int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::path& out_dir) {
+// The *_bio.csv recordings of `dir`, in name order.
+std::vector<std::filesystem::path> recording_files(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().extension() == ".csv" && e.path().stem().string().ends_with("_bio"))
@@ -29,10 +31,17 @@ int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::
   std::sort(files.begin(), files.end());
   if (files.empty())
     throw std::runtime_error(fmt::format("{}: no *_bio.csv recordings", dir.string()));
-  mapping::ContactOptions o;
-  o.baseline_at = mapping::ContactOptions::BaselineAt::end;  // they begin in contact
-  o.feature_from_kinematics = false;                         // textures: all contact is feature
-  const auto names = mapping::procedure_input_names(capture::Procedure::distal_proximal);
+  return files;
+}
+
+// Every recording of `files` with the BioTac header: read, segment, window, HHT; one CSV row
+// each.
+int analyse_recordings(const std::vector<std::filesystem::path>& files,
+                       const std::filesystem::path& out_dir) {
+  perception::ContactOptions o;
+  o.baseline_at = perception::ContactOptions::BaselineAt::end;  // they begin in contact
+  o.feature_from_kinematics = false;                            // textures: all contact is feature
+  const auto names = perception::procedure_input_names(perception::Procedure::distal_proximal);
   std::string header =
       "file,rows,duration_s,baseline_pdc,threshold,contact_begin_s,contact_end_s,"
       "starts_in_contact,peak_pdc";
@@ -42,9 +51,9 @@ int analyse_recordings(const std::filesystem::path& dir, const std::filesystem::
   int failed = 0;
   for (const auto& f : files) {
     try {
-      const auto r = capture::read_sensor_csv(f);
-      const auto c = mapping::find_contact(r, o);
-      const auto in = mapping::procedure_inputs(r, capture::Procedure::distal_proximal, o);
+      const auto r = perception::read_sensor_csv(f);
+      const auto c = perception::find_contact(r, o);
+      const auto in = perception::procedure_inputs(r, perception::Procedure::distal_proximal, o);
       const double peak = *std::max_element(r.pressure.begin(), r.pressure.end());
       out << fmt::format("{},{},{:.2f},{:.1f},{:.2f},{:.2f},{:.2f},{},{:g}", f.filename().string(),
                          r.rows(), r.rows() / r.rate_hz, c.baseline_pressure, c.threshold,
@@ -80,7 +89,7 @@ void add_perceive(CLI::App& app, Action& action) {
     std::filesystem::path recordings;
     bool export_recordings = false;
     int threads = 0;
-    capture::VariationScale variation;
+    perception::VariationScale variation;
     std::vector<double> footprints_mm;
     std::string electrode_field = "gaussian";
   };
@@ -97,29 +106,29 @@ void add_perceive(CLI::App& app, Action& action) {
       "row's spread (table2_seeds.csv): one split holds out only 96 trials.");
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
-      ->check(CLI::Range(2, 1000));
+      ->check(within(2, 1000));
   sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
   auto* seeds = sub->add_option("--seeds", opt->seeds,
                                 "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
                                 "the other files are those of the first")
-                    ->check(CLI::Range(1, 1000));
+                    ->check(within(1, 1000));
   sub->add_option("--threads", opt->threads,
                   "Worker threads simulating and analysing trials (0: all cores); the results do "
                   "not depend on it")
-      ->check(CLI::Range(0, 256))
+      ->check(within(0, 256))
       ->capture_default_str();
   sub->add_option("--position-variation", opt->variation.position,
                   "Scale of the trial-to-trial spread of the feature's position (+-0.1 mm) and of "
                   "the contact angle (+-0.1 degree); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--depth-variation", opt->variation.depth,
                   "Scale of the spread of the commanded depth (3 %); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--speed-variation", opt->variation.speed,
                   "Scale of the spread of the speed (0.5 %); 0 = none")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub->add_option("--electrode-field", opt->electrode_field,
                   "How an electrode weighs the skin: gaussian (its face and a 0.4 mm margin) or "
@@ -139,26 +148,35 @@ void add_perceive(CLI::App& app, Action& action) {
                 "Also write trial 0 of every feature and procedure as BioTac-style CSV");
   sub->callback([opt, &action] {
     action = [opt] {
+      if (!opt->recordings.empty()) {
+        const auto files = recording_files(opt->recordings);
+        std::vector<NamedPath> inputs = {{"--recordings", opt->recordings}};
+        for (const auto& f : files) inputs.push_back({"--recordings", f});
+        refuse_output_over_input({output_folder("--out", opt->out_dir, {"recordings.csv"})},
+                                 inputs);
+        std::filesystem::create_directories(opt->out_dir);
+        return analyse_recordings(files, opt->out_dir);
+      }
       std::filesystem::create_directories(opt->out_dir);
-      if (!opt->recordings.empty()) return analyse_recordings(opt->recordings, opt->out_dir);
-      std::vector<capture::SurfaceFeature> features;
-      for (const auto& f : capture::paper_features())
+      std::vector<perception::SurfaceFeature> features;
+      for (const auto& f : perception::paper_features())
         if (opt->footprints_mm.empty() ||
             std::find(opt->footprints_mm.begin(), opt->footprints_mm.end(), f.footprint_mm) !=
                 opt->footprints_mm.end())
           features.push_back(f);
-      capture::SensorModel model;
+      perception::SensorModel model;
       model.variation = opt->variation;
-      if (opt->electrode_field == "sheet") model.electrode_field = capture::ElectrodeField::sheet;
+      if (opt->electrode_field == "sheet")
+        model.electrode_field = perception::ElectrodeField::sheet;
       const auto simulate = [&](std::uint64_t seed) {
         const auto t0 = std::chrono::steady_clock::now();
         Progress progress;
-        mapping::DatasetBuild build;
+        perception::DatasetBuild build;
         build.threads = opt->threads;
         const std::string stage =
             opt->seeds > 1 ? fmt::format("simulating seed {}", seed) : "simulating";
         build.progress = [&](int done, int total) { progress(stage, done, total); };
-        auto d = mapping::simulate_dataset(opt->trials, seed, model, build, features);
+        auto d = perception::simulate_dataset(opt->trials, seed, model, build, features);
         progress.finish();
         fmt::print(
             "perceive: {} samples ({} features x {} trials, 4 procedures each), {} inputs, "
@@ -168,47 +186,48 @@ void add_perceive(CLI::App& app, Action& action) {
         return d;
       };
       const auto d = simulate(opt->seed);
-      const auto split = mapping::split_per_block(d);
-      const auto rows = mapping::run_table2(d, split);
+      const auto split = perception::split_per_block(d);
+      const auto rows = perception::run_table2(d, split);
       fmt::print("Table 2 ({} training / {} held-out samples):\n", split.train.size(),
                  split.test.size());
-      for (const auto& row : rows) fmt::print("  {}\n", mapping::table2_line(row));
+      for (const auto& row : rows) fmt::print("  {}\n", perception::table2_line(row));
       for (const auto& row : rows)
         if (row.result.inputs == "all")
-          fmt::print("  {}\n", mapping::misclassified_line(row.result));
-      mapping::write_table2_csv(opt->out_dir / "table2.csv", rows);
-      mapping::write_figure7_csv(opt->out_dir / "figure7.csv", rows);
+          fmt::print("  {}\n", perception::misclassified_line(row.result));
+      perception::write_table2_csv(opt->out_dir / "table2.csv", rows);
+      perception::write_figure7_csv(opt->out_dir / "figure7.csv", rows);
       for (const auto& row : rows)
-        mapping::write_figure7_svg(opt->out_dir / fmt::format("figure7_{}_exp{}.svg",
-                                                              row.result.inputs, row.result.degree),
-                                   row.result);
-      mapping::write_accuracy_by_footprint_csv(opt->out_dir / "accuracy_by_footprint.csv", rows);
+        perception::write_figure7_svg(
+            opt->out_dir /
+                fmt::format("figure7_{}_exp{}.svg", row.result.inputs, row.result.degree),
+            row.result);
+      perception::write_accuracy_by_footprint_csv(opt->out_dir / "accuracy_by_footprint.csv", rows);
       for (int degree : {1, 2})
-        mapping::write_accuracy_by_footprint_svg(
+        perception::write_accuracy_by_footprint_svg(
             opt->out_dir / fmt::format("accuracy_by_footprint_exp{}.svg", degree), rows, degree);
       if (opt->export_recordings) {
         const auto dir = opt->out_dir / "recordings";
         std::filesystem::create_directories(dir);
         // Trial 0 of the data set itself: same seed, same sensor model.
         for (const auto& f : features)
-          for (int p = 0; p < capture::kProcedureCount; ++p) {
-            const auto proc = static_cast<capture::Procedure>(p);
-            capture::write_sensor_csv(
+          for (int p = 0; p < perception::kProcedureCount; ++p) {
+            const auto proc = static_cast<perception::Procedure>(p);
+            perception::write_sensor_csv(
                 dir / fmt::format("{}_{:+g}mm_{}_bio.csv",
                                   kCurvatureNames[static_cast<int>(f.curvature)],
-                                  f.signed_footprint_mm(), capture::procedure_name(proc)),
-                capture::simulate_trial(
-                    f, proc, mapping::simulated_trial_seed(f, proc, 0, opt->seed), model));
+                                  f.signed_footprint_mm(), perception::procedure_name(proc)),
+                perception::simulate_trial(
+                    f, proc, perception::simulated_trial_seed(f, proc, 0, opt->seed), model));
           }
       }
       fmt::print("perceive: table2.csv, figure7.csv, accuracy_by_footprint.csv and plots -> {}\n",
                  opt->out_dir.string());
       if (opt->seeds == 1) return 0;
-      std::vector<mapping::SeedTable2> runs{{opt->seed, rows}};
+      std::vector<perception::SeedTable2> runs{{opt->seed, rows}};
       for (int k = 1; k < opt->seeds; ++k) {
         const std::uint64_t seed = opt->seed + static_cast<std::uint64_t>(k);
         const auto dk = simulate(seed);
-        runs.push_back({seed, mapping::run_table2(dk, mapping::split_per_block(dk))});
+        runs.push_back({seed, perception::run_table2(dk, perception::split_per_block(dk))});
         for (const auto& row : runs.back().rows)
           if (row.result.inputs == "all")
             fmt::print("  seed {}: all exp {} {}/{}\n", seed, row.result.degree, row.result.correct,
@@ -216,8 +235,8 @@ void add_perceive(CLI::App& app, Action& action) {
       }
       fmt::print("Table 2 over {} seeds ({}-{}), curvature correct on held-out trials:\n",
                  opt->seeds, opt->seed, runs.back().seed);
-      for (const auto& line : mapping::seed_spread_lines(runs)) fmt::print("  {}\n", line);
-      mapping::write_table2_seeds_csv(opt->out_dir / "table2_seeds.csv", runs);
+      for (const auto& line : perception::seed_spread_lines(runs)) fmt::print("  {}\n", line);
+      perception::write_table2_seeds_csv(opt->out_dir / "table2_seeds.csv", runs);
       fmt::print("perceive: every seed's Table 2 -> {}\n",
                  (opt->out_dir / "table2_seeds.csv").string());
       return 0;

@@ -6,10 +6,13 @@
 #include <memory>
 
 #include "command.hpp"
+#include "latero_cli.hpp"
+#include "number_checks.hpp"
 #include "playback.hpp"
 #include "strain_panel.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/display/devices.hpp"
 #include "tactile/display/movie_io.hpp"
 #include "tactile/display/preview.hpp"
@@ -23,6 +26,7 @@ void add_play(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
     PlayChoice choice;
+    LateroPlayOptions latero;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -37,10 +41,21 @@ void add_play(CLI::App& app, Action& action) {
   sub->add_option("--preview", opt->choice.preview_png, "Preview image written when headless")
       ->capture_default_str();
   sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
-      ->check(CLI::Range(1, 1000000))
+      ->check(within(1, 1000000))
       ->capture_default_str();
+  add_latero_play_options(*sub, opt->latero);
   sub->callback([opt, &action] {
-    action = [opt] { return play_anywhere(display::read_tactile_movie(opt->movie), opt->choice); };
+    action = [opt] {
+      // Checked even if the movie ends up on a device: whether it plays headless (the one case
+      // that writes the preview) is decided only while playing.
+      refuse_output_over_input({output_file("--preview", opt->choice.preview_png)},
+                               {{"MOVIE_H5", opt->movie}});
+      const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      if (!opt->latero.address.empty()) {
+        return play_on_latero(movie, opt->latero, opt->choice.loops);
+      }
+      return play_anywhere(movie, opt->choice);
+    };
   });
 }
 
@@ -71,7 +86,7 @@ void add_view(CLI::App& app, Action& action) {
       ->excludes(strain);
   sub->add_flag("--loop", opt->viewer.loop, "Loop the movie");
   sub->add_option("--at", opt->viewer.start_s, "Start at this movie time (s)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   sub->add_option("--screenshot", opt->screenshot,
                   "Draw the window once (at --at), write it to this PNG and quit");
   sub->callback([opt, &action] {
@@ -83,17 +98,23 @@ void add_view(CLI::App& app, Action& action) {
         opt->viewer.fixed_step = true;
         opt->viewer.exit_after_frames = 1;
       }
-      if (!opt->no_strain) {
-        if (const auto path = find_source_strain(movie, opt->movie, opt->strain)) {
-          try {
-            opt->viewer.field = strain_side_field(capture::read_strain_movie(*path),
-                                                  "strain: " + path->filename().string());
-          } catch (const std::invalid_argument& e) {
-            // Asked for: an error. Found through the provenance: show the movie without it.
-            if (!opt->strain.empty()) throw std::invalid_argument(path->string() + ": " + e.what());
-            fmt::print(stderr, "view: not showing the source strain movie {}: {}\n", path->string(),
-                       e.what());
-          }
+      std::vector<NamedPath> inputs = {{"MOVIE_H5", opt->movie}};
+      if (!opt->strain.empty()) inputs.push_back({"--strain", opt->strain});
+      const auto source =
+          opt->no_strain ? std::nullopt : find_source_strain(movie, opt->movie, opt->strain);
+      if (source && opt->strain.empty()) inputs.push_back({"the movie's source", *source});
+      if (!opt->screenshot.empty()) {
+        refuse_output_over_input({output_file("--screenshot", opt->screenshot)}, inputs);
+      }
+      if (source) {
+        try {
+          opt->viewer.field = strain_side_field(capture::read_strain_movie(*source),
+                                                "strain: " + source->filename().string());
+        } catch (const std::invalid_argument& e) {
+          // Asked for: an error. Found through the provenance: show the movie without it.
+          if (!opt->strain.empty()) throw std::invalid_argument(source->string() + ": " + e.what());
+          fmt::print(stderr, "view: not showing the source strain movie {}: {}\n", source->string(),
+                     e.what());
         }
       }
       if (!display::screen_available()) {
@@ -114,10 +135,15 @@ void add_view(CLI::App& app, Action& action) {
 }
 
 void add_devices(CLI::App& app, Action& action) {
+  auto latero = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand(
       "devices", "List attached tactile displays (USB vendor/product 1209:0001) and their state.");
-  sub->callback([&action] {
-    action = [] {
+  sub->add_option("--latero", *latero,
+                  "Probe the Latero at HOST[:PORT] instead: FPGA versions, high voltage, buttons")
+      ->check(latero_address_check());
+  sub->callback([latero, &action] {
+    action = [latero] {
+      if (!latero->empty()) return print_latero_device(*latero);
       const auto devices = display::list_usb_devices();
       if (devices.empty()) {
         fmt::print("devices: none attached (looking for USB {:04x}:{:04x})\n",

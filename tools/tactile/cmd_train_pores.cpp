@@ -12,10 +12,12 @@
 #include <vector>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/capture/pore_model_io.hpp"
 #include "tactile/capture/pore_score.hpp"
 #include "tactile/capture/pore_training.hpp"
 #include "tactile/capture/pore_training_io.hpp"
+#include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -79,24 +81,16 @@ void add_train_pores(CLI::App& app, Action& action) {
   sub->add_option("--px-per-mm", opt->px_per_mm,
                   "Scale of the prints, pixels per millimetre (PolyU HRF: 47)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   sub->add_option("--out", opt->out, "Model file to write (JSON)")
       ->type_name("MODEL.json")
       ->required();
   sub->add_option("--label-radius-mm", opt->label_radius_mm,
                   "A candidate this close to a marked pore counts as a pore")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--l2", opt->l2, "L2 penalty on every coefficient but the intercept")
-      ->check(CLI::Validator(
-          [](std::string& value) {
-            // CLI11's NonNegativeNumber names the largest double in its message.
-            double l2 = 0;
-            return CLI::detail::lexical_cast(value, l2) && l2 >= 0
-                       ? std::string()
-                       : "must be a number >= 0, got " + value;
-          },
-          "NON-NEGATIVE"))
+      ->check(non_negative())
       ->capture_default_str();
   sub->add_flag("--held-out", opt->held_out,
                 "Also score each print with a model trained on the others (leave one print out)");
@@ -109,6 +103,10 @@ void add_train_pores(CLI::App& app, Action& action) {
         throw std::runtime_error(
             fmt::format("{}: no such folder for --out {}", out_dir.string(), opt->out.string()));
       }
+      std::vector<NamedPath> inputs = {{"--prints", opt->prints_dir}};
+      for (const auto& file : capture::pore_training_files(opt->prints_dir))
+        inputs.push_back({"--prints", file});
+      refuse_output_over_input({output_file("--out", opt->out)}, inputs);
       const auto prints = capture::read_pore_training_prints(opt->prints_dir);
       std::size_t marked = 0;
       for (const auto& p : prints) marked += p.pores_px.size();

@@ -25,10 +25,12 @@ void add_play(CLI::App& app, Action& action);
 void add_view(CLI::App& app, Action& action);
 void add_devices(CLI::App& app, Action& action);
 void add_info(CLI::App& app, Action& action);
+void add_emulate(CLI::App& app, Action& action);
 void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);
 void add_bench_capture(CLI::App& bench, Action& action);
 void add_bench_stream(CLI::App& bench, Action& action);
 void add_bench_perceive(CLI::App& bench, Action& action);
+void add_bench_latero(CLI::App& bench, Action& action);
 
 }  // namespace tactile::cli

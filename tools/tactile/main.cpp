@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "command.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 
 int main(int argc, char** argv) {
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_view(app, action);
   tactile::cli::add_devices(app, action);
   tactile::cli::add_info(app, action);
+  tactile::cli::add_emulate(app, action);
   tactile::cli::add_bench(app, action);
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
@@ -62,6 +64,11 @@ int main(int argc, char** argv) {
   if (!action) return 2;  // unreachable: require_subcommand(1) guarantees a command ran
   try {
     return action();
+  } catch (const tactile::OutputIsInputError& e) {
+    // Found before any work, like a parse error, but only once a command knows its inputs.
+    fmt::print(stderr, "tactile {}: error: {}\n", app.get_subcommands().front()->get_name(),
+               e.what());
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "tactile {}: error: {}\n", app.get_subcommands().front()->get_name(),
                e.what());

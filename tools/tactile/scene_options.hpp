@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "number_checks.hpp"
 #include "tactile/capture/synth.hpp"
 
 namespace tactile::cli {
@@ -15,34 +16,34 @@ inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
       ->check(CLI::IsMember(capture::scene_names()))
       ->capture_default_str();
   sub.add_option("--frames", spec.frame_count, "Number of camera frames")
-      ->check(CLI::Range(2, 100000))
+      ->check(within(2, 100000))
       ->capture_default_str();
   sub.add_option("--speed", spec.speed_mm_per_s, "Sliding speed in mm/s")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(within(0.0, 100.0))
       ->capture_default_str();
   sub.add_option("--height", spec.feature_height_mm, "Bump height / hole depth in mm")
-      ->check(CLI::Range(0.0, 5.0))
+      ->check(within(0.0, 5.0))
       ->capture_default_str();
   sub.add_option("--width", spec.feature_width_mm, "Bump / hole width (FWHM) in mm")
-      ->check(CLI::Range(0.1, 50.0))
+      ->check(within(0.1, 50.0))
       ->capture_default_str();
   sub.add_option("--contact-semi-x", spec.contact_semi_x_mm,
                  "Half-width of the fingertip contact patch along the slide, mm")
-      ->check(CLI::Range(0.5, 20.0))
+      ->check(within(0.5, 20.0))
       ->capture_default_str();
   sub.add_option("--rotation", spec.rotation_deg, "flat-rotate: twist at the last frame, degrees")
-      ->check(CLI::Range(-45.0, 45.0))
+      ->check(within(-45.0, 45.0))
       ->capture_default_str();
   sub.add_option("--lateral-amplitude", spec.lateral_amplitude_mm,
                  "flat-stick-slip: peak rim displacement, mm")
-      ->check(CLI::Range(-3.0, 3.0))
+      ->check(within(-3.0, 3.0))
       ->capture_default_str();
   sub.add_option("--stick-ratio", spec.stick_ratio,
                  "flat-rotate, flat-stick-slip: stick radius / contact radius")
-      ->check(CLI::Range(0.0, 0.9))
+      ->check(within(0.0, 0.9))
       ->capture_default_str();
   sub.add_option("--noise", spec.noise_sigma, "Camera noise, grey levels (sigma)")
-      ->check(CLI::Range(0.0, 128.0))
+      ->check(within(0.0, 128.0))
       ->capture_default_str();
   sub.add_option("--seed", spec.seed, "Random seed (same seed, same images)")
       ->capture_default_str();

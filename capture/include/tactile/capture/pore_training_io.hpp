@@ -17,4 +17,8 @@ namespace tactile::capture {
 // unreadable image.
 std::vector<PoreTrainingPrint> read_pore_training_prints(const std::filesystem::path& dir);
 
+// The image and marks files read_pore_training_prints would read from `dir` (none if it is not a
+// directory), without reading them: for a caller that must not write over them.
+std::vector<std::filesystem::path> pore_training_files(const std::filesystem::path& dir);
+
 }  // namespace tactile::capture

@@ -60,7 +60,7 @@ struct TactileMovie {
 // Built-in layouts of the STReSS family (DESIGN.md section 1).
 Layout stress_layout();   // 10 x 10, 1 mm pitch, 700 Hz
 Layout stress2_layout();  // 8 x 8, 1.2 mm x 1.4 mm
-Layout latero_layout();   // 8 x 8, 1.2 mm x 1.6125 mm, contactors 0.5 x 1.4 mm
+Layout latero_layout();   // 8 x 8, 1.2 mm x 1.6125 mm, contactors 0.5 x 1.4 mm, 750 Hz
 // Looks up a built-in layout by name; throws std::invalid_argument listing the known names.
 Layout layout_by_name(const std::string& name);
 

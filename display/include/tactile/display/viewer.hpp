@@ -14,7 +14,9 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "tactile/display/emulated_device.hpp"
@@ -119,5 +121,27 @@ bool screen_available();
 // naming the GLFW error when no window can be opened, std::invalid_argument for a movie the
 // emulated device cannot play or an invalid side field.
 ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options = {});
+
+// A live source instead of a movie (e.g. an emulated device on the network): what to show now.
+struct LiveFrame {
+  std::vector<float> deflection_um;  // row-major, one per contactor of the layout
+  std::vector<std::string> lines;    // text for the strip along the top
+};
+
+struct LiveViewerOptions {
+  int width_px = 800;
+  int height_px = 800;
+  bool visible = true;
+  double magnification = 0;             // 0 = auto_magnification(layout)
+  std::int64_t exit_after_frames = -1;  // for tests: close after this many drawn frames
+};
+
+// Opens the window and draws what `next` returns, once per drawn frame (at the screen's
+// refresh rate), until the window is closed, `next` returns nothing, or exit_after_frames.
+// Throws std::runtime_error when no window can be opened, std::invalid_argument for a frame
+// of the wrong size.
+ViewerResult run_live_viewer(const Layout& layout,
+                             const std::function<std::optional<LiveFrame>()>& next,
+                             const LiveViewerOptions& options = {});
 
 }  // namespace tactile::display

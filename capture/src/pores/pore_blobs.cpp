@@ -1,0 +1,248 @@
+#include "pores/pore_blobs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <opencv2/imgproc.hpp>
+
+#include "pores/pore_model.hpp"
+
+namespace tactile::capture {
+
+namespace {
+
+// Anisotropic Gaussian, long axis at `angle_rad` (image x to the right, y down), unit sum,
+// with the middle band |along| < gap_px left out: the level it measures at a pixel comes from
+// either side of it along the ridge, so a pore does not lift its own ridge level.
+cv::Mat flank_kernel(double angle_rad, double along_px, double across_px, double gap_px) {
+  const int half = std::max(1, static_cast<int>(std::ceil(3.0 * along_px)));
+  cv::Mat k(2 * half + 1, 2 * half + 1, CV_32F);
+  const double c = std::cos(angle_rad);
+  const double s = std::sin(angle_rad);
+  double sum = 0;
+  for (int y = -half; y <= half; ++y) {
+    for (int x = -half; x <= half; ++x) {
+      const double u = x * c + y * s;
+      const double v = -x * s + y * c;
+      const double w =
+          std::abs(u) < gap_px
+              ? 0.0
+              : std::exp(-u * u / (2 * along_px * along_px) - v * v / (2 * across_px * across_px));
+      k.at<float>(y + half, x + half) = static_cast<float>(w);
+      sum += w;
+    }
+  }
+  return k / sum;
+}
+
+// Grey level of the ridge (or valley) each pixel lies on, measured along the local ridge
+// direction (from the structure tensor) on both sides of the pixel.
+cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams& p) {
+  cv::Mat gx, gy;
+  cv::Sobel(gray, gx, CV_32F, 1, 0);
+  cv::Sobel(gray, gy, CV_32F, 0, 1);
+  cv::Mat jxx = gx.mul(gx), jyy = gy.mul(gy), jxy = gx.mul(gy);
+  const double ts = p.orientation_sigma_mm * px_per_mm;
+  for (cv::Mat* m : {&jxx, &jyy, &jxy}) cv::GaussianBlur(*m, *m, cv::Size(0, 0), ts);
+  const int n = std::max(2, p.orientations);
+  const double step = std::numbers::pi / n;
+  std::vector<cv::Mat> smoothed(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const cv::Mat kernel =
+        flank_kernel(k * step, p.along_sigma_mm * px_per_mm, p.across_sigma_mm * px_per_mm,
+                     p.pore_radius_mm * px_per_mm);
+    cv::filter2D(gray, smoothed[static_cast<std::size_t>(k)], CV_32F, kernel, cv::Point(-1, -1), 0,
+                 cv::BORDER_REFLECT);
+  }
+  cv::Mat out(gray.size(), CV_32F);
+  for (int y = 0; y < gray.rows; ++y) {
+    const float* a = jxx.ptr<float>(y);
+    const float* b = jyy.ptr<float>(y);
+    const float* d = jxy.ptr<float>(y);
+    float* o = out.ptr<float>(y);
+    for (int x = 0; x < gray.cols; ++x) {
+      // The dominant gradient is across the ridges; the ridge runs at right angles to it.
+      const double ridge = 0.5 * std::atan2(2.0 * d[x], a[x] - b[x]) + std::numbers::pi / 2;
+      const int k = ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
+      o[x] = smoothed[static_cast<std::size_t>(k)].at<float>(y, x);
+    }
+  }
+  return out;
+}
+
+// Where a level lies between the local valley level (0) and the local ridge bottom (1), and
+// the valley-to-ridge contrast itself. Pores sit in the inner part of a ridge; bright spots at
+// a ridge's edge are mostly its ragged outline, and spots where the level is wrong (ridge
+// endings, wide valleys) are valley.
+struct Envelope {
+  cv::Mat depth;
+  cv::Mat contrast;
+};
+
+Envelope ridge_envelope(const cv::Mat& level, double px_per_mm, const RidgeBlobParams& p) {
+  const int window = std::max(3, static_cast<int>(std::lround(p.window_mm * px_per_mm)) | 1);
+  const cv::Mat box = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(window, window));
+  cv::Mat valley, ridge;
+  cv::dilate(level, valley, box);
+  cv::erode(level, ridge, box);
+  Envelope e;
+  e.contrast = valley - ridge;
+  e.depth = (valley - level) / cv::max(e.contrast, 1.0);
+  return e;
+}
+
+// Robust spread (1.4826 x median absolute deviation, the standard deviation for Gaussian
+// noise) of the response over the mask within `roi`; 0 when fewer than `min_count` pixels.
+double robust_spread(const cv::Mat& response, const cv::Mat& mask, cv::Rect roi,
+                     std::size_t min_count) {
+  std::vector<float> v;
+  for (int y = roi.y; y < roi.y + roi.height; ++y) {
+    const float* r = response.ptr<float>(y);
+    const std::uint8_t* m = mask.ptr<std::uint8_t>(y);
+    for (int x = roi.x; x < roi.x + roi.width; ++x) {
+      if (m[x]) v.push_back(r[x]);
+    }
+  }
+  if (v.size() < std::max<std::size_t>(min_count, 1)) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  const float median = *mid;
+  for (float& a : v) a = std::abs(a - median);
+  std::nth_element(v.begin(), mid, v.end());
+  return 1.4826 * *mid;
+}
+
+// Value at `fraction` of the sorted values (0 = smallest); `fallback` when there are none.
+double quantile(std::vector<double> v, double fraction, double fallback) {
+  if (v.empty()) return fallback;
+  const auto k = static_cast<std::ptrdiff_t>(fraction * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[static_cast<std::size_t>(k)];
+}
+
+}  // namespace
+
+std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::Mat& allowed,
+                                                double px_per_mm, const RidgeBlobParams& p) {
+  std::vector<PoreCandidate> found;
+  if (gray.empty()) return found;
+  const cv::Mat level = ridge_level(gray, px_per_mm, p);
+  const cv::Mat above = gray - level;
+  // Brightness above the pixel's own ridge level, smoothed to about a pixel against noise.
+  cv::Mat response;
+  cv::GaussianBlur(above, response, cv::Size(0, 0), p.pore_sigma_mm * px_per_mm);
+  const Envelope envelope = ridge_envelope(level, px_per_mm, p);
+
+  // Ridge texture noise, over the print and per block: the pore scale of a dark noisy print
+  // differs from that of a clean one. Floors keep flat (test) images finite.
+  const cv::Mat deep = envelope.depth >= p.noise_ridge_depth;
+  constexpr double kMinNoise = 0.5;  // grey levels: far below any real print's (6-22)
+  const double print_noise =
+      std::max(kMinNoise, robust_spread(response, deep, cv::Rect(0, 0, gray.cols, gray.rows), 1));
+  const int block = std::max(8, static_cast<int>(std::lround(p.noise_block_mm * px_per_mm)));
+  cv::Mat block_noise((gray.rows + block - 1) / block, (gray.cols + block - 1) / block, CV_64F);
+  for (int by = 0; by < block_noise.rows; ++by) {
+    for (int bx = 0; bx < block_noise.cols; ++bx) {
+      const cv::Rect roi =
+          cv::Rect(bx * block, by * block, block, block) & cv::Rect(0, 0, gray.cols, gray.rows);
+      const double s = robust_spread(response, deep, roi, 20);
+      block_noise.at<double>(by, bx) = s > 0 ? std::max(kMinNoise, s) : print_noise;
+    }
+  }
+  // Blob size: scale-normalised Laplacian of the brightness above the ridge level, from a
+  // dot of one pixel to one of about a tenth of a millimetre.
+  constexpr std::array<double, 8> kScalesMm{0.011, 0.015, 0.019, 0.023, 0.028, 0.034, 0.043, 0.053};
+  std::vector<cv::Mat> blob(kScalesMm.size());
+  for (std::size_t k = 0; k < kScalesMm.size(); ++k) {
+    const double s = kScalesMm[k] * px_per_mm;
+    cv::Mat smoothed;
+    cv::GaussianBlur(above, smoothed, cv::Size(0, 0), s);
+    cv::Laplacian(smoothed, blob[k], CV_32F);
+    blob[k] *= -s * s;
+  }
+
+  // Candidates: 3 x 3 maxima of the response (a ramp rising towards a valley has none), deep
+  // enough in a ridge.
+  cv::Mat local_max;
+  cv::dilate(response, local_max, cv::Mat());
+  for (int y = 0; y < gray.rows; ++y) {
+    const float* resp = response.ptr<float>(y);
+    const float* lmax = local_max.ptr<float>(y);
+    const float* depth = envelope.depth.ptr<float>(y);
+    const std::uint8_t* ok = allowed.ptr<std::uint8_t>(y);
+    for (int x = 0; x < gray.cols; ++x) {
+      const float v = resp[x];
+      if (!ok[x] || v < lmax[x] || depth[x] < p.min_ridge_depth) continue;
+      // Sub-pixel peak: a parabola through the neighbours along each axis, kept within half a
+      // pixel (a nearly flat top would otherwise throw the peak far away).
+      auto offset = [v](float before, float after) {
+        const double curvature = before - 2.0 * v + after;
+        return curvature < 0 ? std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5) : 0.0;
+      };
+      const double dx = (x > 0 && x + 1 < gray.cols) ? offset(resp[x - 1], resp[x + 1]) : 0.0;
+      const double dy = (y > 0 && y + 1 < gray.rows)
+                            ? offset(response.at<float>(y - 1, x), response.at<float>(y + 1, x))
+                            : 0.0;
+      // Measures 4, 13-15 need every candidate's response first (below).
+      PoreCandidate c{x + dx, y + dy, {}};
+      auto& m = c.measures;
+      m[0] = v / print_noise;
+      m[1] = v / block_noise.at<double>(y / block, x / block);
+      m[2] = depth[x];
+      m[3] = envelope.contrast.at<float>(y, x) / print_noise;
+      for (std::size_t k = 0; k < blob.size(); ++k) {
+        m[5 + k] = blob[k].at<float>(y, x) / print_noise;
+      }
+      found.push_back(c);
+    }
+  }
+  // Against this print's own spots: the median deep candidate (mostly ridge texture) and the
+  // 90th percentile (its clear pores). The same brightness is a pore on a faint print and a
+  // speck on one whose pores stand out.
+  std::vector<double> deep_responses;
+  for (const auto& c : found) {
+    if (c.measures[2] >= p.noise_ridge_depth) deep_responses.push_back(c.measures[0] * print_noise);
+  }
+  const double typical = std::max(kMinNoise, quantile(deep_responses, 0.5, print_noise));
+  const double clear = std::max(kMinNoise, quantile(deep_responses, 0.9, print_noise));
+  for (auto& c : found) {
+    auto& m = c.measures;
+    const double v = m[0] * print_noise;
+    m[4] = v / typical;
+    m[13] = v / clear;
+    m[14] = m[7] * print_noise / clear;
+    m[15] = m[9] * print_noise / clear;
+  }
+  return found;
+}
+
+std::vector<Feature> find_ridge_blob_pores(const cv::Mat& gray, const cv::Mat& allowed,
+                                           double px_per_mm, const RidgeBlobParams& p) {
+  struct Scored {
+    Feature feature;
+    double log_odds;
+  };
+  std::vector<Scored> kept;
+  const std::span<const double> model = p.model.empty() ? shipped_pore_model() : p.model;
+  check_pore_model(model);
+  for (const auto& c : find_pore_candidates(gray, allowed, px_per_mm, p)) {
+    const double log_odds = pore_log_odds(c.measures, model);
+    if (log_odds > p.min_log_odds)
+      kept.push_back({{FeatureType::pore, c.x_px, c.y_px, 0.0}, log_odds});
+  }
+  // Likeliest first; a candidate within the suppression radius of a kept pore is the same pore.
+  std::sort(kept.begin(), kept.end(),
+            [](const Scored& a, const Scored& b) { return a.log_odds > b.log_odds; });
+  const double r = p.suppression_radius_mm * px_per_mm;
+  std::vector<Feature> pores;
+  for (const auto& s : kept) {
+    const bool taken = std::any_of(pores.begin(), pores.end(), [&](const Feature& f) {
+      return std::hypot(f.x_px - s.feature.x_px, f.y_px - s.feature.y_px) < r;
+    });
+    if (!taken) pores.push_back(s.feature);
+  }
+  return pores;
+}
+
+}  // namespace tactile::capture

@@ -1,0 +1,280 @@
+#include "tactile/capture/track.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "tracking/assignment.hpp"
+
+namespace tactile::capture {
+
+namespace {
+
+struct Active {
+  std::size_t track;  // index into `all`
+  PointMm last_mm;
+  PointMm velocity_mm;  // per frame
+  int last_frame;
+  double orientation;
+  bool has_velocity;
+};
+
+struct Candidate {
+  double confidence;
+  std::size_t active;
+  std::size_t feature;
+};
+
+// Least-squares quadratic through the positions within +-h frames, evaluated at the centre; it
+// keeps constant-acceleration motion unbiased while averaging localisation noise.
+double quadratic_fit_at(const std::vector<double>& v, int i, int lo, int hi) {
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  for (int k = lo; k <= hi; ++k) {
+    const double t = k - i;
+    const Eigen::Vector3d a(1, t, t * t);
+    ata += a * a.transpose();
+    atb += a * v[static_cast<std::size_t>(k)];
+  }
+  const int count = hi - lo + 1;
+  if (count < 3) return atb[0] / count;
+  return ata.ldlt().solve(atb)[0];
+}
+
+std::vector<double> smooth(const std::vector<double>& v, int h) {
+  if (h <= 0 || v.size() < 3) return v;
+  const int n = static_cast<int>(v.size());
+  std::vector<double> out(v.size());
+  // Inside the track the window is symmetric and the fit's value at the centre is a fixed
+  // weighted sum (Savitzky-Golay): w_j = (3(3h^2 + 3h - 1) - 15 j^2) / ((2h - 1)(2h + 1)(2h + 3)).
+  std::vector<double> w(static_cast<std::size_t>(2 * h + 1));
+  const double denom = (2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3);
+  for (int j = -h; j <= h; ++j) {
+    w[static_cast<std::size_t>(j + h)] = (3.0 * (3 * h * h + 3 * h - 1) - 15.0 * j * j) / denom;
+  }
+  for (int i = 0; i < n; ++i) {
+    const int lo = std::max(0, i - h);
+    const int hi = std::min(n - 1, i + h);
+    if (hi - lo == 2 * h) {
+      double sum = 0;
+      for (int k = lo; k <= hi; ++k) {
+        sum += w[static_cast<std::size_t>(k - lo)] * v[static_cast<std::size_t>(k)];
+      }
+      out[static_cast<std::size_t>(i)] = sum;
+    } else {
+      out[static_cast<std::size_t>(i)] = quadratic_fit_at(v, i, lo, hi);
+    }
+  }
+  return out;
+}
+
+// Cuts a trajectory wherever a position lies more than gate_px from the least-squares line
+// through the (up to) 6 positions before it in the same piece.
+std::vector<Track> split_at_jumps(const Track& t, double gate_px) {
+  constexpr int kWindow = 6;
+  constexpr int kMinFit = 3;
+  std::vector<Track> pieces;
+  const int n = static_cast<int>(t.x_px.size());
+  int start = 0;
+  auto emit = [&](int from, int to) {
+    Track piece;
+    piece.type = t.type;
+    piece.first_frame = t.first_frame + from;
+    piece.x_px.assign(t.x_px.begin() + from, t.x_px.begin() + to);
+    piece.y_px.assign(t.y_px.begin() + from, t.y_px.begin() + to);
+    pieces.push_back(std::move(piece));
+  };
+  for (int k = 0; k < n; ++k) {
+    const int m = std::min(kWindow, k - start);
+    if (m < kMinFit) continue;
+    // Line through samples s = 0..m-1, extrapolated to s = m.
+    const double s_mean = (m - 1) / 2.0;
+    double ss = 0, sx = 0, sy = 0, mx = 0, my = 0;
+    for (int i = 0; i < m; ++i) {
+      mx += t.x_px[static_cast<std::size_t>(k - m + i)];
+      my += t.y_px[static_cast<std::size_t>(k - m + i)];
+    }
+    mx /= m;
+    my /= m;
+    for (int i = 0; i < m; ++i) {
+      const double ds = i - s_mean;
+      ss += ds * ds;
+      sx += ds * (t.x_px[static_cast<std::size_t>(k - m + i)] - mx);
+      sy += ds * (t.y_px[static_cast<std::size_t>(k - m + i)] - my);
+    }
+    const double px = mx + sx / ss * (m - s_mean);
+    const double py = my + sy / ss * (m - s_mean);
+    const auto uk = static_cast<std::size_t>(k);
+    if (std::hypot(t.x_px[uk] - px, t.y_px[uk] - py) > gate_px) {
+      emit(start, k);
+      start = k;
+    }
+  }
+  emit(start, n);
+  return pieces;
+}
+
+}  // namespace
+
+std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
+                                  const Calibration& calibration, const TrackParams& params) {
+  if (!(params.match_radius_mm > 0)) throw std::invalid_argument("match_radius_mm must be > 0");
+  if (params.min_track_frames < 2) throw std::invalid_argument("min_track_frames must be >= 2");
+  if (params.max_gap_frames < 0) throw std::invalid_argument("max_gap_frames must be >= 0");
+  if (!(params.max_jump_mm > 0)) throw std::invalid_argument("max_jump_mm must be > 0");
+  if (!(calibration.mm_per_px > 0))
+    throw std::invalid_argument("calibration mm_per_px must be > 0");
+
+  std::vector<Track> all;
+  std::vector<Active> active;
+  PointMm global_velocity{0, 0};  // median motion of the last matched frame: seeds new tracks
+  const double radius = params.match_radius_mm;
+
+  auto start_track = [&](const Feature& f, int frame) {
+    Track t;
+    t.type = f.type;
+    t.first_frame = frame;
+    t.x_px.push_back(f.x_px);
+    t.y_px.push_back(f.y_px);
+    all.push_back(std::move(t));
+    active.push_back({all.size() - 1,
+                      to_mm(calibration, f.x_px, f.y_px),
+                      {0, 0},
+                      frame,
+                      f.orientation_rad,
+                      false});
+  };
+
+  for (int frame = 0; frame < static_cast<int>(features_per_frame.size()); ++frame) {
+    const auto& feats = features_per_frame[static_cast<std::size_t>(frame)];
+    std::vector<PointMm> feat_mm;
+    feat_mm.reserve(feats.size());
+    for (const auto& f : feats) feat_mm.push_back(to_mm(calibration, f.x_px, f.y_px));
+
+    // Features bucketed on a grid of radius-sized cells: a prediction's candidates lie in the
+    // 3 x 3 cells around it.
+    double min_x = 0, min_y = 0;
+    int grid_w = 0, grid_h = 0;
+    if (!feats.empty()) {
+      min_x = feat_mm[0].x_mm;
+      min_y = feat_mm[0].y_mm;
+      double max_x = min_x, max_y = min_y;
+      for (const auto& p : feat_mm) {
+        min_x = std::min(min_x, p.x_mm);
+        min_y = std::min(min_y, p.y_mm);
+        max_x = std::max(max_x, p.x_mm);
+        max_y = std::max(max_y, p.y_mm);
+      }
+      grid_w = static_cast<int>((max_x - min_x) / radius) + 1;
+      grid_h = static_cast<int>((max_y - min_y) / radius) + 1;
+    }
+    std::vector<int> cell_head(static_cast<std::size_t>(grid_w) * grid_h, -1);
+    std::vector<int> next_in_cell(feats.size(), -1);
+    for (std::size_t k = 0; k < feats.size(); ++k) {
+      const int cx = static_cast<int>((feat_mm[k].x_mm - min_x) / radius);
+      const int cy = static_cast<int>((feat_mm[k].y_mm - min_y) / radius);
+      auto& head = cell_head[static_cast<std::size_t>(cy) * grid_w + cx];
+      next_in_cell[k] = head;
+      head = static_cast<int>(k);
+    }
+
+    std::vector<Candidate> candidates;
+    for (std::size_t a = 0; a < active.size() && !feats.empty(); ++a) {
+      const Active& act = active[a];
+      const Track& t = all[act.track];
+      const int steps = frame - act.last_frame;
+      const PointMm v = act.has_velocity ? act.velocity_mm : global_velocity;
+      const PointMm pred{act.last_mm.x_mm + v.x_mm * steps, act.last_mm.y_mm + v.y_mm * steps};
+      const double gx = std::floor((pred.x_mm - min_x) / radius);
+      const double gy = std::floor((pred.y_mm - min_y) / radius);
+      if (gx < -1 || gy < -1 || gx > grid_w || gy > grid_h) continue;
+      for (int cy = std::max(0, static_cast<int>(gy) - 1);
+           cy <= std::min(grid_h - 1, static_cast<int>(gy) + 1); ++cy) {
+        for (int cx = std::max(0, static_cast<int>(gx) - 1);
+             cx <= std::min(grid_w - 1, static_cast<int>(gx) + 1); ++cx) {
+          for (int k = cell_head[static_cast<std::size_t>(cy) * grid_w + cx]; k >= 0;
+               k = next_in_cell[static_cast<std::size_t>(k)]) {
+            const auto uk = static_cast<std::size_t>(k);
+            if (feats[uk].type != t.type) continue;
+            const double d = std::hypot(feat_mm[uk].x_mm - pred.x_mm, feat_mm[uk].y_mm - pred.y_mm);
+            if (d >= radius) continue;
+            double confidence = 1 - d / radius;
+            if (t.type == FeatureType::ending) {
+              confidence *= 0.5 * (1 + std::cos(feats[uk].orientation_rad - act.orientation));
+            }
+            if (confidence > 0) candidates.push_back({confidence, a, uk});
+          }
+        }
+      }
+    }
+    std::vector<ScoredPair> scored;
+    scored.reserve(candidates.size());
+    for (const auto& c : candidates) scored.push_back({c.confidence, c.active, c.feature});
+    const std::vector<ScoredPair> chosen = params.assignment == Assignment::optimal
+                                               ? assign_optimal(scored)
+                                               : assign_greedy(std::move(scored));
+    std::vector<char> feature_used(feats.size(), 0);
+    std::vector<double> vx, vy;
+    for (const auto& pick : chosen) {
+      const Candidate c{pick.score, pick.left, pick.right};
+      feature_used[c.feature] = 1;
+      Active& act = active[c.active];
+      Track& t = all[act.track];
+      const int steps = frame - act.last_frame;
+      const Feature& f = feats[c.feature];
+      // Missed frames in between: linear interpolation.
+      const double x0 = t.x_px.back();
+      const double y0 = t.y_px.back();
+      for (int s = 1; s < steps; ++s) {
+        t.x_px.push_back(x0 + (f.x_px - x0) * s / steps);
+        t.y_px.push_back(y0 + (f.y_px - y0) * s / steps);
+      }
+      t.x_px.push_back(f.x_px);
+      t.y_px.push_back(f.y_px);
+      const PointMm now = feat_mm[c.feature];
+      act.velocity_mm = {(now.x_mm - act.last_mm.x_mm) / steps,
+                         (now.y_mm - act.last_mm.y_mm) / steps};
+      act.has_velocity = true;
+      act.last_mm = now;
+      act.last_frame = frame;
+      act.orientation = f.orientation_rad;
+      vx.push_back(act.velocity_mm.x_mm);
+      vy.push_back(act.velocity_mm.y_mm);
+    }
+    if (!vx.empty()) {
+      std::nth_element(vx.begin(), vx.begin() + static_cast<long>(vx.size() / 2), vx.end());
+      std::nth_element(vy.begin(), vy.begin() + static_cast<long>(vy.size() / 2), vy.end());
+      global_velocity = {vx[vx.size() / 2], vy[vy.size() / 2]};
+    }
+    // Retire tracks missed for too long, then start tracks for unmatched features.
+    std::vector<Active> kept;
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      if (frame - active[a].last_frame <= params.max_gap_frames) kept.push_back(active[a]);
+    }
+    active = std::move(kept);
+    for (std::size_t k = 0; k < feats.size(); ++k) {
+      if (!feature_used[k]) start_track(feats[k], frame);
+    }
+  }
+
+  std::vector<Track> result;
+  const double gate_px = params.max_jump_mm / calibration.mm_per_px;
+  for (const auto& whole : all) {
+    if (static_cast<int>(whole.x_px.size()) < params.min_track_frames) continue;
+    for (auto& t : split_at_jumps(whole, gate_px)) {
+      if (static_cast<int>(t.x_px.size()) < params.min_track_frames) continue;
+      t.x_px = smooth(t.x_px, params.smoothing_half_window);
+      t.y_px = smooth(t.y_px, params.smoothing_half_window);
+      result.push_back(std::move(t));
+    }
+  }
+  std::stable_sort(result.begin(), result.end(),
+                   [](const Track& a, const Track& b) { return a.first_frame < b.first_frame; });
+  for (std::size_t i = 0; i < result.size(); ++i) result[i].id = static_cast<std::int32_t>(i);
+  return result;
+}
+
+}  // namespace tactile::capture

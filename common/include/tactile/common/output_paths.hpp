@@ -1,0 +1,59 @@
+#pragma once
+// Refusing to write over one's own input. A command lists the paths it reads and the paths it
+// will write, each named by the option or argument that gave it, and checks them before any
+// work: an output that is an input (the same path, or the same file through a symbolic or hard
+// link) would destroy the input, and the run that read it could not be repeated.
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tactile {
+
+// An output path that would write over an input (or over another output). The message names
+// both options and both paths. The `tactile` program treats it as a usage error.
+class OutputIsInputError : public std::invalid_argument {
+ public:
+  explicit OutputIsInputError(const std::string& what) : std::invalid_argument(what) {}
+};
+
+// A path as the user gave it, with the option or argument it came from ("--out", "STRAIN_H5").
+struct NamedPath {
+  std::string option;
+  std::filesystem::path path;
+};
+
+// What a command writes. A file output is one file. A folder output is the folder itself (which
+// must not be an input file; it may be an input's folder), the files it writes there (`files`,
+// relative to the folder) and the sub-folders whose contents it writes under names it makes
+// up (`subfolders`: every existing file in them counts as overwritten).
+struct Output {
+  std::string option;
+  std::filesystem::path path;
+  bool folder = false;
+  std::vector<std::filesystem::path> files;
+  std::vector<std::filesystem::path> subfolders;
+};
+
+// A file output at `path`, given by `option`.
+Output output_file(std::string option, std::filesystem::path path);
+
+// A folder output at `path` into which the command writes `files` and the contents of
+// `subfolders`.
+Output output_folder(std::string option, std::filesystem::path path,
+                     std::vector<std::filesystem::path> files,
+                     std::vector<std::filesystem::path> subfolders = {});
+
+// True if `a` and `b` name the same file or folder: the same inode when both exist (following
+// symbolic links, so hard links and symbolic links count), else the same normalised absolute
+// path.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+// Throws OutputIsInputError if any file an output writes is one of `inputs` (files or folders),
+// if a folder output is an input that is not a folder, or if two outputs write the same file.
+// Touches nothing on disk but reads folder listings of existing sub-folders.
+void refuse_output_over_input(const std::vector<Output>& outputs,
+                              const std::vector<NamedPath>& inputs);
+
+}  // namespace tactile

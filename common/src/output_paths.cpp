@@ -1,0 +1,122 @@
+#include "tactile/common/output_paths.hpp"
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+
+#include <map>
+#include <system_error>
+#include <utility>
+
+namespace tactile {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The absolute path with "." and ".." resolved but links kept: two spellings of one path.
+fs::path spelled(const fs::path& p) {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(p, ec);
+  return (ec ? p : abs).lexically_normal();
+}
+
+// The absolute path with symbolic links resolved as far as the path exists.
+fs::path resolved(const fs::path& p) {
+  std::error_code ec;
+  const fs::path r = fs::weakly_canonical(spelled(p), ec);
+  return ec ? spelled(p) : r;
+}
+
+// One key per file: device and inode when the path exists (so every link to a file has the same
+// key), the resolved path when it does not. stat() rather than fs::equivalent: a command can
+// write thousands of files and read thousands, and keys compare in a map, not pair by pair.
+std::string identity(const fs::path& p) {
+  struct stat st {};
+  if (::stat(p.c_str(), &st) == 0) {
+    return "inode " + std::to_string(st.st_dev) + " " + std::to_string(st.st_ino);
+  }
+  return "path " + resolved(p).string();
+}
+
+// How `written` reaches the file `existing` names, for the message.
+std::string through(const fs::path& written, const fs::path& existing) {
+  if (spelled(written) == spelled(existing)) return "";
+  if (resolved(written) == resolved(existing)) return " (the same file through a symbolic link)";
+  return " (the same file through a hard link)";
+}
+
+// "--out S.h5" or, for a file inside a folder output, "--csv DIR (its tracks.csv)".
+std::string describe(const Output& output, const fs::path& file) {
+  if (!output.folder || file == output.path) {
+    return fmt::format("{} {}", output.option, output.path.string());
+  }
+  return fmt::format("{} {} (its {})", output.option, output.path.string(),
+                     file.lexically_relative(output.path).string());
+}
+
+}  // namespace
+
+Output output_file(std::string option, fs::path path) {
+  return {std::move(option), std::move(path), false, {}, {}};
+}
+
+Output output_folder(std::string option, fs::path path, std::vector<fs::path> files,
+                     std::vector<fs::path> subfolders) {
+  return {std::move(option), std::move(path), true, std::move(files), std::move(subfolders)};
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  return identity(a) == identity(b);
+}
+
+void refuse_output_over_input(const std::vector<Output>& outputs,
+                              const std::vector<NamedPath>& inputs) {
+  std::map<std::string, const NamedPath*> by_identity;
+  for (const auto& in : inputs) by_identity.emplace(identity(in.path), &in);
+
+  const auto refuse_if_input = [&](const Output& output, const fs::path& file) {
+    const auto hit = by_identity.find(identity(file));
+    if (hit == by_identity.end()) return;
+    const NamedPath& in = *hit->second;
+    throw OutputIsInputError(fmt::format(
+        "{} would write over the input {} {}{}; choose another path for {}", describe(output, file),
+        in.option, in.path.string(), through(file, in.path), output.option));
+  };
+
+  std::map<std::string, std::pair<const Output*, fs::path>> written;
+  const auto refuse_if_written_twice = [&](const Output& output, const fs::path& file) {
+    const auto [at, added] = written.emplace(identity(file), std::pair{&output, file});
+    if (added) return;
+    const auto& [first, first_file] = at->second;
+    throw OutputIsInputError(fmt::format(
+        "{} and {} would write the same file{}; give them "
+        "different paths",
+        describe(*first, first_file), describe(output, file), through(file, first_file)));
+  };
+
+  for (const auto& output : outputs) {
+    if (!output.folder) {
+      refuse_if_input(output, output.path);
+      refuse_if_written_twice(output, output.path);
+      continue;
+    }
+    // A folder output may be an input's folder: what matters is the files written into it.
+    std::error_code ec;
+    if (!fs::is_directory(output.path, ec)) refuse_if_input(output, output.path);
+    for (const auto& name : output.files) {
+      refuse_if_input(output, output.path / name);
+      refuse_if_written_twice(output, output.path / name);
+    }
+    for (const auto& sub : output.subfolders) {
+      const fs::path dir = output.path / sub;
+      if (!fs::is_directory(dir, ec)) continue;
+      const auto options = fs::directory_options::skip_permission_denied;
+      for (auto it = fs::recursive_directory_iterator(dir, options, ec);
+           !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        if (!it->is_directory(ec)) refuse_if_input(output, it->path());
+      }
+    }
+  }
+}
+
+}  // namespace tactile

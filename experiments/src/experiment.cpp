@@ -1,0 +1,394 @@
+// Experiment files: parsed and checked whole before any work starts.
+
+#include "tactile/experiments/experiment.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/display/layout_json.hpp"
+#include "tactile/mapping/profile.hpp"
+#include "tactile/perception/recording.hpp"
+#include "tactile/perception/sensor_scene.hpp"
+
+namespace tactile::experiments {
+
+// The composing layer: it speaks every module's vocabulary.
+using namespace tactile::capture;
+using namespace tactile::mapping;
+using namespace tactile::perception;
+namespace {
+
+using nlohmann::json;
+
+struct Context {
+  std::string origin;
+  [[noreturn]] void fail(const std::string& what) const {
+    throw FormatError(fmt::format("{}: {}", origin, what));
+  }
+};
+
+void only_keys(const Context& cx, const json& j, const std::string& where,
+               const std::set<std::string>& known) {
+  if (!j.is_object()) cx.fail(fmt::format("{} must be a JSON object, got {}", where, j.dump()));
+  for (const auto& [key, value] : j.items()) {
+    if (!known.contains(key)) {
+      cx.fail(
+          fmt::format("{}: unknown field '{}' (known: {})", where, key, fmt::join(known, ", ")));
+    }
+  }
+}
+
+const json& required(const Context& cx, const json& j, const char* key, const std::string& where) {
+  const auto it = j.find(key);
+  if (it == j.end()) cx.fail(fmt::format("{}: missing field '{}'", where, key));
+  return *it;
+}
+
+double number(const Context& cx, const json& v, const std::string& what) {
+  if (!v.is_number()) cx.fail(fmt::format("'{}' must be a number, got {}", what, v.dump()));
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) cx.fail(fmt::format("'{}' is not finite", what));
+  return x;
+}
+
+std::int64_t integer(const Context& cx, const json& v, const std::string& what) {
+  if (!v.is_number_integer()) {
+    cx.fail(fmt::format("'{}' must be an integer, got {}", what, v.dump()));
+  }
+  return v.get<std::int64_t>();
+}
+
+std::string string(const Context& cx, const json& v, const std::string& what) {
+  if (!v.is_string() || v.get<std::string>().empty()) {
+    cx.fail(fmt::format("'{}' must be a non-empty string, got {}", what, v.dump()));
+  }
+  return v.get<std::string>();
+}
+
+// A non-empty array (a single value counts as an array of one).
+std::vector<json> list(const Context& cx, const json& v, const std::string& what) {
+  if (!v.is_array()) return {v};
+  if (v.empty()) cx.fail(fmt::format("'{}' is an empty list", what));
+  return {v.begin(), v.end()};
+}
+
+capture::SceneSpec scene_spec(const Context& cx, const json& j, const std::string& where,
+                              std::uint64_t default_seed) {
+  only_keys(cx, j, where,
+            {"scene", "frames", "frame_rate_hz", "speed_mm_per_s", "height_mm", "width_mm",
+             "contact_semi_x_mm", "noise", "seed"});
+  capture::SceneSpec s;
+  s.seed = default_seed;
+  s.scene = string(cx, required(cx, j, "scene", where), where + ".scene");
+  if (j.contains("frames")) {
+    const auto n = integer(cx, j["frames"], where + ".frames");
+    if (n < 2 || n > 100000) cx.fail(fmt::format("{}.frames = {} is not in 2..100000", where, n));
+    s.frame_count = static_cast<int>(n);
+  }
+  if (j.contains("frame_rate_hz"))
+    s.frame_rate_hz = number(cx, j["frame_rate_hz"], where + ".frame_rate_hz");
+  if (j.contains("speed_mm_per_s"))
+    s.speed_mm_per_s = number(cx, j["speed_mm_per_s"], where + ".speed_mm_per_s");
+  if (j.contains("height_mm"))
+    s.feature_height_mm = number(cx, j["height_mm"], where + ".height_mm");
+  if (j.contains("width_mm")) s.feature_width_mm = number(cx, j["width_mm"], where + ".width_mm");
+  if (j.contains("contact_semi_x_mm")) {
+    s.contact_semi_x_mm = number(cx, j["contact_semi_x_mm"], where + ".contact_semi_x_mm");
+  }
+  if (j.contains("noise")) s.noise_sigma = number(cx, j["noise"], where + ".noise");
+  if (j.contains("seed")) {
+    const auto seed = integer(cx, j["seed"], where + ".seed");
+    if (seed < 0) cx.fail(fmt::format("{}.seed must not be negative", where));
+    s.seed = static_cast<std::uint64_t>(seed);
+  }
+  try {
+    capture::validate(s);
+  } catch (const std::invalid_argument& e) {
+    cx.fail(fmt::format("{}: {}", where, e.what()));
+  }
+  return s;
+}
+
+ExperimentSource parse_source(const Context& cx, const json& j, std::size_t index,
+                              std::uint64_t seed, const std::filesystem::path& base_dir) {
+  const std::string where = fmt::format("sources[{}]", index);
+  only_keys(cx, j, where, {"name", "file", "synthetic", "ground_truth", "grid_spacing_mm"});
+  ExperimentSource s;
+  s.name = string(cx, required(cx, j, "name", where), where + ".name");
+  for (const char c : s.name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
+      cx.fail(
+          fmt::format("{}.name '{}' may hold only letters, digits, '-', '_' and '.' (it names "
+                      "files)",
+                      where, s.name));
+    }
+  }
+  const int kinds = static_cast<int>(j.contains("file")) +
+                    static_cast<int>(j.contains("synthetic")) +
+                    static_cast<int>(j.contains("ground_truth"));
+  if (kinds != 1) {
+    cx.fail(fmt::format("{} ('{}') needs exactly one of 'file', 'synthetic', 'ground_truth'", where,
+                        s.name));
+  }
+  if (j.contains("grid_spacing_mm") && !j.contains("ground_truth")) {
+    cx.fail(fmt::format("{}: 'grid_spacing_mm' applies to ground_truth sources only", where));
+  }
+  // Each synthetic source gets its own seed from the experiment's unless it names one.
+  const std::uint64_t default_seed = seed + index;
+  if (j.contains("file")) {
+    s.kind = "file";
+    s.path = string(cx, j["file"], where + ".file");
+    if (s.path.is_relative()) s.path = base_dir / s.path;
+    try {
+      s.loaded = capture::read_strain_movie(s.path);
+    } catch (const std::exception& e) {
+      cx.fail(fmt::format("{} ('{}'): {}", where, s.name, e.what()));
+    }
+    if (s.loaded->frames.empty()) {
+      cx.fail(fmt::format("{} ('{}'): {} has no strain frames", where, s.name, s.path.string()));
+    }
+    s.frame_rate_hz = s.loaded->frame_rate_hz;
+  } else if (j.contains("synthetic")) {
+    s.kind = "synthetic";
+    s.scene = scene_spec(cx, j["synthetic"], where + ".synthetic", default_seed);
+    s.frame_rate_hz = s.scene.frame_rate_hz;
+  } else {
+    s.kind = "ground-truth";
+    s.scene = scene_spec(cx, j["ground_truth"], where + ".ground_truth", default_seed);
+    s.frame_rate_hz = s.scene.frame_rate_hz;
+    if (j.contains("grid_spacing_mm")) {
+      s.grid_spacing_mm = number(cx, j["grid_spacing_mm"], where + ".grid_spacing_mm");
+      if (!(s.grid_spacing_mm >= 0.05 && s.grid_spacing_mm <= 5)) {
+        cx.fail(
+            fmt::format("{}.grid_spacing_mm = {} is not in [0.05, 5]", where, s.grid_spacing_mm));
+      }
+    }
+  }
+  return s;
+}
+
+// Every combination of the parameter lists, in a fixed order (the JSON key order is sorted).
+std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
+  static const std::set<std::string> known = {
+      "gain_um_per_strain", "normalisation",       "peak_fraction",       "rate_hz", "strain",
+      "reference_frame",    "slew_limit_um_per_s", "min_triangle_quality"};
+  only_keys(cx, j, "parameters", known);
+  std::vector<MappingParams> grid(1);
+  for (const auto& [key, value] : j.items()) {
+    const std::string what = "parameters." + key;
+    std::vector<MappingParams> next;
+    for (const auto& v : list(cx, value, what)) {
+      for (MappingParams p : grid) {
+        if (key == "gain_um_per_strain") p.gain_um_per_strain = number(cx, v, what);
+        if (key == "peak_fraction") p.peak_fraction = number(cx, v, what);
+        if (key == "rate_hz") p.rate_hz = number(cx, v, what);
+        if (key == "slew_limit_um_per_s") p.slew_limit_um_per_s = number(cx, v, what);
+        if (key == "min_triangle_quality") p.field.min_triangle_quality = number(cx, v, what);
+        if (key == "normalisation") p.normalisation = string(cx, v, what);
+        if (key == "strain") p.strain = string(cx, v, what);
+        if (key == "reference_frame") {
+          p.accumulate.reference_frame = static_cast<std::int32_t>(integer(cx, v, what));
+        }
+        next.push_back(p);
+      }
+    }
+    grid = std::move(next);
+  }
+  return grid;
+}
+
+ExperimentPerception parse_perception(const Context& cx, const json& j) {
+  only_keys(cx, j, "perception",
+            {"trials", "degree", "footprints_mm", "seed", "reference", "grid_spacing_mm"});
+  ExperimentPerception p;
+  if (j.contains("trials")) {
+    const auto n = integer(cx, j["trials"], "perception.trials");
+    if (n < 2 || n > 1000) cx.fail(fmt::format("perception.trials = {} is not in 2..1000", n));
+    p.trials = static_cast<int>(n);
+  }
+  if (j.contains("degree")) {
+    p.degrees.clear();
+    for (const auto& v : list(cx, j["degree"], "perception.degree")) {
+      const auto d = integer(cx, v, "perception.degree");
+      if (d != 1 && d != 2) cx.fail(fmt::format("perception.degree {} is not 1 or 2", d));
+      if (std::find(p.degrees.begin(), p.degrees.end(), d) != p.degrees.end())
+        cx.fail(fmt::format("perception.degree {} is given twice", d));
+      p.degrees.push_back(static_cast<int>(d));
+    }
+  }
+  if (j.contains("footprints_mm")) {
+    std::set<double> paper;
+    for (const auto& f : perception::paper_features()) paper.insert(f.footprint_mm);
+    for (const auto& v : list(cx, j["footprints_mm"], "perception.footprints_mm")) {
+      const double mm = number(cx, v, "perception.footprints_mm");
+      if (!paper.contains(mm))
+        cx.fail(
+            fmt::format("perception.footprints_mm: {:g} is not a footprint of the paper's "
+                        "plates ({})",
+                        mm, fmt::join(paper, ", ")));
+      if (std::find(p.footprints_mm.begin(), p.footprints_mm.end(), mm) != p.footprints_mm.end())
+        cx.fail(fmt::format("perception.footprints_mm: {:g} is given twice", mm));
+      p.footprints_mm.push_back(mm);
+    }
+  }
+  if (j.contains("seed")) {
+    const auto seed = integer(cx, j["seed"], "perception.seed");
+    if (seed < 0) cx.fail("perception.seed must not be negative");
+    p.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (j.contains("reference")) {
+    if (!j["reference"].is_boolean()) cx.fail("'perception.reference' must be true or false");
+    p.reference = j["reference"].get<bool>();
+  }
+  if (j.contains("grid_spacing_mm")) {
+    p.grid_spacing_mm = number(cx, j["grid_spacing_mm"], "perception.grid_spacing_mm");
+    if (!(p.grid_spacing_mm >= 0.25 && p.grid_spacing_mm <= 3))
+      cx.fail(
+          fmt::format("perception.grid_spacing_mm = {:g} is not in [0.25, 3]", p.grid_spacing_mm));
+  }
+  return p;
+}
+
+}  // namespace
+
+Experiment parse_experiment(const std::string& text, const std::string& origin,
+                            const std::filesystem::path& base_dir) {
+  const Context cx{origin};
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    cx.fail(fmt::format("not valid JSON ({})", e.what()));
+  }
+  only_keys(cx, j, "the experiment",
+            {"name", "seed", "sources", "layouts", "methods", "parameters", "write_movies",
+             "perception"});
+  Experiment ex;
+  ex.text = text;
+  ex.origin = origin;
+  ex.name = string(cx, required(cx, j, "name", "the experiment"), "name");
+  const auto seed = integer(cx, required(cx, j, "seed", "the experiment"), "seed");
+  if (seed < 0) cx.fail("'seed' must not be negative");
+  ex.seed = static_cast<std::uint64_t>(seed);
+  if (j.contains("write_movies")) {
+    if (!j["write_movies"].is_boolean()) cx.fail("'write_movies' must be true or false");
+    ex.write_movies = j["write_movies"].get<bool>();
+  }
+
+  const auto& sources = required(cx, j, "sources", "the experiment");
+  if (!sources.is_array() || sources.empty()) cx.fail("'sources' must be a non-empty list");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    ex.sources.push_back(parse_source(cx, sources[i], i, ex.seed, base_dir));
+    if (!names.insert(ex.sources.back().name).second) {
+      cx.fail(fmt::format("two sources are named '{}'", ex.sources.back().name));
+    }
+  }
+  const auto& layouts = required(cx, j, "layouts", "the experiment");
+  if (!layouts.is_array() || layouts.empty()) cx.fail("'layouts' must be a non-empty list");
+  for (std::size_t i = 0; i < layouts.size(); ++i) {
+    std::string ref = string(cx, layouts[i], fmt::format("layouts[{}]", i));
+    if (std::filesystem::path(ref).extension() == ".json" &&
+        std::filesystem::path(ref).is_relative()) {
+      ref = (base_dir / ref).string();
+    }
+    if (std::filesystem::path(ref).extension() == ".json") ex.layout_files.emplace_back(ref);
+    try {
+      ex.layouts.push_back(display::resolve_layout(ref));
+    } catch (const std::exception& e) {
+      cx.fail(fmt::format("layouts[{}]: {}", i, e.what()));
+    }
+  }
+  const auto& methods = required(cx, j, "methods", "the experiment");
+  if (!methods.is_array() || methods.empty()) cx.fail("'methods' must be a non-empty list");
+  std::vector<std::string> method_list;
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    method_list.push_back(string(cx, methods[i], fmt::format("methods[{}]", i)));
+    const auto known = mapping_method_names();
+    if (std::find(known.begin(), known.end(), method_list.back()) == known.end()) {
+      cx.fail(fmt::format("methods[{}]: unknown method '{}' (known: {})", i, method_list.back(),
+                          fmt::join(known, ", ")));
+    }
+  }
+  const auto grid = j.contains("parameters") ? parameter_grid(cx, j["parameters"])
+                                             : std::vector<MappingParams>(1);
+
+  // Every run checked against its layout and source now, so nothing fails halfway.
+  for (std::size_t s = 0; s < ex.sources.size(); ++s) {
+    for (std::size_t l = 0; l < ex.layouts.size(); ++l) {
+      const auto& source = ex.sources[s];
+      const auto& layout = ex.layouts[l];
+      if (source.frame_rate_hz > layout.max_rate_hz) {
+        cx.fail(fmt::format(
+            "source '{}' runs at {:g} Hz, faster than layout '{}' can play ({:g} Hz maximum "
+            "rate): its frames would be dropped; resample the source first",
+            source.name, source.frame_rate_hz, layout.name, layout.max_rate_hz));
+      }
+      for (const auto& method : method_list) {
+        for (MappingParams p : grid) {
+          p.method = method;
+          ExperimentRun run;
+          run.source = s;
+          run.layout = l;
+          run.id = fmt::format("{:03}-{}-{}-{}-{}", ex.runs.size(), source.name, layout.name,
+                               method, p.strain);
+          if (p.method == "profile") {
+            if (source.kind == "file") {
+              cx.fail(
+                  fmt::format("run {}: method 'profile' needs a scene, but source '{}' is a "
+                              "file (use a synthetic or ground_truth source)",
+                              run.id, source.name));
+            }
+            p.profile = profile_of_scene(source.scene);
+          }
+          try {
+            validate(p, layout);
+          } catch (const std::invalid_argument& e) {
+            cx.fail(fmt::format("run {}: {}", run.id, e.what()));
+          }
+          if (p.strain == "accumulated" && source.loaded && source.loaded->tracks.empty()) {
+            cx.fail(
+                fmt::format("run {}: source '{}' has no tracks; strain 'accumulated' needs them",
+                            run.id, source.name));
+          }
+          run.params = p;
+          ex.runs.push_back(std::move(run));
+        }
+      }
+    }
+  }
+  if (j.contains("perception")) {
+    ex.perception = parse_perception(cx, j["perception"]);
+    if (std::all_of(method_list.begin(), method_list.end(),
+                    [](const std::string& m) { return m == "profile"; }))
+      cx.fail(
+          "perception: needs a strain-driven method (proportional or integrated); 'profile' "
+          "renders a scene's surface, not the feature plates");
+    for (const auto& layout : ex.layouts)
+      if (layout.cols < perception::kElectrodeClusterCount)
+        cx.fail(fmt::format(
+            "perception: layout '{}' has {} columns, fewer than the {} distal-proximal clusters",
+            layout.name, layout.cols, perception::kElectrodeClusterCount));
+  }
+  return ex;
+}
+
+Experiment read_experiment(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open experiment file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_experiment(text.str(), path.string(), path.parent_path());
+}
+
+}  // namespace tactile::experiments

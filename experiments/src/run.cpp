@@ -1,0 +1,301 @@
+// Running an experiment: sources prepared and runs mapped on a pool of threads, then the folder
+// of movies, metrics, plots and configuration written.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "plots.hpp"
+#include "tactile/capture/strain.hpp"
+#include "tactile/common/csv.hpp"
+#include "tactile/common/h5.hpp"
+#include "tactile/common/parallel_for.hpp"
+#include "tactile/common/version.hpp"
+#include "tactile/display/layout_json.hpp"
+#include "tactile/display/movie_io.hpp"
+#include "tactile/experiments/experiment.hpp"
+#include "tactile/mapping/ground_truth.hpp"
+
+namespace tactile::experiments {
+
+// The composing layer: it speaks every module's vocabulary.
+using namespace tactile::capture;
+using namespace tactile::mapping;
+using namespace tactile::perception;
+namespace {
+
+namespace fs = std::filesystem;
+
+capture::StrainMovie prepare(const ExperimentSource& s) {
+  if (s.kind == "file") return *s.loaded;
+  if (s.kind == "ground-truth") return ground_truth_strain_movie(s.scene, s.grid_spacing_mm);
+  const auto sequence = capture::render_sequence(s.scene);
+  auto movie =
+      capture::measure_strain(sequence.frames, sequence.calibration, s.scene.frame_rate_hz);
+  movie.source = fmt::format("synthetic {} scene, {} mm/s, seed {}, measured by tactile capture",
+                             s.scene.scene, s.scene.speed_mm_per_s, s.scene.seed);
+  return movie;
+}
+
+nlohmann::json source_json(const ExperimentSource& s) {
+  nlohmann::json j{{"name", s.name}, {"kind", s.kind}, {"frame_rate_hz", s.frame_rate_hz}};
+  if (s.kind == "file") {
+    j["file"] = s.path.string();
+  } else {
+    j["scene"] = {{"scene", s.scene.scene},
+                  {"frames", s.scene.frame_count},
+                  {"frame_rate_hz", s.scene.frame_rate_hz},
+                  {"speed_mm_per_s", s.scene.speed_mm_per_s},
+                  {"height_mm", s.scene.feature_height_mm},
+                  {"width_mm", s.scene.feature_width_mm},
+                  {"contact_semi_x_mm", s.scene.contact_semi_x_mm},
+                  {"noise", s.scene.noise_sigma},
+                  {"seed", s.scene.seed}};
+    if (s.kind == "ground-truth") j["grid_spacing_mm"] = s.grid_spacing_mm;
+  }
+  return j;
+}
+
+std::string strain_key(std::size_t source, const MappingParams& p) {
+  return p.strain == "accumulated"
+             ? fmt::format("{}:acc:{}:{}", source, p.accumulate.reference_frame,
+                           p.accumulate.max_edge_ratio)
+             : fmt::format("{}:frames", source);
+}
+
+}  // namespace
+
+// The names run_experiment below and run_perception write: keep the three lists alike.
+Output experiment_output(std::string option, const fs::path& out_dir) {
+  return output_folder(std::move(option), out_dir,
+                       {"experiment.json", "resolved.json", "metrics.csv"},
+                       {"movies", "plots", "perception"});
+}
+
+ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int threads,
+                                const std::function<void(const std::string&)>& progress) {
+  ExperimentReport report;
+  report.threads = worker_count(threads);
+  const auto say = [&](const std::string& s) {
+    if (progress) progress(s);
+  };
+  const std::string created = h5::utc_now_iso8601();
+  const std::string made_by = fmt::format("tactile {} experiment '{}' ({}), seed {}, {}", kVersion,
+                                          ex.name, ex.origin, ex.seed, created);
+  fs::create_directories(out_dir);
+
+  // 1. Sources, then the strain each distinct (source, strain) pair needs.
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<capture::StrainMovie> base(ex.sources.size());
+  parallel_for(ex.sources.size(), report.threads, [&](std::size_t i) {
+    base[i] = prepare(ex.sources[i]);
+    say(fmt::format("source {} ready ({} strain frames)", ex.sources[i].name,
+                    base[i].frames.size()));
+  });
+  std::map<std::string, std::size_t> key_index;
+  std::vector<std::pair<std::size_t, MappingParams>> strain_jobs;
+  for (const auto& run : ex.runs) {
+    if (key_index.emplace(strain_key(run.source, run.params), strain_jobs.size()).second) {
+      strain_jobs.emplace_back(run.source, run.params);
+    }
+  }
+  std::vector<capture::StrainMovie> strain(strain_jobs.size());
+  parallel_for(strain_jobs.size(), report.threads, [&](std::size_t i) {
+    const auto& [s, p] = strain_jobs[i];
+    if (p.strain == "accumulated") {
+      strain[i] = accumulate_along_tracks(base[s], p.accumulate);
+      if (strain[i].frames.empty()) {
+        throw std::runtime_error(
+            fmt::format("source '{}': no frame shares three tracks with the "
+                        "reference frame",
+                        ex.sources[s].name));
+      }
+    } else {
+      strain[i] = base[s];
+    }
+  });
+  report.prepare_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // 2. Runs.
+  t0 = std::chrono::steady_clock::now();
+  if (ex.write_movies) fs::create_directories(out_dir / "movies");
+  report.results.resize(ex.runs.size());
+  std::vector<std::string> movie_files(ex.runs.size());
+  std::mutex hdf5_mutex;  // the HDF5 library is not thread-safe as Debian builds it
+  parallel_for(ex.runs.size(), report.threads, [&](std::size_t i) {
+    const auto& run = ex.runs[i];
+    const auto& source = strain[key_index.at(strain_key(run.source, run.params))];
+    const auto& layout = ex.layouts[run.layout];
+    MappingParams params = run.params;
+    params.program_version = kVersion;
+    const auto start = std::chrono::steady_clock::now();
+    auto mapped = map_strain_frames(source, layout, params);
+    auto& r = report.results[i];
+    r.map_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    r.frames = mapped.movie.frame_count;
+    r.um_per_strain = mapped.um_per_strain;
+    r.metrics = mapped.um_per_strain > 0
+                    ? fidelity(mapped.movie, source, mapped.placement, mapped.um_per_strain,
+                               params.slew_limit_um_per_s, params.field)
+                    : FidelityMetrics{};
+    const auto n = static_cast<std::size_t>(layout.contactor_count());
+    r.activity_um.resize(static_cast<std::size_t>(r.frames));
+    for (std::size_t f = 0; f < r.activity_um.size(); ++f) {
+      double sum = 0;
+      for (std::size_t j = 0; j < n; ++j) sum += std::abs(mapped.movie.deflection_um[f * n + j]);
+      r.activity_um[f] = sum / static_cast<double>(n);
+    }
+    if (ex.write_movies) {
+      auto& movie = mapped.movie;
+      movie.provenance.source =
+          fmt::format("experiment '{}' ({}), run {}, source '{}': {}", ex.name, ex.origin, run.id,
+                      ex.sources[run.source].name, source.source);
+      movie.provenance.created_utc = created;
+      const fs::path file = out_dir / "movies" / (run.id + ".h5");
+      const std::lock_guard lock(hdf5_mutex);
+      display::write_tactile_movie(file, movie);
+      movie_files[i] = file.string();
+    }
+    say(fmt::format("run {} done: correlation {:.3f}", run.id, r.metrics.strain_correlation));
+  });
+  for (const auto& f : movie_files) {
+    if (!f.empty()) report.files.emplace_back(f);
+  }
+
+  // 3. Configuration, metrics and plots.
+  {
+    const fs::path path = out_dir / "experiment.json";
+    std::ofstream out(path);
+    out << ex.text;
+    csv::finish(out, path);
+    report.files.push_back(path);
+  }
+  {
+    nlohmann::json j;
+    j["made_by"] = made_by;
+    j["program_version"] = kVersion;
+    j["created_utc"] = created;
+    j["experiment"] = ex.name;
+    j["origin"] = ex.origin;
+    j["seed"] = ex.seed;
+    j["threads"] = report.threads;
+    for (const auto& s : ex.sources) j["sources"].push_back(source_json(s));
+    for (const auto& l : ex.layouts)
+      j["layouts"].push_back(nlohmann::json::parse(display::layout_to_json(l)));
+    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+      const auto& run = ex.runs[i];
+      nlohmann::json rj;
+      rj["id"] = run.id;
+      rj["source"] = ex.sources[run.source].name;
+      rj["layout"] = ex.layouts[run.layout].name;
+      rj["movie"] = movie_files[i];
+      // The placement is the default one unless given; parameters_json records the one used.
+      rj["parameters"] = nlohmann::json::parse(parameters_json(
+          run.params, run.params.placement.value_or(default_placement(base[run.source])),
+          report.results[i].um_per_strain / run.params.gain_um_per_strain));
+      j["runs"].push_back(rj);
+    }
+    const fs::path path = out_dir / "resolved.json";
+    std::ofstream out(path);
+    out << j.dump(2) << '\n';
+    csv::finish(out, path);
+    report.files.push_back(path);
+  }
+  {
+    const fs::path path = out_dir / "metrics.csv";
+    std::ofstream out(path);
+    out << "# made by " << made_by << '\n'
+        << "run,source,layout,method,strain,normalisation,gain_um_per_strain,rate_hz,frames,"
+           "compared_pairs,strain_correlation,strain_rms_error,source_strain_rms,"
+           "saturated_fraction,slew_limited_fraction,rms_acceleration_um_per_s2,"
+           "rms_deflection_um,map_ms\n";
+    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+      const auto& run = ex.runs[i];
+      const auto& p = run.params;
+      const auto& r = report.results[i];
+      const auto& m = r.metrics;
+      out << fmt::format(
+          "{},{},{},{},{},{},{:g},{:g},{},{},{:.6f},{:.6g},{:.6g},{:.6f},{:.6f},{:.6g},"
+          "{:.6g},{:.2f}\n",
+          run.id, ex.sources[run.source].name, ex.layouts[run.layout].name, p.method, p.strain,
+          p.normalisation, p.gain_um_per_strain, p.rate_hz, r.frames, m.compared_pairs,
+          m.strain_correlation, m.strain_rms_error, m.source_strain_rms, m.saturated_fraction,
+          m.slew_limited_fraction, m.rms_acceleration_um_per_s2, m.rms_deflection_um, r.map_ms);
+    }
+    csv::finish(out, path);
+    report.files.push_back(path);
+  }
+  {
+    std::vector<std::string> labels, legend = mapping_method_names();
+    std::vector<double> correlation, saturation;
+    std::vector<int> colours;
+    std::vector<std::vector<double>> activity;
+    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+      const auto& run = ex.runs[i];
+      labels.push_back(fmt::format("{} {} {} {}{}", ex.sources[run.source].name,
+                                   ex.layouts[run.layout].name, run.params.strain,
+                                   run.params.normalisation,
+                                   run.params.gain_um_per_strain != 1000
+                                       ? fmt::format(" g{:g}", run.params.gain_um_per_strain)
+                                       : ""));
+      correlation.push_back(report.results[i].metrics.strain_correlation);
+      saturation.push_back(report.results[i].metrics.saturated_fraction);
+      const auto m = std::find(legend.begin(), legend.end(), run.params.method);
+      colours.push_back(static_cast<int>(m - legend.begin()));
+      activity.push_back(report.results[i].activity_um);
+    }
+    const std::string footer = "made by " + made_by;
+    const fs::path plots = out_dir / "plots";
+    plots::bar_chart(plots / "correlation.png",
+                     fmt::format("{}: imposed vs source strain between neighbours", ex.name),
+                     "correlation", labels, correlation, colours, legend, -0.5, 1.0, footer);
+    plots::bar_chart(plots / "saturation.png",
+                     fmt::format("{}: fraction of contactor-frames at the range limits", ex.name),
+                     "saturated fraction", labels, saturation, colours, legend, 0.0, 1.0, footer);
+    // Activity: one plot per source and layout, one line per method and parameter set, so
+    // the lines compared share the same skin and the same contactors.
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+      groups[{ex.runs[i].source, ex.runs[i].layout}].push_back(i);
+    }
+    for (const auto& [key, members] : groups) {
+      std::vector<std::string> run_labels;
+      std::vector<std::vector<double>> series;
+      for (const auto i : members) {
+        const auto& p = ex.runs[i].params;
+        run_labels.push_back(fmt::format("{} {} {} gain {:g} ({:g} Hz)", p.method, p.strain,
+                                         p.normalisation, p.gain_um_per_strain, p.rate_hz));
+        series.push_back(report.results[i].activity_um);
+      }
+      const auto& first = ex.runs[members.front()];
+      const fs::path file = plots / fmt::format("activity-{}-{}.png", ex.sources[key.first].name,
+                                                ex.layouts[key.second].name);
+      // Runs of one group may differ in rate; the time axis uses the first run's period.
+      plots::line_chart(file,
+                        fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
+                                    ex.sources[key.first].name, ex.layouts[key.second].name),
+                        "mean |deflection| (um)", run_labels, series, 1.0 / first.params.rate_hz,
+                        footer);
+      report.files.push_back(file);
+    }
+    report.files.push_back(plots / "correlation.png");
+    report.files.push_back(plots / "saturation.png");
+  }
+  report.run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (ex.perception) {
+    t0 = std::chrono::steady_clock::now();
+    report.perception = run_perception(ex, out_dir, report.threads, made_by, report.files, say);
+    report.perception_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return report;
+}
+
+}  // namespace tactile::experiments

@@ -1,0 +1,67 @@
+#pragma once
+// Signal analysis of paper 2: baseline, contact segmentation, the per-procedure windows and
+// the inputs of Table 1, from a BioTac-style recording (real or simulated).
+//
+// Inputs per exploratory procedure (our reading of Table 1; 7 + 3 x 23 = 76):
+// - static contact: the means of pressure and of the 6 electrode clusters over the middle 30 %
+//   of the contact (7); the window is steady by construction, so no rates or vibration;
+// - each of the distal-proximal stroke, radial-ulnar stroke and roll: the 7 means over each
+//   half of the feature contact (14), the 7 initial rates of change (least-squares slope over
+//   the first 25 % of the first window, per second) (7), and the mean instantaneous frequency
+//   of the first IMF of the vibration over the first and the last 250 ms of the feature
+//   contact (2).
+// Pressure and electrodes are taken relative to their baselines.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "tactile/perception/recording.hpp"
+#include "tactile/perception/sensor_scene.hpp"
+
+namespace tactile::perception {
+
+struct ContactOptions {
+  // Where the free-air baseline is: at the start (the paper: before contact), or at the end
+  // (recordings that begin in contact, like tests/data/biotac-slide).
+  enum class BaselineAt { start, end } baseline_at = BaselineAt::start;
+  double baseline_s = 0.2;            // duration averaged for the baseline
+  double threshold_fraction = 0.002;  // contact: pressure above baseline by 0.2 % of baseline
+  double min_threshold = 1.0;         // counts; for baselines near 0 (baseline-subtracted files)
+  // Feature contact from the procedure's kinematics (the paper's scenes); false: the whole
+  // contact is the feature contact (recordings of uniform textures, unknown kinematics).
+  bool feature_from_kinematics = true;
+  double stroke_activity_fraction = 0.1;  // strokes: feature contact where activity exceeds this
+};
+
+struct ContactSegment {
+  std::size_t begin = 0, end = 0;  // rows [begin, end) in contact
+  double baseline_pressure = 0;
+  double threshold = 0;            // pressure rise that counts as contact
+  bool starts_in_contact = false;  // the first row is already above threshold
+  bool ends_in_contact = false;
+};
+
+// Throws std::runtime_error naming the recording when there is no contact at all or the
+// recording is shorter than the baseline.
+ContactSegment find_contact(const perception::SensorRecording& r, const ContactOptions& o = {});
+
+// Rows [begin, end) of contact with the feature, by procedure: static contact, the whole
+// contact; strokes, within the motion (contact onset + press ramp + stroke length / speed, from
+// perception::paper_kinematics), where the electrode clusters' total departure from their level at
+// the motion's start exceeds stroke_activity_fraction of its peak; roll, the roll itself
+// (contact without the press and release ramps).
+struct FeatureContact {
+  std::size_t begin = 0, end = 0;
+};
+FeatureContact find_feature_contact(const perception::SensorRecording& r, perception::Procedure p,
+                                    const ContactSegment& contact, const ContactOptions& o = {});
+
+// The procedure's inputs (7 or 23) and their names (e.g. "dp.w1.pressure", "dp.rate.c3",
+// "roll.vib.if_last").
+std::vector<double> procedure_inputs(const perception::SensorRecording& r, perception::Procedure p,
+                                     const ContactOptions& o = {});
+std::vector<std::string> procedure_input_names(perception::Procedure p);
+std::size_t procedure_input_count(perception::Procedure p);
+
+}  // namespace tactile::perception

@@ -1,0 +1,52 @@
+#pragma once
+// Files of the perception evaluation (docs/formats.md, "Perception results"): Table 2 as CSV
+// (one row per input set and kernel: accuracy, confusion matrix, R^2 and RMS error per
+// curvature), Figure 7 as CSV (every held-out prediction) and as SVG plots (predicted against
+// true signed footprint, one colour per curvature), and the classifier's accuracy per footprint
+// (where it fails is as telling as how often).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tactile/perception/eval.hpp"
+
+namespace tactile::perception {
+
+struct TimedCascade {
+  CascadeResult result;
+  double train_test_s = 0;  // training and testing every model of this row
+};
+
+// Every row of Table 2: each input set (all, static, dp, ru, roll) with each kernel exponent
+// (the paper: 1 and 2).
+std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const PerceptionSplit& split,
+                                     const std::vector<int>& degrees = {1, 2});
+
+void write_table2_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
+void write_figure7_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
+void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& result);
+
+// Held-out curvature accuracy of one row per signed footprint, ordered by footprint.
+struct FootprintAccuracy {
+  double footprint_mm = 0;  // signed: + bump, - pit
+  int correct = 0, tested = 0;
+};
+std::vector<FootprintAccuracy> accuracy_by_footprint(const CascadeResult& result);
+
+// CSV `inputs,degree,footprint_mm,correct,tested,accuracy` for every row, and an SVG of the
+// rows with kernel exponent `degree`: accuracy against footprint, one line per input set.
+void write_accuracy_by_footprint_csv(const std::filesystem::path& path,
+                                     const std::vector<TimedCascade>& rows);
+void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
+                                     const std::vector<TimedCascade>& rows, int degree);
+
+// One line per row of Table 2, for the terminal.
+std::string table2_line(const TimedCascade& row);
+
+// Where a row's classifier errs, for the terminal: how many held-out trials it gives the wrong
+// curvature, and of those per footprint (bumps and pits together), largest share first, e.g.
+// "all exp 1: curvature wrong on 14 of 96: 1.25 mm 8 of 12, 2.5 mm 4 of 12, 5 mm 2 of 12".
+std::string misclassified_line(const CascadeResult& result);
+
+}  // namespace tactile::perception

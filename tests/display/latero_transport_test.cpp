@@ -1,0 +1,346 @@
+// The Latero transport against the emulated controller over loopback UDP (127.0.0.1 only),
+// the emulated controller's model fed datagrams directly, and HOST:PORT parsing.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <memory>
+#include <thread>
+
+#include "tactile/display/frame_codec.hpp"
+#include "tactile/display/latero_emulator.hpp"
+#include "tactile/display/latero_transport.hpp"
+#include "tactile/display/player.hpp"
+#include "test_movies.hpp"
+
+namespace tactile::display {
+namespace {
+
+using ::testing::HasSubstr;
+using Clock = std::chrono::steady_clock;
+
+// An emulator on a free loopback port, served by a thread for the test's lifetime.
+class RunningEmulator {
+ public:
+  explicit RunningEmulator(LateroEmulatorOptions options = {})
+      : emulator_([&] {
+          options.bind_address = "127.0.0.1";
+          options.port = 0;
+          return options;
+        }()) {
+    thread_ = std::thread([this] { emulator_.serve(Clock::now() + std::chrono::seconds(60)); });
+  }
+  ~RunningEmulator() {
+    emulator_.request_stop();
+    thread_.join();
+  }
+  LateroEmulator& operator*() { return emulator_; }
+  LateroEmulator* operator->() { return &emulator_; }
+  LateroAddress address() const { return {"127.0.0.1", emulator_.port()}; }
+
+ private:
+  LateroEmulator emulator_;
+  std::thread thread_;
+};
+
+// Generous for a loaded test machine: only the loss test's dropped replies should miss.
+LateroTransportOptions patient() {
+  LateroTransportOptions o;
+  o.reply_timeout = std::chrono::milliseconds(200);
+  o.link_timeout = std::chrono::milliseconds(2000);
+  return o;
+}
+
+TEST(LateroAddress, ParsesHostAndPort) {
+  EXPECT_EQ(parse_latero_address("127.0.0.1").port, 8900);
+  const auto a = parse_latero_address("127.0.0.1:9001");
+  EXPECT_EQ(a.host, "127.0.0.1");
+  EXPECT_EQ(a.port, 9001);
+  EXPECT_EQ(a.text(), "127.0.0.1:9001");
+  const auto v6 = parse_latero_address("[::1]:65535");
+  EXPECT_EQ(v6.host, "::1");
+  EXPECT_EQ(v6.port, 65535);
+  EXPECT_EQ(v6.text(), "[::1]:65535");
+  EXPECT_EQ(parse_latero_address("::1").port, 8900);
+  EXPECT_EQ(parse_latero_address("latero.local:1").host, "latero.local");
+}
+
+TEST(LateroAddress, RefusesBadInputByName) {
+  auto message = [](const std::string& text) {
+    try {
+      parse_latero_address(text);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(message("127.0.0.1:0"), HasSubstr("outside 1..65535"));
+  EXPECT_THAT(message("127.0.0.1:65536"), HasSubstr("outside 1..65535"));
+  EXPECT_THAT(message("127.0.0.1:99999999"), HasSubstr("not a number"));
+  EXPECT_THAT(message("127.0.0.1:http"), HasSubstr("not a number"));
+  EXPECT_THAT(message("127.0.0.1:"), HasSubstr("not a number"));
+  EXPECT_THAT(message(":8900"), HasSubstr("no host"));
+  EXPECT_THAT(message(""), HasSubstr("no host"));
+  EXPECT_THAT(message("[::1"), HasSubstr("without ']'"));
+  EXPECT_THAT(message("[::1]8900"), HasSubstr("expected ':PORT'"));
+}
+
+TEST(LateroModel, AnswersFullIoAndRawRequestsAsTheControllerDoes) {
+  LateroEmulatorOptions o;
+  o.fpga_version = 2;
+  o.fpga_revision = 3;
+  LateroDeviceModel model(o);
+  const auto t0 = Clock::now();
+  LateroRequest full;
+  full.sequence = 41;
+  for (int i = 0; i < kLateroBlades; ++i)
+    full.blade[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(i);
+  const auto reply = model.handle(encode_latero_request(full), t0);
+  ASSERT_TRUE(reply);
+  ASSERT_EQ(reply->size(), kLateroDatagramBytes);
+  const auto r = decode_latero_reply(*reply);
+  ASSERT_TRUE(r.packet);
+  EXPECT_EQ(r.packet->type, LateroPacketType::full_reply_page0);
+  EXPECT_EQ(r.packet->sequence, 41);
+  const auto status = decode_controller_status(r.packet->controller_status);
+  EXPECT_EQ(status.fpga_version, 2);
+  EXPECT_EQ(status.fpga_revision, 3);
+  EXPECT_TRUE(status.high_voltage_active);
+  EXPECT_NE(r.packet->io_status, 0);
+  EXPECT_EQ(r.packet->dio_in & (kLateroButton0Mask | kLateroButton1Mask),
+            kLateroButton0Mask | kLateroButton1Mask);  // released: bits high
+  EXPECT_EQ(model.blades(), full.blade);
+
+  // Buttons are active-low.
+  model.set_buttons(true, false);
+  LateroRequest io;
+  io.type = LateroPacketType::io;
+  const auto b = decode_latero_reply(*model.handle(encode_latero_request(io), t0));
+  EXPECT_EQ(b.packet->dio_in & kLateroButton0Mask, 0);
+  EXPECT_NE(b.packet->dio_in & kLateroButton1Mask, 0);
+  EXPECT_EQ(model.blades(), full.blade);  // IO requests leave the blades alone
+
+  // RAW: a write is read back at the same place, not elsewhere.
+  LateroRequest w;
+  w.type = LateroPacketType::raw;
+  w.raw_command = kLateroRawWrite | kLateroRawIoBoard;
+  w.raw_address = 0x18;
+  w.raw_data = 0x00F0;
+  model.handle(encode_latero_request(w), t0);
+  LateroRequest rd = w;
+  rd.raw_command = kLateroRawRead | kLateroRawIoBoard;
+  const auto back = decode_latero_reply(*model.handle(encode_latero_request(rd), t0));
+  EXPECT_EQ(back.packet->type, LateroPacketType::raw_reply);
+  EXPECT_EQ(back.packet->raw_data, 0x00F0);
+  rd.raw_command = kLateroRawRead | kLateroRawController;
+  EXPECT_EQ(decode_latero_reply(*model.handle(encode_latero_request(rd), t0)).packet->raw_data, 0);
+
+  // High voltage: switched on once while requests keep coming, again after a pause.
+  model.handle(encode_latero_request(io), t0 + std::chrono::milliseconds(50));
+  model.handle(encode_latero_request(io), t0 + std::chrono::milliseconds(400));
+  EXPECT_EQ(model.counters().high_voltage_enables, 2u);
+  EXPECT_EQ(model.counters().full_requests, 1u);
+  EXPECT_EQ(model.counters().io_requests, 3u);
+  EXPECT_EQ(model.counters().raw_requests, 3u);
+}
+
+TEST(LateroModel, CountsAndDropsMalformedDatagrams) {
+  LateroDeviceModel model;
+  const auto before = model.blades();
+  std::vector<std::uint8_t> bad = encode_latero_request(LateroRequest{});
+  bad[0] = 0x00;
+  EXPECT_FALSE(model.handle(bad, Clock::now()));
+  bad[0] = kLateroMagic;
+  bad[1] = 0x21;
+  EXPECT_FALSE(model.handle(bad, Clock::now()));
+  EXPECT_FALSE(model.handle(std::vector<std::uint8_t>(3, 0xCA), Clock::now()));
+  EXPECT_FALSE(model.handle(std::vector<std::uint8_t>(101, 0xCA), Clock::now()));
+  const auto& c = model.counters();
+  EXPECT_EQ(c.malformed, 4u);
+  EXPECT_EQ(c.malformed_by_reason.at("bad_magic"), 1u);
+  EXPECT_EQ(c.malformed_by_reason.at("bad_version"), 1u);
+  EXPECT_EQ(c.malformed_by_reason.at("too_short"), 1u);
+  EXPECT_EQ(c.malformed_by_reason.at("oversized"), 1u);
+  EXPECT_EQ(c.replies_sent, 0u);
+  EXPECT_EQ(model.blades(), before);  // never played
+}
+
+TEST(LateroModel, LeavesOutEveryNthReply) {
+  LateroEmulatorOptions o;
+  o.drop_every_nth_reply = 3;
+  LateroDeviceModel model(o);
+  int answered = 0;
+  for (int i = 0; i < 10; ++i) {
+    if (model.handle(encode_latero_request(LateroRequest{}), Clock::now())) ++answered;
+  }
+  EXPECT_EQ(answered, 7);  // the 3rd, 6th and 9th are left out
+  EXPECT_EQ(model.counters().replies_dropped, 3u);
+}
+
+TEST(LateroTransport, ProbeDescribesTheDevice) {
+  LateroEmulatorOptions o;
+  o.fpga_version = 3;
+  o.fpga_revision = 1;
+  RunningEmulator emulator(o);
+  LateroTransport t(emulator.address(), patient());
+  const DeviceInfo info = t.info();
+  EXPECT_EQ(info.backend, "latero");
+  EXPECT_THAT(info.name, HasSubstr(emulator.address().text()));
+  EXPECT_THAT(info.firmware_version, HasSubstr("FPGA 3.1"));
+  EXPECT_THAT(info.firmware_version, HasSubstr("high voltage active"));
+  EXPECT_THAT(info.firmware_version, HasSubstr("IO board FPGA 1.0"));
+  EXPECT_EQ(info.layout.name, "latero");
+  EXPECT_EQ(emulator->counters().io_requests, 1u);
+  EXPECT_EQ(emulator->counters().full_requests, 0u);  // probing moves no blade
+}
+
+TEST(LateroTransport, WorksOverIpv6Loopback) {
+  LateroEmulatorOptions o;
+  o.bind_address = "::1";
+  o.port = 0;
+  std::unique_ptr<LateroEmulator> emulator;
+  try {
+    emulator = std::make_unique<LateroEmulator>(o);
+  } catch (const std::runtime_error& e) {
+    GTEST_SKIP() << "no IPv6 loopback here: " << e.what();
+  }
+  EXPECT_EQ(emulator->address(), "[::1]:" + std::to_string(emulator->port()));
+  std::thread server([&] { emulator->serve(Clock::now() + std::chrono::seconds(10)); });
+  LateroTransport t(parse_latero_address(emulator->address()), patient());
+  EXPECT_THAT(t.info().name, HasSubstr("[::1]:"));
+  emulator->request_stop();
+  server.join();
+  EXPECT_EQ(emulator->counters().io_requests, 1u);
+}
+
+TEST(LateroTransport, PlaysEveryFramePacedByTheHostClockAndStopsAtCentre) {
+  RunningEmulator emulator;
+  LateroTransport t(emulator.address(), patient());
+  const TactileMovie movie = testing::sine_movie(latero_layout(), 750, 300, 90);  // 0.4 s
+  const auto wall0 = Clock::now();
+  const PlaybackReport r = play_movie(movie, t);
+  const double wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
+  const LateroLinkStats s = t.stats();
+  EXPECT_EQ(r.frames_sent, r.movie_frames + r.ramp_frames);
+  EXPECT_EQ(s.frames_sent, static_cast<std::uint64_t>(r.frames_sent));
+  ASSERT_EQ(s.send_offset_s.size(), s.frames_sent);
+  // Never early: each frame leaves at or after its slot, so the stream lasts at least as long
+  // as its frames at 750 Hz.
+  for (const double d : s.send_offset_s) ASSERT_GE(d, 0.0);
+  EXPECT_GE(wall_s, static_cast<double>(r.frames_sent) / 750.0);
+  const LateroEmulatorCounters c = emulator->counters();
+  // Every request reached the emulator: the frames and the stop ramp (all FULL), one probe.
+  EXPECT_EQ(c.full_requests, s.requests_sent);
+  EXPECT_GT(s.requests_sent, s.frames_sent);  // the stop ramp
+  EXPECT_EQ(c.io_requests, 1u);
+  EXPECT_EQ(c.malformed, 0u);
+  // Every request answered in time or counted as missed.
+  EXPECT_EQ(s.requests_sent, s.replies_received - s.late_replies + s.missed_replies);
+  EXPECT_EQ(c.replies_sent, s.replies_received + 1);  // + the probe's reply
+  // The clean stop left every blade at centre.
+  const auto blades = emulator->blades();
+  EXPECT_TRUE(std::all_of(blades.begin(), blades.end(), [](std::uint8_t b) { return b == 75; }));
+}
+
+TEST(LateroTransport, CountsRepliesTheDeviceLeftOut) {
+  LateroEmulatorOptions o;
+  o.drop_every_nth_reply = 7;
+  RunningEmulator emulator(o);
+  LateroTransport t(emulator.address(), patient());
+  play_movie(testing::sine_movie(latero_layout(), 750, 150, 50), t);
+  const LateroLinkStats s = t.stats();
+  const LateroEmulatorCounters c = emulator->counters();
+  ASSERT_GT(c.replies_dropped, 20u);
+  // The probe's reply was the first and was sent; all dropped ones belong to the stream.
+  EXPECT_EQ(s.missed_replies - s.late_replies, c.replies_dropped);
+  EXPECT_EQ(s.replies_received + 1, c.replies_sent);
+}
+
+TEST(LateroTransport, StopMidStreamRampsEveryBladeToCentre) {
+  RunningEmulator emulator;
+  LateroTransportOptions o = patient();
+  o.mapping.centre_raw = 128;
+  o.mapping.max_raw = 255;
+  LateroTransport t(emulator.address(), o);
+  t.info();
+  t.start(750);
+  std::vector<float> frame(64, 100.0f);
+  for (std::uint32_t k = 0; k < 5; ++k) t.send_frame(encode_frame(frame, k));
+  // Wait for the emulator to play the last frame before looking at it.
+  for (int i = 0; i < 200 && emulator->counters().full_requests < 5; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(emulator->blades()[0], 203);  // 128 + 75
+  t.stop();
+  for (int i = 0; i < 200 && emulator->blades()[0] != 128; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  const auto blades = emulator->blades();
+  EXPECT_TRUE(std::all_of(blades.begin(), blades.end(), [](std::uint8_t b) { return b == 128; }));
+  EXPECT_EQ(emulator->counters().full_requests, t.stats().requests_sent);
+}
+
+TEST(LateroTransport, RefusesFramesItCannotPlayWithoutSendingThem) {
+  RunningEmulator emulator;
+  LateroTransport t(emulator.address(), patient());
+  t.info();
+  t.start(750);
+  std::vector<std::uint8_t> frame = encode_frame(std::vector<float>(64, 1.0f), 0);
+  frame[20] ^= 0xFF;  // checksum no longer matches
+  t.send_frame(frame);
+  t.send_frame(encode_frame(std::vector<float>(100, 1.0f), 1));  // a STReSS frame
+  EXPECT_EQ(t.stats().unplayable_frames, 2u);
+  EXPECT_EQ(t.stats().frames_sent, 0u);
+  EXPECT_EQ(t.status().malformed, 2u);
+}
+
+TEST(LateroTransport, SilentDeviceTimesOutNamingTheAddress) {
+  // A bound socket that never answers: no ICMP, pure silence.
+  const int s = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  socklen_t len = sizeof a;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len);
+  const auto port = ntohs(a.sin_port);
+  LateroTransportOptions o;
+  o.link_timeout = std::chrono::milliseconds(150);
+  LateroTransport t({"127.0.0.1", port}, o);
+  const auto t0 = Clock::now();
+  try {
+    t.info();
+    ADD_FAILURE() << "no error";
+  } catch (const TransportError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("127.0.0.1:" + std::to_string(port)));
+    EXPECT_THAT(e.what(), HasSubstr("no reply within 150 ms"));
+  }
+  EXPECT_LT(Clock::now() - t0, std::chrono::seconds(2));
+  ::close(s);
+}
+
+TEST(LateroTransport, DeviceThatGoesAwayMidStreamEndsTheStream) {
+  auto emulator = std::make_unique<RunningEmulator>();
+  LateroTransportOptions o;
+  o.link_timeout = std::chrono::milliseconds(100);
+  LateroTransport t(emulator->address(), o);
+  t.info();
+  t.start(750);
+  const std::vector<float> frame(64, 0.0f);
+  t.send_frame(encode_frame(frame, 0));
+  emulator.reset();  // the device is gone
+  try {
+    for (std::uint32_t k = 1; k < 750; ++k) t.send_frame(encode_frame(frame, k));
+    ADD_FAILURE() << "no error after 1 s of silence";
+  } catch (const TransportError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no reply for 100 ms"));
+    EXPECT_THAT(e.what(), HasSubstr("nothing listens"));  // loopback reports the closed port
+  }
+}
+
+}  // namespace
+}  // namespace tactile::display

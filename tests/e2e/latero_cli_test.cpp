@@ -1,0 +1,230 @@
+// The Latero from the command line: `tactile emulate --latero` in the background and `tactile
+// play --latero` against it over loopback UDP (127.0.0.1 only, bounded in time), the
+// sender's and the emulator's counters compared; mapping for the latero layout; bad input.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "run.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/display/movie_io.hpp"
+#include "tactile/mapping/ground_truth.hpp"
+
+namespace fs = std::filesystem;
+using tactile::test::run_tactile;
+using ::testing::HasSubstr;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  return tactile::test::fresh_scratch_dir("tactile_latero_", name);
+}
+
+// A loopback UDP port nobody uses right now (bound, then released).
+int free_udp_port() {
+  const int s = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(s);
+  return ntohs(a.sin_port);
+}
+
+fs::path write_movie(const fs::path& dir, const tactile::display::Layout& layout, double rate_hz,
+                     int frames) {
+  tactile::display::TactileMovie m;
+  m.layout = layout;
+  m.rate_hz = rate_hz;
+  m.frame_count = frames;
+  const auto n = static_cast<std::size_t>(layout.contactor_count());
+  m.deflection_um.resize(static_cast<std::size_t>(frames) * n);
+  for (int f = 0; f < frames; ++f) {
+    for (std::size_t k = 0; k < n; ++k) {
+      m.deflection_um[static_cast<std::size_t>(f) * n + k] = static_cast<float>(
+          40 * std::sin(2 * std::numbers::pi * (3.0 * f / rate_hz + static_cast<double>(k) / n)));
+    }
+  }
+  m.provenance.program_version = "test";
+  m.provenance.source = "sine";
+  const fs::path path = dir / (layout.name + ".h5");
+  tactile::display::write_tactile_movie(path, m);
+  return path;
+}
+
+// The numbers captured by `pattern`'s groups at its first match in `text` (fails the test and
+// returns zeros when it does not match).
+std::vector<double> numbers(const std::string& text, const std::string& pattern) {
+  const std::regex re(pattern);
+  std::smatch m;
+  if (!std::regex_search(text, m, re)) {
+    ADD_FAILURE() << "no match for " << pattern << " in:\n" << text;
+    return std::vector<double>(re.mark_count(), 0.0);
+  }
+  std::vector<double> out;
+  for (std::size_t i = 1; i < m.size(); ++i) out.push_back(std::stod(m[i]));
+  return out;
+}
+
+// What `play --latero` and the emulator print (player report, link figures, counters).
+const std::string kFrames = R"(frames\s+(\d+) sent \((\d+) movie \+ (\d+) ramp\))";
+const std::string kRate = R"(sent at ([0-9.]+) Hz achieved)";
+const std::string kLink =
+    R"(replies\s+(\d+) requests, (\d+) replies, (\d+) missed \((\d+) of them came late\))";
+const std::string kDatagrams =
+    R"(datagrams\s+(\d+) received: (\d+) FULL \(frames played\), (\d+) IO, (\d+) RAW, (\d+) malformed)";
+const std::string kEmulatorReplies = R"(replies\s+(\d+) sent, (\d+) left out)";
+const std::string kBladesLeft = R"(blades\s+left at raw (\d+)\.\.(\d+))";
+
+// Starts the emulator in the background, runs `client_args`, stops the emulator with SIGINT and
+// returns everything both printed (the client first).
+tactile::test::RunResult with_emulator(int port, const std::string& emulator_args,
+                                       const std::string& client_args, const fs::path& dir) {
+  const std::string bin = TACTILE_CLI_PATH;
+  const std::string log = (dir / "emulator.log").string();
+  return run_tactile("emulate --latero --port " + std::to_string(port) + " --seconds 60 " +
+                     emulator_args + " > " + log + " 2>&1 & E=$!; sleep 0.3; " + bin + " " +
+                     client_args + " 2>&1; rc=$?; kill -INT $E; wait $E; cat " + log +
+                     "; exit $rc");
+}
+
+}  // namespace
+
+TEST(LateroCli, PlaysTenSecondsAt750HzAndTheEmulatorCountsAgree) {
+  const fs::path d = scratch("play");
+  const int port = free_udp_port();
+  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 7500);  // 10 s
+  const auto r = with_emulator(
+      port, "", "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port), d);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string& out = r.output;
+  const auto frames = numbers(out, kFrames);  // sent, movie, ramp
+  EXPECT_EQ(frames[0], 7500 + frames[2]);
+  EXPECT_EQ(frames[1], 7500);
+  EXPECT_NEAR(numbers(out, kRate)[0], 750, 750 * 0.05) << out;
+  const auto link = numbers(out, kLink);            // requests, replies, missed, late
+  EXPECT_GT(link[0], frames[0]);                    // the stop ramp comes after the frames
+  EXPECT_EQ(link[0], link[1] - link[3] + link[2]);  // each answered in time or missed
+  // The emulator received every request as a FULL request (plus one IO probe), none
+  // malformed, and the sender received every reply it sent.
+  EXPECT_THAT(out, HasSubstr("emulate: stopped"));
+  const auto got = numbers(out, kDatagrams);  // datagrams, full, io, raw, malformed
+  EXPECT_EQ(got[1], link[0]);
+  EXPECT_EQ(got[2], 1);
+  EXPECT_EQ(got[4], 0);
+  const auto replies = numbers(out, kEmulatorReplies);  // sent, left out
+  EXPECT_EQ(replies[0], link[1] + 1);
+  EXPECT_EQ(replies[1], 0);
+  // The clean stop left every blade at OpenLatero's centre.
+  EXPECT_EQ(numbers(out, kBladesLeft), (std::vector<double>{75, 75}));
+}
+
+TEST(LateroCli, BladeMappingIsTheUsersToSet) {
+  const fs::path d = scratch("mapping");
+  const int port = free_udp_port();
+  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 75);
+  const std::string play = "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port);
+  const auto r = with_emulator(port, "", play + " --blade-centre-raw 128 --blade-max-raw 255", d);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("raw 128 at rest"));
+  EXPECT_EQ(numbers(r.output, kBladesLeft), (std::vector<double>{128, 128}));
+  // A centre above the largest raw value is refused before anything is sent.
+  const auto bad = run_tactile(play + " --blade-centre-raw 200");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.output, HasSubstr("centre_raw 200 is outside [0, max_raw 150]"));
+  EXPECT_EQ(run_tactile(play + " --blade-max-raw 300").exit_code, 2);
+}
+
+TEST(LateroCli, MissedRepliesAreCountedByTheSender) {
+  const fs::path d = scratch("loss");
+  const int port = free_udp_port();
+  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 750);  // 1 s
+  const auto r =
+      with_emulator(port, "--drop-every 10",
+                    "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port), d);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto link = numbers(r.output, kLink);                // requests, replies, missed, late
+  const auto replies = numbers(r.output, kEmulatorReplies);  // sent, left out
+  EXPECT_GT(replies[1], 70);                                 // every 10th of ~800 requests
+  EXPECT_EQ(link[2] - link[3], replies[1]);
+  EXPECT_EQ(link[1], replies[0] - 1);  // all but the probe's reply
+}
+
+TEST(LateroCli, StressMovieIsRefusedNamingBothLayouts) {
+  const fs::path d = scratch("stress");
+  const fs::path movie = write_movie(d, tactile::display::stress_layout(), 700, 10);
+  const auto r = run_tactile("play " + movie.string() +
+                             " --latero 127.0.0.1:" + std::to_string(free_udp_port()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("'stress'"));
+  EXPECT_THAT(r.output, HasSubstr("'latero'"));
+  EXPECT_THAT(r.output, HasSubstr("--layout latero"));
+}
+
+TEST(LateroCli, BadAddressesAreUsageErrors) {
+  const fs::path d = scratch("usage");
+  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 10);
+  for (const auto& [address, why] :
+       std::vector<std::pair<std::string, std::string>>{{"127.0.0.1:0", "outside 1..65535"},
+                                                        {"127.0.0.1:65536", "outside 1..65535"},
+                                                        {"127.0.0.1:port", "not a number"},
+                                                        {":8900", "no host"},
+                                                        {"[::1", "without ']'"}}) {
+    const auto r = run_tactile("play " + movie.string() + " --latero '" + address + "'");
+    EXPECT_EQ(r.exit_code, 2) << address << "\n" << r.output;
+    EXPECT_THAT(r.output, HasSubstr(why)) << address;
+    const auto dev = run_tactile("devices --latero '" + address + "'");
+    EXPECT_EQ(dev.exit_code, 2) << address;
+  }
+}
+
+TEST(LateroCli, NothingListeningTimesOutNamingTheAddress) {
+  const int port = free_udp_port();
+  const std::string address = "127.0.0.1:" + std::to_string(port);
+  const auto r = run_tactile("devices --latero " + address);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr(address));
+  EXPECT_THAT(r.output, HasSubstr("no reply within"));
+}
+
+TEST(LateroCli, DevicesPrintsWhatTheEmulatorReports) {
+  const fs::path d = scratch("devices");
+  const int port = free_udp_port();
+  const auto r =
+      with_emulator(port, "--no-io-board", "devices --latero 127.0.0.1:" + std::to_string(port), d);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("controller FPGA 1.0, high voltage active"));
+  EXPECT_THAT(r.output, HasSubstr("no IO board"));
+  EXPECT_THAT(r.output, HasSubstr("left released, right released"));
+}
+
+TEST(LateroCli, MapForTheLateroLayoutMakesA750HzMovie) {
+  const fs::path d = scratch("map");
+  tactile::capture::SceneSpec spec;
+  spec.frame_count = 12;
+  tactile::capture::write_strain_movie(d / "strain.h5",
+                                       tactile::mapping::ground_truth_strain_movie(spec, 0.25));
+  const auto r = run_tactile("map " + (d / "strain.h5").string() + " --layout latero --out " +
+                             (d / "movie.h5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto movie = tactile::display::read_tactile_movie(d / "movie.h5");
+  EXPECT_EQ(movie.layout.name, "latero");
+  EXPECT_DOUBLE_EQ(movie.rate_hz, 750);
+  // Asked for explicitly, another rate is kept.
+  const auto r2 = run_tactile("map " + (d / "strain.h5").string() +
+                              " --layout latero --rate-hz 500 --out " + (d / "m2.h5").string());
+  ASSERT_EQ(r2.exit_code, 0) << r2.output;
+  EXPECT_DOUBLE_EQ(tactile::display::read_tactile_movie(d / "m2.h5").rate_hz, 500);
+}

@@ -1,0 +1,62 @@
+// Numeric options out of range say so with the bounds a person would write, never the
+// 300-digit limits of a double.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <string>
+
+#include "run.hpp"
+
+using tactile::test::demo_dir;
+using tactile::test::run_tactile;
+using ::testing::HasSubstr;
+
+namespace {
+
+// Exit 2 with `message` and no number of 20 digits or more.
+void expect_readable_range_error(const std::string& args, const std::string& message) {
+  const auto r = run_tactile(args);
+  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+  EXPECT_THAT(r.output, HasSubstr(message)) << args;
+  EXPECT_FALSE(std::regex_search(r.output, std::regex("[0-9]{20}"))) << args << ": " << r.output;
+}
+
+TEST(RangeErrors, ReadLikeAPersonWroteThem) {
+  const std::string image = (tactile::test::test_data("polyu-hrf-pores") / "image_01.jpg").string();
+  expect_readable_range_error("features " + image + " --px-per-mm 0",
+                              "--px-per-mm: 0 is out of range: must be > 0");
+  expect_readable_range_error(
+      "map " + (demo_dir() / "strain.h5").string() + " --out x.h5 --rate-hz -5",
+      "--rate-hz: -5 is out of range: must be > 0");
+  expect_readable_range_error("train-pores --prints " +
+                                  tactile::test::test_data("polyu-hrf-pores").string() +
+                                  " --px-per-mm 47 --out x.json --l2 -1",
+                              "--l2: -1 is out of range: must be >= 0");
+  expect_readable_range_error("view " + (demo_dir() / "movie.h5").string() + " --at -0.5",
+                              "--at: -0.5 is out of range: must be >= 0");
+  expect_readable_range_error("synth x --speed 1000",
+                              "--speed: 1000 is out of range: must be from "
+                              "0 to 100");
+  expect_readable_range_error(
+      "capture " + demo_dir().string() + " --px-per-mm 62 --out x.h5 --span 0",
+      "--span: 0 is out of range: must be from 1 to 10000");
+  expect_readable_range_error("bench stream --seconds 0.01",
+                              "--seconds: 0.01 is out of range: must be from 0.1 to 600");
+  expect_readable_range_error("synth x --frames 2.5", "--frames: 2.5 is not a whole number");
+}
+
+TEST(RangeErrors, HelpShowsReadableBounds) {
+  const auto r = run_tactile("capture --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("--px-per-mm FLOAT:> 0"));
+  EXPECT_THAT(r.output, HasSubstr("--span INT:1 to 10000"));
+  for (const char* command : {"synth", "calibrate", "features", "capture", "train-pores", "map",
+                              "perceive", "play", "view", "bench stream", "bench map"}) {
+    const auto help = run_tactile(std::string(command) + " --help");
+    EXPECT_FALSE(std::regex_search(help.output, std::regex("[0-9]{20}"))) << command;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,193 @@
+// Experiments: a small grid runs and writes its folder reproducibly; every bad experiment file is
+// refused by name before any work.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tactile/common/error.hpp"
+#include "tactile/display/movie_io.hpp"
+#include "tactile/experiments/experiment.hpp"
+
+namespace tactile::experiments {
+namespace {
+
+using namespace tactile::capture;
+using namespace tactile::mapping;
+using namespace tactile::perception;
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// Ground truth of a short bump scene on a coarse grid: fast enough for debug+sanitizer builds.
+const char* kSmall = R"({
+  "name": "small", "seed": 3,
+  "sources": [{"name": "bump", "ground_truth": {"scene": "bump", "frames": 12}, "grid_spacing_mm": 0.5}],
+  "layouts": ["stress", "latero"],
+  "methods": ["proportional", "integrated"],
+  "parameters": {"strain": ["per-frame", "accumulated"], "rate_hz": 200}
+})";
+
+fs::path fresh_dir(const std::string& name) {
+  const auto dir = fs::temp_directory_path() / ("tactile_experiment_test_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The CSV without its first line (which carries the creation time).
+std::string table_of(const fs::path& csv) {
+  const auto text = slurp(csv);
+  return text.substr(text.find('\n') + 1);
+}
+
+TEST(Experiment, ParsesTheGridInAFixedOrder) {
+  const auto ex = parse_experiment(kSmall, "small.json", ".");
+  EXPECT_EQ(ex.name, "small");
+  EXPECT_EQ(ex.seed, 3u);
+  ASSERT_EQ(ex.runs.size(), 1u * 2 * 2 * 2);
+  EXPECT_EQ(ex.runs[0].id, "000-bump-stress-proportional-per-frame");
+  EXPECT_EQ(ex.runs[1].id, "001-bump-stress-proportional-accumulated");
+  EXPECT_EQ(ex.runs[7].id, "007-bump-latero-integrated-accumulated");
+  EXPECT_DOUBLE_EQ(ex.runs[5].params.rate_hz, 200);
+  EXPECT_EQ(ex.sources[0].scene.seed, 3u);  // experiment seed + source index
+  EXPECT_EQ(ex.sources[0].scene.frame_count, 12);
+}
+
+TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
+  const auto one = fresh_dir("one");
+  const auto two = fresh_dir("two");
+  const auto report = run_experiment(parse_experiment(kSmall, "small.json", "."), one, 1);
+  run_experiment(parse_experiment(kSmall, "small.json", "."), two, 2);
+  for (const char* f :
+       {"experiment.json", "resolved.json", "metrics.csv", "plots/correlation.png",
+        "plots/saturation.png", "plots/activity-bump-stress.png", "plots/activity-bump-latero.png",
+        "movies/003-bump-stress-integrated-accumulated.h5"}) {
+    EXPECT_TRUE(fs::exists(one / f)) << f;
+  }
+  EXPECT_EQ(slurp(one / "experiment.json"), kSmall);
+  EXPECT_THAT(slurp(one / "metrics.csv"), HasSubstr("# made by tactile"));
+  EXPECT_THAT(slurp(one / "resolved.json"), HasSubstr("\"normalisation_factor\""));
+  EXPECT_EQ(table_of(one / "metrics.csv").find("map_ms"),
+            table_of(two / "metrics.csv").find("map_ms"));
+  // Same numbers whatever the thread count (the timing column aside).
+  const auto strip_timing = [](std::string table) {
+    std::istringstream in(table);
+    std::string line, out;
+    while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+  };
+  EXPECT_EQ(strip_timing(table_of(one / "metrics.csv")),
+            strip_timing(table_of(two / "metrics.csv")));
+  const auto a =
+      display::read_tactile_movie(one / "movies/002-bump-stress-integrated-per-frame.h5");
+  const auto b =
+      display::read_tactile_movie(two / "movies/002-bump-stress-integrated-per-frame.h5");
+  EXPECT_EQ(a.deflection_um, b.deflection_um);
+  EXPECT_THAT(a.provenance.source, HasSubstr("experiment 'small'"));
+  EXPECT_THAT(a.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"per-frame\""));
+  EXPECT_EQ(a.provenance.mapping_method, "integrated");
+  // 11 strain frames at 60 Hz (1/60 .. 11/60 s) at 200 Hz: floor(10/60 * 200) + 1 frames.
+  EXPECT_EQ(a.frame_count, 34);
+  ASSERT_EQ(report.results.size(), 8u);
+  EXPECT_GT(report.results[2].metrics.compared_pairs, 0);
+  // experiment_output names every file written, so that no input can be among them unnoticed.
+  const Output output = experiment_output("--out", one);
+  for (const auto& file : report.files) {
+    const fs::path relative = fs::path(file).lexically_relative(one);
+    const bool named =
+        std::find(output.files.begin(), output.files.end(), relative) != output.files.end() ||
+        std::find(output.subfolders.begin(), output.subfolders.end(), *relative.begin()) !=
+            output.subfolders.end();
+    EXPECT_TRUE(named) << file;
+  }
+  fs::remove_all(one);
+  fs::remove_all(two);
+}
+
+void refused(const std::string& text, const std::string& message,
+             const fs::path& base = fs::temp_directory_path()) {
+  try {
+    parse_experiment(text, "bad.json", base);
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const FormatError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad.json")) << e.what();
+    EXPECT_THAT(e.what(), HasSubstr(message)) << e.what();
+  }
+}
+
+std::string edit(const std::string& from, const std::string& to) {
+  std::string text = kSmall;
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
+  refused("{", "not valid JSON");
+  refused("[]", "must be a JSON object");
+  refused(edit("\"name\": \"small\", ", ""), "missing field 'name'");
+  refused(edit("\"seed\": 3,", ""), "missing field 'seed'");
+  refused(edit("\"layouts\": [\"stress\", \"latero\"],", ""), "missing field 'layouts'");
+  refused(edit("\"methods\": [\"proportional\", \"integrated\"],", ""), "missing field 'methods'");
+  refused(edit("\"seed\": 3", "\"seed\": 3, \"sead\": 4"), "unknown field 'sead'");
+  refused(edit("\"integrated\"]", "\"integrated\", \"wavelet\"]"),
+          "unknown method 'wavelet' (known: proportional, integrated, profile)");
+  refused(edit("[\"proportional\", \"integrated\"]", "[]"), "'methods' must be a non-empty list");
+  refused(edit("[\"stress\", \"latero\"]", "[]"), "'layouts' must be a non-empty list");
+  refused(edit("\"latero\"]", "\"braille\"]"), "unknown layout 'braille'");
+  refused(edit("\"latero\"]", "\"missing-layout.json\"]"), "cannot open layout file");
+  refused(edit("\"accumulated\"]", "\"integral\"]"), "unknown strain 'integral'");
+  refused(edit("\"rate_hz\": 200", "\"rate_hz\": 800"),
+          "rate 800 Hz is above layout 'stress' maximum rate 700 Hz");
+  refused(edit("\"rate_hz\": 200", "\"rate_hz\": -1"), "rate_hz must be positive");
+  refused(edit("\"rate_hz\": 200", "\"gain\": 2"), "unknown field 'gain'");
+  refused(edit("\"frames\": 12}", "\"frames\": 12, \"frame_rate_hz\": 900}"),
+          "source 'bump' runs at 900 Hz, faster than layout 'stress' can play (700 Hz");
+  refused(edit("\"scene\": \"bump\"", "\"scene\": \"ridge\""), "scene 'ridge' is not one of");
+  refused(edit("\"frames\": 12", "\"frames\": 1"), "frames = 1 is not in 2..100000");
+  refused(edit("\"ground_truth\"", "\"groundtruth\""), "unknown field 'groundtruth'");
+  refused(edit("\"name\": \"bump\", ", "\"name\": \"bump\", \"file\": \"x.h5\", "),
+          "needs exactly one of 'file', 'synthetic', 'ground_truth'");
+  refused(edit("\"name\": \"bump\"", "\"name\": \"bump/1\""), "may hold only letters");
+  refused(edit("\"name\": \"bump\", \"ground_truth\": {\"scene\": \"bump\", \"frames\": 12}, "
+               "\"grid_spacing_mm\": 0.5",
+               "\"name\": \"rec\", \"file\": \"no-such-movie.h5\""),
+          "sources[0] ('rec')");
+  const std::string source =
+      R"({"name": "bump", "ground_truth": {"scene": "bump", "frames": 12}, "grid_spacing_mm": 0.5})";
+  refused(edit(source, source + ", " + source), "two sources are named 'bump'");
+  refused(edit("\"grid_spacing_mm\": 0.5", "\"grid_spacing_mm\": 0"),
+          "grid_spacing_mm = 0 is not in [0.05, 5]");
+}
+
+TEST(Experiment, CustomLayoutFilesResolveFromTheExperimentsFolder) {
+  const auto dir = fresh_dir("layout");
+  fs::create_directories(dir);
+  std::ofstream(dir / "slow.json") << R"({"name": "slow", "rows": 4, "cols": 4,
+    "pitch_mm": [1, 1], "contactor_size_mm": [0.5, 0.5], "deflection_axis": "x",
+    "deflection_range_um": [-50, 50], "max_rate_hz": 100})";
+  const auto text = edit("\"latero\"]", "\"slow.json\"]");
+  // 200 Hz is too fast for the custom layout: incompatible layout and rate.
+  refused(text, "rate 200 Hz is above layout 'slow' maximum rate 100 Hz", dir);
+  std::string slower = text;
+  slower.replace(slower.find("\"rate_hz\": 200"), 14, "\"rate_hz\": 100");
+  const auto ok = parse_experiment(slower, "ok.json", dir);
+  EXPECT_EQ(ok.layouts[1].name, "slow");
+  EXPECT_EQ(ok.layouts[1].rows, 4);
+  EXPECT_EQ(ok.layout_files, std::vector<fs::path>{dir / "slow.json"});
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tactile::experiments

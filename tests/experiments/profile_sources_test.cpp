@@ -1,0 +1,49 @@
+// An experiment refuses method "profile" on a file source: the method renders a scene's surface,
+// which a recorded strain movie does not have.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "synthetic.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/experiments/experiment.hpp"
+
+namespace tactile::experiments {
+namespace {
+
+using ::testing::HasSubstr;
+namespace testing = tactile::mapping::testing;
+
+TEST(Profile, ExperimentsRefuseItOnFileSources) {
+  const auto dir = std::filesystem::temp_directory_path() / "tactile_profile_test";
+  std::filesystem::create_directories(dir);
+  auto movie = testing::make_movie(
+      testing::GridSpec{.width_mm = 4, .height_mm = 4, .spacing_mm = 1},
+      [](double, double, double) {
+        return capture::PointMm{0, 0};
+      },
+      5, 60.0);
+  // The file format wants every point's track in /tracks.
+  for (const auto& p : movie.frames.front().points_from) movie.tracks.push_back(p);
+  for (const auto& f : movie.frames) {
+    for (const auto& p : f.points_to) movie.tracks.push_back(p);
+  }
+  std::stable_sort(movie.tracks.begin(), movie.tracks.end(),
+                   [](const auto& a, const auto& b) { return a.track_id < b.track_id; });
+  capture::write_strain_movie(dir / "rec.h5", movie);
+  try {
+    parse_experiment(R"({"name": "p", "seed": 1, "sources": [{"name": "rec", "file": "rec.h5"}],
+                         "layouts": ["stress"], "methods": ["profile"]})",
+                     "p.json", dir);
+    FAIL() << "accepted";
+  } catch (const FormatError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("method 'profile' needs a scene, but source 'rec' is a file"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tactile::experiments

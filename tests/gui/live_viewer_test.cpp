@@ -1,0 +1,74 @@
+// The viewer fed live (as `tactile emulate --latero --window` feeds it): a known frame drawn,
+// pixels read back at the contactor positions; the source ends the window. Needs a screen
+// (CTest runs the gui tests under Xvfb).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tactile/display/frame_geometry.hpp"
+#include "tactile/display/viewer.hpp"
+
+namespace tactile::display {
+namespace {
+
+TEST(LiveViewer, DrawsWhatTheSourceGivesAtTheContactorPositions) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  const Layout layout = latero_layout();
+  LiveFrame frame;
+  for (int r = 0; r < 8; ++r) {
+    for (int c = 0; c < 8; ++c) frame.deflection_um.push_back(10.0f * static_cast<float>(c));
+  }
+  frame.lines = {"live"};
+  int calls = 0;
+  LiveViewerOptions o;
+  o.visible = false;
+  o.width_px = 400;
+  o.height_px = 400;
+  o.exit_after_frames = 2;
+  const ViewerResult r = run_live_viewer(
+      layout,
+      [&]() -> std::optional<LiveFrame> {
+        ++calls;
+        return frame;
+      },
+      o);
+  EXPECT_EQ(calls, 2);
+  ASSERT_EQ(r.frames_drawn, 2);
+  const RenderedImage& img = r.last_image;
+  ASSERT_EQ(img.width, 400);
+  const double mag = auto_magnification(layout);
+  const ViewTransform t = pane_view(layout, mag, viewer_panes(400, 400, false).contactors);
+  for (const ContactorShape& c : frame_shapes(layout, frame.deflection_um, mag)) {
+    const int x = static_cast<int>(std::lround(t.origin_x_px + c.x_mm * t.px_per_mm));
+    const int y = static_cast<int>(std::lround(t.origin_y_px + c.y_mm * t.px_per_mm));
+    const auto px = img.at(x, y);
+    // Uniform stretch: every contactor filled with the same stretch colour, not background.
+    EXPECT_FALSE(std::abs(px[0] - 64) < 4 && std::abs(px[1] - 64) < 4 && std::abs(px[2] - 64) < 4)
+        << "contactor at " << x << "," << y << " not drawn";
+  }
+}
+
+TEST(LiveViewer, SourceWithNothingToShowClosesTheWindow) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  LiveViewerOptions o;
+  o.visible = false;
+  const ViewerResult r = run_live_viewer(
+      latero_layout(), []() -> std::optional<LiveFrame> { return std::nullopt; }, o);
+  EXPECT_EQ(r.frames_drawn, 0);
+}
+
+TEST(LiveViewer, RefusesAFrameOfTheWrongSize) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  LiveViewerOptions o;
+  o.visible = false;
+  EXPECT_THROW(run_live_viewer(
+                   latero_layout(),
+                   []() -> std::optional<LiveFrame> {
+                     return LiveFrame{{1.0f, 2.0f}, {}};
+                   },
+                   o),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tactile::display

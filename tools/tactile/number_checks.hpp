@@ -1,0 +1,53 @@
+#pragma once
+// Range checks for numeric options whose errors read as a person would write them, e.g.
+// "--px-per-mm: 0 is out of range: must be > 0". CLI11's PositiveNumber, NonNegativeNumber and
+// Range on a double print numeric_limits bounds instead: a number of 300 digits.
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace tactile::cli {
+
+namespace detail {
+
+// A validator accepting the numbers for which `ok` holds; `rule` completes "must be ...".
+// Written as `ok(v)` rather than its negation so that NaN fails every rule.
+template <typename T, typename Ok>
+CLI::Validator number_check(Ok ok, const std::string& rule, std::string description) {
+  return CLI::Validator(
+      [ok, rule](std::string& value) -> std::string {
+        T v{};
+        if (!CLI::detail::lexical_cast(value, v)) {
+          return fmt::format("{} is not {}", value,
+                             std::is_integral_v<T> ? "a whole number" : "a number");
+        }
+        return ok(v) ? std::string() : fmt::format("{} is out of range: must be {}", value, rule);
+      },
+      std::move(description));
+}
+
+}  // namespace detail
+
+// A number > 0.
+inline CLI::Validator positive() {
+  return detail::number_check<double>([](double v) { return v > 0; }, "> 0", "> 0");
+}
+
+// A number >= 0.
+inline CLI::Validator non_negative() {
+  return detail::number_check<double>([](double v) { return v >= 0; }, ">= 0", ">= 0");
+}
+
+// A number from `min` to `max`, both included; T is the option's type (int or double).
+template <typename T>
+CLI::Validator within(T min, T max) {
+  const std::string rule = fmt::format("from {} to {}", min, max);
+  return detail::number_check<T>([min, max](T v) { return v >= min && v <= max; }, rule,
+                                 fmt::format("{} to {}", min, max));
+}
+
+}  // namespace tactile::cli
