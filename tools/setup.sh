@@ -20,6 +20,9 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
   umockdev libumockdev-dev
   clang libclang-rt-14-dev
+  # the firmware as a USB device of a real Linux kernel: QEMU x86-64 guest (Debian kernel,
+  # busybox initramfs built with cpio) and the usbredir protocol to its xHCI controller
+  qemu-system-x86 linux-image-amd64 busybox-static cpio libusbredirparser-dev
   # golden check of the classifiers against WEKA itself
   weka default-jre-headless
 )

@@ -6,6 +6,8 @@
 #include <hidapi.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cwchar>
 #include <string>
 #include <thread>
@@ -115,6 +117,13 @@ class HidapiTransport final : public Transport {
     const std::string e = dev_ != nullptr ? narrow(hid_error(dev_)) : std::string();
     const bool useful =
         !e.empty() && e != "Success" && e.find("not implemented") == std::string::npos;
+    // The kernel removed the device: ENODEV for a call after the removal, ESHUTDOWN for a
+    // transfer it cut short; hidapi may put the call before it ("ioctl (GFEATURE): ...").
+    // Say so as the libusb transport does.
+    if (e.ends_with(std::strerror(ENODEV)) || e.ends_with(std::strerror(ESHUTDOWN))) {
+      throw TransportError("hidapi: " + what + ": the display was unplugged (" + e + ") (" +
+                           where_ + ")");
+    }
     throw TransportError("hidapi: " + what + (useful ? ": " + e : std::string()) + " (" + where_ +
                          "; unplugged?)");
   }

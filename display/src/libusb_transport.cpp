@@ -169,7 +169,8 @@ class LibusbTransport final : public Transport {
     if (transfer->status == LIBUSB_TRANSFER_COMPLETED || self->closing_) return;
     if (self->failure_.empty()) {
       self->failure_ =
-          transfer->status == LIBUSB_TRANSFER_NO_DEVICE ? std::string("device removed")
+          transfer->status == LIBUSB_TRANSFER_NO_DEVICE
+              ? std::string("the display was unplugged (LIBUSB_TRANSFER_NO_DEVICE)")
           : transfer->status == LIBUSB_TRANSFER_TIMED_OUT
               ? "a frame was not accepted within " +
                     std::to_string(self->options_.timeout.count()) + " ms"

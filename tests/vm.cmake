@@ -1,0 +1,80 @@
+# The firmware as a USB device of a real Linux kernel (tests/vm, label vm): the firmware core
+# behind a usbredir bridge (vm_harness, host code) on the xHCI controller of a QEMU x86-64
+# guest running the installed Debian kernel and a busybox initramfs built here, whose client
+# (vm_client) is the project's own USB code: device listing, libusb and hidapi transports,
+# player. KVM when /dev/kvm is usable, TCG otherwise.
+find_program(TACTILE_QEMU_X86 qemu-system-x86_64 REQUIRED)
+find_program(TACTILE_BUSYBOX busybox PATHS /bin /usr/bin REQUIRED)
+find_program(TACTILE_CPIO cpio REQUIRED)
+pkg_check_modules(USBREDIRPARSER REQUIRED IMPORTED_TARGET libusbredirparser-0.5)
+# The newest installed Debian kernel and its modules (linux-image-amd64).
+file(GLOB tactile_vm_kernels /boot/vmlinuz-*)
+list(SORT tactile_vm_kernels COMPARE NATURAL)
+list(POP_BACK tactile_vm_kernels TACTILE_VM_KERNEL)
+if(NOT TACTILE_VM_KERNEL)
+  message(FATAL_ERROR "no kernel in /boot: install linux-image-amd64 (tools/setup.sh)")
+endif()
+string(REGEX REPLACE ".*/vmlinuz-" "" tactile_vm_kernel_version ${TACTILE_VM_KERNEL})
+set(TACTILE_VM_MODULES /lib/modules/${tactile_vm_kernel_version})
+
+# The guest client: the display's USB sources compiled again without sanitizers (the guest has
+# no sanitizer runtime), linked dynamically; make_initramfs.sh copies the libraries it needs.
+set(vm_display_dir ${PROJECT_SOURCE_DIR}/display/src)
+file(GLOB vm_firmware_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/firmware/src/*.c)
+add_executable(vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/vm_client.cpp
+               ${vm_display_dir}/player.cpp ${vm_display_dir}/emulated_device.cpp
+               ${vm_display_dir}/frame_codec.cpp ${vm_display_dir}/control_codec.cpp
+               ${vm_display_dir}/layouts.cpp ${vm_display_dir}/libusb_transport.cpp
+               ${vm_display_dir}/hidapi_transport.cpp ${vm_display_dir}/devices.cpp
+               ${vm_firmware_sources})
+target_include_directories(vm_client PRIVATE ${PROJECT_SOURCE_DIR}/display/include
+                                             ${PROJECT_SOURCE_DIR}/firmware/include)
+target_link_libraries(vm_client PRIVATE tactile_warnings fmt::fmt PkgConfig::LIBUSB
+                                        PkgConfig::HIDAPI Threads::Threads)
+target_compile_options(vm_client PRIVATE -fno-sanitize=all)
+target_link_options(vm_client PRIVATE -fno-sanitize=all)
+
+set(vm_dir ${CMAKE_CURRENT_BINARY_DIR}/vm)
+set(vm_initrd ${vm_dir}/initramfs.cpio)
+file(MAKE_DIRECTORY ${vm_dir})
+add_custom_command(
+  OUTPUT ${vm_initrd}
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/vm/make_initramfs.sh ${vm_initrd}
+          $<TARGET_FILE:vm_client> ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init ${TACTILE_VM_MODULES}
+          ${TACTILE_BUSYBOX}
+  DEPENDS vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/make_initramfs.sh
+          ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init
+  COMMENT "Building the VM test initramfs (busybox, USB/HID modules, vm_client)"
+  VERBATIM)
+add_custom_target(vm_initramfs ALL DEPENDS ${vm_initrd})
+
+add_executable(vm_harness ${CMAKE_CURRENT_SOURCE_DIR}/vm/vm_harness.cpp
+                          ${CMAKE_CURRENT_SOURCE_DIR}/vm/usbredir_bridge.cpp)
+target_include_directories(vm_harness PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/firmware/target)
+target_link_libraries(vm_harness PRIVATE tactile_warnings tactile_firmware
+                                         PkgConfig::USBREDIRPARSER Threads::Threads)
+add_dependencies(vm_harness vm_initramfs)
+
+set(vm_run $<TARGET_FILE:vm_harness> --qemu ${TACTILE_QEMU_X86} --kernel ${TACTILE_VM_KERNEL}
+           --initrd ${vm_initrd})
+add_test(NAME vm.enumerate COMMAND ${vm_run} enumerate)
+# The same checks against a bridge that corrupts one descriptor field: they must fail.
+add_test(NAME vm.enumerate_defect COMMAND ${vm_run} --defect enumerate)
+# A 10 x 10 movie for 10 s through the guest kernel: libusb (vendor bulk) at 700 Hz; hidapi
+# over hidraw at 160 Hz on the full-speed device (hidraw's one report per write sustains about
+# 210 Hz there, below the bus's 250 Hz) and at 500 Hz on a high-speed one (vm_harness.cpp).
+add_test(NAME vm.play_libusb COMMAND ${vm_run} play-libusb)
+# A 4 x 6 display: 64-byte frames, one full packet each, so every frame ends with libusb's
+# zero-length packet, which the guest's xHCI driver sends as a transfer of its own.
+add_test(NAME vm.play_libusb_zlp COMMAND ${vm_run} --grid 4x6 play-libusb)
+add_test(NAME vm.play_hidraw COMMAND ${vm_run} play-hidraw)
+add_test(NAME vm.play_hidraw_high_speed COMMAND ${vm_run} --high-speed play-hidraw)
+# device_del in QEMU's monitor while playing, then the display plugged back in.
+add_test(NAME vm.unplug_replug COMMAND ${vm_run} unplug)
+add_test(NAME vm.unplug_replug_hidraw COMMAND ${vm_run} unplug-hidraw)
+# Serial: each guest needs a whole core under TCG, and the play tests time a 700 Hz clock.
+# The harness stops a guest after 120 s and may run a scenario twice (vm_harness.cpp).
+set_tests_properties(vm.enumerate vm.enumerate_defect vm.play_libusb vm.play_libusb_zlp
+                     vm.play_hidraw
+                     vm.play_hidraw_high_speed vm.unplug_replug vm.unplug_replug_hidraw
+                     PROPERTIES LABELS vm TIMEOUT 300 RUN_SERIAL TRUE)
