@@ -9,21 +9,6 @@
 
 namespace tactile::capture {
 
-void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".partial";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-    }
-  }
-  std::filesystem::rename(tmp, path);
-}
-
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what) {
   const std::string where = path.string();
   std::ifstream in(path);

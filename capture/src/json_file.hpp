@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tactile/common/atomic_file.hpp"
+
 namespace tactile::capture {
 
-// `text` written to NAME.partial and renamed over `path`, so a failed write never destroys a
-// file that was already there. Throws std::runtime_error naming the file.
-void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+using tactile::write_file_atomically;
 
 // The JSON object in `path`. Throws tactile::FormatError "<path>: cannot open <what>", "not valid
 // JSON (...)" (also for a number beyond a double) or "expected a JSON object".
