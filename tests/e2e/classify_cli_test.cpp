@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -188,4 +189,59 @@ TEST(ClassifyCli, UsageErrors) {
       run_tactile("classify predict --model /nonexistent.json " + kMaterials + "/mat1_1_bio.csv")
           .exit_code,
       2);
+}
+
+// The simulated data set exported as recordings + labels (class: curvature, value: signed
+// footprint) and classified with `tactile classify` gives `tactile perceive`'s Table 2: trained
+// on trial 0 and tested on trial 1 (the split Table 2 uses with 2 trials per feature), each
+// procedure's row has the same count correct and the same cascade RMS error.
+TEST(ClassifyCli, SimulatedExportAgreesWithPerceiveTable2) {
+  const auto dir = fresh_dir("sim");
+  const auto p = run_tactile("perceive --out " + dir.string() +
+                             " --trials 2 --footprints 1.25,20 --threads 2 --export-recordings "
+                             "--export-trials 2");
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  const auto table2 = read_csv_rows(dir / "table2.csv");
+  const auto recordings = dir / "recordings";
+  struct Row {
+    std::string procedure;
+    int degree;
+  };
+  for (const Row& row : {Row{"static", 1}, Row{"dp", 1}, Row{"dp", 2}, Row{"ru", 1}, Row{"roll", 1},
+                         Row{"roll", 2}}) {
+    const auto labels = read_csv_rows(recordings / ("labels_" + row.procedure + ".csv"));
+    ASSERT_EQ(labels.size(), 1u + 12 * 2);
+    for (const char* trial : {"0", "1"}) {
+      std::ofstream out(dir / (std::string("trial") + trial + ".csv"));
+      out << "file,class,value\n";
+      for (std::size_t i = 1; i < labels.size(); ++i)
+        if (labels[i][0].find(std::string("_t") + trial + "_") != std::string::npos)
+          out << labels[i][0] << ',' << labels[i][1] << ',' << labels[i][2] << '\n';
+    }
+    const std::string what = row.procedure + " exp " + std::to_string(row.degree);
+    const auto model = (dir / "model.json").string();
+    const auto t = run_tactile("classify train --recordings " + recordings.string() + " --labels " +
+                               (dir / "trial0.csv").string() + " --out " + model + " --procedure " +
+                               row.procedure + " --baseline-at start" + " --kernel-degree " +
+                               std::to_string(row.degree));
+    ASSERT_EQ(t.exit_code, 0) << what << "\n" << t.output;
+    const auto r = run_tactile("classify test --model " + model + " --recordings " +
+                               recordings.string() + " --labels " + (dir / "trial1.csv").string());
+    ASSERT_EQ(r.exit_code, 0) << what << "\n" << r.output;
+    // table2.csv: inputs,degree,correct,tested,...,cascade_rms_mm (second to last).
+    const auto match = std::find_if(table2.begin(), table2.end(), [&](const auto& fields) {
+      return fields[0] == row.procedure && fields[1] == std::to_string(row.degree);
+    });
+    ASSERT_NE(match, table2.end()) << what;
+    EXPECT_NE(r.output.find("(" + (*match)[2] + "/" + (*match)[3] + ")"), std::string::npos)
+        << what << ": Table 2 has " << (*match)[2] << "/" << (*match)[3] << "\n"
+        << r.output;
+    const auto at = r.output.find("value: RMS error ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const double rms = std::stod(r.output.substr(at + 17));
+    const double table_rms = std::stod((*match)[match->size() - 2]);
+    // The recordings are written with 3 decimals; the classifier prints 4 significant digits.
+    EXPECT_NEAR(rms, table_rms, 1e-3 * table_rms + 1e-3) << what << "\n" << r.output;
+  }
+  std::filesystem::remove_all(dir);
 }

@@ -250,3 +250,20 @@ TEST(Classifier, CrossValidationIsStratifiedAndPooled) {
   EXPECT_EQ(cv.correct, static_cast<int>(std::lround(sum * 4)));
   EXPECT_THROW(perception::cross_validate(data, {}, 1, 1), std::invalid_argument);
 }
+
+// A procedure's name reads back as itself: stroke and static are real recordings' (all contact
+// is feature contact), dp, ru and roll the paper's scenes (feature contact from kinematics).
+TEST(RecordingInputs, ProcedureNamesRoundTrip) {
+  for (const char* name : {"stroke", "static", "dp", "ru", "roll"}) {
+    perception::RecordingInputOptions o;
+    perception::set_recording_procedure(o, name);
+    EXPECT_EQ(perception::recording_procedure_name(o), name);
+  }
+  perception::RecordingInputOptions o;
+  perception::set_recording_procedure(o, "ru");
+  EXPECT_TRUE(o.contact.feature_from_kinematics);
+  EXPECT_EQ(perception::recording_input_names(o).front(), "ru.w1.pressure");
+  perception::set_recording_procedure(o, "stroke");
+  EXPECT_FALSE(o.contact.feature_from_kinematics);
+  EXPECT_THROW(perception::set_recording_procedure(o, "tap"), std::invalid_argument);
+}

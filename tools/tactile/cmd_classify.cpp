@@ -25,7 +25,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 struct TrainOptions {
   std::filesystem::path recordings, labels, out;
   std::string procedure = "stroke";
-  std::vector<std::string> inputs = {"means", "rates", "hht"};
+  std::string baseline_at = "end";
+  std::vector<std::string> inputs;  // empty: the paper's for the procedure
   int degree = 1;
   double c = 1.0;
   int cv = 0;
@@ -35,8 +36,13 @@ struct TrainOptions {
 int train(const TrainOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   perception::RecordingInputOptions in;
-  in.procedure = perception::recording_procedure(o.procedure);
-  in.groups = o.inputs;
+  perception::set_recording_procedure(in, o.procedure);
+  in.contact.baseline_at = o.baseline_at == "start" ? perception::ContactOptions::BaselineAt::start
+                                                    : perception::ContactOptions::BaselineAt::end;
+  if (!o.inputs.empty())
+    in.groups = o.inputs;
+  else if (in.procedure == perception::Procedure::static_contact)
+    in.groups = {"means"};
   const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
   fmt::print(
       "classify train: {} recordings, {} classes, {} inputs ({} as {}), analysed in {:.2f} s\n",
@@ -166,15 +172,21 @@ void add_classify(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   tr->add_option("--out", t->out, "Model file to write (JSON)")->required();
   tr->add_option("--procedure", t->procedure,
-                 "What a recording is: stroke (a slide over the surface) or static (a press)")
-      ->check(CLI::IsMember({"stroke", "static"}))
+                 "What a recording is: stroke (a slide over a texture), static (a press), or a "
+                 "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
+      ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
       ->capture_default_str();
-  tr->add_option("--inputs", t->inputs,
-                 "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
-                 "band powers of the vibration, for comparison); static has only means")
+  tr->add_option("--baseline-at", t->baseline_at,
+                 "Where the free-air baseline is: end (recordings that begin in contact) or start")
+      ->check(CLI::IsMember({"start", "end"}))
+      ->capture_default_str();
+  tr->add_option(
+        "--inputs", t->inputs,
+        "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
+        "band powers of the vibration, for comparison); default: the paper's, means,rates,hht "
+        "(static: means)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"means", "rates", "hht", "bands"}))
-      ->capture_default_str();
+      ->check(CLI::IsMember({"means", "rates", "hht", "bands"}));
   tr->add_option("--kernel-degree", t->degree, "Exponent of the polynomial kernel")
       ->check(CLI::IsMember({1, 2}))
       ->capture_default_str();

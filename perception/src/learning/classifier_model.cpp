@@ -161,7 +161,7 @@ void write_classifier_model(const std::filesystem::path& path, const ClassifierM
   nlohmann::json j;
   j["format"] = "tactile classifier model";
   j["version"] = m.version;
-  j["procedure"] = recording_procedure_name(m.options.procedure);
+  j["procedure"] = recording_procedure_name(m.options);
   j["input_groups"] = m.options.groups;
   j["contact"] = {
       {"baseline_at",
@@ -212,7 +212,8 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
                     where, version.get<int>(), kClassifierModelVersion));
   ClassifierModel m;
   try {
-    m.options.procedure = recording_procedure(
+    set_recording_procedure(
+        m.options,
         field(j, "procedure", where, &nlohmann::json::is_string, "a string").get<std::string>());
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
@@ -242,7 +243,7 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         "{}: mismatched inputs: the model has {} inputs ({}), this program computes {} for {} "
         "with groups {} ({}): retrain the model",
         where, m.input_names.size(), fmt::join(m.input_names, ","), expected.size(),
-        recording_procedure_name(m.options.procedure), fmt::join(m.options.groups, ","),
+        recording_procedure_name(m.options), fmt::join(m.options.groups, ","),
         fmt::join(expected, ",")));
   m.class_names = array_of<std::string>(j, "class_names", where);
   const auto& svm = field(j, "svm", where, &nlohmann::json::is_object, "an object");

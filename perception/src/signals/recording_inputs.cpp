@@ -31,8 +31,7 @@ void check_groups(const RecordingInputOptions& o) {
   for (const auto& g : o.groups)
     if (std::find(known.begin(), known.end(), g) == known.end())
       throw std::invalid_argument(fmt::format("input group '{}' does not apply to {} (has: {})", g,
-                                              recording_procedure_name(o.procedure),
-                                              fmt::join(known, ", ")));
+                                              recording_procedure_name(o), fmt::join(known, ", ")));
 }
 
 // Mean power per band of the mean-removed vibration, log10 (plus 1 so silence gives 0).
@@ -67,15 +66,27 @@ std::vector<double> band_powers(const SensorRecording& r, std::size_t row_begin,
 
 }  // namespace
 
-Procedure recording_procedure(const std::string& name) {
-  if (name == "stroke") return Procedure::distal_proximal;
-  if (name == "static") return Procedure::static_contact;
-  throw std::invalid_argument(
-      fmt::format("procedure '{}' is not stroke (a slide) or static (a press)", name));
+void set_recording_procedure(RecordingInputOptions& o, const std::string& name) {
+  if (name == "stroke" || name == "static") {
+    o.procedure = name == "stroke" ? Procedure::distal_proximal : Procedure::static_contact;
+    o.contact.feature_from_kinematics = false;
+    return;
+  }
+  for (const Procedure p : {Procedure::distal_proximal, Procedure::radial_ulnar, Procedure::roll})
+    if (name == procedure_short_name(p)) {
+      o.procedure = p;
+      o.contact.feature_from_kinematics = true;
+      return;
+    }
+  throw std::invalid_argument(fmt::format(
+      "procedure '{}' is not stroke (a slide), static (a press), dp, ru or roll (the paper's "
+      "scenes)",
+      name));
 }
 
-std::string recording_procedure_name(Procedure p) {
-  return is_static(p) ? "static" : "stroke";
+std::string recording_procedure_name(const RecordingInputOptions& o) {
+  if (is_static(o.procedure)) return "static";
+  return o.contact.feature_from_kinematics ? procedure_short_name(o.procedure) : "stroke";
 }
 
 std::vector<std::string> recording_input_groups(Procedure p) {

@@ -31,10 +31,13 @@ struct RecordingInputOptions {
   }();
 };
 
-// "stroke" or "static" -> the procedure the inputs are computed as; throws
-// std::invalid_argument naming the word otherwise.
-Procedure recording_procedure(const std::string& name);
-std::string recording_procedure_name(Procedure p);  // "static" or "stroke"
+// What a recording is, by name: "stroke" (a slide over a texture: distal-proximal inputs, all
+// contact is feature contact), "static" (a press), or one of the paper's scenes "dp", "ru",
+// "roll" (feature contact from the paper's kinematics, as the 76 inputs of Table 2). Sets
+// `o.procedure` and `o.contact.feature_from_kinematics`; throws std::invalid_argument naming the
+// word for any other.
+void set_recording_procedure(RecordingInputOptions& o, const std::string& name);
+std::string recording_procedure_name(const RecordingInputOptions& o);
 
 // The groups a procedure has ("means", "rates", "hht", "bands" for strokes; "means" for static).
 std::vector<std::string> recording_input_groups(Procedure p);
