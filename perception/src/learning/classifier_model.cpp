@@ -17,6 +17,7 @@
 
 #include "tactile/common/atomic_file.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/json_file.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/perception/recording_csv.hpp"
 
@@ -191,15 +192,7 @@ void write_classifier_model(const std::filesystem::path& path, const ClassifierM
 
 ClassifierModel read_classifier_model(const std::filesystem::path& path) {
   const std::string where = path.string();
-  std::ifstream in(path);
-  if (!in) throw FormatError(fmt::format("{}: cannot open model file", where));
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    throw FormatError(fmt::format("{}: not valid JSON ({})", where, e.what()));
-  }
-  if (!j.is_object()) throw FormatError(fmt::format("{}: expected a JSON object", where));
+  const nlohmann::json j = read_json_object(path, "model file");
   const auto& format = field(j, "format", where, &nlohmann::json::is_string, "a string");
   if (format != "tactile classifier model")
     throw FormatError(

@@ -1,13 +1,12 @@
-#include "json_file.hpp"
+#include "tactile/common/json_file.hpp"
 
 #include <fmt/format.h>
 
 #include <fstream>
-#include <stdexcept>
 
 #include "tactile/common/error.hpp"
 
-namespace tactile::capture {
+namespace tactile {
 
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what) {
   const std::string where = path.string();
@@ -23,4 +22,4 @@ nlohmann::json read_json_object(const std::filesystem::path& path, const std::st
   return j;
 }
 
-}  // namespace tactile::capture
+}  // namespace tactile
