@@ -88,6 +88,7 @@ void add_perceive(CLI::App& app, Action& action) {
     int seeds = 1;
     std::filesystem::path recordings;
     bool export_recordings = false;
+    int export_trials = 1;
     int threads = 0;
     perception::VariationScale variation;
     std::vector<double> footprints_mm;
@@ -145,7 +146,12 @@ void add_perceive(CLI::App& app, Action& action) {
       ->check(CLI::ExistingDirectory)
       ->excludes(seeds);
   sub->add_flag("--export-recordings", opt->export_recordings,
-                "Also write trial 0 of every feature and procedure as BioTac-style CSV");
+                "Also write the first trials of every feature and procedure as BioTac-style CSV, "
+                "with labels_<procedure>.csv (file,class,value) for `tactile classify`");
+  sub->add_option("--export-trials", opt->export_trials,
+                  "With --export-recordings: how many trials of each (from trial 0)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
       if (!opt->recordings.empty()) {
@@ -208,17 +214,30 @@ void add_perceive(CLI::App& app, Action& action) {
       if (opt->export_recordings) {
         const auto dir = opt->out_dir / "recordings";
         std::filesystem::create_directories(dir);
-        // Trial 0 of the data set itself: same seed, same sensor model.
-        for (const auto& f : features)
-          for (int p = 0; p < perception::kProcedureCount; ++p) {
-            const auto proc = static_cast<perception::Procedure>(p);
-            perception::write_sensor_csv(
-                dir / fmt::format("{}_{:+g}mm_{}_bio.csv",
-                                  kCurvatureNames[static_cast<int>(f.curvature)],
-                                  f.signed_footprint_mm(), perception::procedure_name(proc)),
-                perception::simulate_trial(
-                    f, proc, perception::simulated_trial_seed(f, proc, 0, opt->seed), model));
-          }
+        // The first trials of the data set itself (same seeds, same sensor model), with one
+        // labels file per procedure (class: curvature, value: signed footprint) for
+        // `tactile classify`.
+        const int trials = std::min(opt->export_trials, opt->trials);
+        for (int p = 0; p < perception::kProcedureCount; ++p) {
+          const auto proc = static_cast<perception::Procedure>(p);
+          const auto labels_path =
+              dir / fmt::format("labels_{}.csv", perception::procedure_short_name(proc));
+          auto labels = csv::open_with_header(labels_path, "file,class,value");
+          for (const auto& f : features)
+            for (int trial = 0; trial < trials; ++trial) {
+              const auto name = fmt::format(
+                  "{}_{:+g}mm_{}_t{}_bio.csv", kCurvatureNames[static_cast<int>(f.curvature)],
+                  f.signed_footprint_mm(), perception::procedure_name(proc), trial);
+              perception::write_sensor_csv(
+                  dir / name,
+                  perception::simulate_trial(
+                      f, proc, perception::simulated_trial_seed(f, proc, trial, opt->seed), model));
+              labels << fmt::format("{},{},{:g}\n", name,
+                                    kCurvatureNames[static_cast<int>(f.curvature)],
+                                    f.signed_footprint_mm());
+            }
+          csv::finish(labels, labels_path);
+        }
       }
       fmt::print("perceive: table2.csv, figure7.csv, accuracy_by_footprint.csv and plots -> {}\n",
                  opt->out_dir.string());

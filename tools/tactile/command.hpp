@@ -21,6 +21,7 @@ void add_evaluate(CLI::App& app, Action& action);
 void add_map(CLI::App& app, Action& action);
 void add_experiment(CLI::App& app, Action& action);
 void add_perceive(CLI::App& app, Action& action);
+void add_classify(CLI::App& app, Action& action);
 void add_play(CLI::App& app, Action& action);
 void add_view(CLI::App& app, Action& action);
 void add_devices(CLI::App& app, Action& action);

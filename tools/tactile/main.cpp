@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_map(app, action);
   tactile::cli::add_experiment(app, action);
   tactile::cli::add_perceive(app, action);
+  tactile::cli::add_classify(app, action);
   tactile::cli::add_play(app, action);
   tactile::cli::add_view(app, action);
   tactile::cli::add_devices(app, action);

@@ -260,4 +260,39 @@ std::string misclassified_line(const CascadeResult& result) {
   return line;
 }
 
+void write_confusion_svg(const std::filesystem::path& path,
+                         const std::vector<std::string>& class_names,
+                         const std::vector<std::vector<int>>& confusion) {
+  constexpr double kCell = 28, kLabel = 90;
+  const double n = static_cast<double>(class_names.size());
+  std::ofstream out = open_svg(path, kLabel + n * kCell + 20, kLabel + n * kCell + 40);
+  out << fmt::format(
+      "<text x='{}' y='16' text-anchor='middle'>predicted class (columns) against true class "
+      "(rows)</text>\n",
+      (kLabel + n * kCell + 20) / 2);
+  for (std::size_t t = 0; t < class_names.size(); ++t) {
+    int total = 0;
+    for (int v : confusion.at(t)) total += v;
+    const double y = kLabel + static_cast<double>(t) * kCell;
+    out << fmt::format("<text x='{}' y='{}' text-anchor='end'>{}</text>\n", kLabel - 4,
+                       y + kCell * 0.65, class_names[t]);
+    out << fmt::format("<text transform='translate({},{}) rotate(-60)' font-size='11'>{}</text>\n",
+                       kLabel + static_cast<double>(t) * kCell + kCell * 0.6, kLabel - 4,
+                       class_names[t]);
+    for (std::size_t p = 0; p < class_names.size(); ++p) {
+      const int v = confusion.at(t).at(p);
+      const double share = total ? static_cast<double>(v) / total : 0.0;
+      const int shade = static_cast<int>(std::lround(255 * (1 - share)));
+      const double x = kLabel + static_cast<double>(p) * kCell;
+      out << fmt::format(
+          "<rect x='{}' y='{}' width='{}' height='{}' fill='rgb({},{},255)' stroke='#ccc'/>\n", x,
+          y, kCell, kCell, shade, shade);
+      if (v)
+        out << fmt::format("<text x='{}' y='{}' text-anchor='middle' fill='{}'>{}</text>\n",
+                           x + kCell / 2, y + kCell * 0.65, share > 0.5 ? "white" : "black", v);
+    }
+  }
+  finish_svg(out, path);
+}
+
 }  // namespace tactile::perception

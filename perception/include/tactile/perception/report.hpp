@@ -41,6 +41,12 @@ void write_accuracy_by_footprint_csv(const std::filesystem::path& path,
 void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
                                      const std::vector<TimedCascade>& rows, int degree);
 
+// A confusion matrix as an SVG: one cell per (true, predicted) class, shaded by the share of the
+// true class's recordings, with the count written in it.
+void write_confusion_svg(const std::filesystem::path& path,
+                         const std::vector<std::string>& class_names,
+                         const std::vector<std::vector<int>>& confusion);
+
 // One line per row of Table 2, for the terminal.
 std::string table2_line(const TimedCascade& row);
 

@@ -1,0 +1,372 @@
+// Classifier of labelled recordings: labels, inputs, model file, testing, cross-validation
+// (see classifier_model.hpp).
+
+#include "tactile/perception/classifier_model.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "tactile/common/atomic_write.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/common/json.hpp"
+#include "tactile/common/parallel_for.hpp"
+#include "tactile/perception/recording_csv.hpp"
+
+namespace tactile::perception {
+namespace {
+
+std::string trim(std::string s) {
+  const auto not_space = [](unsigned char c) { return !std::isspace(c); };
+  s.erase(s.begin(), std::find_if(s.begin(), s.end(), not_space));
+  s.erase(std::find_if(s.rbegin(), s.rend(), not_space).base(), s.end());
+  return s;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream ss(line);
+  for (std::string f; std::getline(ss, f, ',');) fields.push_back(trim(f));
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+// A required field of `j`, of the JSON type `is` checks, or a FormatError naming the file.
+const nlohmann::json& field(const nlohmann::json& j, const char* key, const std::string& where,
+                            bool (nlohmann::json::*is)() const noexcept, const char* type) {
+  const auto it = j.find(key);
+  if (it == j.end()) throw FormatError(fmt::format("{}: missing field '{}'", where, key));
+  if (!((*it).*is)()) throw FormatError(fmt::format("{}: field '{}' must be {}", where, key, type));
+  return *it;
+}
+
+template <typename T>
+std::vector<T> array_of(const nlohmann::json& j, const char* key, const std::string& where) {
+  const auto& a = field(j, key, where, &nlohmann::json::is_array, "an array");
+  try {
+    return a.get<std::vector<T>>();
+  } catch (const nlohmann::json::exception&) {
+    throw FormatError(fmt::format("{}: field '{}' has an element of the wrong type", where, key));
+  }
+}
+
+}  // namespace
+
+RecordingLabels read_recording_labels(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open labels file", where));
+  std::string line;
+  if (!std::getline(in, line)) throw FormatError(fmt::format("{}: empty labels file", where));
+  const auto header = split(line);
+  const auto column = [&](const char* name) {
+    return static_cast<int>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const int file_col = column("file"), class_col = column("class"), value_col = column("value");
+  const int width = static_cast<int>(header.size());
+  if (file_col == width || class_col == width)
+    throw FormatError(
+        fmt::format("{}: line 1: header needs columns 'file' and 'class' (has '{}')", where, line));
+  for (const auto& h : header)
+    if (h != "file" && h != "class" && h != "value")
+      throw FormatError(fmt::format("{}: line 1: unknown column '{}'", where, h));
+  RecordingLabels labels;
+  labels.has_values = value_col != width;
+  std::set<std::string> seen;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (trim(line).empty()) continue;
+    const auto f = split(line);
+    if (static_cast<int>(f.size()) != width)
+      throw FormatError(
+          fmt::format("{}: line {}: {} fields, header has {}", where, number, f.size(), width));
+    RecordingLabel l{f[file_col], f[class_col], 0.0};
+    if (l.file.empty() || l.label.empty())
+      throw FormatError(fmt::format("{}: line {}: empty file or class", where, number));
+    if (!seen.insert(l.file).second)
+      throw FormatError(fmt::format("{}: line {}: {} is labelled twice", where, number, l.file));
+    if (labels.has_values) {
+      std::size_t used = 0;
+      try {
+        l.value = std::stod(f[value_col], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != f[value_col].size() || !std::isfinite(l.value))
+        throw FormatError(
+            fmt::format("{}: line {}: value '{}' is not a number", where, number, f[value_col]));
+    }
+    labels.rows.push_back(std::move(l));
+  }
+  if (labels.rows.empty()) throw FormatError(fmt::format("{}: no labelled recordings", where));
+  return labels;
+}
+
+LabelledInputs load_labelled_recordings(const std::filesystem::path& dir,
+                                        const std::filesystem::path& labels_path,
+                                        const RecordingInputOptions& options,
+                                        const std::vector<std::string>& known_classes,
+                                        int threads) {
+  const auto labels = read_recording_labels(labels_path);
+  LabelledInputs d;
+  d.options = options;
+  d.input_names = recording_input_names(options);
+  d.class_names = known_classes;
+  for (const auto& l : labels.rows) {
+    const auto path = dir / l.file;
+    if (!std::filesystem::is_regular_file(path))
+      throw std::runtime_error(
+          fmt::format("{}: labelled in {} but not found", path.string(), labels_path.string()));
+    auto it = std::find(d.class_names.begin(), d.class_names.end(), l.label);
+    if (it == d.class_names.end()) {
+      if (!known_classes.empty())
+        throw std::runtime_error(fmt::format("{}: unknown label '{}' (the model knows: {})",
+                                             path.string(), l.label,
+                                             fmt::join(known_classes, ", ")));
+      d.class_names.push_back(l.label);
+      it = d.class_names.end() - 1;
+    }
+    d.files.push_back(l.file);
+    d.classes.push_back(static_cast<int>(it - d.class_names.begin()));
+    if (labels.has_values) d.values.push_back(l.value);
+  }
+  d.rows.resize(d.files.size());
+  parallel_for(d.files.size(), worker_count(threads), [&](std::size_t i) {
+    d.rows[i] = recording_inputs(read_sensor_csv(dir / d.files[i]), options);
+  });
+  return d;
+}
+
+ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptions& svm) {
+  ClassifierModel m;
+  m.options = data.options;
+  m.input_names = data.input_names;
+  m.class_names = data.class_names;
+  m.svm = svm;
+  m.scaler = MinMaxScaler::fit(data.rows);
+  m.files = data.files;
+  m.rows = data.rows;
+  m.classes = data.classes;
+  m.values = data.values;
+  return m;
+}
+
+void write_classifier_model(const std::filesystem::path& path, const ClassifierModel& m) {
+  nlohmann::json j;
+  j["format"] = "tactile classifier model";
+  j["version"] = m.version;
+  j["procedure"] = recording_procedure_name(m.options);
+  j["input_groups"] = m.options.groups;
+  j["contact"] = {
+      {"baseline_at",
+       m.options.contact.baseline_at == ContactOptions::BaselineAt::end ? "end" : "start"},
+      {"baseline_s", m.options.contact.baseline_s},
+      {"threshold_fraction", m.options.contact.threshold_fraction},
+      {"min_threshold", m.options.contact.min_threshold}};
+  j["input_names"] = m.input_names;
+  j["class_names"] = m.class_names;
+  j["svm"] = {{"kernel", "polynomial"},
+              {"degree", m.svm.degree},
+              {"c", m.svm.c},
+              {"tolerance", m.svm.tolerance},
+              {"epsilon", m.svm.epsilon}};
+  j["scaler"] = {{"min", m.scaler.min}, {"max", m.scaler.max}};
+  j["has_values"] = !m.values.empty();
+  auto& training = j["training"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < m.files.size(); ++i) {
+    nlohmann::json row = {{"file", m.files[i]},
+                          {"class", m.class_names.at(static_cast<std::size_t>(m.classes[i]))},
+                          {"inputs", m.rows[i]}};
+    if (!m.values.empty()) row["value"] = m.values[i];
+    training.push_back(std::move(row));
+  }
+  write_text_atomically(path, j.dump(1) + "\n");
+}
+
+ClassifierModel read_classifier_model(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  const nlohmann::json j = read_json_object(path, "model file");
+  const auto& format = field(j, "format", where, &nlohmann::json::is_string, "a string");
+  if (format != "tactile classifier model")
+    throw FormatError(
+        fmt::format("{}: not a classifier model (format '{}')", where, format.get<std::string>()));
+  const auto& version =
+      field(j, "version", where, &nlohmann::json::is_number_integer, "an integer");
+  if (version.get<int>() != kClassifierModelVersion)
+    throw FormatError(
+        fmt::format("{}: model format version {}, this program reads version {}: retrain the model",
+                    where, version.get<int>(), kClassifierModelVersion));
+  ClassifierModel m;
+  try {
+    set_recording_procedure(
+        m.options,
+        field(j, "procedure", where, &nlohmann::json::is_string, "a string").get<std::string>());
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", where, e.what()));
+  }
+  m.options.groups = array_of<std::string>(j, "input_groups", where);
+  const auto& contact = field(j, "contact", where, &nlohmann::json::is_object, "an object");
+  const auto& at = field(contact, "baseline_at", where, &nlohmann::json::is_string, "a string");
+  if (at != "end" && at != "start")
+    throw FormatError(fmt::format("{}: contact.baseline_at must be 'start' or 'end'", where));
+  m.options.contact.baseline_at =
+      at == "end" ? ContactOptions::BaselineAt::end : ContactOptions::BaselineAt::start;
+  const auto number = [&](const nlohmann::json& o, const char* key) {
+    return field(o, key, where, &nlohmann::json::is_number, "a number").get<double>();
+  };
+  m.options.contact.baseline_s = number(contact, "baseline_s");
+  m.options.contact.threshold_fraction = number(contact, "threshold_fraction");
+  m.options.contact.min_threshold = number(contact, "min_threshold");
+  m.input_names = array_of<std::string>(j, "input_names", where);
+  std::vector<std::string> expected;
+  try {
+    expected = recording_input_names(m.options);
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", where, e.what()));
+  }
+  if (m.input_names != expected)
+    throw FormatError(fmt::format(
+        "{}: mismatched inputs: the model has {} inputs ({}), this program computes {} for {} "
+        "with groups {} ({}): retrain the model",
+        where, m.input_names.size(), fmt::join(m.input_names, ","), expected.size(),
+        recording_procedure_name(m.options), fmt::join(m.options.groups, ","),
+        fmt::join(expected, ",")));
+  m.class_names = array_of<std::string>(j, "class_names", where);
+  const auto& svm = field(j, "svm", where, &nlohmann::json::is_object, "an object");
+  m.svm.degree =
+      field(svm, "degree", where, &nlohmann::json::is_number_integer, "an integer").get<int>();
+  m.svm.c = number(svm, "c");
+  m.svm.tolerance = number(svm, "tolerance");
+  m.svm.epsilon = number(svm, "epsilon");
+  const auto& scaler = field(j, "scaler", where, &nlohmann::json::is_object, "an object");
+  m.scaler.min = array_of<double>(scaler, "min", where);
+  m.scaler.max = array_of<double>(scaler, "max", where);
+  const bool has_values =
+      field(j, "has_values", where, &nlohmann::json::is_boolean, "true or false").get<bool>();
+  const auto& training = field(j, "training", where, &nlohmann::json::is_array, "an array");
+  for (const auto& row : training) {
+    if (!row.is_object())
+      throw FormatError(fmt::format("{}: training rows must be objects", where));
+    m.files.push_back(
+        field(row, "file", where, &nlohmann::json::is_string, "a string").get<std::string>());
+    const auto label =
+        field(row, "class", where, &nlohmann::json::is_string, "a string").get<std::string>();
+    const auto it = std::find(m.class_names.begin(), m.class_names.end(), label);
+    if (it == m.class_names.end())
+      throw FormatError(fmt::format("{}: training row {} has class '{}', not in class_names", where,
+                                    m.files.back(), label));
+    m.classes.push_back(static_cast<int>(it - m.class_names.begin()));
+    m.rows.push_back(array_of<double>(row, "inputs", where));
+    if (m.rows.back().size() != m.input_names.size())
+      throw FormatError(fmt::format("{}: training row {} has {} inputs, the model {}", where,
+                                    m.files.back(), m.rows.back().size(), m.input_names.size()));
+    if (has_values) m.values.push_back(number(row, "value"));
+  }
+  if (m.rows.empty()) throw FormatError(fmt::format("{}: no training rows", where));
+  if (m.scaler.min.size() != m.input_names.size() || m.scaler.max.size() != m.input_names.size())
+    throw FormatError(
+        fmt::format("{}: scaler does not match the {} inputs", where, m.input_names.size()));
+  return m;
+}
+
+Classifier::Classifier(const ClassifierModel& m)
+    : svc_(SvmModel::train_classifier(m.rows, m.classes, m.svm)),
+      svr_(m.class_names.size()),
+      class_value_(m.class_names.size(), 0.0),
+      has_values_(!m.values.empty()) {
+  if (!has_values_) return;
+  for (std::size_t c = 0; c < m.class_names.size(); ++c) {
+    SvmRows x;
+    std::vector<double> y;
+    for (std::size_t i = 0; i < m.rows.size(); ++i)
+      if (static_cast<std::size_t>(m.classes[i]) == c) {
+        x.push_back(m.rows[i]);
+        y.push_back(m.values[i]);
+      }
+    if (y.empty()) continue;
+    // A class whose rows all share one value needs no regression (and SVR of a constant
+    // target is degenerate): it predicts that value.
+    if (std::all_of(y.begin(), y.end(), [&](double v) { return v == y.front(); }))
+      class_value_[c] = y.front();
+    else
+      svr_[c].push_back(SvmModel::train_regressor(x, y, m.svm));
+  }
+}
+
+ClassPrediction Classifier::predict(const std::vector<double>& inputs) const {
+  ClassPrediction p;
+  p.class_index = static_cast<int>(std::lround(svc_.predict(inputs)));
+  if (has_values_) {
+    const auto c = static_cast<std::size_t>(p.class_index);
+    p.value = svr_[c].empty() ? class_value_[c] : svr_[c].front().predict(inputs);
+  }
+  return p;
+}
+
+ClassifierTest test_classifier(const Classifier& classifier, std::size_t class_count,
+                               const LabelledInputs& test) {
+  ClassifierTest t;
+  t.confusion.assign(class_count, std::vector<int>(class_count, 0));
+  for (std::size_t i = 0; i < test.rows.size(); ++i) {
+    const auto p = classifier.predict(test.rows[i]);
+    t.predictions.push_back(p);
+    ++t.confusion.at(static_cast<std::size_t>(test.classes[i]))
+          .at(static_cast<std::size_t>(p.class_index));
+    t.correct += p.class_index == test.classes[i] ? 1 : 0;
+    ++t.tested;
+  }
+  return t;
+}
+
+LabelledInputs subset(const LabelledInputs& data, const std::vector<std::size_t>& keep) {
+  LabelledInputs s;
+  s.options = data.options;
+  s.input_names = data.input_names;
+  s.class_names = data.class_names;
+  for (const std::size_t i : keep) {
+    s.files.push_back(data.files.at(i));
+    s.rows.push_back(data.rows.at(i));
+    s.classes.push_back(data.classes.at(i));
+    if (!data.values.empty()) s.values.push_back(data.values.at(i));
+  }
+  return s;
+}
+
+CrossValidation cross_validate(const LabelledInputs& data, const SvmOptions& svm, int folds,
+                               int threads) {
+  if (folds < 2 || static_cast<std::size_t>(folds) > data.rows.size())
+    throw std::invalid_argument(fmt::format(
+        "cross-validation needs 2 to {} folds (one row per fold at least)", data.rows.size()));
+  std::vector<int> fold_of(data.rows.size());
+  std::map<int, int> seen_in_class;
+  for (std::size_t i = 0; i < data.rows.size(); ++i)
+    fold_of[i] = seen_in_class[data.classes[i]]++ % folds;
+  std::vector<ClassifierTest> results(static_cast<std::size_t>(folds));
+  parallel_for(results.size(), worker_count(threads), [&](std::size_t k) {
+    std::vector<std::size_t> train, test;
+    for (std::size_t i = 0; i < data.rows.size(); ++i)
+      (fold_of[i] == static_cast<int>(k) ? test : train).push_back(i);
+    const Classifier c(make_classifier_model(subset(data, train), svm));
+    results[k] = test_classifier(c, data.class_names.size(), subset(data, test));
+  });
+  CrossValidation cv;
+  for (const auto& r : results) {
+    cv.fold_accuracy.push_back(r.accuracy());
+    cv.correct += r.correct;
+    cv.tested += r.tested;
+  }
+  for (double a : cv.fold_accuracy) cv.mean += a / folds;
+  double ss = 0;
+  for (double a : cv.fold_accuracy) ss += (a - cv.mean) * (a - cv.mean);
+  cv.spread = std::sqrt(ss / (folds - 1));
+  return cv;
+}
+
+}  // namespace tactile::perception

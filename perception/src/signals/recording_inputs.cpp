@@ -1,0 +1,157 @@
+// Inputs of one real recording by group (see recording_inputs.hpp).
+
+#include "tactile/perception/recording_inputs.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+#include <utility>
+
+#include "tactile/perception/hht.hpp"
+
+namespace tactile::perception {
+namespace {
+
+constexpr int kSignals = 1 + kElectrodeClusterCount;
+// Octave bands of the vibration up to its Nyquist frequency (1100 Hz at 2200 Hz).
+constexpr std::array<double, 8> kBandEdgesHz = {10, 20, 40, 80, 160, 320, 640, 1100};
+
+bool is_static(Procedure p) {
+  return p == Procedure::static_contact;
+}
+
+void check_groups(const RecordingInputOptions& o) {
+  const auto known = recording_input_groups(o.procedure);
+  if (o.groups.empty()) throw std::invalid_argument("no input groups selected");
+  for (const auto& g : o.groups)
+    if (std::find(known.begin(), known.end(), g) == known.end())
+      throw std::invalid_argument(fmt::format("input group '{}' does not apply to {} (has: {})", g,
+                                              recording_procedure_name(o), fmt::join(known, ", ")));
+}
+
+// Mean power per band of the mean-removed vibration, log10 (plus 1 so silence gives 0).
+std::vector<double> band_powers(const SensorRecording& r, std::size_t row_begin,
+                                std::size_t row_end) {
+  const double per_row = r.vibration_rate_hz / r.rate_hz;
+  const auto v_begin = static_cast<std::size_t>(static_cast<double>(row_begin) * per_row);
+  const auto v_end = std::min(r.vibration.size(),
+                              static_cast<std::size_t>(static_cast<double>(row_end) * per_row));
+  std::vector<std::complex<double>> x;
+  double m = 0;
+  for (std::size_t i = v_begin; i < v_end; ++i) m += r.vibration[i];
+  m /= std::max<double>(1.0, static_cast<double>(v_end - v_begin));
+  for (std::size_t i = v_begin; i < v_end; ++i) x.emplace_back(r.vibration[i] - m, 0.0);
+  std::vector<double> out(kBandEdgesHz.size() - 1, 0.0);
+  if (x.size() < 2) return out;
+  const auto spectrum = hht::fft(x);
+  const double n = static_cast<double>(x.size());
+  std::vector<int> bins(out.size(), 0);
+  for (std::size_t k = 1; k < x.size() / 2 + 1; ++k) {
+    const double f_hz = static_cast<double>(k) * r.vibration_rate_hz / n;
+    for (std::size_t b = 0; b < out.size(); ++b)
+      if (f_hz >= kBandEdgesHz[b] && f_hz < kBandEdgesHz[b + 1]) {
+        out[b] += std::norm(spectrum[k]) / (n * n);
+        ++bins[b];
+      }
+  }
+  for (std::size_t b = 0; b < out.size(); ++b)
+    out[b] = std::log10(1.0 + (bins[b] ? out[b] / bins[b] : 0.0));
+  return out;
+}
+
+}  // namespace
+
+void set_recording_procedure(RecordingInputOptions& o, const std::string& name) {
+  if (name == "stroke" || name == "static") {
+    o.procedure = name == "stroke" ? Procedure::distal_proximal : Procedure::static_contact;
+    o.contact.feature_from_kinematics = false;
+    return;
+  }
+  for (const Procedure p : {Procedure::distal_proximal, Procedure::radial_ulnar, Procedure::roll})
+    if (name == procedure_short_name(p)) {
+      o.procedure = p;
+      o.contact.feature_from_kinematics = true;
+      return;
+    }
+  throw std::invalid_argument(fmt::format(
+      "procedure '{}' is not stroke (a slide), static (a press), dp, ru or roll (the paper's "
+      "scenes)",
+      name));
+}
+
+std::string recording_procedure_name(const RecordingInputOptions& o) {
+  if (is_static(o.procedure)) return "static";
+  return o.contact.feature_from_kinematics ? procedure_short_name(o.procedure) : "stroke";
+}
+
+std::vector<std::string> recording_input_groups(Procedure p) {
+  if (is_static(p)) return {"means"};
+  return {"means", "rates", "hht", "bands"};
+}
+
+namespace {
+
+// Columns [first, second) of procedure_inputs that a group takes ("bands" takes none: it is
+// computed apart).
+std::pair<std::size_t, std::size_t> group_columns(Procedure p, const std::string& group) {
+  if (group == "means") return {0, is_static(p) ? kSignals : 2 * kSignals};
+  if (group == "rates") return {2 * kSignals, 3 * kSignals};
+  if (group == "hht") return {3 * kSignals, 3 * kSignals + 2};
+  return {0, 0};
+}
+
+// The selected groups, in the fixed order of recording_input_groups.
+std::vector<std::string> selected_groups(const RecordingInputOptions& o) {
+  check_groups(o);
+  std::vector<std::string> selected;
+  for (const auto& g : recording_input_groups(o.procedure))
+    if (std::find(o.groups.begin(), o.groups.end(), g) != o.groups.end()) selected.push_back(g);
+  return selected;
+}
+
+template <typename T>
+void append_group(std::vector<T>& out, const std::vector<T>& all, Procedure p,
+                  const std::string& group) {
+  const auto [first, last] = group_columns(p, group);
+  out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(first),
+             all.begin() + static_cast<std::ptrdiff_t>(last));
+}
+
+}  // namespace
+
+std::vector<std::string> recording_input_names(const RecordingInputOptions& o) {
+  const auto all = procedure_input_names(o.procedure);
+  const std::string ep = procedure_short_name(o.procedure);
+  std::vector<std::string> names;
+  for (const auto& g : selected_groups(o)) {
+    append_group(names, all, o.procedure, g);
+    if (g == "bands")
+      for (std::size_t b = 0; b + 1 < kBandEdgesHz.size(); ++b)
+        names.push_back(
+            fmt::format("{}.band.{:g}_{:g}hz", ep, kBandEdgesHz[b], kBandEdgesHz[b + 1]));
+  }
+  return names;
+}
+
+std::vector<double> recording_inputs(const SensorRecording& r, const RecordingInputOptions& o) {
+  const auto groups = selected_groups(o);
+  const auto all = procedure_inputs(r, o.procedure, o.contact);
+  std::vector<double> inputs;
+  for (const auto& g : groups) {
+    append_group(inputs, all, o.procedure, g);
+    if (g == "bands") {
+      const auto c = find_contact(r, o.contact);
+      const auto f = find_feature_contact(r, o.procedure, c, o.contact);
+      const auto bands = band_powers(r, f.begin, f.end);
+      inputs.insert(inputs.end(), bands.begin(), bands.end());
+    }
+  }
+  return inputs;
+}
+
+}  // namespace tactile::perception

@@ -1,0 +1,240 @@
+// `tactile classify`: train, test and use a classifier of labelled real recordings (e.g. the
+// material under a BioTac sliding over it) with the paper's inputs and SVM conventions.
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "command.hpp"
+#include "tactile/common/csv.hpp"
+#include "tactile/perception/classifier_model.hpp"
+#include "tactile/perception/recording_csv.hpp"
+#include "tactile/perception/report.hpp"
+
+namespace tactile::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+struct TrainOptions {
+  std::filesystem::path recordings, labels, out;
+  std::string procedure = "stroke";
+  std::string baseline_at = "end";
+  std::vector<std::string> inputs;  // empty: the paper's for the procedure
+  int degree = 1;
+  double c = 1.0;
+  int cv = 0;
+  int threads = 0;
+};
+
+int train(const TrainOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  perception::RecordingInputOptions in;
+  perception::set_recording_procedure(in, o.procedure);
+  in.contact.baseline_at = o.baseline_at == "start" ? perception::ContactOptions::BaselineAt::start
+                                                    : perception::ContactOptions::BaselineAt::end;
+  if (!o.inputs.empty())
+    in.groups = o.inputs;
+  else if (in.procedure == perception::Procedure::static_contact)
+    in.groups = {"means"};
+  const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
+  fmt::print(
+      "classify train: {} recordings, {} classes, {} inputs ({} as {}), analysed in {:.2f} s\n",
+      data.rows.size(), data.class_names.size(), data.input_names.size(), fmt::join(in.groups, ","),
+      o.procedure, seconds_since(t0));
+  perception::SvmOptions svm;
+  svm.degree = o.degree;
+  svm.c = o.c;
+  if (o.cv > 0) {
+    const auto cv = perception::cross_validate(data, svm, o.cv, o.threads);
+    fmt::print(
+        "cross-validation ({} folds, stratified): accuracy {:.3f} +- {:.3f} (folds: {:.3f}); "
+        "pooled {}/{}\n",
+        o.cv, cv.mean, cv.spread, fmt::join(cv.fold_accuracy, ", "), cv.correct, cv.tested);
+  }
+  const auto model = perception::make_classifier_model(data, svm);
+  const perception::Classifier fitted(model);  // checks that it trains before writing the file
+  const auto train_fit = perception::test_classifier(fitted, model.class_names.size(), data);
+  perception::write_classifier_model(o.out, model);
+  fmt::print(
+      "classify train: SVC (polynomial kernel, exponent {}, C = {:g}){}; accuracy on the "
+      "training set {}/{}; model -> {} ({:.2f} s in all)\n",
+      svm.degree, svm.c, fitted.has_values() ? " and one SVR per class for the value" : "",
+      train_fit.correct, train_fit.tested, o.out.string(), seconds_since(t0));
+  return 0;
+}
+
+int test(const std::filesystem::path& model_path, const std::filesystem::path& recordings,
+         const std::filesystem::path& labels, const std::filesystem::path& csv_dir, int threads) {
+  const auto model = perception::read_classifier_model(model_path);
+  const perception::Classifier fitted(model);
+  const auto data = perception::load_labelled_recordings(recordings, labels, model.options,
+                                                         model.class_names, threads);
+  const auto t = perception::test_classifier(fitted, model.class_names.size(), data);
+  const bool values = fitted.has_values() && !data.values.empty();
+  for (std::size_t c = 0; c < model.class_names.size(); ++c) {
+    int total = 0;
+    std::vector<std::string> wrong;
+    for (std::size_t p = 0; p < model.class_names.size(); ++p) {
+      total += t.confusion[c][p];
+      if (p != c && t.confusion[c][p])
+        wrong.push_back(fmt::format("{} {}", model.class_names[p], t.confusion[c][p]));
+    }
+    if (total == 0) continue;
+    fmt::print("{}: {}/{} correct{}{}\n", model.class_names[c], t.confusion[c][c], total,
+               wrong.empty() ? "" : "; taken for ", fmt::join(wrong, ", "));
+  }
+  if (values) {
+    double ss = 0;
+    for (std::size_t i = 0; i < data.rows.size(); ++i)
+      ss += std::pow(t.predictions[i].value - data.values[i], 2);
+    fmt::print("value: RMS error {:.4g} (SVR of the predicted class)\n",
+               std::sqrt(ss / static_cast<double>(data.rows.size())));
+  }
+  fmt::print("accuracy {:.3f} ({}/{})\n", t.accuracy(), t.correct, t.tested);
+  if (!csv_dir.empty()) {
+    std::filesystem::create_directories(csv_dir);
+    const auto confusion_path = csv_dir / "confusion.csv";
+    auto out = csv::open_with_header(
+        confusion_path, "true\\predicted," + fmt::format("{}", fmt::join(model.class_names, ",")));
+    for (std::size_t c = 0; c < model.class_names.size(); ++c)
+      out << model.class_names[c] << ',' << fmt::format("{}", fmt::join(t.confusion[c], ","))
+          << '\n';
+    csv::finish(out, confusion_path);
+    perception::write_confusion_svg(csv_dir / "confusion.svg", model.class_names, t.confusion);
+    const auto predictions_path = csv_dir / "predictions.csv";
+    auto pred = csv::open_with_header(predictions_path,
+                                      values ? "file,class,predicted,correct,value,predicted_value"
+                                             : "file,class,predicted,correct");
+    for (std::size_t i = 0; i < data.rows.size(); ++i) {
+      const auto& p = t.predictions[i];
+      pred << fmt::format("{},{},{},{}", data.files[i],
+                          model.class_names[static_cast<std::size_t>(data.classes[i])],
+                          model.class_names[static_cast<std::size_t>(p.class_index)],
+                          p.class_index == data.classes[i] ? 1 : 0);
+      if (values) pred << fmt::format(",{:g},{:.6g}", data.values[i], p.value);
+      pred << '\n';
+    }
+    csv::finish(pred, predictions_path);
+    fmt::print("classify test: confusion.csv, confusion.svg, predictions.csv -> {}\n",
+               csv_dir.string());
+  }
+  return 0;
+}
+
+int predict(const std::filesystem::path& model_path,
+            const std::vector<std::filesystem::path>& files) {
+  const auto model = perception::read_classifier_model(model_path);
+  const perception::Classifier fitted(model);
+  int failed = 0;
+  for (const auto& f : files) {
+    try {
+      const auto p = fitted.predict(
+          perception::recording_inputs(perception::read_sensor_csv(f), model.options));
+      const auto& name = model.class_names.at(static_cast<std::size_t>(p.class_index));
+      if (fitted.has_values())
+        fmt::print("{}: {} value {:.6g}\n", f.string(), name, p.value);
+      else
+        fmt::print("{}: {}\n", f.string(), name);
+    } catch (const std::exception& e) {
+      ++failed;
+      fmt::print(stderr, "tactile classify predict: {}\n", e.what());
+    }
+  }
+  return failed ? 1 : 0;
+}
+
+}  // namespace
+
+void add_classify(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand(
+      "classify",
+      "Classifier of labelled real recordings (BioTac-style CSV, one per trial) with the paper's\n"
+      "inputs and conventions: WEKA [0, 1] scaling, polynomial-kernel SVC, C = 1; with a numeric\n"
+      "`value` column in the labels, also one SVR per class for the value.");
+  sub->require_subcommand(1);
+
+  auto t = std::make_shared<TrainOptions>();
+  CLI::App* tr = sub->add_subcommand(
+      "train",
+      "Analyse labelled recordings, train, write a model file (optionally cross-validate)");
+  tr->add_option("--recordings", t->recordings, "Folder of the recordings")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  tr->add_option("--labels", t->labels, "Labels CSV: file,class[,value]")
+      ->required()
+      ->check(CLI::ExistingFile);
+  tr->add_option("--out", t->out, "Model file to write (JSON)")->required();
+  tr->add_option("--procedure", t->procedure,
+                 "What a recording is: stroke (a slide over a texture), static (a press), or a "
+                 "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
+      ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
+      ->capture_default_str();
+  tr->add_option("--baseline-at", t->baseline_at,
+                 "Where the free-air baseline is: end (recordings that begin in contact) or start")
+      ->check(CLI::IsMember({"start", "end"}))
+      ->capture_default_str();
+  tr->add_option(
+        "--inputs", t->inputs,
+        "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
+        "band powers of the vibration, for comparison); default: the paper's, means,rates,hht "
+        "(static: means)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"means", "rates", "hht", "bands"}));
+  tr->add_option("--kernel-degree", t->degree, "Exponent of the polynomial kernel")
+      ->check(CLI::IsMember({1, 2}))
+      ->capture_default_str();
+  tr->add_option("--c", t->c, "SVM complexity constant C")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  tr->add_option("--cv", t->cv, "Also report stratified K-fold cross-validation accuracy")
+      ->check(CLI::Range(2, 1000));
+  tr->add_option("--threads", t->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 256));
+  tr->callback([t, &action] { action = [t] { return train(*t); }; });
+
+  struct TestOptions {
+    std::filesystem::path model, recordings, labels, csv;
+    int threads = 0;
+  };
+  auto te = std::make_shared<TestOptions>();
+  CLI::App* ts = sub->add_subcommand(
+      "test", "Accuracy of a model on labelled recordings: per class, overall, confusion matrix");
+  ts->add_option("--model", te->model, "Model file from `classify train`")
+      ->required()
+      ->check(CLI::ExistingFile);
+  ts->add_option("--recordings", te->recordings, "Folder of the recordings")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  ts->add_option("--labels", te->labels, "Labels CSV: file,class[,value]")
+      ->required()
+      ->check(CLI::ExistingFile);
+  ts->add_option(
+      "--csv", te->csv,
+      "Folder for confusion.csv, confusion.svg and predictions.csv (created if missing)");
+  ts->add_option("--threads", te->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 256));
+  ts->callback([te, &action] {
+    action = [te] { return test(te->model, te->recordings, te->labels, te->csv, te->threads); };
+  });
+
+  struct PredictOptions {
+    std::filesystem::path model;
+    std::vector<std::filesystem::path> files;
+  };
+  auto pr = std::make_shared<PredictOptions>();
+  CLI::App* ps = sub->add_subcommand("predict", "Class (and value) of each recording");
+  ps->add_option("--model", pr->model, "Model file from `classify train`")
+      ->required()
+      ->check(CLI::ExistingFile);
+  ps->add_option("files", pr->files, "Recordings (BioTac-style CSV)")->required();
+  ps->callback([pr, &action] { action = [pr] { return predict(pr->model, pr->files); }; });
+}
+
+}  // namespace tactile::cli
