@@ -239,6 +239,35 @@ void check_play(const std::vector<Line>& lines, const std::string& backend, doub
       sent > 0 ? 1e6 * bridge.bridge_cpu_s / sent : 0.0);
 }
 
+// Some hosts offer /dev/kvm but cannot run a vCPU with the host's CPU model (nested
+// virtualisation that refuses an MSR): QEMU then aborts at once. A short paused start tells,
+// so the scenario falls back to TCG instead of failing on the machine rather than the device.
+bool kvm_starts_a_vcpu(const std::string& qemu) {
+  const std::vector<std::string> args = {qemu,       "-enable-kvm", "-cpu",     "host", "-M",
+                                         "q35",      "-nodefaults", "-display", "none", "-S",
+                                         "-monitor", "none",        "-serial",  "none"};
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, qemu.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) return false;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  while (std::chrono::steady_clock::now() < until) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;  // it stopped: no usable vCPU
+    usleep(50 * 1000);
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  return true;
+}
+
 int run(const Options& o) {
   char dir_template[] = "/tmp/tactile-vm.XXXXXX";
   const char* dir = mkdtemp(dir_template);
@@ -262,7 +291,8 @@ int run(const Options& o) {
   const int mon_in = open((mon + ".in").c_str(), O_RDWR | O_CLOEXEC);
   const int mon_out = open((mon + ".out").c_str(), O_RDWR | O_CLOEXEC | O_NONBLOCK);
 
-  const bool kvm = access("/dev/kvm", R_OK | W_OK) == 0;
+  const bool kvm_device = access("/dev/kvm", R_OK | W_OK) == 0;
+  const bool kvm = kvm_device && kvm_starts_a_vcpu(o.qemu);
   std::vector<std::string> args = {o.qemu,
                                    "-nodefaults",
                                    "-no-user-config",
@@ -296,7 +326,10 @@ int run(const Options& o) {
   } else {
     args.insert(args.begin() + 1, {"-accel", "tcg"});
   }
-  std::printf("vm: %s, scenario %s, %s-speed %d x %d device%s\n", kvm ? "KVM" : "no /dev/kvm: TCG",
+  std::printf("vm: %s, scenario %s, %s-speed %d x %d device%s\n",
+              kvm          ? "KVM"
+              : kvm_device ? "/dev/kvm cannot start a vCPU with -cpu host here: TCG"
+                           : "no /dev/kvm: TCG",
               o.scenario.c_str(), o.high_speed ? "high" : "full", o.rows, o.cols,
               o.defect ? ", with a descriptor defect" : "");
   int out_pipe[2];
