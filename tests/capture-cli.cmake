@@ -64,8 +64,8 @@ train_pores_cli_expect(capture_with_model 0 "capture: 3 frames" capture ${tp_dir
                        --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/model.json
                        --min-track 2 --out ${tp_dir}/three.h5)
 train_pores_cli_expect(capture_model_with_paper_rule 2 "pore-model: goes with --pores ridge-blob"
-                       capture ${tp_dir}/three --px-per-mm 47 --pore-model ${tp_dir}/model.json
-                       --out ${tp_dir}/never.h5)
+                       capture ${tp_dir}/three --px-per-mm 47 --pores paper
+                       --pore-model ${tp_dir}/model.json --out ${tp_dir}/never.h5)
 train_pores_cli_expect(out_folder_missing 1 "nowhere: no such folder for --out" train-pores
                        --prints ${tp_dir}/three --px-per-mm 47 --out ${tp_dir}/nowhere/m.json)
 train_pores_cli_expect(model_scale_warning 0 "warning: the pore model was trained at 47.0 px/mm"
@@ -91,3 +91,40 @@ train_pores_cli_expect(corrupt_model 1 "corrupt.json: not valid JSON" features $
 train_pores_cli_expect(model_with_paper_rule 2 "pore-model: goes with --pores ridge-blob"
                        features ${tp_print4} --px-per-mm 47 --pores paper
                        --pore-model ${tp_dir}/model.json)
+
+# `tactile synth --from-print`: a real print moved by an exact warp, captured with the default
+# settings (which must pick the ridge-blob detector and refinement on a real print) and scored by
+# `tactile evaluate`; and bad input.
+set(pw_dir ${CMAKE_CURRENT_BINARY_DIR}/print-warp-cli)
+set(pw_print ${TACTILE_TEST_DATA_DIR}/polyu-hrf-pores/image_11.jpg)
+add_test(NAME print_warp_cli.setup
+         COMMAND sh -c "rm -rf \"$1\" && mkdir -p \"$1/out\" && cp \"$2\" \"$1/out/frame_000.png\" && printf 'not an image' > \"$1/fake.jpg\" && printf '10 10\\n12 x\\n' > \"$1/bad_marks.txt\""
+                 ${cc_tactile} ${pw_dir} ${pw_print})
+set_tests_properties(print_warp_cli.setup PROPERTIES LABELS e2e FIXTURES_SETUP print_warp_cli)
+function(print_warp_cli_expect name code pattern)
+  add_test(NAME print_warp_cli.${name} COMMAND sh ${cc_expect} ${code} ${pattern} ${cc_tactile}
+                                               ${ARGN})
+  set_tests_properties(print_warp_cli.${name} PROPERTIES LABELS e2e
+                       FIXTURES_REQUIRED print_warp_cli TIMEOUT 300)
+endfunction()
+add_test(NAME print_warp_cli.synth_capture_evaluate
+         COMMAND sh -c "set -e; \"$0\" synth \"$1/seq\" --from-print \"$2\" --frames 12 --warp bump --strain-pct 6 | grep -E 'from pores_11.txt'; \"$0\" capture \"$1/seq\" --px-per-mm 47 --min-track 10 --out \"$1/s.h5\" | grep -E 'pores: ridge-blob .*refinement|refinement against the images: on' ; \"$0\" evaluate \"$1/seq\" \"$1/s.h5\" | grep -E 'correlation with truth +0[.]9'"
+                 ${cc_tactile} ${pw_dir} ${pw_print})
+set_tests_properties(print_warp_cli.synth_capture_evaluate PROPERTIES LABELS e2e
+                     FIXTURES_REQUIRED print_warp_cli TIMEOUT 300)
+print_warp_cli_expect(missing_print 2 "from-print.*(not exist|File does not exist)" synth
+                      ${pw_dir}/never --from-print ${pw_dir}/nowhere.jpg)
+print_warp_cli_expect(not_an_image 1 "fake.jpg" synth ${pw_dir}/never --from-print
+                      ${pw_dir}/fake.jpg)
+print_warp_cli_expect(bad_pattern 2 "warp" synth ${pw_dir}/never --from-print ${pw_print}
+                      --warp zigzag)
+print_warp_cli_expect(strain_out_of_range 2 "strain-pct: 50 is out of range: must be from -20 to 20"
+                      synth ${pw_dir}/never --from-print ${pw_print} --strain-pct 50)
+print_warp_cli_expect(scene_option_with_print 2 "--scene: describes a synthetic scene" synth
+                      ${pw_dir}/never --from-print ${pw_print} --scene bump)
+print_warp_cli_expect(warp_option_without_print 2 "requires --from-print|from-print" synth
+                      ${pw_dir}/never --warp wave)
+print_warp_cli_expect(bad_marks 1 "bad_marks.txt:2: expected two numbers" synth ${pw_dir}/never
+                      --from-print ${pw_print} --marks ${pw_dir}/bad_marks.txt)
+print_warp_cli_expect(out_over_print 2 "OUT_DIR.*--from-print|--from-print.*OUT_DIR" synth
+                      ${pw_dir}/out --from-print ${pw_dir}/out/frame_000.png)

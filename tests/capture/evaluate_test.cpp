@@ -50,7 +50,7 @@ class Evaluate : public ::testing::Test {
     sequence_ = nullptr;
   }
   static GroundTruth truth() {
-    return {sequence_->spec, sequence_->calibration, sequence_->landmarks};
+    return {sequence_->spec, sequence_->calibration, sequence_->landmarks, {}};
   }
   static StrainMovie perfect_movie(int span) {
     return strain_from_tracks(true_tracks(*sequence_), sequence_->spec.frame_count,

@@ -117,7 +117,7 @@ Result run(const NamedMethod& m, const capture::SyntheticSequence& seq) {
     const capture::StrainMovie movie = m.run(seq.frames, seq.calibration, seq.spec.frame_rate_hz);
     r.cpu_seconds = process_cpu_s() - c0;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.eval = capture::evaluate_strain(movie, {seq.spec, seq.calibration, seq.landmarks});
+    r.eval = capture::evaluate_strain(movie, {seq.spec, seq.calibration, seq.landmarks, {}});
   } catch (const std::exception& e) {
     r.error = e.what();
   }

@@ -62,12 +62,18 @@ void require_calibration(const std::optional<fs::path>& calib_file,
 // --pores paper|ridge-blob: the paper's binarised blobs (fast, for sequences) or the learned
 // ridge-blob detector (for real high-resolution prints, about 0.1 s CPU per 320 x 240 print);
 // --pore-model: a model from `tactile train-pores` instead of the shipped one.
-void add_pore_options(CLI::App& sub, std::string& pores, std::optional<fs::path>& pore_model) {
+void add_pore_options(CLI::App& sub, std::string& pores, std::optional<fs::path>& pore_model,
+                      bool with_auto = false) {
   sub.add_option("--pores", pores,
-                 "Pore detector: paper (binarised blobs; fast) or ridge-blob (bright spots above\n"
-                 "their own ridge, kept by a pore model trained on hand-marked 1200 dpi prints;\n"
-                 "finds open pores on real prints at about 47 px/mm, slower)")
-      ->check(CLI::IsMember({"paper", "ridge-blob"}))
+                 std::string("Pore detector: paper (binarised blobs; fast) or ridge-blob (bright "
+                             "spots above\ntheir own ridge, kept by a pore model trained on "
+                             "hand-marked 1200 dpi prints;\nfinds open pores on real prints at "
+                             "about 47 px/mm, slower)") +
+                     (with_auto ? "; auto: the one that finds more pores\non the first frame "
+                                  "(printed)"
+                                : ""))
+      ->check(with_auto ? CLI::IsMember({"auto", "paper", "ridge-blob"})
+                        : CLI::IsMember({"paper", "ridge-blob"}))
       ->capture_default_str();
   sub.add_option("--pore-model", pore_model,
                  "Pore model file from `tactile train-pores` (with --pores ridge-blob), used\n"
@@ -78,7 +84,7 @@ void add_pore_options(CLI::App& sub, std::string& pores, std::optional<fs::path>
 // Runs at parse time: the paper's rule has no model, so a model given with it would be ignored.
 void require_ridge_blob_for_model(const std::string& pores,
                                   const std::optional<fs::path>& pore_model) {
-  if (pore_model && pores != "ridge-blob") {
+  if (pore_model && pores == "paper") {
     throw CLI::ValidationError("--pore-model",
                                "goes with --pores ridge-blob (the paper's rule has no model)");
   }
@@ -240,7 +246,9 @@ void add_capture(CLI::App& app, Action& action) {
     int span = 1;
     double rate_hz = 60;
     int min_track_frames = 30;
-    std::string pores = "paper";
+    std::string pores = "auto";
+    std::string refine = "auto";
+    std::optional<int> smoothing;
     std::optional<fs::path> pore_model;
     std::string assignment = "greedy";
   };
@@ -268,7 +276,17 @@ void add_capture(CLI::App& app, Action& action) {
   sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
       ->check(within(2, 100000))
       ->capture_default_str();
-  add_pore_options(*sub, opt->pores, opt->pore_model);
+  add_pore_options(*sub, opt->pores, opt->pore_model, true);
+  sub->add_option("--refine", opt->refine,
+                  "Sub-pixel refinement of every track against the images (Lucas-Kanade on\n"
+                  "each landmark's neighbourhood, pulled towards the detections): auto = with\n"
+                  "the ridge-blob detector, whose centres on real prints are noisy")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  sub->add_option("--smoothing", opt->smoothing,
+                  "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
+                  "0 = none); default 3, or 5 with refinement")
+      ->check(within(0, 50));
   sub->add_option("--assignment", opt->assignment,
                   "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "
                   "confidence, Hungarian method)")
@@ -300,7 +318,27 @@ void add_capture(CLI::App& app, Action& action) {
       capture::CaptureParams params;
       params.span_frames = opt->span;
       params.min_track_frames = opt->min_track_frames;
-      use_pore_detector(opt->pores, model, 1.0 / c.mm_per_px, "capture", params.features);
+      std::string pores = opt->pores;
+      bool refine = opt->refine == "on";
+      if (pores == "auto" && model) pores = "ridge-blob";  // a pore model is a ridge-blob model
+      if (pores == "auto") {
+        const capture::CaptureChoice choice =
+            capture::choose_capture_settings(frames[0], 1.0 / c.mm_per_px);
+        pores = choice.detector == capture::PoreDetector::ridge_blob ? "ridge-blob" : "paper";
+        fmt::print(
+            "capture: pores: {} (on the first frame the paper's rule found {} pores, the "
+            "ridge-blob detector {}; --pores overrides)\n",
+            pores, choice.paper_pores, choice.ridge_blob_pores);
+      }
+      if (opt->refine == "auto") {
+        refine = pores == "ridge-blob";
+        fmt::print("capture: refinement against the images: {} (--refine overrides)\n",
+                   refine ? "on" : "off");
+      }
+      params.refine = refine;
+      // As choose_capture_settings pairs them: the longer fit goes with refinement.
+      params.smoothing_half_window = opt->smoothing.value_or(refine ? 5 : 3);
+      use_pore_detector(pores, model, 1.0 / c.mm_per_px, "capture", params.features);
       params.assignment =
           opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;
       const auto t0 = std::chrono::steady_clock::now();

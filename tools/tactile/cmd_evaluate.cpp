@@ -49,9 +49,10 @@ void add_evaluate(CLI::App& app, Action& action) {
       }
       const capture::GroundTruth truth = capture::read_ground_truth(opt->sequence_dir);
       const capture::StrainMovie movie = capture::read_strain_movie(opt->strain);
-      if (movie.camera_frame_count != truth.spec.frame_count) {
+      const int truth_frames = capture::truth_frame_count(truth);
+      if (movie.camera_frame_count != truth_frames) {
         fmt::print(stderr, "evaluate: warning: the movie has {} camera frames, the sequence {}\n",
-                   movie.camera_frame_count, truth.spec.frame_count);
+                   movie.camera_frame_count, truth_frames);
       }
       const capture::Evaluation ev = capture::evaluate_strain(movie, truth);
       if (opt->per_frame) {
@@ -63,10 +64,15 @@ void add_evaluate(CLI::App& app, Action& action) {
                      f.truth_landmarks);
         }
       }
-      fmt::print("evaluate: scene {} ({} frames), {} strain frames, span {}\n", truth.spec.scene,
-                 truth.spec.frame_count, movie.frames.size(), movie.span_frames);
+      const std::string scene =
+          truth.warp ? fmt::format("{} warp of the print {}",
+                                   capture::to_string(truth.warp->pattern), truth.warp->source)
+                     : truth.spec.scene;
+      fmt::print("evaluate: scene {} ({} frames), {} strain frames, span {}\n", scene, truth_frames,
+                 movie.frames.size(), movie.span_frames);
       fmt::print("  edge strain RMS error      {:.5f}  (true strain RMS {:.5f}, {} edges)\n",
                  ev.rms_error, ev.rms_truth, ev.edges);
+      fmt::print("  correlation with truth     {:.4f}\n", ev.correlation);
       fmt::print("  localisation RMS           {:.4f} mm  ({} points within {} mm, {} not)\n",
                  ev.localisation_rms_mm, ev.located_points, ev.match_bound_mm, ev.unmatched_points);
       fmt::print("  tracked landmarks / frame  median {:.0f}  (median yield {:.2f} of the true)\n",

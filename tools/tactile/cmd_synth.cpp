@@ -5,28 +5,144 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "command.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/pore_training_io.hpp"
+#include "tactile/capture/print_warp.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
+
+namespace {
+
+// pores_NN.txt beside image_NN.*, the PolyU HRF layout, when it exists.
+std::optional<std::filesystem::path> marks_beside(const std::filesystem::path& image) {
+  const std::string stem = image.stem().string();
+  if (stem.rfind("image_", 0) != 0) return std::nullopt;
+  const auto marks = image.parent_path() / ("pores_" + stem.substr(6) + ".txt");
+  if (std::filesystem::is_regular_file(marks)) return marks;
+  return std::nullopt;
+}
+
+int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem::path& image,
+                     std::optional<std::filesystem::path> marks, capture::PrintWarpSpec warp) {
+  if (!marks) marks = marks_beside(image);
+  std::vector<std::filesystem::path> writes = {"landmarks.csv", "scene.json"};
+  for (int f = 0; f < warp.frame_count; ++f) writes.push_back(fmt::format("frame_{:03d}.png", f));
+  refuse_output_over_input({output_folder("OUT_DIR", out_dir, writes)},
+                           {{"--from-print", image}, {"--marks", marks.value_or(image)}});
+  const capture::GrayImage print = capture::read_image(image);
+  warp.source = image.filename().string();
+  warp.width_px = print.width_px;
+  warp.height_px = print.height_px;
+  std::vector<std::array<double, 2>> pores;
+  if (marks) pores = capture::read_pore_marks(*marks, print.width_px, print.height_px);
+  const auto t0 = std::chrono::steady_clock::now();
+  const capture::PrintSequence seq = capture::render_print_sequence(warp, print, pores);
+  capture::write_print_sequence(out_dir, seq);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  fmt::print(
+      "synth: {} frames of {} x {} px from {} ({} warp, {:.1f} % peak strain, {} marked pores{}) "
+      "-> {} ({:.1f} s)\n",
+      seq.frames.size(), warp.width_px, warp.height_px, image.string(),
+      capture::to_string(warp.pattern), 100 * warp.strain, pores.size(),
+      marks ? " from " + marks->filename().string() : std::string(), out_dir.string(), s);
+  return 0;
+}
+
+}  // namespace
 
 void add_synth(CLI::App& app, Action& action) {
   struct Options {
     std::filesystem::path out_dir;
     capture::SceneSpec spec;
+    std::optional<std::filesystem::path> print;
+    std::optional<std::filesystem::path> marks;
+    capture::PrintWarpSpec warp;
+    std::string pattern = "wave";
+    double strain_pct = 4.0;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "synth",
       "Render a synthetic prism (FTIR) fingerprint sequence with exact ground truth.\n"
       "Writes frame_NNN.png, calibration/dot_grid.png (0.5 mm grid through the same camera),\n"
-      "landmarks.csv (true position of every landmark in every frame) and scene.json.");
+      "landmarks.csv (true position of every landmark in every frame) and scene.json.\n"
+      "With --from-print IMAGE: a real print moved by a known smooth warp (slide, rotation and a\n"
+      "strain pattern) and filmed with blur, noise and a brightness drift, so that `tactile\n"
+      "evaluate` scores a capture of real skin against the exact warp.");
   sub->add_option("OUT_DIR", opt->out_dir, "Folder to write into (created if missing)")->required();
   add_scene_options(*sub, opt->spec);
-  sub->callback([opt, &action] {
+  auto* from = sub->add_option("--from-print", opt->print,
+                               "A real fingerprint image (ridges dark) to warp instead of a "
+                               "synthetic scene")
+                   ->check(CLI::ExistingFile);
+  auto needs_print = [from](CLI::Option* o) { return o->needs(from); };
+  needs_print(sub->add_option("--px-per-mm", opt->warp.px_per_mm,
+                              "--from-print: the print's scale, pixels per millimetre")
+                  ->check(within(5.0, 500.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--marks", opt->marks,
+                              "--from-print: hand-marked pores ('row col' per line, 1-based) to\n"
+                              "carry through the warp as landmarks.csv; default pores_NN.txt\n"
+                              "beside image_NN.*, when there is one")
+                  ->check(CLI::ExistingFile));
+  needs_print(sub->add_option("--warp", opt->pattern,
+                              "--from-print: strain pattern: rigid (slide and rotation only),\n"
+                              "stretch (along x), compress (along y), bump (radial), wave\n"
+                              "(travelling along x)")
+                  ->check(CLI::IsMember(capture::warp_pattern_names()))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--strain-pct", opt->strain_pct,
+                              "--from-print: peak strain of the pattern, per cent")
+                  ->check(within(-20.0, 20.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--warp-width", opt->warp.width_mm,
+                              "--from-print: width (FWHM) of the pattern, or the wavelength, mm")
+                  ->check(within(0.5, 50.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--slide-x", opt->warp.slide_x_mm,
+                              "--from-print: slide along x over the sequence, mm")
+                  ->check(within(-5.0, 5.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--slide-y", opt->warp.slide_y_mm,
+                              "--from-print: slide along y over the sequence, mm")
+                  ->check(within(-5.0, 5.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--turn", opt->warp.rotation_deg,
+                              "--from-print: rotation over the sequence, degrees")
+                  ->check(within(-30.0, 30.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--blur", opt->warp.blur_sigma_px,
+                              "--from-print: camera blur, pixels (sigma)")
+                  ->check(within(0.0, 10.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--drift", opt->warp.brightness_drift,
+                              "--from-print: change of exposure over the sequence (0.06 = 6 %)")
+                  ->check(within(-0.5, 0.5))
+                  ->capture_default_str());
+  sub->callback([opt, &action, sub] {
+    if (opt->print) {
+      for (const char* scene_only :
+           {"--scene", "--speed", "--height", "--width", "--contact-semi-x", "--rotation",
+            "--lateral-amplitude", "--stick-ratio"}) {
+        if (sub->count(scene_only) > 0) {
+          throw CLI::ValidationError(scene_only, "describes a synthetic scene, not --from-print");
+        }
+      }
+      if (sub->count("--frames") > 0) opt->warp.frame_count = opt->spec.frame_count;
+      if (sub->count("--noise") > 0) opt->warp.noise_sigma = opt->spec.noise_sigma;
+      if (sub->count("--seed") > 0) opt->warp.seed = opt->spec.seed;
+      opt->warp.pattern = capture::parse_warp_pattern(opt->pattern);
+      opt->warp.strain = opt->strain_pct / 100;
+      action = [opt] { return synth_from_print(opt->out_dir, *opt->print, opt->marks, opt->warp); };
+      return;
+    }
     action = [opt] {
       capture::validate(opt->spec);
       Progress progress;

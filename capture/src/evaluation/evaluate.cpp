@@ -22,26 +22,37 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+int truth_frame_count(const GroundTruth& truth) {
+  return truth.warp ? truth.warp->frame_count : truth.spec.frame_count;
+}
+
+double truth_rel_change(const GroundTruth& truth, PointMm a_from, PointMm b_from, int frame_from,
+                        int frame_to) {
+  if (truth.warp) return warp_rel_change(*truth.warp, a_from, b_from, frame_from, frame_to);
+  return true_rel_change(truth.spec, a_from, b_from, frame_from, frame_to);
+}
+
 Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   Evaluation ev;
+  const int frame_count = truth_frame_count(truth);
   std::vector<std::vector<const TruthLandmark*>> by_frame(
-      static_cast<std::size_t>(std::max(0, truth.spec.frame_count)));
+      static_cast<std::size_t>(std::max(0, frame_count)));
   for (const auto& lm : truth.landmarks) {
-    if (lm.frame >= 0 && lm.frame < truth.spec.frame_count) {
+    if (lm.frame >= 0 && lm.frame < frame_count) {
       by_frame[static_cast<std::size_t>(lm.frame)].push_back(&lm);
     }
   }
   auto true_mm = [&](const TrackedPoint& p) { return to_mm(truth.calibration, p.x_px, p.y_px); };
 
   double se_all = 0, st_all = 0;
+  double sm = 0, smm = 0, stt = 0, smt = 0;  // sums for the correlation (st_all sums t^2)
   std::vector<double> tracked, yields;
   for (const auto& f : movie.frames) {
     FrameEvaluation fe;
     fe.frame_from = f.frame_from;
     fe.frame_to = f.frame_to;
     fe.tracked_points = static_cast<std::int32_t>(f.points_from.size());
-    if (f.frame_from >= 0 && f.frame_from < truth.spec.frame_count &&
-        f.frame_to < truth.spec.frame_count) {
+    if (f.frame_from >= 0 && f.frame_from < frame_count && f.frame_to < frame_count) {
       fe.truth_landmarks =
           static_cast<std::int32_t>(by_frame[static_cast<std::size_t>(f.frame_from)].size());
       std::unordered_map<std::int32_t, std::size_t> index;
@@ -52,9 +63,13 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
         const auto b = index.find(e.track_b);
         if (a == index.end() || b == index.end()) continue;
         const double t =
-            true_rel_change(truth.spec, true_mm(f.points_from[a->second]),
-                            true_mm(f.points_from[b->second]), f.frame_from, f.frame_to);
+            truth_rel_change(truth, true_mm(f.points_from[a->second]),
+                             true_mm(f.points_from[b->second]), f.frame_from, f.frame_to);
         se += (e.rel_change - t) * (e.rel_change - t);
+        sm += e.rel_change;
+        smm += e.rel_change * e.rel_change;
+        stt += t;
+        smt += e.rel_change * t;
         st += t * t;
         ++fe.edges;
       }
@@ -73,6 +88,11 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   if (ev.edges > 0) {
     ev.rms_error = std::sqrt(se_all / static_cast<double>(ev.edges));
     ev.rms_truth = std::sqrt(st_all / static_cast<double>(ev.edges));
+    const double n = static_cast<double>(ev.edges);
+    const double cov = smt / n - (sm / n) * (stt / n);
+    const double var_m = smm / n - (sm / n) * (sm / n);
+    const double var_t = st_all / n - (stt / n) * (stt / n);
+    if (var_m > 0 && var_t > 1e-18) ev.correlation = cov / std::sqrt(var_m * var_t);
   }
   ev.median_tracked_points = median(tracked);
   ev.median_yield = median(yields);
@@ -82,7 +102,7 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   std::map<std::int32_t, int> lengths;
   for (const auto& p : movie.tracks) {
     ++lengths[p.track_id];
-    if (p.frame < 0 || p.frame >= truth.spec.frame_count) {
+    if (p.frame < 0 || p.frame >= frame_count) {
       ++ev.unmatched_points;
       continue;
     }
@@ -130,6 +150,7 @@ void write_evaluation_csv(const std::filesystem::path& dir, const Evaluation& ev
   auto s = csv::open_with_header(summary_path, "metric,value");
   s << fmt::format("edges,{}\n", ev.edges) << fmt::format("rms_error,{:.6g}\n", ev.rms_error)
     << fmt::format("rms_truth,{:.6g}\n", ev.rms_truth)
+    << fmt::format("correlation,{:.6g}\n", ev.correlation)
     << fmt::format("localisation_rms_mm,{:.6g}\n", ev.localisation_rms_mm)
     << fmt::format("located_points,{}\n", ev.located_points)
     << fmt::format("unmatched_points,{}\n", ev.unmatched_points)

@@ -101,8 +101,10 @@ std::optional<double> parse_number(const std::string& token) {
   return value;
 }
 
-// Marks of one print as 0-based (x, y); `width_px` x `height_px` is its image's size.
-std::vector<std::array<double, 2>> read_marks(const fs::path& path, int width_px, int height_px) {
+}  // namespace
+
+std::vector<std::array<double, 2>> read_pore_marks(const fs::path& path, int width_px,
+                                                   int height_px) {
   std::ifstream in(path);
   if (!in) throw FormatError(fmt::format("{}: cannot open marks file", path.string()));
   std::vector<std::array<double, 2>> marks;
@@ -143,8 +145,6 @@ std::vector<std::array<double, 2>> read_marks(const fs::path& path, int width_px
   return marks;
 }
 
-}  // namespace
-
 std::vector<fs::path> pore_training_files(const fs::path& dir) {
   std::vector<fs::path> files;
   std::error_code ec;
@@ -184,7 +184,7 @@ std::vector<PoreTrainingPrint> read_pore_training_prints(const fs::path& dir) {
     PoreTrainingPrint print;
     print.name = pair.image.filename().string();
     print.image = read_image(pair.image);
-    print.pores_px = read_marks(pair.marks, print.image.width_px, print.image.height_px);
+    print.pores_px = read_pore_marks(pair.marks, print.image.width_px, print.image.height_px);
     prints.push_back(std::move(print));
   }
   return prints;

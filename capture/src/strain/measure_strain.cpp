@@ -52,6 +52,27 @@ StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_fram
   return movie;
 }
 
+CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_per_mm,
+                                      const FeatureParams& base) {
+  auto pores_with = [&](PoreDetector detector) {
+    FeatureParams p = base;
+    p.pore_detector = detector;
+    p.find_minutiae = false;
+    const auto found = extract_features(first_frame, px_per_mm, p);
+    return static_cast<int>(std::count_if(
+        found.begin(), found.end(), [](const Feature& f) { return f.type == FeatureType::pore; }));
+  };
+  CaptureChoice choice;
+  choice.paper_pores = pores_with(PoreDetector::paper);
+  choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
+  if (choice.ridge_blob_pores > choice.paper_pores) {
+    choice.detector = PoreDetector::ridge_blob;
+    choice.refine = true;
+    choice.smoothing_half_window = 5;
+  }
+  return choice;
+}
+
 StrainMovie measure_strain(
     const std::vector<GrayImage>& frames, const Calibration& calibration, double frame_rate_hz,
     const CaptureParams& params,
@@ -101,9 +122,14 @@ StrainMovie measure_strain(
   tp.assignment = params.assignment;
   tp.min_track_frames = params.min_track_frames;
   tp.max_gap_frames = params.max_gap_frames;
-  tp.smoothing_half_window = params.smoothing_half_window;
-  const std::vector<Track> tracks = track_features(features, cal, tp);
+  tp.smoothing_half_window = params.refine ? 0 : params.smoothing_half_window;
+  std::vector<Track> tracks = track_features(features, cal, tp);
   if (progress) progress("track", 1, 1);
+  if (params.refine) {
+    refine_tracks(frames, tracks, px_per_mm, params.refinement);
+    smooth_tracks(tracks, params.smoothing_half_window);
+    if (progress) progress("refine", 1, 1);
+  }
 
   StrainMovie movie =
       strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio);

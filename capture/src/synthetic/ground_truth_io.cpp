@@ -14,11 +14,48 @@ namespace tactile::capture {
 
 namespace {
 
+void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTruth& gt) {
+  const auto s = json_field<nlohmann::json>(j, "warp", where);
+  const std::string w = where + " warp";
+  PrintWarpSpec spec;
+  spec.source = json_field<std::string>(s, "source", w);
+  spec.px_per_mm = json_field<double>(s, "px_per_mm", w);
+  spec.width_px = json_field<int>(s, "width_px", w);
+  spec.height_px = json_field<int>(s, "height_px", w);
+  try {
+    spec.pattern = parse_warp_pattern(json_field<std::string>(s, "pattern", w));
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", w, e.what()));
+  }
+  spec.strain = json_field<double>(s, "strain", w);
+  spec.width_mm = json_field<double>(s, "width_mm", w);
+  spec.slide_x_mm = json_field<double>(s, "slide_x_mm", w);
+  spec.slide_y_mm = json_field<double>(s, "slide_y_mm", w);
+  spec.rotation_deg = json_field<double>(s, "rotation_deg", w);
+  spec.frame_count = json_field<int>(s, "frame_count", w);
+  spec.frame_rate_hz = json_field<double>(s, "frame_rate_hz", w);
+  spec.blur_sigma_px = json_field<double>(s, "blur_sigma_px", w);
+  spec.noise_sigma = json_field<double>(s, "noise_sigma", w);
+  spec.brightness_drift = json_field<double>(s, "brightness_drift", w);
+  spec.seed = json_field<std::uint64_t>(s, "seed", w);
+  try {
+    validate(spec);
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", w, e.what()));
+  }
+  gt.calibration = uniform_calibration(spec.px_per_mm, spec.width_px, spec.height_px);
+  gt.warp = spec;
+}
+
 void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   const std::string where = path.string();
   const nlohmann::json j = read_json_object(path, "scene (not a `tactile synth` folder?)");
-  if (j.value("format", std::string()) != "tactile-synthetic-scene") {
-    throw FormatError(fmt::format("{}: 'format' is not tactile-synthetic-scene", where));
+  const std::string format =
+      j.contains("format") && j["format"].is_string() ? j["format"].get<std::string>() : "";
+  if (format == "tactile-print-warp") return read_print_warp(j, where, gt);
+  if (format != "tactile-synthetic-scene") {
+    throw FormatError(fmt::format(
+        "{}: 'format' is neither tactile-synthetic-scene nor tactile-print-warp", where));
   }
   const auto s = json_field<nlohmann::json>(j, "spec", where);
   const std::string w = where + " spec";
@@ -86,9 +123,10 @@ void read_landmarks_csv(const std::filesystem::path& path, GroundTruth& gt) {
     } catch (const std::invalid_argument&) {
       throw FormatError(fmt::format("{}: line {}: unknown type '{}'", where, row, type));
     }
-    if (lm.frame < 0 || lm.frame >= gt.spec.frame_count) {
-      throw FormatError(fmt::format("{}: line {}: frame {} outside 0..{}", where, row, lm.frame,
-                                    gt.spec.frame_count - 1));
+    const int frames = truth_frame_count(gt);
+    if (lm.frame < 0 || lm.frame >= frames) {
+      throw FormatError(
+          fmt::format("{}: line {}: frame {} outside 0..{}", where, row, lm.frame, frames - 1));
     }
     gt.landmarks.push_back(lm);
   }

@@ -87,6 +87,17 @@ GrayImage render_dot_grid(const SceneSpec& spec, const SceneModel& model,
 
 }  // namespace
 
+void write_landmarks_csv(const std::filesystem::path& path,
+                         const std::vector<TruthLandmark>& landmarks) {
+  auto out = csv::open_with_header(path, "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm");
+  for (const auto& lm : landmarks) {
+    out << fmt::format("{},{},{},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f}\n", lm.id,
+                       feature_type_name(lm.type), lm.frame, lm.x_px, lm.y_px, lm.x_mm, lm.y_mm,
+                       lm.diameter_mm);
+  }
+  csv::finish(out, path);
+}
+
 SyntheticSequence render_sequence(const SceneSpec& spec,
                                   const std::function<void(int done, int total)>& progress) {
   const SceneModel model(spec);
@@ -187,14 +198,7 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
   std::filesystem::create_directories(dir / "calibration");
   write_png(dir / "calibration" / "dot_grid.png", sequence.dot_grid);
 
-  const auto csv_path = dir / "landmarks.csv";
-  auto out = csv::open_with_header(csv_path, "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm");
-  for (const auto& lm : sequence.landmarks) {
-    out << fmt::format("{},{},{},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f}\n", lm.id,
-                       feature_type_name(lm.type), lm.frame, lm.x_px, lm.y_px, lm.x_mm, lm.y_mm,
-                       lm.diameter_mm);
-  }
-  csv::finish(out, csv_path);
+  write_landmarks_csv(dir / "landmarks.csv", sequence.landmarks);
 
   const SceneSpec& s = sequence.spec;
   const Calibration& c = sequence.calibration;

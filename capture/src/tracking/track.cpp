@@ -119,6 +119,13 @@ std::vector<Track> split_at_jumps(const Track& t, double gate_px) {
 
 }  // namespace
 
+void smooth_tracks(std::vector<Track>& tracks, int half_window) {
+  for (auto& t : tracks) {
+    t.x_px = smooth(t.x_px, half_window);
+    t.y_px = smooth(t.y_px, half_window);
+  }
+}
+
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
                                   const Calibration& calibration, const TrackParams& params) {
   if (!(params.match_radius_mm > 0)) throw std::invalid_argument("match_radius_mm must be > 0");
@@ -266,11 +273,10 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
     if (static_cast<int>(whole.x_px.size()) < params.min_track_frames) continue;
     for (auto& t : split_at_jumps(whole, gate_px)) {
       if (static_cast<int>(t.x_px.size()) < params.min_track_frames) continue;
-      t.x_px = smooth(t.x_px, params.smoothing_half_window);
-      t.y_px = smooth(t.y_px, params.smoothing_half_window);
       result.push_back(std::move(t));
     }
   }
+  smooth_tracks(result, params.smoothing_half_window);
   std::stable_sort(result.begin(), result.end(),
                    [](const Track& a, const Track& b) { return a.first_frame < b.first_frame; });
   for (std::size_t i = 0; i < result.size(); ++i) result[i].id = static_cast<std::int32_t>(i);

@@ -6,16 +6,26 @@
 #include <filesystem>
 #include <vector>
 
+#include <optional>
+
+#include "tactile/capture/print_warp.hpp"
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/capture/synth.hpp"
 
 namespace tactile::capture {
 
 struct GroundTruth {
-  SceneSpec spec;
+  SceneSpec spec;  // a synthetic scene (scene.json format tactile-synthetic-scene), unless warp
   Calibration calibration;               // the true px -> mm map of the synthetic camera
   std::vector<TruthLandmark> landmarks;  // every landmark in view and in contact, every frame
+  std::optional<PrintWarpSpec> warp;     // a warped real print (format tactile-print-warp)
 };
+
+// Frames of the truth's sequence, and the true relative length change of a segment (image
+// millimetres at frame_from, seen again at frame_to), whichever kind of truth it is.
+int truth_frame_count(const GroundTruth& truth);
+double truth_rel_change(const GroundTruth& truth, PointMm a_from, PointMm b_from, int frame_from,
+                        int frame_to);
 
 // Reads DIR/scene.json and DIR/landmarks.csv. Throws tactile::FormatError naming the file and
 // the problem (missing, not JSON, another format, missing or mistyped fields, bad CSV rows).
@@ -36,6 +46,9 @@ struct Evaluation {
   std::int64_t edges = 0;
   double rms_error = 0;  // over every edge of every frame
   double rms_truth = 0;
+  // Pearson correlation of measured and true relative changes over every edge (0 when either
+  // has no spread, e.g. a rigid motion whose true strain is zero everywhere).
+  double correlation = 0;
   // Localisation: each tracked point against the nearest true landmark of its frame (any type)
   // within `match_bound_mm`; points with none are counted as unmatched.
   double match_bound_mm = 0.15;

@@ -3,6 +3,7 @@
 // image_NN.<jpg|jpeg|png|bmp|tif|tiff> with pores_NN.txt beside each, one marked pore per line
 // as `row col` (1-based pixel coordinates, separated by white space).
 
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -20,5 +21,11 @@ std::vector<PoreTrainingPrint> read_pore_training_prints(const std::filesystem::
 // The image and marks files read_pore_training_prints would read from `dir` (none if it is not a
 // directory), without reading them: for a caller that must not write over them.
 std::vector<std::filesystem::path> pore_training_files(const std::filesystem::path& dir);
+
+// One marks file as 0-based (x, y); `width_px` x `height_px` is its image's size. Throws
+// tactile::FormatError naming the file and line (not two numbers, extra columns, a mark outside
+// the image, no marks at all).
+std::vector<std::array<double, 2>> read_pore_marks(const std::filesystem::path& path, int width_px,
+                                                   int height_px);
 
 }  // namespace tactile::capture

@@ -29,6 +29,10 @@ struct CaptureParams {
   int min_track_frames = 30;
   int max_gap_frames = 2;
   int smoothing_half_window = 3;
+  // Sub-pixel refinement of the tracks against the images (refine_tracks), before smoothing.
+  // Off by default: the paper's pore blobs have precise centres (see choose_capture_settings).
+  bool refine = false;
+  RefineParams refinement;
   int span_frames = 1;  // strain between frame i and frame i + span_frames
   // Edges longer than this multiple of the frame's median edge are hull slivers, not skin.
   double max_edge_ratio = 3.0;
@@ -46,6 +50,24 @@ void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector
 StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_frame_count,
                                const Calibration& calibration, double frame_rate_hz,
                                int span_frames, double max_edge_ratio);
+
+// Settings that fit the image, chosen on its first frame: the pore detector that finds more
+// pores there, and refinement with it when that is the ridge-blob detector. The paper's blobs
+// are clean bright discs whose grey-level centres are precise (on the synthetic scenes
+// refinement made the strain error worse); the ridge-blob detector's centres on real prints
+// move with noise and the ridge beside the pore, and refinement cuts their strain error
+// about threefold. Measured figures: docs/capture-models.md.
+struct CaptureChoice {
+  PoreDetector detector = PoreDetector::paper;
+  bool refine = false;
+  // Refined positions carry little noise of their own, so a longer fit averages more of what is
+  // left (measured on prints 01-10: 5 better than 3 and 7 on every print).
+  int smoothing_half_window = 3;
+  int paper_pores = 0;  // pores each detector found on the frame
+  int ridge_blob_pores = 0;
+};
+CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_per_mm,
+                                      const FeatureParams& base = pores_only());
 
 // The whole pipeline: extract -> match and track -> strain. `progress` is called with the stage
 // name ("extract", "track", "strain") and counts.

@@ -100,4 +100,8 @@ SyntheticSequence render_sequence(const SceneSpec& spec,
 // calibration). Only the frames are images at the top level, so DIR is a valid capture input.
 void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence);
 
+// landmarks.csv: id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm, one row per landmark and frame.
+void write_landmarks_csv(const std::filesystem::path& path,
+                         const std::vector<TruthLandmark>& landmarks);
+
 }  // namespace tactile::capture

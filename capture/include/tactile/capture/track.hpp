@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie.hpp"
 
 namespace tactile::capture {
@@ -44,5 +45,28 @@ struct Track {
 // drops short tracks and smooths the rest. Kept tracks are numbered 0.. in order of first frame.
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
                                   const Calibration& calibration, const TrackParams& params = {});
+
+// Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none).
+void smooth_tracks(std::vector<Track>& tracks, int half_window);
+
+// Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
+// a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
+// the image around it gives a precise displacement. Each track's step from frame f to f + 1 is
+// measured by Lucas-Kanade on the landmark's neighbourhood (started from the detected step and
+// checked by tracking back), and the chained positions are pulled gently towards the detections
+// so that they cannot drift. A step that fails the check keeps the detected step.
+struct RefineParams {
+  double window_mm = 0.7;          // Lucas-Kanade window side (about two ridge periods)
+  double anchor_weight = 0.08;     // pull of each frame's detection on the chained position
+  double max_back_error_px = 0.3;  // forward-backward disagreement that rejects a step
+};
+
+struct RefineStats {
+  long steps = 0;     // frame-to-frame steps measured
+  long rejected = 0;  // of which the image could not confirm (detected step kept)
+};
+
+RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
+                          double px_per_mm, const RefineParams& params = {});
 
 }  // namespace tactile::capture

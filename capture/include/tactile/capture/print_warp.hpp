@@ -1,0 +1,92 @@
+#pragma once
+// Test sequences made from a real fingerprint image: the print is moved by a known smooth
+// non-rigid warp (slide and rotation plus a local stretch, compression, radial bump or
+// travelling strain wave), and each frame is filmed with camera blur, noise and a brightness
+// drift. The warp is exact, so the strain of every segment is known: `tactile evaluate` scores a
+// strain movie of such a sequence as it scores the synthetic scenes.
+//
+// Kinematics: a material point X (millimetres on the source print, origin at its top-left pixel
+// centre) is seen at frame f at
+//   x = c + R(theta(f)) (X + u(X, f) - c) + s(f)
+// where c is the image centre, R a rotation, s a slide (both growing linearly over the
+// sequence) and u the pattern's displacement, whose strain rises and falls back as
+// sin(pi f / (frames - 1)).
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tactile/capture/image.hpp"
+#include "tactile/capture/strain_movie.hpp"
+#include "tactile/capture/synth.hpp"
+
+namespace tactile::capture {
+
+enum class WarpPattern {
+  rigid,     // slide and rotation only: every true strain is zero
+  stretch,   // local uniaxial stretch along x (Gaussian envelope)
+  compress,  // local uniaxial compression along y (Gaussian envelope)
+  bump,      // radial stretch at the centre, compression around it (as a bump pushes skin)
+  wave,      // a strain wave along x travelling one wavelength over the sequence
+};
+
+WarpPattern parse_warp_pattern(std::string_view name);  // throws std::invalid_argument
+std::string_view to_string(WarpPattern pattern);
+const std::vector<std::string>& warp_pattern_names();
+
+struct PrintWarpSpec {
+  std::string source;  // the print's file name, for the record
+  double px_per_mm = 47.0;
+  int width_px = 0;  // the source print's size (the camera sees the same field)
+  int height_px = 0;
+  WarpPattern pattern = WarpPattern::wave;
+  double strain = 0.04;      // peak strain of the pattern (0.04 = 4 %)
+  double width_mm = 3.0;     // Gaussian envelope's full width at half maximum; wave's length
+  double slide_x_mm = 0.25;  // rigid slide over the whole sequence
+  double slide_y_mm = 0.08;
+  double rotation_deg = 1.5;  // rigid rotation over the whole sequence
+  int frame_count = 30;
+  double frame_rate_hz = 60.0;
+  double blur_sigma_px = 0.7;
+  double noise_sigma = 2.0;        // grey levels, new in every frame
+  double brightness_drift = 0.06;  // relative change of exposure from first to last frame
+  std::uint64_t seed = 1;
+};
+
+// Throws std::invalid_argument naming the first bad field (strain above 0.2 would fold the
+// Gaussian patterns; the fixed-point inversion of the warp needs its gradient below 1).
+void validate(const PrintWarpSpec& spec);
+
+// Image millimetres at `frame` of a material point, and its inverse.
+PointMm warp_to_image(const PrintWarpSpec& spec, PointMm material, int frame);
+PointMm warp_to_material(const PrintWarpSpec& spec, PointMm image, int frame);
+
+// True relative length change of the segment seen at a_from, b_from (image millimetres) in
+// frame_from, when seen again in frame_to.
+double warp_rel_change(const PrintWarpSpec& spec, PointMm a_from, PointMm b_from, int frame_from,
+                       int frame_to);
+
+struct PrintSequence {
+  PrintWarpSpec spec;
+  Calibration calibration;  // uniform px_per_mm
+  std::vector<GrayImage> frames;
+  // Hand-marked pores of the source print (0-based x, y pixels; empty when none were given),
+  // written through the warp as the sequence's landmarks, ids in the order of the marks.
+  std::vector<std::array<double, 2>> marks_px;
+  std::vector<TruthLandmark> landmarks;  // the marks in view, every frame (pores, id = mark index)
+};
+
+// Renders the sequence (marks_px as in PrintSequence; read them with read_pore_marks).
+// Throws std::invalid_argument for a bad spec or a print whose size is not the spec's.
+PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& print,
+                                    const std::vector<std::array<double, 2>>& marks_px = {});
+
+// frame_NNN.png, landmarks.csv (the marks through the warp) and scene.json (format
+// tactile-print-warp: the spec and the calibration), so that DIR is a `tactile capture` input and
+// a `tactile evaluate` ground truth.
+void write_print_sequence(const std::filesystem::path& dir, const PrintSequence& sequence);
+
+}  // namespace tactile::capture
