@@ -6,8 +6,10 @@
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -208,6 +210,20 @@ ChartFiles write_both(const std::filesystem::path& path, int width, int height,
     throw;
   }
   cairo_surface_destroy(vector);
+  // cairo names the drawing after a process-wide surface counter; a fixed name makes the same
+  // chart the same bytes, however many charts were drawn before it.
+  std::string renamed;
+  std::size_t from = 0;
+  for (std::size_t at = svg.find("surface"); at != std::string::npos;
+       at = svg.find("surface", from)) {
+    std::size_t digits = at + 7;
+    while (digits < svg.size() && std::isdigit(static_cast<unsigned char>(svg[digits]))) ++digits;
+    renamed.append(svg, from, at + 7 - from);
+    if (digits > at + 7) renamed += '1';
+    from = digits;
+  }
+  renamed.append(svg, from);
+  svg = std::move(renamed);
   const std::size_t open = svg.find("<svg");
   const std::size_t end = open == std::string::npos ? open : svg.find('>', open);
   if (end == std::string::npos) throw std::runtime_error("cairo wrote no <svg> element");
@@ -426,10 +442,14 @@ ChartFiles write_xy(const std::filesystem::path& path, const XYChart& chart, Mar
       ly += 20;
     }
   };
+  std::vector<std::string> labels;
+  for (const auto& s : chart.series)
+    if (!s.label.empty()) labels.push_back(s.label);
   ChartFiles files = write_both(
       path, chart.width, chart.height, chart.title,
-      fmt::format("x: {}; y: {}; {}", chart.x.label, chart.y.label,
-                  count_text(drawn, left_out, marks == Marks::dots ? "points" : "line points")),
+      fmt::format("x: {}; y: {}; {}; series: {}", chart.x.label, chart.y.label,
+                  count_text(drawn, left_out, marks == Marks::dots ? "points" : "line points"),
+                  fmt::join(labels, "; ")),
       draw);
   files.drawn = drawn;
   files.left_out = left_out;
@@ -500,9 +520,11 @@ ChartFiles write_bar_chart(const std::filesystem::path& path, const BarChart& ch
     }
     footer(c, chart.footer, height);
   };
-  ChartFiles files = write_both(
-      path, chart.width, height, chart.title,
-      fmt::format("value: {}; {}", chart.value_label, count_text(drawn, left_out, "bars")), draw);
+  ChartFiles files =
+      write_both(path, chart.width, height, chart.title,
+                 fmt::format("value: {}; {}; legend: {}", chart.value_label,
+                             count_text(drawn, left_out, "bars"), fmt::join(chart.legend, "; ")),
+                 draw);
   files.drawn = drawn;
   files.left_out = left_out;
   return files;

@@ -100,6 +100,15 @@ TEST_F(ChartTest, ScatterWritesPngAndSvgWhateverTheExtensionGiven) {
   }
 }
 
+TEST_F(ChartTest, TheSameChartIsTheSameBytes) {
+  // However many charts the process drew before (cairo numbers its surfaces).
+  tactile::write_scatter_chart(dir_ / "first", speed_accuracy());
+  tactile::write_line_chart(dir_ / "other", speed_accuracy());
+  tactile::write_scatter_chart(dir_ / "second", speed_accuracy());
+  EXPECT_EQ(read(dir_ / "first.svg"), read(dir_ / "second.svg"));
+  EXPECT_EQ(read(dir_ / "first.png"), read(dir_ / "second.png"));
+}
+
 TEST_F(ChartTest, LogAxisLeavesOutNonPositiveAndNonFinitePoints) {
   auto c = speed_accuracy();
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -14,8 +14,8 @@
 // title and axes, and says "no data".
 //
 // The SVG's text is drawn as glyph outlines (so it looks the same without the fonts), which a
-// text search cannot find; the title, axis labels and the count of drawn and left-out points
-// are therefore also in its <title> and <desc> elements.
+// text search cannot find; the title, axis labels, legend entries and the count of drawn and
+// left-out points are therefore also in its <title> and <desc> elements.
 //
 // Fields default to {} so that designated initializers may name only what they need.
 
