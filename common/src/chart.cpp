@@ -385,7 +385,8 @@ ChartFiles write_xy(const std::filesystem::path& path, const XYChart& chart, Mar
     c.text(chart.y.label, 18, (top + bottom) / 2, kLabelSize, Align::centre, kBlack, 90);
     footer(c, chart.footer, chart.height);
 
-    c.clip(left, top, right - left, bottom - top);
+    // A little beyond the frame, so that a line along a fixed limit (100 %) shows whole.
+    c.clip(left - 3, top - 3, right - left + 6, bottom - top + 6);
     for (const auto& t : chart.x_targets)
       if (sx.valid(t.value)) {
         c.line(sx.px(t.value), top, sx.px(t.value), bottom, kGrey, 1, true);
