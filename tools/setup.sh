@@ -13,6 +13,7 @@ packages=(
   libusb-1.0-0-dev libhidapi-dev
   libglfw3-dev libgl-dev libimgui-dev
   libsvm-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+  libcairo2-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri

@@ -10,7 +10,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "plots.hpp"
+#include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/experiments/experiment.hpp"
@@ -254,12 +254,19 @@ std::vector<PerceptionTable> run_perception(
         const auto it = std::find(legend.begin(), legend.end(), t.method);
         colours.push_back(static_cast<int>(it - legend.begin()));
       }
-  const fs::path plot = out_dir / "plots" / "perception.png";
-  plots::bar_chart(plot,
-                   fmt::format("{}: curvature classified from movies (all 76 inputs)", ex.name),
-                   "fraction of held-out trials correct", labels, accuracy, colours, legend, 0.0,
-                   1.0, "made by " + made_by);
-  files.push_back(plot);
+  fs::create_directories(out_dir / "plots");
+  const ChartFiles plot = write_bar_chart(
+      out_dir / "plots" / "perception.png",
+      {.title = fmt::format("{}: curvature classified from movies (all 76 inputs)", ex.name),
+       .value_label = "fraction of held-out trials correct",
+       .labels = labels,
+       .values = accuracy,
+       .colours = colours,
+       .legend = legend,
+       .min = 0.0,
+       .max = 1.0,
+       .footer = "made by " + made_by});
+  files.insert(files.end(), {plot.png, plot.svg});
   return tables;
 }
 

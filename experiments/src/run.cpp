@@ -11,8 +11,8 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
-#include "plots.hpp"
 #include "tactile/capture/strain.hpp"
+#include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/parallel_for.hpp"
@@ -253,12 +253,23 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
     }
     const std::string footer = "made by " + made_by;
     const fs::path plots = out_dir / "plots";
-    plots::bar_chart(plots / "correlation.png",
-                     fmt::format("{}: imposed vs source strain between neighbours", ex.name),
-                     "correlation", labels, correlation, colours, legend, -0.5, 1.0, footer);
-    plots::bar_chart(plots / "saturation.png",
-                     fmt::format("{}: fraction of contactor-frames at the range limits", ex.name),
-                     "saturated fraction", labels, saturation, colours, legend, 0.0, 1.0, footer);
+    fs::create_directories(plots);
+    const auto keep = [&](const ChartFiles& f) {
+      report.files.insert(report.files.end(), {f.png, f.svg});
+    };
+    // The two bar charts show the same runs in the same colours; only the metric differs.
+    BarChart bars{.labels = labels, .colours = colours, .legend = legend, .footer = footer};
+    bars.title = fmt::format("{}: imposed vs source strain between neighbours", ex.name);
+    bars.value_label = "correlation";
+    bars.values = correlation;
+    bars.min = -0.5;
+    bars.max = 1.0;
+    keep(write_bar_chart(plots / "correlation.png", bars));
+    bars.title = fmt::format("{}: fraction of contactor-frames at the range limits", ex.name);
+    bars.value_label = "saturated fraction";
+    bars.values = saturation;
+    bars.min = 0.0;
+    keep(write_bar_chart(plots / "saturation.png", bars));
     // Activity: one plot per source and layout, one line per method and parameter set, so
     // the lines compared share the same skin and the same contactors.
     std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> groups;
@@ -266,27 +277,28 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
       groups[{ex.runs[i].source, ex.runs[i].layout}].push_back(i);
     }
     for (const auto& [key, members] : groups) {
-      std::vector<std::string> run_labels;
-      std::vector<std::vector<double>> series;
+      const auto& first = ex.runs[members.front()];
+      // Runs of one group may differ in rate; the time axis uses the first run's period.
+      const double dt_s = 1.0 / first.params.rate_hz;
+      XYChart chart{.title = fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
+                                         ex.sources[key.first].name, ex.layouts[key.second].name),
+                    .x = {.label = "t (s)"},
+                    .y = {.label = "mean |deflection| (um)", .min = 0},
+                    .footer = footer,
+                    .width = 1000,
+                    .height = 500};
       for (const auto i : members) {
         const auto& p = ex.runs[i].params;
-        run_labels.push_back(fmt::format("{} {} {} gain {:g} ({:g} Hz)", p.method, p.strain,
-                                         p.normalisation, p.gain_um_per_strain, p.rate_hz));
-        series.push_back(report.results[i].activity_um);
+        ChartSeries& s = chart.series.emplace_back();
+        s.label = fmt::format("{} {} {} gain {:g} ({:g} Hz)", p.method, p.strain, p.normalisation,
+                              p.gain_um_per_strain, p.rate_hz);
+        s.y = report.results[i].activity_um;
+        for (std::size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k) * dt_s);
       }
-      const auto& first = ex.runs[members.front()];
-      const fs::path file = plots / fmt::format("activity-{}-{}.png", ex.sources[key.first].name,
-                                                ex.layouts[key.second].name);
-      // Runs of one group may differ in rate; the time axis uses the first run's period.
-      plots::line_chart(file,
-                        fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
-                                    ex.sources[key.first].name, ex.layouts[key.second].name),
-                        "mean |deflection| (um)", run_labels, series, 1.0 / first.params.rate_hz,
-                        footer);
-      report.files.push_back(file);
+      keep(write_line_chart(plots / fmt::format("activity-{}-{}.png", ex.sources[key.first].name,
+                                                ex.layouts[key.second].name),
+                            chart));
     }
-    report.files.push_back(plots / "correlation.png");
-    report.files.push_back(plots / "saturation.png");
   }
   report.run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (ex.perception) {

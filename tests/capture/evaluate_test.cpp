@@ -5,7 +5,6 @@
 #include <map>
 
 #include "tactile/capture/baselines.hpp"
-#include "tactile/capture/chart.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain.hpp"
@@ -205,21 +204,6 @@ TEST(Pipeline, SequenceWithNoContactGivesEmptyStrainFrames) {
   EXPECT_TRUE(movie.tracks.empty());
   ASSERT_EQ(movie.frames.size(), 39u);
   for (const auto& f : movie.frames) EXPECT_TRUE(f.edges.empty());
-}
-
-TEST(Chart, WritesAPngOfTheStatedSizeAndNamesAnUnwritablePath) {
-  TempDir dir;
-  const std::vector<ChartPoint> pts = {{"a", 100, 0.001}, {"b", 300, 0.01}, {"b", -1, 0.1}};
-  write_scatter_chart_png(dir.path() / "c.png", pts, {"t", "x", "y", true, true, 0.005, 300});
-  const GrayImage img = read_image(dir.path() / "c.png");
-  EXPECT_EQ(img.width_px, 960);
-  EXPECT_EQ(img.height_px, 600);
-  try {
-    write_scatter_chart_png(dir.path() / "missing" / "c.png", pts, {});
-    ADD_FAILURE() << "no error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("missing"), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

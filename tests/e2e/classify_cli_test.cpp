@@ -75,6 +75,7 @@ TEST(ClassifyCli, TrainTestPredictOnRealRecordings) {
   for (std::size_t i = 1; i < predictions.size(); ++i) right += std::stoi(predictions[i][3]);
   EXPECT_EQ(right, correct);
   EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "confusion.svg"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "confusion.png"));
   // predict: one line per file, naming one of the model's classes.
   const auto p = run_tactile("classify predict --model " + model + " " + kMaterials +
                              "/mat7_4_bio.csv " + kMaterials + "/mat20_3_bio.csv");

@@ -54,9 +54,10 @@ TEST(PerceiveCli, WritesTable2Figure7AndAccuracyPerFootprint) {
   EXPECT_EQ(line_count(out / "table2.csv"), 1 + 5 * 2);     // 5 input sets x 2 kernels
   EXPECT_EQ(line_count(out / "figure7.csv"), 1 + 10 * 48);  // every held-out trial
   EXPECT_EQ(line_count(out / "accuracy_by_footprint.csv"), 1 + 10 * 16);  // 16 footprints
-  for (const char* svg : {"figure7_all_exp1.svg", "figure7_roll_exp2.svg",
-                          "accuracy_by_footprint_exp1.svg", "accuracy_by_footprint_exp2.svg"})
-    EXPECT_TRUE(std::filesystem::is_regular_file(out / svg)) << svg;
+  for (const char* chart :
+       {"figure7_all_exp1.svg", "figure7_roll_exp2.svg", "accuracy_by_footprint_exp1.svg",
+        "accuracy_by_footprint_exp2.svg", "figure7_all_exp1.png", "accuracy_by_footprint_exp2.png"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / chart)) << chart;
   std::filesystem::remove_all(out);
 }
 

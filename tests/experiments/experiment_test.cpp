@@ -72,6 +72,7 @@ TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
   for (const char* f :
        {"experiment.json", "resolved.json", "metrics.csv", "plots/correlation.png",
         "plots/saturation.png", "plots/activity-bump-stress.png", "plots/activity-bump-latero.png",
+        "plots/correlation.svg", "plots/activity-bump-latero.svg",
         "movies/003-bump-stress-integrated-accumulated.h5"}) {
     EXPECT_TRUE(fs::exists(one / f)) << f;
   }

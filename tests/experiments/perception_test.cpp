@@ -134,6 +134,7 @@ TEST(ExperimentPerception, SmallRunGivesOneTable2PerMappingAndTheSensors) {
   }
   EXPECT_TRUE(fs::exists(out / "perception" / "summary.csv"));
   EXPECT_TRUE(fs::exists(out / "plots" / "perception.png"));
+  EXPECT_TRUE(fs::exists(out / "plots" / "perception.svg"));
 }
 
 }  // namespace

@@ -91,14 +91,15 @@ TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
   EXPECT_NE(csv.find("dp,1,2.5,0,1,0.0000\n"), std::string::npos) << csv;
   EXPECT_NE(csv.find("all,2,-1.25,1,1,1.0000\n"), std::string::npos) << csv;
 
-  perception::write_accuracy_by_footprint_svg(dir / "a1.svg", rows, 1);
+  const tactile::ChartFiles files =
+      perception::write_accuracy_by_footprint_chart(dir / "a1.svg", rows, 1);
+  EXPECT_EQ(files.svg, dir / "a1.svg");
+  EXPECT_TRUE(fs::is_regular_file(dir / "a1.png"));
+  EXPECT_EQ(files.drawn, 6u);  // exponent 1: all and dp, three footprints each
   const std::string svg = read(dir / "a1.svg");
-  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
-  EXPECT_EQ(count(svg, "<polyline"), 2u);  // exponent 1: all and dp
-  EXPECT_NE(svg.find("dp (1/3)"), std::string::npos);
-  EXPECT_NE(svg.find("all (2/3)"), std::string::npos);
-  EXPECT_THROW(perception::write_accuracy_by_footprint_svg(dir / "missing" / "x.svg", rows, 1),
+  EXPECT_NE(svg.find("series: all (2/3); dp (1/3)"), std::string::npos) << svg.substr(0, 600);
+  EXPECT_THROW(perception::write_accuracy_by_footprint_chart(dir / "missing" / "x.svg", rows, 1),
                std::runtime_error);
   fs::remove_all(dir);
 }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
@@ -20,10 +21,10 @@
 #include "command.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/baselines.hpp"
-#include "tactile/capture/chart.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
 
 namespace tactile::cli {
@@ -191,7 +192,8 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       "flat-stick-slip; 640 x 484): frames/s\n"
       "of extract + match + track + strain, and accuracy against the exact ground truth, for the\n"
       "landmark pipeline and the Lucas-Kanade and DIS baselines. Writes OUT/bench_capture.csv\n"
-      "and OUT/speed_accuracy.png; --sweeps also pushes each image condition until failure\n"
+      "and OUT/speed_accuracy.png (and .svg); --sweeps also pushes each image condition until "
+      "failure\n"
       "(OUT/sweeps.csv).");
   sub->add_option("--frames", opt->frames, "Frames per sequence")
       ->check(within(35, 2000))
@@ -228,23 +230,33 @@ void add_bench_capture(CLI::App& bench, Action& action) {
           csv_path,
           "method,scene,frames,seconds,frames_per_s,cpu_ms_per_frame,rms_error,rms_truth,edges,"
           "median_tracked_points,localisation_rms_mm,track_count,median_track_frames,error");
-      std::vector<capture::ChartPoint> points;
+      XYChart chart{.title = "Strain from the five synthetic scenes (640 x 484)",
+                    .x = {.label = "frames per second (extract + match + track + strain)",
+                          .scale = AxisScale::log},
+                    .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
+                    .x_targets = {{.value = 300, .label = "300 frames/s"}},
+                    .y_targets = {{.value = 0.005, .label = "RMS 0.005"}},
+                    .width = 960,
+                    .height = 600};
       for (const auto& r : results) {
         csv << fmt::format(
             "\"{}\",{},{},{:.4f},{:.1f},{:.3f},{:.6g},{:.6g},{},{:.0f},{:.5f},{},{:.0f},\"{}\"\n",
             r.method, r.scene, r.frames, r.seconds, frames_per_s(r), cpu_ms_per_frame(r),
             r.eval.rms_error, r.eval.rms_truth, r.eval.edges, r.eval.median_tracked_points,
             r.eval.localisation_rms_mm, r.eval.track_count, r.eval.median_track_frames, r.error);
-        if (r.error.empty()) points.push_back({r.method, frames_per_s(r), r.eval.rms_error});
+        if (!r.error.empty()) continue;
+        // One series per method, so that a method's five scenes share a colour.
+        auto it = std::find_if(chart.series.begin(), chart.series.end(),
+                               [&](const ChartSeries& s) { return s.label == r.method; });
+        if (it == chart.series.end()) it = chart.series.insert(it, {.label = r.method});
+        it->x.push_back(frames_per_s(r));
+        it->y.push_back(r.eval.rms_error);
       }
       csv::finish(csv, csv_path);
-      capture::write_scatter_chart_png(opt->out / "speed_accuracy.png", points,
-                                       {"Strain from the five synthetic scenes (640 x 484)",
-                                        "frames per second (extract + match + track + strain)",
-                                        "edge strain RMS error", true, true, 0.005, 300});
+      const ChartFiles plot = write_scatter_chart(opt->out / "speed_accuracy.png", chart);
       fmt::print("load average after the run: {}\n", load_average());
-      fmt::print("bench capture: wrote {} and {}\n", csv_path.string(),
-                 (opt->out / "speed_accuracy.png").string());
+      fmt::print("bench capture: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
+                 plot.svg.string());
 
       if (!opt->sweeps) return 0;
       const NamedMethod pipeline = all.front();

@@ -107,7 +107,7 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
       out << model.class_names[c] << ',' << fmt::format("{}", fmt::join(t.confusion[c], ","))
           << '\n';
     csv::finish(out, confusion_path);
-    perception::write_confusion_svg(csv_dir / "confusion.svg", model.class_names, t.confusion);
+    perception::write_confusion_chart(csv_dir / "confusion.svg", model.class_names, t.confusion);
     const auto predictions_path = csv_dir / "predictions.csv";
     auto pred = csv::open_with_header(predictions_path,
                                       values ? "file,class,predicted,correct,value,predicted_value"
@@ -122,8 +122,9 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
       pred << '\n';
     }
     csv::finish(pred, predictions_path);
-    fmt::print("classify test: confusion.csv, confusion.svg, predictions.csv -> {}\n",
-               csv_dir.string());
+    fmt::print(
+        "classify test: confusion.csv, confusion.svg, confusion.png, predictions.csv -> {}\n",
+        csv_dir.string());
   }
   return 0;
 }
@@ -217,7 +218,8 @@ void add_classify(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   ts->add_option(
       "--csv", te->csv,
-      "Folder for confusion.csv, confusion.svg and predictions.csv (created if missing)");
+      "Folder for confusion.csv, confusion.svg, confusion.png and predictions.csv (created if "
+      "missing)");
   ts->add_option("--threads", te->threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 256));
   ts->callback([te, &action] {

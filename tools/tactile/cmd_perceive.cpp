@@ -100,8 +100,9 @@ void add_perceive(CLI::App& app, Action& action) {
       "Perception evaluation of paper 2 (Ponce Wong et al.): 48 features x 4 exploratory\n"
       "procedures on the simulated fingertip sensor, 76 inputs, SVC for the order of curvature\n"
       "then curvature-specific SVR for the signed footprint (90/10 split per feature).\n"
-      "Writes table2.csv, figure7.csv and figure7_<inputs>_exp<k>.svg, and the classifier's\n"
-      "held-out accuracy per footprint (accuracy_by_footprint.csv, _exp<k>.svg). With\n"
+      "Writes table2.csv, figure7.csv and figure7_<inputs>_exp<k>.svg (and .png), and the\n"
+      "classifier's held-out accuracy per footprint (accuracy_by_footprint.csv, _exp<k>.svg and\n"
+      ".png). With\n"
       "--recordings DIR, analyses real BioTac-style recordings instead (recordings.csv).\n"
       "With --seeds N, repeats Table 2 on N data sets (seeds SEED..SEED+N-1) and reports each\n"
       "row's spread (table2_seeds.csv): one split holds out only 96 trials.");
@@ -203,13 +204,13 @@ void add_perceive(CLI::App& app, Action& action) {
       perception::write_table2_csv(opt->out_dir / "table2.csv", rows);
       perception::write_figure7_csv(opt->out_dir / "figure7.csv", rows);
       for (const auto& row : rows)
-        perception::write_figure7_svg(
+        perception::write_figure7_chart(
             opt->out_dir /
                 fmt::format("figure7_{}_exp{}.svg", row.result.inputs, row.result.degree),
             row.result);
       perception::write_accuracy_by_footprint_csv(opt->out_dir / "accuracy_by_footprint.csv", rows);
       for (int degree : {1, 2})
-        perception::write_accuracy_by_footprint_svg(
+        perception::write_accuracy_by_footprint_chart(
             opt->out_dir / fmt::format("accuracy_by_footprint_exp{}.svg", degree), rows, degree);
       if (opt->export_recordings) {
         const auto dir = opt->out_dir / "recordings";

@@ -1,4 +1,4 @@
-// Table 2 and Figure 7 files (see perception_report.hpp).
+// Table 2 and Figure 7 files (see report.hpp); the charts are drawn by common's chart module.
 
 #include "tactile/perception/report.hpp"
 
@@ -17,23 +17,6 @@
 namespace tactile::perception {
 namespace {
 constexpr const char* kCurvatureNames[3] = {"planar", "conical", "spherical"};
-constexpr const char* kColours[3] = {"#1f77b4", "#d62728", "#2ca02c"};
-
-std::ofstream open_svg(const std::filesystem::path& path, double width, double height) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  out << fmt::format(
-      "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' "
-      "font-family='sans-serif' font-size='13'>\n<rect width='100%' height='100%' fill='white'/>\n",
-      width, height);
-  return out;
-}
-
-void finish_svg(std::ofstream& out, const std::filesystem::path& path) {
-  out << "</svg>\n";
-  out.flush();
-  if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
-}
 }  // namespace
 
 std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const PerceptionSplit& split,
@@ -89,46 +72,27 @@ void write_figure7_csv(const std::filesystem::path& path, const std::vector<Time
   csv::finish(out, path);
 }
 
-void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& r) {
-  // Square plot, both axes -25..25 mm, identity line dashed.
-  constexpr double kSize = 480, kMargin = 60, kRange = 25;
-  const auto px = [&](double mm) { return kMargin + (mm + kRange) / (2 * kRange) * kSize; };
-  const auto py = [&](double mm) { return kMargin + (kRange - mm) / (2 * kRange) * kSize; };
-  std::ofstream out = open_svg(path, kSize + 2 * kMargin, kSize + 2 * kMargin + 20);
-  out << fmt::format(
-      "<text x='{}' y='25' text-anchor='middle' font-size='15'>Predicted vs true signed "
-      "footprint ({} inputs, exponent {}): {}/{} curvature correct</text>\n",
-      kMargin + kSize / 2, r.inputs, r.degree, r.correct, r.tested);
-  out << fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='black'/>\n",
-                     kMargin, kMargin, kSize, kSize);
-  for (int mm = -20; mm <= 20; mm += 5) {
-    out << fmt::format("<text x='{}' y='{}' text-anchor='middle'>{}</text>\n", px(mm),
-                       kMargin + kSize + 16, mm);
-    out << fmt::format("<text x='{}' y='{}' text-anchor='end'>{}</text>\n", kMargin - 6, py(mm) + 4,
-                       mm);
-  }
-  out << fmt::format(
-      "<line x1='{}' y1='{}' x2='{}' y2='{}' stroke='grey' stroke-dasharray='4 4'/>\n", px(-kRange),
-      py(-kRange), px(kRange), py(kRange));
-  out << fmt::format(
-      "<text x='{}' y='{}' text-anchor='middle'>true footprint (mm, + bump, - "
-      "pit)</text>\n",
-      kMargin + kSize / 2, kMargin + kSize + 36);
-  out << fmt::format(
-      "<text transform='translate(18 {}) rotate(-90)' text-anchor='middle'>predicted footprint "
-      "(mm)</text>\n",
-      kMargin + kSize / 2);
-  for (const auto& p : r.predictions)
-    out << fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='3.5' fill='{}' fill-opacity='0.6'/>\n",
-                       px(p.true_mm), py(std::clamp(p.predicted_mm, -kRange, kRange)),
-                       kColours[p.curvature]);
+ChartFiles write_figure7_chart(const std::filesystem::path& path, const CascadeResult& r) {
+  constexpr double kRange = 25;  // mm, both axes: the largest footprint and some room
+  XYChart chart{.title = fmt::format(
+                    "Predicted vs true signed footprint ({} inputs, exponent {}): {}/{} curvature "
+                    "correct",
+                    r.inputs, r.degree, r.correct, r.tested),
+                .x = {.label = "true footprint (mm, + bump, - pit)", .min = -kRange, .max = kRange},
+                .y = {.label = "predicted footprint (mm)", .min = -kRange, .max = kRange},
+                .identity_line = true,
+                .width = 800,
+                .height = 600};
   for (int c = 0; c < 3; ++c)
-    out << fmt::format(
-        "<circle cx='{0}' cy='{1}' r='5' fill='{2}'/><text x='{3}' y='{4}'>{5}: R2 {6:.3f}, RMS "
-        "{7:.2f} mm</text>\n",
-        kMargin + 15, kMargin + 15 + 20 * c, kColours[c], kMargin + 26, kMargin + 20 + 20 * c,
-        kCurvatureNames[c], r.r2[c], r.rms_mm[c]);
-  finish_svg(out, path);
+    chart.series.push_back({.label = fmt::format("{}: R2 {:.3f}, RMS {:.2f} mm", kCurvatureNames[c],
+                                                 r.r2[c], r.rms_mm[c])});
+  // A wild prediction is drawn at the edge rather than dropped, so that every trial is seen.
+  for (const auto& p : r.predictions) {
+    auto& s = chart.series[static_cast<std::size_t>(p.curvature)];
+    s.x.push_back(p.true_mm);
+    s.y.push_back(std::clamp(p.predicted_mm, -kRange, kRange));
+  }
+  return write_scatter_chart(path, chart);
 }
 
 std::vector<FootprintAccuracy> accuracy_by_footprint(const CascadeResult& result) {
@@ -157,70 +121,38 @@ void write_accuracy_by_footprint_csv(const std::filesystem::path& path,
   csv::finish(out, path);
 }
 
-void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
-                                     const std::vector<TimedCascade>& rows, int degree) {
-  constexpr const char* kSetColours[] = {"#000000", "#ff7f0e", "#1f77b4", "#2ca02c",
-                                         "#9467bd", "#8c564b", "#e377c2"};
+ChartFiles write_accuracy_by_footprint_chart(const std::filesystem::path& path,
+                                             const std::vector<TimedCascade>& rows, int degree) {
   // Footprints span 1.25 to 20 mm, so the axis is ordinal (one slot per footprint in the data),
   // not linear: the small features, where the classifier fails, would otherwise share a pixel.
-  struct Line {
-    const CascadeResult* result;
-    std::vector<FootprintAccuracy> points;
-  };
-  std::vector<Line> lines;
   std::vector<double> footprints;
-  for (const auto& row : rows) {
-    if (row.result.degree != degree) continue;
-    lines.push_back({&row.result, accuracy_by_footprint(row.result)});
-    for (const auto& a : lines.back().points)
-      if (std::find(footprints.begin(), footprints.end(), a.footprint_mm) == footprints.end())
-        footprints.push_back(a.footprint_mm);
-  }
+  for (const auto& row : rows)
+    if (row.result.degree == degree)
+      for (const auto& a : accuracy_by_footprint(row.result))
+        if (std::find(footprints.begin(), footprints.end(), a.footprint_mm) == footprints.end())
+          footprints.push_back(a.footprint_mm);
   std::sort(footprints.begin(), footprints.end());
-  constexpr double kWidth = 640, kHeight = 320, kMargin = 60;
-  const double slot = kWidth / std::max<std::size_t>(1, footprints.size());
-  const auto px = [&](double mm) {
-    const auto i = std::find(footprints.begin(), footprints.end(), mm) - footprints.begin();
-    return kMargin + (static_cast<double>(i) + 0.5) * slot;
-  };
-  const auto py = [&](double fraction) { return kMargin + (1 - fraction) * kHeight; };
-  std::ofstream out = open_svg(path, kWidth + 2 * kMargin + 120, kHeight + 2 * kMargin + 20);
-  out << fmt::format(
-      "<text x='{}' y='25' text-anchor='middle' font-size='15'>Held-out curvature accuracy per "
-      "footprint (kernel exponent {})</text>\n",
-      kMargin + kWidth / 2, degree);
-  out << fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='black'/>\n",
-                     kMargin, kMargin, kWidth, kHeight);
-  for (int pct = 0; pct <= 100; pct += 25)
-    out << fmt::format(
-        "<line x1='{0}' y1='{1}' x2='{2}' y2='{1}' stroke='#dddddd'/><text x='{3}' y='{4}' "
-        "text-anchor='end'>{5} %</text>\n",
-        kMargin, py(pct / 100.0), kMargin + kWidth, kMargin - 6, py(pct / 100.0) + 4, pct);
-  out << fmt::format(
-      "<line x1='{0}' y1='{1:.1f}' x2='{2}' y2='{1:.1f}' stroke='grey' stroke-dasharray='4 4'/>"
-      "<text x='{3}' y='{4:.1f}' fill='grey' font-size='11'>chance</text>\n",
-      kMargin, py(1.0 / 3), kMargin + kWidth, kMargin + 4, py(1.0 / 3) - 4);
-  for (double mm : footprints)
-    out << fmt::format("<text x='{}' y='{}' text-anchor='middle' font-size='11'>{:+g}</text>\n",
-                       px(mm), kMargin + kHeight + 16, mm);
-  out << fmt::format(
-      "<text x='{}' y='{}' text-anchor='middle'>true signed footprint (mm, + bump, - pit)"
-      "</text>\n",
-      kMargin + kWidth / 2, kMargin + kHeight + 40);
-  for (std::size_t set = 0; set < lines.size(); ++set) {
-    const CascadeResult& r = *lines[set].result;
-    const char* colour = kSetColours[set % std::size(kSetColours)];
-    std::string points;
-    for (const auto& a : lines[set].points)
-      points += fmt::format("{:.1f},{:.1f} ", px(a.footprint_mm),
-                            py(a.tested ? double(a.correct) / a.tested : 0.0));
-    out << fmt::format(
-        "<polyline points='{}' fill='none' stroke='{}' stroke-width='{}'/>\n<text x='{}' "
-        "y='{}' fill='{}'>{} ({}/{})</text>\n",
-        points, colour, r.inputs == "all" ? 2.5 : 1.2, kMargin + kWidth + 10,
-        kMargin + 14 + 18 * static_cast<double>(set), colour, r.inputs, r.correct, r.tested);
+  XYChart chart{.title = fmt::format(
+                    "Held-out curvature accuracy per footprint (kernel exponent {})", degree),
+                .x = {.label = "true signed footprint (mm, + bump, - pit)"},
+                .y = {.label = "curvature correct (%)", .min = 0, .max = 100},
+                .y_targets = {{.value = 100.0 / 3, .label = "chance"}},
+                .width = 900,
+                .height = 460};
+  for (double mm : footprints) chart.x.categories.push_back(fmt::format("{:+g}", mm));
+  for (const auto& row : rows) {
+    const CascadeResult& r = row.result;
+    if (r.degree != degree) continue;
+    ChartSeries s{.label = fmt::format("{} ({}/{})", r.inputs, r.correct, r.tested),
+                  .emphasis = r.inputs == "all"};
+    for (const auto& a : accuracy_by_footprint(r)) {
+      s.x.push_back(static_cast<double>(
+          std::find(footprints.begin(), footprints.end(), a.footprint_mm) - footprints.begin()));
+      s.y.push_back(a.tested ? 100.0 * a.correct / a.tested : 0.0);
+    }
+    chart.series.push_back(std::move(s));
   }
-  finish_svg(out, path);
+  return write_line_chart(path, chart);
 }
 
 std::string table2_line(const TimedCascade& row) {
@@ -260,39 +192,16 @@ std::string misclassified_line(const CascadeResult& result) {
   return line;
 }
 
-void write_confusion_svg(const std::filesystem::path& path,
-                         const std::vector<std::string>& class_names,
-                         const std::vector<std::vector<int>>& confusion) {
-  constexpr double kCell = 28, kLabel = 90;
-  const double n = static_cast<double>(class_names.size());
-  std::ofstream out = open_svg(path, kLabel + n * kCell + 20, kLabel + n * kCell + 40);
-  out << fmt::format(
-      "<text x='{}' y='16' text-anchor='middle'>predicted class (columns) against true class "
-      "(rows)</text>\n",
-      (kLabel + n * kCell + 20) / 2);
-  for (std::size_t t = 0; t < class_names.size(); ++t) {
-    int total = 0;
-    for (int v : confusion.at(t)) total += v;
-    const double y = kLabel + static_cast<double>(t) * kCell;
-    out << fmt::format("<text x='{}' y='{}' text-anchor='end'>{}</text>\n", kLabel - 4,
-                       y + kCell * 0.65, class_names[t]);
-    out << fmt::format("<text transform='translate({},{}) rotate(-60)' font-size='11'>{}</text>\n",
-                       kLabel + static_cast<double>(t) * kCell + kCell * 0.6, kLabel - 4,
-                       class_names[t]);
-    for (std::size_t p = 0; p < class_names.size(); ++p) {
-      const int v = confusion.at(t).at(p);
-      const double share = total ? static_cast<double>(v) / total : 0.0;
-      const int shade = static_cast<int>(std::lround(255 * (1 - share)));
-      const double x = kLabel + static_cast<double>(p) * kCell;
-      out << fmt::format(
-          "<rect x='{}' y='{}' width='{}' height='{}' fill='rgb({},{},255)' stroke='#ccc'/>\n", x,
-          y, kCell, kCell, shade, shade);
-      if (v)
-        out << fmt::format("<text x='{}' y='{}' text-anchor='middle' fill='{}'>{}</text>\n",
-                           x + kCell / 2, y + kCell * 0.65, share > 0.5 ? "white" : "black", v);
-    }
-  }
-  finish_svg(out, path);
+ChartFiles write_confusion_chart(const std::filesystem::path& path,
+                                 const std::vector<std::string>& class_names,
+                                 const std::vector<std::vector<int>>& confusion) {
+  HeatmapChart chart{.title = "Confusion matrix",
+                     .x_label = "predicted class",
+                     .y_label = "true class",
+                     .row_names = class_names,
+                     .column_names = class_names};
+  for (const auto& row : confusion) chart.values.emplace_back(row.begin(), row.end());
+  return write_heatmap(path, chart);
 }
 
 }  // namespace tactile::perception

@@ -1,14 +1,15 @@
 #pragma once
 // Files of the perception evaluation (docs/formats.md, "Perception results"): Table 2 as CSV
 // (one row per input set and kernel: accuracy, confusion matrix, R^2 and RMS error per
-// curvature), Figure 7 as CSV (every held-out prediction) and as SVG plots (predicted against
-// true signed footprint, one colour per curvature), and the classifier's accuracy per footprint
-// (where it fails is as telling as how often).
+// curvature), Figure 7 as CSV (every held-out prediction) and as charts, SVG and PNG (predicted
+// against true signed footprint, one colour per curvature), and the classifier's accuracy per
+// footprint (where it fails is as telling as how often).
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "tactile/common/chart.hpp"
 #include "tactile/perception/eval.hpp"
 
 namespace tactile::perception {
@@ -25,7 +26,9 @@ std::vector<TimedCascade> run_table2(const PerceptionDataset& d, const Perceptio
 
 void write_table2_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
 void write_figure7_csv(const std::filesystem::path& path, const std::vector<TimedCascade>& rows);
-void write_figure7_svg(const std::filesystem::path& path, const CascadeResult& result);
+// Figure 7 of one row: predicted against true signed footprint, one colour per curvature class,
+// as PATH with .svg and .png (common/chart.hpp).
+ChartFiles write_figure7_chart(const std::filesystem::path& path, const CascadeResult& result);
 
 // Held-out curvature accuracy of one row per signed footprint, ordered by footprint.
 struct FootprintAccuracy {
@@ -34,18 +37,19 @@ struct FootprintAccuracy {
 };
 std::vector<FootprintAccuracy> accuracy_by_footprint(const CascadeResult& result);
 
-// CSV `inputs,degree,footprint_mm,correct,tested,accuracy` for every row, and an SVG of the
-// rows with kernel exponent `degree`: accuracy against footprint, one line per input set.
+// CSV `inputs,degree,footprint_mm,correct,tested,accuracy` for every row, and a chart (.svg and
+// .png) of the rows with kernel exponent `degree`: accuracy against footprint, one line per
+// input set.
 void write_accuracy_by_footprint_csv(const std::filesystem::path& path,
                                      const std::vector<TimedCascade>& rows);
-void write_accuracy_by_footprint_svg(const std::filesystem::path& path,
-                                     const std::vector<TimedCascade>& rows, int degree);
+ChartFiles write_accuracy_by_footprint_chart(const std::filesystem::path& path,
+                                             const std::vector<TimedCascade>& rows, int degree);
 
-// A confusion matrix as an SVG: one cell per (true, predicted) class, shaded by the share of the
-// true class's recordings, with the count written in it.
-void write_confusion_svg(const std::filesystem::path& path,
-                         const std::vector<std::string>& class_names,
-                         const std::vector<std::vector<int>>& confusion);
+// A confusion matrix as a chart (.svg and .png): one cell per (true, predicted) class, shaded by
+// the share of the true class's recordings, with the count written in it.
+ChartFiles write_confusion_chart(const std::filesystem::path& path,
+                                 const std::vector<std::string>& class_names,
+                                 const std::vector<std::vector<int>>& confusion);
 
 // One line per row of Table 2, for the terminal.
 std::string table2_line(const TimedCascade& row);
