@@ -11,6 +11,7 @@ void add_bench(CLI::App& app, Action& action) {
   bench->require_subcommand(1);
   add_bench_map(*bench, action);
   add_bench_capture(*bench, action);
+  add_bench_prints(*bench, action);
   add_bench_stream(*bench, action);
   add_bench_perceive(*bench, action);
   add_bench_latero(*bench, action);

@@ -249,6 +249,7 @@ void add_capture(CLI::App& app, Action& action) {
     std::string pores = "auto";
     std::string refine = "auto";
     std::optional<int> smoothing;
+    double refine_window_mm = capture::RefineParams{}.window_mm;
     std::optional<fs::path> pore_model;
     std::string assignment = "greedy";
   };
@@ -282,6 +283,11 @@ void add_capture(CLI::App& app, Action& action) {
                   "each landmark's neighbourhood, pulled towards the detections): auto = with\n"
                   "the ridge-blob detector, whose centres on real prints are noisy")
       ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  sub->add_option("--refine-window", opt->refine_window_mm,
+                  "Side of the refinement's Lucas-Kanade window, mm (smaller follows strain\n"
+                  "gradients better, larger averages more noise)")
+      ->check(within(0.1, 5.0))
       ->capture_default_str();
   sub->add_option("--smoothing", opt->smoothing,
                   "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
@@ -336,6 +342,7 @@ void add_capture(CLI::App& app, Action& action) {
                    refine ? "on" : "off");
       }
       params.refine = refine;
+      params.refinement.window_mm = opt->refine_window_mm;
       // As choose_capture_settings pairs them: the longer fit goes with refinement.
       params.smoothing_half_window = opt->smoothing.value_or(refine ? 5 : 3);
       use_pore_detector(pores, model, 1.0 / c.mm_per_px, "capture", params.features);

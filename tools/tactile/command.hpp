@@ -30,6 +30,7 @@ void add_emulate(CLI::App& app, Action& action);
 void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);
 void add_bench_capture(CLI::App& bench, Action& action);
+void add_bench_prints(CLI::App& bench, Action& action);
 void add_bench_stream(CLI::App& bench, Action& action);
 void add_bench_perceive(CLI::App& bench, Action& action);
 void add_bench_latero(CLI::App& bench, Action& action);
