@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/perception/report.hpp"
 
 namespace perception = tactile::perception;
@@ -77,8 +78,8 @@ TEST(AccuracyByFootprint, MisclassifiedLineJoinsBumpsAndPitsWorstShareFirst) {
 }
 
 TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
-  const fs::path dir = fs::temp_directory_path() / "tactile_accuracy_by_footprint_test";
-  fs::create_directories(dir);
+  const tactile::test::TempDir dir_tmp;
+  const fs::path& dir = dir_tmp.path();
   std::vector<perception::TimedCascade> rows = {
       {result("all", 1, {1.25, 2.5, -1.25}, {0}), 0},
       {result("dp", 1, {1.25, 2.5, -1.25}, {0, 1}), 0},
@@ -100,5 +101,4 @@ TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
   EXPECT_NE(svg.find("all (2/3)"), std::string::npos);
   EXPECT_THROW(perception::write_accuracy_by_footprint_svg(dir / "missing" / "x.svg", rows, 1),
                std::runtime_error);
-  fs::remove_all(dir);
 }
