@@ -27,7 +27,9 @@ add_executable(vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/vm_client.cpp
                ${vm_display_dir}/layouts.cpp ${vm_display_dir}/libusb_transport.cpp
                ${vm_display_dir}/hidapi_transport.cpp ${vm_display_dir}/devices.cpp
                ${vm_firmware_sources})
+# common/include for its header-only names.hpp (display's mode enums); none of common's sources.
 target_include_directories(vm_client PRIVATE ${PROJECT_SOURCE_DIR}/display/include
+                                             ${PROJECT_SOURCE_DIR}/common/include
                                              ${PROJECT_SOURCE_DIR}/firmware/include)
 target_link_libraries(vm_client PRIVATE tactile_warnings fmt::fmt PkgConfig::LIBUSB
                                         PkgConfig::HIDAPI Threads::Threads)

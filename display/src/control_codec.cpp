@@ -8,7 +8,15 @@
 
 namespace tactile::display {
 
-DeviceInfo decode_device_info(std::span<const std::uint8_t> reply, const std::string& backend,
+std::string to_string(Backend backend) {
+  return name_in(kBackendNames, backend);
+}
+
+Backend parse_backend(std::string_view name) {
+  return parse_name("back end", name, kBackendNames);
+}
+
+DeviceInfo decode_device_info(std::span<const std::uint8_t> reply, Backend backend,
                               const std::string& name, const std::string& serial,
                               const std::string& layout_name) {
   tfw_device_info fw{};

@@ -38,7 +38,7 @@ void list_libusb(std::vector<DeviceDescription>& out) {
     if (libusb_get_device_descriptor(list[i], &desc) != 0) continue;
     if (desc.idVendor != kUsbVendorId || desc.idProduct != kUsbProductId) continue;
     DeviceDescription d;
-    d.backend = "libusb";
+    d.backend = Backend::libusb;
     d.vendor_id = desc.idVendor;
     d.product_id = desc.idProduct;
     d.bus = libusb_get_bus_number(list[i]);
@@ -63,7 +63,7 @@ void list_hidapi(std::vector<DeviceDescription>& out) {
   hid_device_info* devs = hid_enumerate(kUsbVendorId, kUsbProductId);
   for (hid_device_info* p = devs; p != nullptr; p = p->next) {
     DeviceDescription d;
-    d.backend = "hidapi";
+    d.backend = Backend::hidapi;
     d.vendor_id = p->vendor_id;
     d.product_id = p->product_id;
     d.path = p->path != nullptr ? p->path : "";

@@ -142,7 +142,7 @@ DeviceInfo EmulatedDevice::info() {
     std::lock_guard lock(impl_->mutex);
     tfw_encode_info(&impl_->device, reply, sizeof reply);
   }
-  return decode_device_info(reply, "emulated",
+  return decode_device_info(reply, Backend::emulated,
                             "emulated " + impl_->options.layout.name + " display",
                             impl_->options.serial, impl_->options.layout.name);
 }

@@ -46,8 +46,8 @@ class HidapiTransport final : public Transport {
       std::string serial;
       if (hid_get_product_string(dev_, buf, 128) == 0) product = narrow(buf);
       if (hid_get_serial_number_string(dev_, buf, 128) == 0) serial = narrow(buf);
-      info_ = decode_device_info(feature(TFW_HID_REPORT_INFO, TFW_INFO_BYTES, "get info"), "hidapi",
-                                 product, serial, "");
+      info_ = decode_device_info(feature(TFW_HID_REPORT_INFO, TFW_INFO_BYTES, "get info"),
+                                 Backend::hidapi, product, serial, "");
     } catch (...) {
       close();
       throw;

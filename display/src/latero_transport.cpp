@@ -235,7 +235,7 @@ LateroReply LateroTransport::probe() {
 DeviceInfo LateroTransport::info() {
   const LateroReply reply = probe();
   DeviceInfo info;
-  info.backend = "latero";
+  info.backend = Backend::latero;
   info.name = "Latero at " + address_.text();
   info.serial = address_.text();
   info.firmware_version = describe_controller_status(reply.controller_status) + "; " +

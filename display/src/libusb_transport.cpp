@@ -35,7 +35,7 @@ class LibusbTransport final : public Transport {
     try {
       open(device);
       info_ = decode_device_info(control_in(TFW_USB_REQ_GET_INFO, TFW_INFO_BYTES, "get info"),
-                                 "libusb", product_, serial_, "");
+                                 Backend::libusb, product_, serial_, "");
     } catch (...) {
       close();
       throw;
@@ -253,9 +253,16 @@ std::unique_ptr<Transport> open_libusb_transport(const DeviceDescription& device
 
 std::unique_ptr<Transport> open_usb_transport(const DeviceDescription& device,
                                               const UsbTransportOptions& options) {
-  if (device.backend == "libusb") return open_libusb_transport(device, options);
-  if (device.backend == "hidapi") return open_hidapi_transport(device, options);
-  throw TransportError("unknown USB back end '" + device.backend + "'");
+  switch (device.backend) {
+    case Backend::libusb:
+      return open_libusb_transport(device, options);
+    case Backend::hidapi:
+      return open_hidapi_transport(device, options);
+    case Backend::emulated:
+    case Backend::latero:
+      break;
+  }
+  throw TransportError("'" + to_string(device.backend) + "' is not a USB back end");
 }
 
 }  // namespace tactile::display

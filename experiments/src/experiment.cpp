@@ -16,6 +16,7 @@
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/display/layout_json.hpp"
 #include "tactile/mapping/profile.hpp"
 #include "tactile/perception/recording.hpp"
@@ -38,6 +39,17 @@ std::vector<json> list(const Context& cx, const json& v, const std::string& what
   if (!v.is_array()) return {v};
   if (v.empty()) cx.fail(fmt::format("'{}' is an empty list", what));
   return {v.begin(), v.end()};
+}
+
+// A mode's name parsed here, where it enters, with the file and field in the message.
+template <typename Parse>
+auto json_mode(const Context& cx, const json& v, const std::string& what, Parse parse) {
+  const std::string name = json_string(cx, v, what);
+  try {
+    return parse(name);
+  } catch (const std::invalid_argument& e) {
+    cx.fail(fmt::format("{}: {}", what, e.what()));
+  }
 }
 
 capture::SceneSpec scene_spec(const Context& cx, const json& j, const std::string& where,
@@ -105,7 +117,7 @@ ExperimentSource parse_source(const Context& cx, const json& j, std::size_t inde
   // Each synthetic source gets its own seed from the experiment's unless it names one.
   const std::uint64_t default_seed = seed + index;
   if (j.contains("file")) {
-    s.kind = "file";
+    s.kind = SourceKind::file;
     s.path = json_string(cx, j["file"], where + ".file");
     if (s.path.is_relative()) s.path = base_dir / s.path;
     try {
@@ -118,11 +130,11 @@ ExperimentSource parse_source(const Context& cx, const json& j, std::size_t inde
     }
     s.frame_rate_hz = s.loaded->frame_rate_hz;
   } else if (j.contains("synthetic")) {
-    s.kind = "synthetic";
+    s.kind = SourceKind::synthetic;
     s.scene = scene_spec(cx, j["synthetic"], where + ".synthetic", default_seed);
     s.frame_rate_hz = s.scene.frame_rate_hz;
   } else {
-    s.kind = "ground-truth";
+    s.kind = SourceKind::ground_truth;
     s.scene = scene_spec(cx, j["ground_truth"], where + ".ground_truth", default_seed);
     s.frame_rate_hz = s.scene.frame_rate_hz;
     if (j.contains("grid_spacing_mm")) {
@@ -153,8 +165,8 @@ std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
         if (key == "rate_hz") p.rate_hz = json_number(cx, v, what);
         if (key == "slew_limit_um_per_s") p.slew_limit_um_per_s = json_number(cx, v, what);
         if (key == "min_triangle_quality") p.field.min_triangle_quality = json_number(cx, v, what);
-        if (key == "normalisation") p.normalisation = json_string(cx, v, what);
-        if (key == "strain") p.strain = json_string(cx, v, what);
+        if (key == "normalisation") p.normalisation = json_mode(cx, v, what, parse_normalisation);
+        if (key == "strain") p.strain = json_mode(cx, v, what, parse_strain_mode);
         if (key == "reference_frame") {
           p.accumulate.reference_frame = static_cast<std::int32_t>(json_integer(cx, v, what));
         }
@@ -265,14 +277,10 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
   }
   const auto& methods = json_required(cx, j, "methods", "the experiment");
   if (!methods.is_array() || methods.empty()) cx.fail("'methods' must be a non-empty list");
-  std::vector<std::string> method_list;
+  std::vector<MappingMethod> method_list;
   for (std::size_t i = 0; i < methods.size(); ++i) {
-    method_list.push_back(json_string(cx, methods[i], fmt::format("methods[{}]", i)));
-    const auto known = mapping_method_names();
-    if (std::find(known.begin(), known.end(), method_list.back()) == known.end()) {
-      cx.fail(fmt::format("methods[{}]: unknown method '{}' (known: {})", i, method_list.back(),
-                          fmt::join(known, ", ")));
-    }
+    const std::string what = fmt::format("methods[{}]", i);
+    method_list.push_back(json_mode(cx, methods[i], what, parse_mapping_method));
   }
   const auto grid = j.contains("parameters") ? parameter_grid(cx, j["parameters"])
                                              : std::vector<MappingParams>(1);
@@ -295,9 +303,9 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
           run.source = s;
           run.layout = l;
           run.id = fmt::format("{:03}-{}-{}-{}-{}", ex.runs.size(), source.name, layout.name,
-                               method, p.strain);
-          if (p.method == "profile") {
-            if (source.kind == "file") {
+                               to_string(method), to_string(p.strain));
+          if (p.method == MappingMethod::profile) {
+            if (source.kind == SourceKind::file) {
               cx.fail(
                   fmt::format("run {}: method 'profile' needs a scene, but source '{}' is a "
                               "file (use a synthetic or ground_truth source)",
@@ -310,7 +318,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
           } catch (const std::invalid_argument& e) {
             cx.fail(fmt::format("run {}: {}", run.id, e.what()));
           }
-          if (p.strain == "accumulated" && source.loaded && source.loaded->tracks.empty()) {
+          if (p.strain == StrainMode::accumulated && source.loaded &&
+              source.loaded->tracks.empty()) {
             cx.fail(
                 fmt::format("run {}: source '{}' has no tracks; strain 'accumulated' needs them",
                             run.id, source.name));
@@ -324,7 +333,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
   if (j.contains("perception")) {
     ex.perception = parse_perception(cx, j["perception"]);
     if (std::all_of(method_list.begin(), method_list.end(),
-                    [](const std::string& m) { return m == "profile"; }))
+                    [](MappingMethod m) { return m == MappingMethod::profile; }))
       cx.fail(
           "perception: needs a strain-driven method (proportional or integrated); 'profile' "
           "renders a scene's surface, not the feature plates");

@@ -43,7 +43,7 @@ std::vector<Mapping> distinct_mappings(const Experiment& ex) {
   std::vector<Mapping> mappings;
   std::set<std::string> seen;
   for (const auto& run : ex.runs) {
-    if (run.params.method == "profile") continue;
+    if (run.params.method == MappingMethod::profile) continue;
     const std::string key =
         fmt::format("{}:{}", run.layout, parameters_json(run.params, Placement{}));
     if (!seen.insert(key).second) continue;
@@ -51,12 +51,13 @@ std::vector<Mapping> distinct_mappings(const Experiment& ex) {
     m.layout = run.layout;
     m.params = run.params;
     const auto& layout = ex.layouts[run.layout];
-    m.table = {fmt::format("{:02}-{}-{}-{}", mappings.size(), layout.name, run.params.method,
-                           run.params.strain),
+    const std::string method = to_string(run.params.method);
+    const std::string strain = to_string(run.params.strain);
+    m.table = {fmt::format("{:02}-{}-{}-{}", mappings.size(), layout.name, method, strain),
                layout.name,
-               run.params.method,
-               run.params.strain,
-               run.params.normalisation,
+               method,
+               strain,
+               to_string(run.params.normalisation),
                run.params.gain_um_per_strain,
                run.params.rate_hz,
                {}};
@@ -138,7 +139,8 @@ std::vector<PerceptionTable> run_perception(
       features.push_back(f);
   std::vector<Mapping> mappings = distinct_mappings(ex);
   bool per_frame = false, from_rest = false;
-  for (const auto& m : mappings) (m.params.strain == "accumulated" ? from_rest : per_frame) = true;
+  for (const auto& m : mappings)
+    (m.params.strain == StrainMode::accumulated ? from_rest : per_frame) = true;
 
   // The skin grid covers every layout at physical size (the default placement centres it on the
   // pad), half a grid step beyond its outer contactors: the mappings sample nothing else, and the
@@ -193,7 +195,7 @@ std::vector<PerceptionTable> run_perception(
       if (from_rest)
         strain[1] = without_repeats(experiments::simulate_skin_strain(feature, p, seed, {}, o));
       for (std::size_t m = 0; m < mappings.size(); ++m) {
-        const auto& source = *strain[mappings[m].params.strain == "accumulated" ? 1 : 0];
+        const auto& source = *strain[mappings[m].params.strain == StrainMode::accumulated ? 1 : 0];
         const std::string what =
             fmt::format("perception, mapping {}, {} {:+g} mm, {} trial {}", mappings[m].table.id,
                         curvature_name(feature.curvature), feature.signed_footprint_mm(),

@@ -15,6 +15,7 @@
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/display/layout_json.hpp"
@@ -32,9 +33,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
+}  // namespace
+
+std::string to_string(SourceKind kind) {
+  return name_in(kSourceKindNames, kind);
+}
+
+namespace {
+
 capture::StrainMovie prepare(const ExperimentSource& s) {
-  if (s.kind == "file") return *s.loaded;
-  if (s.kind == "ground-truth") return ground_truth_strain_movie(s.scene, s.grid_spacing_mm);
+  if (s.kind == SourceKind::file) return *s.loaded;
+  if (s.kind == SourceKind::ground_truth)
+    return ground_truth_strain_movie(s.scene, s.grid_spacing_mm);
   const auto sequence = capture::render_sequence(s.scene);
   auto movie =
       capture::measure_strain(sequence.frames, sequence.calibration, s.scene.frame_rate_hz);
@@ -44,8 +54,9 @@ capture::StrainMovie prepare(const ExperimentSource& s) {
 }
 
 nlohmann::json source_json(const ExperimentSource& s) {
-  nlohmann::json j{{"name", s.name}, {"kind", s.kind}, {"frame_rate_hz", s.frame_rate_hz}};
-  if (s.kind == "file") {
+  nlohmann::json j{
+      {"name", s.name}, {"kind", to_string(s.kind)}, {"frame_rate_hz", s.frame_rate_hz}};
+  if (s.kind == SourceKind::file) {
     j["file"] = s.path.string();
   } else {
     j["scene"] = {{"scene", s.scene.scene},
@@ -57,13 +68,13 @@ nlohmann::json source_json(const ExperimentSource& s) {
                   {"contact_semi_x_mm", s.scene.contact_semi_x_mm},
                   {"noise", s.scene.noise_sigma},
                   {"seed", s.scene.seed}};
-    if (s.kind == "ground-truth") j["grid_spacing_mm"] = s.grid_spacing_mm;
+    if (s.kind == SourceKind::ground_truth) j["grid_spacing_mm"] = s.grid_spacing_mm;
   }
   return j;
 }
 
 std::string strain_key(std::size_t source, const MappingParams& p) {
-  return p.strain == "accumulated"
+  return p.strain == StrainMode::accumulated
              ? fmt::format("{}:acc:{}:{}", source, p.accumulate.reference_frame,
                            p.accumulate.max_edge_ratio)
              : fmt::format("{}:frames", source);
@@ -108,7 +119,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
   std::vector<capture::StrainMovie> strain(strain_jobs.size());
   parallel_for(strain_jobs.size(), report.threads, [&](std::size_t i) {
     const auto& [s, p] = strain_jobs[i];
-    if (p.strain == "accumulated") {
+    if (p.strain == StrainMode::accumulated) {
       strain[i] = accumulate_along_tracks(base[s], p.accumulate);
       if (strain[i].frames.empty()) {
         throw std::runtime_error(
@@ -224,31 +235,32 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
       out << fmt::format(
           "{},{},{},{},{},{},{:g},{:g},{},{},{:.6f},{:.6g},{:.6g},{:.6f},{:.6f},{:.6g},"
           "{:.6g},{:.2f}\n",
-          run.id, ex.sources[run.source].name, ex.layouts[run.layout].name, p.method, p.strain,
-          p.normalisation, p.gain_um_per_strain, p.rate_hz, r.frames, m.compared_pairs,
-          m.strain_correlation, m.strain_rms_error, m.source_strain_rms, m.saturated_fraction,
-          m.slew_limited_fraction, m.rms_acceleration_um_per_s2, m.rms_deflection_um, r.map_ms);
+          run.id, ex.sources[run.source].name, ex.layouts[run.layout].name, to_string(p.method),
+          to_string(p.strain), to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz,
+          r.frames, m.compared_pairs, m.strain_correlation, m.strain_rms_error, m.source_strain_rms,
+          m.saturated_fraction, m.slew_limited_fraction, m.rms_acceleration_um_per_s2,
+          m.rms_deflection_um, r.map_ms);
     }
     csv::finish(out, path);
     report.files.push_back(path);
   }
   {
-    std::vector<std::string> labels, legend = mapping_method_names();
+    std::vector<std::string> labels, legend = names_of(kMappingMethods);
     std::vector<double> correlation, saturation;
     std::vector<int> colours;
     std::vector<std::vector<double>> activity;
     for (std::size_t i = 0; i < ex.runs.size(); ++i) {
       const auto& run = ex.runs[i];
       labels.push_back(fmt::format("{} {} {} {}{}", ex.sources[run.source].name,
-                                   ex.layouts[run.layout].name, run.params.strain,
-                                   run.params.normalisation,
+                                   ex.layouts[run.layout].name, to_string(run.params.strain),
+                                   to_string(run.params.normalisation),
                                    run.params.gain_um_per_strain != 1000
                                        ? fmt::format(" g{:g}", run.params.gain_um_per_strain)
                                        : ""));
       correlation.push_back(report.results[i].metrics.strain_correlation);
       saturation.push_back(report.results[i].metrics.saturated_fraction);
-      const auto m = std::find(legend.begin(), legend.end(), run.params.method);
-      colours.push_back(static_cast<int>(m - legend.begin()));
+      const auto m = std::find(kMappingMethods.begin(), kMappingMethods.end(), run.params.method);
+      colours.push_back(static_cast<int>(m - kMappingMethods.begin()));
       activity.push_back(report.results[i].activity_um);
     }
     const std::string footer = "made by " + made_by;
@@ -290,7 +302,8 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
       for (const auto i : members) {
         const auto& p = ex.runs[i].params;
         ChartSeries& s = chart.series.emplace_back();
-        s.label = fmt::format("{} {} {} gain {:g} ({:g} Hz)", p.method, p.strain, p.normalisation,
+        s.label = fmt::format("{} {} {} gain {:g} ({:g} Hz)", to_string(p.method),
+                              to_string(p.strain), to_string(p.normalisation),
                               p.gain_um_per_strain, p.rate_hz);
         s.y = report.results[i].activity_um;
         for (std::size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k) * dt_s);

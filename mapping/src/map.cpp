@@ -19,11 +19,16 @@ namespace {
 using MethodFrame = std::vector<double> (*)(const StrainField&, const display::Layout&,
                                             const Placement&, double);
 
-MethodFrame method_by_name(const std::string& name) {
-  if (name == "proportional") return proportional_frame;
-  if (name == "integrated") return integrated_frame;
-  if (name == "profile") return nullptr;  // model-driven: no strain field (profile.hpp)
-  throw std::invalid_argument(fmt::format("mapping: unknown method '{}'", name));
+MethodFrame method_frame(MappingMethod method) {
+  switch (method) {
+    case MappingMethod::proportional:
+      return proportional_frame;
+    case MappingMethod::integrated:
+      return integrated_frame;
+    case MappingMethod::profile:
+      return nullptr;  // model-driven: no strain field (profile.hpp)
+  }
+  throw std::invalid_argument("mapping: method out of range");
 }
 
 // The |deflection| that "peak" normalisation maps the movie's peak to: the smaller side of a
@@ -59,7 +64,8 @@ double p99_magnitude_um(const std::vector<double>& values) {
 }  // namespace
 
 capture::StrainMovie strain_source(const capture::StrainMovie& movie, const MappingParams& params) {
-  if (params.strain == "accumulated") return accumulate_along_tracks(movie, params.accumulate);
+  if (params.strain == StrainMode::accumulated)
+    return accumulate_along_tracks(movie, params.accumulate);
   return movie;
 }
 
@@ -79,7 +85,7 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
     }
   }
   const Placement placement = params.placement.value_or(default_placement(movie));
-  const MethodFrame method = method_by_name(params.method);
+  const MethodFrame method = method_frame(params.method);
   const auto needed = sample_points_mm(layout, placement);
 
   TimedFrames camera;
@@ -103,9 +109,10 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   });
 
   double factor = 1.0;
-  if (params.normalisation != "none") {
-    const double reference_um = params.normalisation == "peak" ? peak_magnitude_um(camera.values)
-                                                               : p99_magnitude_um(camera.values);
+  if (params.normalisation != Normalisation::none) {
+    const double reference_um = params.normalisation == Normalisation::peak
+                                    ? peak_magnitude_um(camera.values)
+                                    : p99_magnitude_um(camera.values);
     // An all-neutral movie stays neutral rather than dividing by zero.
     if (reference_um > 0) factor = peak_target_um(layout, params.peak_fraction) / reference_um;
     for (double& v : camera.values) v *= factor;
@@ -121,7 +128,7 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   out.provenance.program_version =
       params.program_version.empty() ? std::string(kVersion) : params.program_version;
   out.provenance.source = movie.source;
-  out.provenance.mapping_method = params.method;
+  out.provenance.mapping_method = to_string(params.method);
   out.provenance.mapping_parameters_json = parameters_json(params, placement, factor);
   MappingResult result;
   result.movie = apply_limits(std::move(out), params.slew_limit_um_per_s);
@@ -134,7 +141,7 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
 display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
                                        const display::Layout& layout, const MappingParams& params) {
   validate(params, layout);
-  if (params.strain == "accumulated") {
+  if (params.strain == StrainMode::accumulated) {
     return map_strain_frames(accumulate_along_tracks(movie, params.accumulate), layout, params)
         .movie;
   }

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -19,44 +18,36 @@ void require_positive(double value, const char* what) {
   }
 }
 
-bool contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
 }  // namespace
 
-std::vector<std::string> mapping_method_names() {
-  return {"proportional", "integrated", "profile"};
+std::string to_string(MappingMethod method) {
+  return name_in(kMappingMethodNames, method);
 }
-std::vector<std::string> normalisation_names() {
-  return {"none", "peak", "p99"};
+std::string to_string(Normalisation normalisation) {
+  return name_in(kNormalisationNames, normalisation);
 }
-std::vector<std::string> strain_names() {
-  return {"per-frame", "accumulated"};
+std::string to_string(StrainMode strain) {
+  return name_in(kStrainModeNames, strain);
+}
+
+MappingMethod parse_mapping_method(std::string_view name) {
+  return parse_name("method", name, kMappingMethodNames);
+}
+Normalisation parse_normalisation(std::string_view name) {
+  return parse_name("normalisation", name, kNormalisationNames);
+}
+StrainMode parse_strain_mode(std::string_view name) {
+  return parse_name("strain", name, kStrainModeNames);
 }
 
 void validate(const MappingParams& params, const display::Layout& layout) {
-  if (!contains(mapping_method_names(), params.method)) {
-    throw std::invalid_argument(fmt::format("mapping: unknown method '{}' (known: {})",
-                                            params.method,
-                                            fmt::join(mapping_method_names(), ", ")));
-  }
-  if (!contains(normalisation_names(), params.normalisation)) {
-    throw std::invalid_argument(fmt::format("mapping: unknown normalisation '{}' (known: {})",
-                                            params.normalisation,
-                                            fmt::join(normalisation_names(), ", ")));
-  }
-  if (!contains(strain_names(), params.strain)) {
-    throw std::invalid_argument(fmt::format("mapping: unknown strain '{}' (known: {})",
-                                            params.strain, fmt::join(strain_names(), ", ")));
-  }
-  if (params.method == "profile") {
+  if (params.method == MappingMethod::profile) {
     if (!params.profile) {
       throw std::invalid_argument(
           "mapping: method 'profile' needs a surface profile (a synthetic or ground-truth scene "
           "in an experiment)");
     }
-    profile_height_mm(*params.profile, 0, 0);  // throws on a bad shape or width
+    profile_height_mm(*params.profile, 0, 0);  // throws on a bad width
     require_positive(params.profile->height_mm + 1.0, "profile height_mm + 1");
   }
   require_positive(params.accumulate.max_edge_ratio, "accumulate max_edge_ratio");
@@ -101,14 +92,14 @@ void validate(const MappingParams& params, const display::Layout& layout) {
 std::string parameters_json(const MappingParams& params, const Placement& placement_used,
                             double normalisation_factor) {
   nlohmann::json j;
-  j["method"] = params.method;
+  j["method"] = to_string(params.method);
   j["gain_um_per_strain"] = params.gain_um_per_strain;
-  j["normalisation"] = params.normalisation;
+  j["normalisation"] = to_string(params.normalisation);
   j["peak_fraction"] = params.peak_fraction;
   j["normalisation_factor"] = normalisation_factor;
   j["rate_hz"] = params.rate_hz;
-  j["strain"] = params.strain;
-  if (params.strain == "accumulated") {
+  j["strain"] = to_string(params.strain);
+  if (params.strain == StrainMode::accumulated) {
     j["reference_frame"] = params.accumulate.reference_frame;
     j["max_edge_ratio"] = params.accumulate.max_edge_ratio;
   }
@@ -118,10 +109,10 @@ std::string parameters_json(const MappingParams& params, const Placement& placem
                     {"scale", placement_used.scale},
                     {"auto", !params.placement.has_value()}};
   j["slew_limit_um_per_s"] = params.slew_limit_um_per_s;
-  if (params.method == "profile" && params.profile) {
+  if (params.method == MappingMethod::profile && params.profile) {
     const auto& p = *params.profile;
     j["profile"] = {
-        {"shape", p.shape},
+        {"shape", to_string(p.shape)},
         {"height_mm", p.height_mm},
         {"width_mm", p.width_mm},
         {"feature_mm", {p.feature_x_mm, p.feature_y_mm}},

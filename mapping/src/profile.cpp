@@ -13,11 +13,15 @@ namespace tactile::mapping {
 namespace {
 
 double amplitude_mm(const SurfaceProfile& p) {
-  if (p.shape == "bump") return p.height_mm;
-  if (p.shape == "hole") return -p.height_mm;
-  if (p.shape == "flat") return 0;
-  throw std::invalid_argument(
-      fmt::format("profile: unknown shape '{}' (known: bump, hole, flat)", p.shape));
+  switch (p.shape) {
+    case ProfileShape::bump:
+      return p.height_mm;
+    case ProfileShape::hole:
+      return -p.height_mm;
+    case ProfileShape::flat:
+      return 0;
+  }
+  throw std::invalid_argument("profile: shape out of range");
 }
 
 double sigma_mm(const SurfaceProfile& p) {
@@ -29,11 +33,21 @@ double sigma_mm(const SurfaceProfile& p) {
 
 }  // namespace
 
+std::string to_string(ProfileShape shape) {
+  return name_in(kProfileShapeNames, shape);
+}
+
+ProfileShape parse_profile_shape(std::string_view name) {
+  return parse_name("profile shape", name, kProfileShapeNames);
+}
+
 SurfaceProfile profile_of_scene(const capture::SceneSpec& spec) {
   capture::validate(spec);
   SurfaceProfile p;
   // Every scene but the bump and the hole is on flat glass.
-  p.shape = spec.scene == "bump" || spec.scene == "hole" ? spec.scene : "flat";
+  p.shape = spec.scene == "bump"   ? ProfileShape::bump
+            : spec.scene == "hole" ? ProfileShape::hole
+                                   : ProfileShape::flat;
   p.height_mm = spec.feature_height_mm;
   p.width_mm = spec.feature_width_mm;
   const auto cal = capture::true_calibration(spec);

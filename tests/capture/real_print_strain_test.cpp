@@ -17,7 +17,7 @@
 #include "tactile/capture/print_warp.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/error.hpp"
-#include "test_util.hpp"
+#include "common/temp_dir.hpp"
 
 namespace tactile::capture {
 namespace {
@@ -144,7 +144,7 @@ TEST(PrintWarp, BadSpecsAreRefusedWithReadableNumbers) {
 }
 
 TEST(PrintWarp, SequenceFolderIsAGroundTruthAndBrokenOnesAreNamed) {
-  testing::TempDir dir;
+  const tactile::test::TempDir dir;
   const GrayImage print = read_image(print_path("12", "image_"));
   PrintWarpSpec s = spec_for(print, WarpPattern::stretch, 0.03);
   s.frame_count = 3;

@@ -1,4 +1,5 @@
 #include "tactile/common/csv.hpp"
+#include "../common/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,8 @@
 namespace fs = std::filesystem;
 
 TEST(Csv, WritesHeaderThenRows) {
-  const fs::path p = fs::temp_directory_path() / "tactile_csv_test.csv";
+  const tactile::test::TempDir dir;
+  const fs::path p = dir / "t.csv";
   auto out = tactile::csv::open_with_header(p, "a,b");
   out << "1,2\n";
   tactile::csv::finish(out, p);
@@ -16,7 +18,6 @@ TEST(Csv, WritesHeaderThenRows) {
   std::stringstream s;
   s << in.rdbuf();
   EXPECT_EQ(s.str(), "a,b\n1,2\n");
-  fs::remove(p);
 }
 
 TEST(Csv, UnwritablePathIsNamed) {

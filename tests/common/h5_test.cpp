@@ -1,4 +1,5 @@
 #include "tactile/common/h5.hpp"
+#include "../common/temp_dir.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,15 +14,8 @@ namespace {
 
 class H5Test : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("tactile_h5_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
 };
 
 void write_sample(const fs::path& path) {

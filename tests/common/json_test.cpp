@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/json.hpp"
 
@@ -60,15 +61,8 @@ TEST(Json, FieldsAreCheckedForWhatAPersonMeant) {
 
 class Files : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("tactile_json_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
 };
 
 TEST_F(Files, ReadJsonObjectRefusesWhatIsNotAnObject) {

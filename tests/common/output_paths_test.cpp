@@ -1,4 +1,5 @@
 #include "tactile/common/output_paths.hpp"
+#include "../common/temp_dir.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,15 +21,10 @@ namespace {
 class OutputPathsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("tactile_output_paths_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
     fs::create_directories(dir_ / "in");
     std::ofstream(dir_ / "in" / "s.h5") << "strain";
     std::ofstream(dir_ / "in" / "frame_000.png") << "image";
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // The refusal's message, or "" when the paths are accepted.
   static std::string refusal(const std::vector<tactile::Output>& outputs,
@@ -41,7 +37,8 @@ class OutputPathsTest : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
 };
 
 TEST_F(OutputPathsTest, SamePathIsRefusedNamingBothOptionsAndPaths) {

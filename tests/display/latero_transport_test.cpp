@@ -188,7 +188,7 @@ TEST(LateroTransport, ProbeDescribesTheDevice) {
   RunningEmulator emulator(o);
   LateroTransport t(emulator.address(), patient());
   const DeviceInfo info = t.info();
-  EXPECT_EQ(info.backend, "latero");
+  EXPECT_EQ(info.backend, Backend::latero);
   EXPECT_THAT(info.name, HasSubstr(emulator.address().text()));
   EXPECT_THAT(info.firmware_version, HasSubstr("FPGA 3.1"));
   EXPECT_THAT(info.firmware_version, HasSubstr("high voltage active"));

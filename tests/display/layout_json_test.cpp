@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/display/layout_json.hpp"
 
@@ -55,10 +56,10 @@ TEST(LayoutJson, BuiltInLayoutsRoundTrip) {
 
 TEST(LayoutJson, ResolvesNamesAndFiles) {
   EXPECT_EQ(resolve_layout("latero").rows, 8);
-  const auto path = std::filesystem::temp_directory_path() / "tactile_layout_json_test.json";
+  const tactile::test::TempDir dir;
+  const auto path = dir / "layout.json";
   std::ofstream(path) << kValid;
   EXPECT_EQ(resolve_layout(path.string()).name, "lab-6x5");
-  std::filesystem::remove(path);
   EXPECT_THROW(resolve_layout("no-such-layout"), std::invalid_argument);
   try {
     resolve_layout("/nonexistent/dir/layout.json");

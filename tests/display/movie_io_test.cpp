@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/display/movie_io.hpp"
@@ -23,16 +24,6 @@ using ::testing::HasSubstr;
 
 class MovieIo : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() /
-        ("tactile_movie_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // A valid movie file, then `edit` changes it in place through the raw HDF5 API.
   fs::path edited(const std::string& name, const std::function<void(H5::H5File&)>& edit) {
     const fs::path p = dir_ / name;
@@ -53,7 +44,8 @@ class MovieIo : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
 };
 
 TEST_F(MovieIo, RoundTripKeepsEverything) {

@@ -320,7 +320,7 @@ TEST(EmulatedDevice, ReportsItsGeometryThroughTheControlReply) {
   l.axis = DeflectionAxis::y;
   EmulatedDevice device(device_for(l));
   const DeviceInfo info = device.info();
-  EXPECT_EQ(info.backend, "emulated");
+  EXPECT_EQ(info.backend, Backend::emulated);
   EXPECT_EQ(info.layout.name, "latero");
   EXPECT_EQ(info.layout.rows, 8);
   EXPECT_DOUBLE_EQ(info.layout.pitch_y_mm, 1.6125);  // exact through nanometres
@@ -337,7 +337,7 @@ TEST(EmulatedDevice, ReportsItsGeometryThroughTheControlReply) {
 TEST(ControlCodec, MalformedRepliesAreTransportErrors) {
   const std::vector<std::uint8_t> short_reply(10, 1);
   try {
-    decode_device_info(short_reply, "libusb", "bench display", "S1", "stress");
+    decode_device_info(short_reply, Backend::libusb, "bench display", "S1", "stress");
     FAIL() << "accepted";
   } catch (const TransportError& e) {
     EXPECT_THAT(e.what(), HasSubstr("bench display"));

@@ -2,11 +2,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/display/frame_geometry.hpp"
 #include "tactile/display/preview.hpp"
 #include "test_movies.hpp"
@@ -15,11 +14,6 @@ namespace tactile::display {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path temp_png(const std::string& name) {
-  return fs::temp_directory_path() /
-         ("tactile_preview_" + std::to_string(::getpid()) + "_" + name + ".png");
-}
 
 TEST(FrameGeometry, StrainIsTheRelativeChangeOfNeighbourDistance) {
   Layout l = stress_layout();  // 1 mm pitch along x
@@ -49,14 +43,14 @@ TEST(FrameGeometry, StrainIsTheRelativeChangeOfNeighbourDistance) {
 
 TEST(Preview, ImageHasTheDocumentedSizeAndContent) {
   const TactileMovie m = testing::sine_movie(stress_layout(), 700, 700, 40);
-  const fs::path p = temp_png("sine");
+  const tactile::test::TempDir dir;
+  const fs::path p = dir / "sine.png";
   PreviewOptions o;
   o.frames = 6;
   o.panel_px = 180;
   o.plot_height_px = 150;
   write_preview_strip(p, m, o);
   const cv::Mat img = cv::imread(p.string(), cv::IMREAD_COLOR);
-  fs::remove(p);
   ASSERT_FALSE(img.empty());
   EXPECT_EQ(img.cols, 6 * 180);
   EXPECT_EQ(img.rows, kPreviewHeaderPx + 180 + kPreviewLabelPx + 150);
@@ -93,12 +87,12 @@ TEST(Preview, UniformStretchIsRedAndAStillMovieIsWhite) {
   for (int c = 0; c < 10; ++c) {
     for (int r = 0; r < 10; ++r) m.frame(1)[static_cast<std::size_t>(r * 10 + c)] = 4.0f * c;
   }
-  const fs::path p = temp_png("stretch");
+  const tactile::test::TempDir dir;
+  const fs::path p = dir / "stretch.png";
   PreviewOptions o;
   o.frames = 2;
   write_preview_strip(p, m, o);
   const cv::Mat img = cv::imread(p.string(), cv::IMREAD_COLOR);
-  fs::remove(p);
   ASSERT_FALSE(img.empty());
   // Centre of contactor (5, 5) in each panel. Panel geometry is internal, so look for the
   // dominant non-white colour in the middle tenth of the panel instead of one pixel.
@@ -124,7 +118,8 @@ TEST(Preview, RejectsBadOptionsAndUnwritablePaths) {
   const TactileMovie m = testing::sine_movie(stress_layout(), 700, 10, 10);
   PreviewOptions o;
   o.frames = 0;
-  EXPECT_THROW(write_preview_strip(temp_png("x"), m, o), std::invalid_argument);
+  EXPECT_THROW(write_preview_strip(tactile::test::TempDir() / "x.png", m, o),
+               std::invalid_argument);
   EXPECT_THROW(write_preview_strip("/nonexistent_dir/x.png", m), std::runtime_error);
 }
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "csv_rows.hpp"
 #include "run.hpp"
 #include "tactile/perception/recording_csv.hpp"
@@ -19,13 +20,6 @@ namespace {
 
 const std::string kMaterials = std::string(TACTILE_TEST_DATA_DIR) + "/biotac-materials";
 constexpr const char* kClasses[] = {"mat1", "mat7", "mat14", "mat20"};
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("tactile_classify_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 // Labels of the vendored recordings whose trial number is in `trials` (e.g. "12": 1 and 2).
 std::string labels_of_trials(const std::filesystem::path& dir, const std::string& trials) {
@@ -42,7 +36,8 @@ std::string labels_of_trials(const std::filesystem::path& dir, const std::string
 // Trained on trials 1-2, tested on 3-4: 8 held-out recordings of 4 materials, chance 1 in 4; 6
 // or more right by chance has probability 0.004 (binomial), so the bound says it learned.
 TEST(ClassifyCli, TrainTestPredictOnRealRecordings) {
-  const auto dir = fresh_dir("real");
+  const tactile::test::TempDir dir_tmp("real");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto model = (dir / "model.json").string();
   const auto t = run_tactile("classify train --recordings " + kMaterials + " --labels " +
                              labels_of_trials(dir, "12") + " --out " + model + " --threads 2");
@@ -82,11 +77,11 @@ TEST(ClassifyCli, TrainTestPredictOnRealRecordings) {
   ASSERT_EQ(p.exit_code, 0) << p.output;
   for (const char* f : {"mat7_4_bio.csv: mat", "mat20_3_bio.csv: mat"})
     EXPECT_NE(p.output.find(f), std::string::npos) << p.output;
-  std::filesystem::remove_all(dir);
 }
 
 TEST(ClassifyCli, CrossValidationReportsMeanAndSpread) {
-  const auto dir = fresh_dir("cv");
+  const tactile::test::TempDir dir_tmp("cv");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto r = run_tactile("classify train --recordings " + kMaterials + " --labels " +
                              kMaterials + "/labels.csv --out " + (dir / "m.json").string() +
                              " --cv 4 --kernel-degree 2 --inputs means,bands --c 2");
@@ -95,11 +90,11 @@ TEST(ClassifyCli, CrossValidationReportsMeanAndSpread) {
       << r.output;
   EXPECT_NE(r.output.find("pooled "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("16 recordings, 4 classes, 21 inputs"), std::string::npos) << r.output;
-  std::filesystem::remove_all(dir);
 }
 
 TEST(ClassifyCli, BadInputNamesTheFile) {
-  const auto dir = fresh_dir("bad");
+  const tactile::test::TempDir dir_tmp("bad");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto model = (dir / "model.json").string();
   ASSERT_EQ(run_tactile("classify train --recordings " + kMaterials + " --labels " +
                         labels_of_trials(dir, "1") + " --out " + model)
@@ -168,7 +163,6 @@ TEST(ClassifyCli, BadInputNamesTheFile) {
                                 " --labels " + (dir / "gone.csv").string());
   EXPECT_EQ(gone.exit_code, 1);
   EXPECT_NE(gone.output.find("mat99_1_bio.csv: labelled in"), std::string::npos) << gone.output;
-  std::filesystem::remove_all(dir);
 }
 
 TEST(ClassifyCli, UsageErrors) {
@@ -197,7 +191,8 @@ TEST(ClassifyCli, UsageErrors) {
 // on trial 0 and tested on trial 1 (the split Table 2 uses with 2 trials per feature), each
 // procedure's row has the same count correct and the same cascade RMS error.
 TEST(ClassifyCli, SimulatedExportAgreesWithPerceiveTable2) {
-  const auto dir = fresh_dir("sim");
+  const tactile::test::TempDir dir_tmp("sim");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto p = run_tactile("perceive --out " + dir.string() +
                              " --trials 2 --footprints 1.25,20 --threads 2 --export-recordings "
                              "--export-trials 2");
@@ -244,5 +239,4 @@ TEST(ClassifyCli, SimulatedExportAgreesWithPerceiveTable2) {
     // The recordings are written with 3 decimals; the classifier prints 4 significant digits.
     EXPECT_NEAR(rms, table_rms, 1e-3 * table_rms + 1e-3) << what << "\n" << r.output;
   }
-  std::filesystem::remove_all(dir);
 }

@@ -7,22 +7,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/temp_dir.hpp"
 #include "run.hpp"
 
 namespace fs = std::filesystem;
 using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 
-namespace {
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("tactile_cli_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST(Cli, HelpListsEverySubcommand) {
   const auto r = run_tactile("--help");
@@ -59,7 +51,8 @@ TEST(Cli, MissingRequiredArgumentIsNamed) {
 }
 
 TEST(Cli, BadOptionValueIsNamed) {
-  const fs::path d = scratch("badvalue");
+  const tactile::test::TempDir d_tmp("badvalue");
+  const std::filesystem::path& d = d_tmp.path();
   const auto r = run_tactile("demo --out " + d.string() + " --frames many");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.output, HasSubstr("--frames"));
@@ -69,14 +62,16 @@ TEST(Cli, BadOptionValueIsNamed) {
 }
 
 TEST(Cli, CaptureNeedsACalibration) {
-  const fs::path d = scratch("nocalib");
+  const tactile::test::TempDir d_tmp("nocalib");
+  const std::filesystem::path& d = d_tmp.path();
   const auto r = run_tactile("capture " + d.string() + " --out " + (d / "s.h5").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.output, HasSubstr("--px-per-mm"));
 }
 
 TEST(Cli, CalibAndScaleTogetherIsUsageError) {
-  const fs::path d = scratch("both");
+  const tactile::test::TempDir d_tmp("both");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "c.json") << "{}";
   const auto r = run_tactile("features " + (d / "c.json").string() + " --calib " +
                              (d / "c.json").string() + " --px-per-mm 40");
@@ -91,7 +86,8 @@ TEST(Cli, MissingFileIsNamed) {
 }
 
 TEST(Cli, NonHdf5MovieIsAClearError) {
-  const fs::path d = scratch("nonhdf5");
+  const tactile::test::TempDir d_tmp("nonhdf5");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "movie.h5") << "this is not a movie\n";
   for (const std::string cmd : {"play --headless", "info", "view"}) {
     const auto r = run_tactile(cmd + " " + (d / "movie.h5").string());
@@ -101,7 +97,8 @@ TEST(Cli, NonHdf5MovieIsAClearError) {
 }
 
 TEST(Cli, NonImageIsAClearError) {
-  const fs::path d = scratch("nonimage");
+  const tactile::test::TempDir d_tmp("nonimage");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "finger.png") << "PNG? no.\n";
   const auto r = run_tactile("features " + (d / "finger.png").string() + " --px-per-mm 47");
   EXPECT_EQ(r.exit_code, 1);
@@ -109,7 +106,8 @@ TEST(Cli, NonImageIsAClearError) {
 }
 
 TEST(Cli, BadCalibrationFileIsNamed) {
-  const fs::path d = scratch("badcalib");
+  const tactile::test::TempDir d_tmp("badcalib");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "calib.json") << R"({"format": "tactile-calibration", "px_to_mm": [1, 2]})";
   std::ofstream(d / "finger.png") << "x";
   const auto r = run_tactile("features " + (d / "finger.png").string() + " --calib " +
@@ -120,7 +118,8 @@ TEST(Cli, BadCalibrationFileIsNamed) {
 
 TEST(Cli, StrainMovieGivenToPlayIsAClearError) {
   // A strain movie is HDF5 too, but the wrong kind: the player must say so, not crash.
-  const fs::path d = scratch("wrongkind");
+  const tactile::test::TempDir d_tmp("wrongkind");
+  const std::filesystem::path& d = d_tmp.path();
   const auto synth = run_tactile("demo --headless --frames 40 --out " + d.string() + " --keep");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;
   const auto r = run_tactile("play --headless " + (d / "strain.h5").string());

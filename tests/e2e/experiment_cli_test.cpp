@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/temp_dir.hpp"
 #include "run.hpp"
 #include "tactile/display/movie_io.hpp"
 
@@ -16,13 +17,6 @@ using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 
 namespace {
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("tactile_experiment_cli_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 const char* kTiny = R"({"name": "tiny", "seed": 1,
   "sources": [{"name": "gt", "ground_truth": {"scene": "bump", "frames": 8}, "grid_spacing_mm": 0.6}],
@@ -37,7 +31,8 @@ TEST(ExperimentCli, MissingFileArgumentIsUsageError) {
 }
 
 TEST(ExperimentCli, BadFilesFailBeforeAnyOutputIsWritten) {
-  const auto d = scratch("bad");
+  const tactile::test::TempDir d_tmp("bad");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "broken.json") << "{\"name\": ";
   auto r =
       run_tactile("experiment " + (d / "broken.json").string() + " --out " + (d / "out").string());
@@ -51,11 +46,11 @@ TEST(ExperimentCli, BadFilesFailBeforeAnyOutputIsWritten) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("rate 900 Hz is above layout 'stress' maximum rate 700 Hz"));
   EXPECT_FALSE(fs::exists(d / "out"));
-  fs::remove_all(d);
 }
 
 TEST(ExperimentCli, TinyExperimentWritesItsFolder) {
-  const auto d = scratch("tiny");
+  const tactile::test::TempDir d_tmp("tiny");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "tiny.json") << kTiny;
   const auto r = run_tactile("experiment " + (d / "tiny.json").string() + " --out " +
                              (d / "out").string() + " --quiet");
@@ -67,13 +62,13 @@ TEST(ExperimentCli, TinyExperimentWritesItsFolder) {
         "movies/001-gt-stress-profile-per-frame.h5"}) {
     EXPECT_TRUE(fs::exists(d / "out" / f)) << f;
   }
-  fs::remove_all(d);
 }
 
 TEST(ExperimentCli, MapTakesACustomLayoutFileAndRefusesABadOne) {
   const fs::path strain = fs::path(TACTILE_E2E_DEMO_DIR) / "strain.h5";
   ASSERT_TRUE(fs::exists(strain));
-  const auto d = scratch("layout");
+  const tactile::test::TempDir d_tmp("layout");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "bad.json") << R"({"name": "x", "rows": 4})";
   auto r = run_tactile("map " + strain.string() + " --out " + (d / "m.h5").string() + " --layout " +
                        (d / "bad.json").string());
@@ -90,7 +85,6 @@ TEST(ExperimentCli, MapTakesACustomLayoutFileAndRefusesABadOne) {
   EXPECT_EQ(movie.layout.cols, 7);
   EXPECT_EQ(movie.layout.axis, tactile::display::DeflectionAxis::y);
   EXPECT_THAT(movie.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"accumulated\""));
-  fs::remove_all(d);
 }
 
 TEST(ExperimentCli, BenchMapPrintsItsFigures) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/temp_dir.hpp"
 #include "csv_rows.hpp"
 #include "run.hpp"
 
@@ -19,13 +20,6 @@ using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 
 namespace {
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("tactile_experiment_perception_cli_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 std::string experiment(const std::string& perception) {
   return R"({"name": "movies", "seed": 1,
@@ -39,7 +33,8 @@ std::string experiment(const std::string& perception) {
 }  // namespace
 
 TEST(ExperimentPerceptionCli, BadPerceptionSectionFailsBeforeAnyOutput) {
-  const auto d = scratch("bad");
+  const tactile::test::TempDir d_tmp("bad");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "bad.json") << experiment(R"({"trials": 3, "kernel": 2})");
   const auto r =
       run_tactile("experiment " + (d / "bad.json").string() + " --out " + (d / "out").string());
@@ -49,7 +44,8 @@ TEST(ExperimentPerceptionCli, BadPerceptionSectionFailsBeforeAnyOutput) {
 }
 
 TEST(ExperimentPerceptionCli, Table2FromMoviesPerMappingBesideTheSensors) {
-  const auto d = scratch("run");
+  const tactile::test::TempDir d_tmp("run");
+  const std::filesystem::path& d = d_tmp.path();
   std::ofstream(d / "movies.json")
       << experiment(R"({"trials": 2, "degree": [1, 2], "footprints_mm": [5]})");
   const auto r = run_tactile("experiment " + (d / "movies.json").string() + " --out " +

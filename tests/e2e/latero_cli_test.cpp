@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/temp_dir.hpp"
 #include "run.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/display/movie_io.hpp"
@@ -25,10 +26,6 @@ using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 
 namespace {
-
-fs::path scratch(const std::string& name) {
-  return tactile::test::fresh_scratch_dir("tactile_latero_", name);
-}
 
 // A loopback UDP port nobody uses right now (bound, then released).
 int free_udp_port() {
@@ -103,7 +100,8 @@ tactile::test::RunResult with_emulator(int port, const std::string& emulator_arg
 }  // namespace
 
 TEST(LateroCli, PlaysTenSecondsAt750HzAndTheEmulatorCountsAgree) {
-  const fs::path d = scratch("play");
+  const tactile::test::TempDir d_tmp("play");
+  const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
   const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 7500);  // 10 s
   const auto r = with_emulator(
@@ -132,7 +130,8 @@ TEST(LateroCli, PlaysTenSecondsAt750HzAndTheEmulatorCountsAgree) {
 }
 
 TEST(LateroCli, BladeMappingIsTheUsersToSet) {
-  const fs::path d = scratch("mapping");
+  const tactile::test::TempDir d_tmp("mapping");
+  const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
   const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 75);
   const std::string play = "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port);
@@ -148,7 +147,8 @@ TEST(LateroCli, BladeMappingIsTheUsersToSet) {
 }
 
 TEST(LateroCli, MissedRepliesAreCountedByTheSender) {
-  const fs::path d = scratch("loss");
+  const tactile::test::TempDir d_tmp("loss");
+  const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
   const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 750);  // 1 s
   const auto r =
@@ -163,7 +163,8 @@ TEST(LateroCli, MissedRepliesAreCountedByTheSender) {
 }
 
 TEST(LateroCli, StressMovieIsRefusedNamingBothLayouts) {
-  const fs::path d = scratch("stress");
+  const tactile::test::TempDir d_tmp("stress");
+  const std::filesystem::path& d = d_tmp.path();
   const fs::path movie = write_movie(d, tactile::display::stress_layout(), 700, 10);
   const auto r = run_tactile("play " + movie.string() +
                              " --latero 127.0.0.1:" + std::to_string(free_udp_port()));
@@ -174,7 +175,8 @@ TEST(LateroCli, StressMovieIsRefusedNamingBothLayouts) {
 }
 
 TEST(LateroCli, BadAddressesAreUsageErrors) {
-  const fs::path d = scratch("usage");
+  const tactile::test::TempDir d_tmp("usage");
+  const std::filesystem::path& d = d_tmp.path();
   const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 10);
   for (const auto& [address, why] :
        std::vector<std::pair<std::string, std::string>>{{"127.0.0.1:0", "outside 1..65535"},
@@ -200,7 +202,8 @@ TEST(LateroCli, NothingListeningTimesOutNamingTheAddress) {
 }
 
 TEST(LateroCli, DevicesPrintsWhatTheEmulatorReports) {
-  const fs::path d = scratch("devices");
+  const tactile::test::TempDir d_tmp("devices");
+  const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
   const auto r =
       with_emulator(port, "--no-io-board", "devices --latero 127.0.0.1:" + std::to_string(port), d);
@@ -211,7 +214,8 @@ TEST(LateroCli, DevicesPrintsWhatTheEmulatorReports) {
 }
 
 TEST(LateroCli, MapForTheLateroLayoutMakesA750HzMovie) {
-  const fs::path d = scratch("map");
+  const tactile::test::TempDir d_tmp("map");
+  const std::filesystem::path& d = d_tmp.path();
   tactile::capture::SceneSpec spec;
   spec.frame_count = 12;
   tactile::capture::write_strain_movie(d / "strain.h5",

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "run.hpp"
 
 namespace fs = std::filesystem;
@@ -38,17 +39,6 @@ std::string replaced(std::string command, const std::string& out) {
 
 class NoClobber : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("tactile_noclobber_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-
   // A copy of `from` at dir_/to (folders made as needed).
   fs::path copy(const fs::path& from, const fs::path& to) const {
     EXPECT_TRUE(fs::exists(from)) << from;
@@ -92,7 +82,8 @@ class NoClobber : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
   int links_ = 0;  // folders of links made so far
 };
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/temp_dir.hpp"
 #include "csv_rows.hpp"
 #include "run.hpp"
 
@@ -15,13 +16,6 @@ using tactile::test::read_csv_rows;
 using tactile::test::run_tactile;
 
 namespace {
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("tactile_perceive_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 int line_count(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -43,7 +37,8 @@ std::vector<std::string> column(const std::filesystem::path& path, std::size_t i
 // The simulated evaluation end to end, small (2 trials per feature: one trains, one is held
 // out): every file it promises, with one row per Table 2 row, held-out trial and footprint.
 TEST(PerceiveCli, WritesTable2Figure7AndAccuracyPerFootprint) {
-  const auto out = fresh_dir("simulated");
+  const tactile::test::TempDir out_tmp("simulated");
+  const std::filesystem::path& out = out_tmp.path();
   const auto r = run_tactile("perceive --out " + out.string() + " --trials 2 --threads 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Table 2 (48 training / 48 held-out samples)"), std::string::npos)
@@ -58,13 +53,13 @@ TEST(PerceiveCli, WritesTable2Figure7AndAccuracyPerFootprint) {
        {"figure7_all_exp1.svg", "figure7_roll_exp2.svg", "accuracy_by_footprint_exp1.svg",
         "accuracy_by_footprint_exp2.svg", "figure7_all_exp1.png", "accuracy_by_footprint_exp2.png"})
     EXPECT_TRUE(std::filesystem::is_regular_file(out / chart)) << chart;
-  std::filesystem::remove_all(out);
 }
 
 // A subset of footprints and other trial-to-trial spreads (the sensitivity study of
 // docs/perception-models.md): only the chosen features are simulated.
 TEST(PerceiveCli, FootprintSubsetAndVariationScales) {
-  const auto out = fresh_dir("subset");
+  const tactile::test::TempDir out_tmp("subset");
+  const std::filesystem::path& out = out_tmp.path();
   const auto r = run_tactile("perceive --out " + out.string() +
                              " --trials 2 --footprints 1.25,20 --position-variation 0.3 "
                              "--depth-variation 0 --speed-variation 2 --export-recordings");
@@ -79,24 +74,24 @@ TEST(PerceiveCli, FootprintSubsetAndVariationScales) {
                                 (out / "recordings").string());
   EXPECT_EQ(back.exit_code, 0) << back.output;
   EXPECT_NE(back.output.find("48 of 48 recordings analysed"), std::string::npos) << back.output;
-  std::filesystem::remove_all(out);
 }
 
 // The sheet electrode field (slower: it weighs the skin out to 3.5 mm), on the smallest features.
 TEST(PerceiveCli, SheetElectrodeField) {
-  const auto out = fresh_dir("sheet");
+  const tactile::test::TempDir out_tmp("sheet");
+  const std::filesystem::path& out = out_tmp.path();
   const auto r = run_tactile("perceive --out " + out.string() +
                              " --trials 2 --footprints 1.25 --electrode-field sheet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("6 features x 2 trials"), std::string::npos) << r.output;
   EXPECT_EQ(line_count(out / "table2.csv"), 1 + 5 * 2);
-  std::filesystem::remove_all(out);
 }
 
 // --seeds: every seed's Table 2 is the one a run of that seed alone gives, the first seed's is
 // also table2.csv, and the spread is printed for every row.
 TEST(PerceiveCli, SeedsRepeatTable2OnEachSeed) {
-  const auto out = fresh_dir("seeds");
+  const tactile::test::TempDir out_tmp("seeds");
+  const std::filesystem::path& out = out_tmp.path();
   const std::string common = " --trials 2 --footprints 1.25,20 --threads 2";
   const auto r = run_tactile("perceive --out " + out.string() + common + " --seed 4 --seeds 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -124,34 +119,33 @@ TEST(PerceiveCli, SeedsRepeatTable2OnEachSeed) {
   // table2.csv: inputs,degree,correct,...; the same rows in the same order.
   EXPECT_EQ(std::vector<std::string>(correct.begin(), correct.begin() + 10),
             column(out / "table2.csv", 2));
-  const auto alone = fresh_dir("seed5");
+  const tactile::test::TempDir alone_tmp("seed5");
+  const std::filesystem::path& alone = alone_tmp.path();
   ASSERT_EQ(run_tactile("perceive --out " + alone.string() + common + " --seed 5").exit_code, 0);
   EXPECT_EQ(std::vector<std::string>(correct.begin() + 10, correct.end()),
             column(alone / "table2.csv", 2));
-  std::filesystem::remove_all(out);
-  std::filesystem::remove_all(alone);
 }
 
 TEST(PerceiveCli, AnalysesEveryRealRecording) {
-  const auto out = fresh_dir("real");
+  const tactile::test::TempDir out_tmp("real");
+  const std::filesystem::path& out = out_tmp.path();
   const auto r = run_tactile("perceive --out " + out.string() + " --recordings " +
                              TACTILE_TEST_DATA_DIR + "/biotac-slide");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("9 of 9 recordings analysed"), std::string::npos) << r.output;
   EXPECT_EQ(line_count(out / "recordings.csv"), 10);  // header + 9 recordings
-  std::filesystem::remove_all(out);
 }
 
 TEST(PerceiveCli, MalformedRecordingFailsNamingFileAndProblem) {
-  const auto in = fresh_dir("bad_in");
+  const tactile::test::TempDir in_tmp("bad_in");
+  const std::filesystem::path& in = in_tmp.path();
   std::ofstream(in / "broken_bio.csv") << "timestamp,pdc\n1,2\n";
-  const auto out = fresh_dir("bad_out");
+  const tactile::test::TempDir out_tmp("bad_out");
+  const std::filesystem::path& out = out_tmp.path();
   const auto r = run_tactile("perceive --out " + out.string() + " --recordings " + in.string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("broken_bio.csv: line 1: header has 2 columns"), std::string::npos)
       << r.output;
-  std::filesystem::remove_all(in);
-  std::filesystem::remove_all(out);
 }
 
 TEST(PerceiveCli, UsageErrors) {
@@ -187,9 +181,9 @@ TEST(PerceiveCli, UsageErrors) {
   const auto r = run_tactile("perceive --out /tmp/x --recordings /nonexistent/dir");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("/nonexistent/dir"), std::string::npos) << r.output;
-  const auto empty = fresh_dir("empty");
+  const tactile::test::TempDir empty_tmp("empty");
+  const std::filesystem::path& empty = empty_tmp.path();
   const auto e = run_tactile("perceive --out /tmp/x --recordings " + empty.string());
   EXPECT_EQ(e.exit_code, 1);
   EXPECT_NE(e.output.find("no *_bio.csv recordings"), std::string::npos) << e.output;
-  std::filesystem::remove_all(empty);
 }

@@ -21,11 +21,4 @@ RunResult run_tactile(const std::string& args) {
   return r;
 }
 
-std::filesystem::path fresh_scratch_dir(const std::string& prefix, const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / (prefix + name);
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
-
 }  // namespace tactile::test

@@ -24,8 +24,4 @@ inline std::filesystem::path test_data(const std::string& name) {
   return std::filesystem::path(TACTILE_TEST_DATA_DIR) / name;
 }
 
-// An empty folder `prefix` + `name` under the system's temporary directory (emptied if it
-// was there).
-std::filesystem::path fresh_scratch_dir(const std::string& prefix, const std::string& name);
-
 }  // namespace tactile::test

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/display/movie_io.hpp"
 #include "tactile/experiments/experiment.hpp"
@@ -31,12 +32,6 @@ const char* kSmall = R"({
   "methods": ["proportional", "integrated"],
   "parameters": {"strain": ["per-frame", "accumulated"], "rate_hz": 200}
 })";
-
-fs::path fresh_dir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("tactile_experiment_test_" + name);
-  fs::remove_all(dir);
-  return dir;
-}
 
 std::string slurp(const fs::path& path) {
   std::ifstream in(path);
@@ -65,8 +60,10 @@ TEST(Experiment, ParsesTheGridInAFixedOrder) {
 }
 
 TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
-  const auto one = fresh_dir("one");
-  const auto two = fresh_dir("two");
+  const tactile::test::TempDir one_tmp("one");
+  const std::filesystem::path& one = one_tmp.path();
+  const tactile::test::TempDir two_tmp("two");
+  const std::filesystem::path& two = two_tmp.path();
   const auto report = run_experiment(parse_experiment(kSmall, "small.json", "."), one, 1);
   run_experiment(parse_experiment(kSmall, "small.json", "."), two, 2);
   for (const char* f :
@@ -112,8 +109,6 @@ TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
             output.subfolders.end();
     EXPECT_TRUE(named) << file;
   }
-  fs::remove_all(one);
-  fs::remove_all(two);
 }
 
 void refused(const std::string& text, const std::string& message,
@@ -148,7 +143,8 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
   refused(edit("[\"stress\", \"latero\"]", "[]"), "'layouts' must be a non-empty list");
   refused(edit("\"latero\"]", "\"braille\"]"), "unknown layout 'braille'");
   refused(edit("\"latero\"]", "\"missing-layout.json\"]"), "cannot open layout file");
-  refused(edit("\"accumulated\"]", "\"integral\"]"), "unknown strain 'integral'");
+  refused(edit("\"accumulated\"]", "\"integral\"]"),
+          "parameters.strain: unknown strain 'integral' (known: per-frame, accumulated)");
   refused(edit("\"rate_hz\": 200", "\"rate_hz\": 800"),
           "rate 800 Hz is above layout 'stress' maximum rate 700 Hz");
   refused(edit("\"rate_hz\": 200", "\"rate_hz\": -1"), "rate_hz must be positive");
@@ -173,7 +169,8 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
 }
 
 TEST(Experiment, CustomLayoutFilesResolveFromTheExperimentsFolder) {
-  const auto dir = fresh_dir("layout");
+  const tactile::test::TempDir dir_tmp("layout");
+  const std::filesystem::path& dir = dir_tmp.path();
   fs::create_directories(dir);
   std::ofstream(dir / "slow.json") << R"({"name": "slow", "rows": 4, "cols": 4,
     "pitch_mm": [1, 1], "contactor_size_mm": [0.5, 0.5], "deflection_axis": "x",
@@ -187,7 +184,6 @@ TEST(Experiment, CustomLayoutFilesResolveFromTheExperimentsFolder) {
   EXPECT_EQ(ok.layouts[1].name, "slow");
   EXPECT_EQ(ok.layouts[1].rows, 4);
   EXPECT_EQ(ok.layout_files, std::vector<fs::path>{dir / "slow.json"});
-  fs::remove_all(dir);
 }
 
 }  // namespace

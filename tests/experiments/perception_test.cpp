@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/experiments/experiment.hpp"
 
@@ -93,14 +94,13 @@ TEST(ExperimentPerception, BadSectionsAreRefusedByName) {
               HasSubstr("perception.grid_spacing_mm = 0.1 is not in [0.25, 3]"));
   EXPECT_THAT(refusal(with_perception("{}", R"(["profile"])")),
               HasSubstr("perception: needs a strain-driven method"));
-  std::ofstream(fs::temp_directory_path() / "tactile_perception_narrow.json")
+  const tactile::test::TempDir dir;
+  std::ofstream(dir / "narrow.json")
       << R"({"name": "narrow", "rows": 4, "cols": 4, "pitch_mm": [1, 1], "contactor_size_mm": [0.5, 0.5],
             "deflection_axis": "x", "deflection_range_um": [-50, 50], "max_rate_hz": 700})";
-  EXPECT_THAT(
-      refusal(with_perception(
-          "{}", R"(["proportional"])",
-          "[\"" + (fs::temp_directory_path() / "tactile_perception_narrow.json").string() + "\"]")),
-      HasSubstr("perception: layout 'narrow' has 4 columns, fewer than the 6"));
+  EXPECT_THAT(refusal(with_perception("{}", R"(["proportional"])",
+                                      "[\"" + (dir / "narrow.json").string() + "\"]")),
+              HasSubstr("perception: layout 'narrow' has 4 columns, fewer than the 6"));
 }
 
 TEST(ExperimentPerception, SmallRunGivesOneTable2PerMappingAndTheSensors) {
@@ -109,8 +109,8 @@ TEST(ExperimentPerception, SmallRunGivesOneTable2PerMappingAndTheSensors) {
       with_perception(R"({"trials": 2, "degree": 1, "footprints_mm": [5]})", R"(["proportional"])"),
       "p.json", ".");
   ex.write_movies = false;
-  const fs::path out = fs::temp_directory_path() / "tactile_experiment_perception_test";
-  fs::remove_all(out);
+  const tactile::test::TempDir out_tmp;
+  const fs::path& out = out_tmp.path();
   const auto report = run_experiment(ex, out, 2);
   // One method x 2 strains, and the sensor first.
   ASSERT_EQ(report.perception.size(), 3u);

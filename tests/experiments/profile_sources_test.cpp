@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "../common/temp_dir.hpp"
 #include "synthetic.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
@@ -18,21 +19,15 @@ using ::testing::HasSubstr;
 namespace testing = tactile::mapping::testing;
 
 TEST(Profile, ExperimentsRefuseItOnFileSources) {
-  const auto dir = std::filesystem::temp_directory_path() / "tactile_profile_test";
-  std::filesystem::create_directories(dir);
+  const tactile::test::TempDir dir_tmp;
+  const std::filesystem::path& dir = dir_tmp.path();
   auto movie = testing::make_movie(
       testing::GridSpec{.width_mm = 4, .height_mm = 4, .spacing_mm = 1},
       [](double, double, double) {
         return capture::PointMm{0, 0};
       },
       5, 60.0);
-  // The file format wants every point's track in /tracks.
-  for (const auto& p : movie.frames.front().points_from) movie.tracks.push_back(p);
-  for (const auto& f : movie.frames) {
-    for (const auto& p : f.points_to) movie.tracks.push_back(p);
-  }
-  std::stable_sort(movie.tracks.begin(), movie.tracks.end(),
-                   [](const auto& a, const auto& b) { return a.track_id < b.track_id; });
+  testing::add_tracks(movie);
   capture::write_strain_movie(dir / "rec.h5", movie);
   try {
     parse_experiment(R"({"name": "p", "seed": 1, "sources": [{"name": "rec", "file": "rec.h5"}],
@@ -42,7 +37,6 @@ TEST(Profile, ExperimentsRefuseItOnFileSources) {
   } catch (const FormatError& e) {
     EXPECT_THAT(e.what(), HasSubstr("method 'profile' needs a scene, but source 'rec' is a file"));
   }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

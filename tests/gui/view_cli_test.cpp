@@ -2,13 +2,13 @@
 // source strain movie found through the movie's provenance, and malformed command lines.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/display/viewer.hpp"
 
 namespace tactile::display {
@@ -39,14 +39,16 @@ CliRun run(const std::string& args) {
 class ViewCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("tactile-view-cli-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    tmp_ = new tactile::test::TempDir("suite");
+    dir_ = tmp_->path();
     demo_ = run("demo --headless --frames 40 --out " + dir_.string());
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static void TearDownTestSuite() { delete tmp_; }
+  static tactile::test::TempDir* tmp_;
   static fs::path dir_;
   static CliRun demo_;
 };
+tactile::test::TempDir* ViewCli::tmp_ = nullptr;
 fs::path ViewCli::dir_;
 CliRun ViewCli::demo_;
 

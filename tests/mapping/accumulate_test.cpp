@@ -103,14 +103,6 @@ TEST(AccumulateAlongTracks, RefusesMoviesWithoutTracksAndBadReferences) {
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), HasSubstr("reference frame 6 outside"));
   }
-  MappingParams params;
-  params.strain = "lagrangian";
-  try {
-    map_strain_movie(movie, display::Layout{"t", 2, 2}, params);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("unknown strain 'lagrangian'"));
-  }
 }
 
 }  // namespace

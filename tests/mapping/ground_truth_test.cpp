@@ -45,7 +45,7 @@ TEST(GroundTruthBump, IntegratedReproducesTheSourceStrainAlongTheAxis) {
   layout.rows = 10;
   layout.cols = 10;
   MappingParams params;
-  params.method = "integrated";
+  params.method = MappingMethod::integrated;
   params.rate_hz = 60;  // one display frame per camera frame: compare without interpolation
   layout.max_rate_hz = 700;
   const auto out = map_strain_movie(movie, layout, params);
@@ -128,8 +128,8 @@ TEST(GroundTruthBump, AccumulatedAlongTracksReproducesTheStrainFromTheReferenceF
   layout.deflection_min_um = -400;  // room for the larger accumulated strain: no saturation
   layout.deflection_max_um = 400;
   MappingParams params;
-  params.method = "integrated";
-  params.strain = "accumulated";
+  params.method = MappingMethod::integrated;
+  params.strain = StrainMode::accumulated;
   params.accumulate.reference_frame = 0;
   params.rate_hz = 60;
   params.slew_limit_um_per_s = 1e7;  // compare the method, not the limits

@@ -187,7 +187,7 @@ TEST(MapStrainMovie, ProportionalTracksAMovingStrainBump) {
 TEST(MapStrainMovie, IntegratedReproducesTheExtensionBetweenContactors) {
   const auto layout = grid_layout(6, 8, 1.0, 1.0);
   MappingParams params;
-  params.method = "integrated";
+  params.method = MappingMethod::integrated;
   // Uniform stretch: every row is the same zero-mean ramp of 1000 * kA * pitch per contactor.
   auto out = map_strain_movie(uniform_movie(4), layout, params);
   for (std::int32_t r = 0; r < 6; ++r) {
@@ -230,7 +230,7 @@ TEST(MapStrainMovie, IntegratedLeavesUnmeasuredContactorsNeutral) {
   // 9.25 mm are measured, 10.25 is not, so contactors 0..10 form one zero-mean run and
   // contactor 11 has no measured neighbour.
   MappingParams params;
-  params.method = "integrated";
+  params.method = MappingMethod::integrated;
   params.placement = Placement{.centre_x_mm = 5.25, .centre_y_mm = 5.0};
   const auto out = map_strain_movie(uniform_movie(3), grid_layout(1, 12, 1.0, 1.0), params);
   const auto last = out.frame(out.frame_count - 1);
@@ -244,16 +244,16 @@ TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
   const auto movie = bump_movie(MovingBump{}, 0.7);
   for (const char* name : {"stress", "stress2", "latero"}) {
     const auto layout = display::layout_by_name(name);
-    for (const char* method : {"proportional", "integrated"}) {
+    for (const auto method : {MappingMethod::proportional, MappingMethod::integrated}) {
       MappingParams params;
       params.method = method;
       const auto out = map_strain_movie(movie, layout, params);
       EXPECT_EQ(out.layout.name, name);
       EXPECT_EQ(out.frame_count, kBumpDisplayFrames);
-      EXPECT_NO_THROW(display::validate(out)) << name << " " << method;
+      EXPECT_NO_THROW(display::validate(out)) << name << " " << to_string(method);
       float peak = 0;
       for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
-      EXPECT_GT(peak, 5.0f) << name << " " << method;
+      EXPECT_GT(peak, 5.0f) << name << " " << to_string(method);
       EXPECT_LE(peak, static_cast<float>(layout.deflection_max_um));
     }
   }
@@ -281,7 +281,7 @@ TEST(MapStrainMovie, ClampAndSlewLimitHold) {
 
 TEST(MapStrainMovie, PeakNormalisationScalesTheLargestDeflectionToTheRange) {
   MappingParams params;
-  params.normalisation = "peak";
+  params.normalisation = Normalisation::peak;
   params.peak_fraction = 0.8;
   params.gain_um_per_strain = 3;  // irrelevant under "peak"
   const auto out = map_strain_movie(uniform_movie(4), grid_layout(4, 4, 1.0, 1.0), params);
@@ -304,13 +304,13 @@ TEST(MapStrainMovie, P99NormalisationIgnoresRareOutliers) {
       movie.frames[60].t_s, 60, 61);
   const auto layout = grid_layout(4, 4, 1.0, 1.0);
   MappingParams params;
-  params.normalisation = "p99";
+  params.normalisation = Normalisation::p99;
   params.peak_fraction = 0.5;  // target 25 um
   auto out = map_strain_movie(movie, layout, params);
   // Near 25 um: the jittered triangles differ by the O(strain^2) linearisation error.
   EXPECT_NEAR(out.frame(out.frame_count - 1)[5], 25.0, 0.5);
   EXPECT_EQ(out.frame(700)[5], 50.0f);  // t = 61/60 s - 1/60 s = 1 s: the outlier, clamped
-  params.normalisation = "peak";
+  params.normalisation = Normalisation::peak;
   out = map_strain_movie(movie, layout, params);
   EXPECT_LT(out.frame(out.frame_count - 1)[5], 2.0);
 }
@@ -329,9 +329,6 @@ TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
     }
   };
   MappingParams p;
-  p.method = "telepathy";
-  fails_with(p, movie, "unknown method 'telepathy'");
-  p = {};
   p.rate_hz = 1000;
   fails_with(p, movie, "above layout 'test' maximum rate 700");
   p = {};
@@ -343,9 +340,6 @@ TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
   p = {};
   p.gain_um_per_strain = 0;
   fails_with(p, movie, "gain_um_per_strain must be positive");
-  p = {};
-  p.normalisation = "loud";
-  fails_with(p, movie, "unknown normalisation 'loud'");
   p = {};
   p.peak_fraction = 1.5;
   fails_with(p, movie, "peak_fraction");

@@ -27,7 +27,7 @@ double slope(double a_mm, double w_mm, double u_mm) {
 
 SurfaceProfile bump_at_origin() {
   SurfaceProfile p;
-  p.shape = "bump";
+  p.shape = ProfileShape::bump;
   p.height_mm = 0.5;
   p.width_mm = 3.0;
   p.finger_x0_mm = -4.0;  // grid centre 4 mm before the bump, moving at 2 mm/s along +x
@@ -58,9 +58,9 @@ TEST(Profile, DeflectsAgainstTheSlopeUnderEachContactorAsTheFingerMoves) {
 TEST(Profile, HoleIsTheNegativeOfTheBumpAndFlatIsStill) {
   const auto layout = testing::grid_layout(2, 2, 1.0, 1.0);
   auto hole = bump_at_origin();
-  hole.shape = "hole";
+  hole.shape = ProfileShape::hole;
   auto flat = bump_at_origin();
-  flat.shape = "flat";
+  flat.shape = ProfileShape::flat;
   const auto b = profile_frame(bump_at_origin(), layout, 1.3, 50.0);
   const auto h = profile_frame(hole, layout, 1.3, 50.0);
   const auto f = profile_frame(flat, layout, 1.3, 50.0);
@@ -83,12 +83,12 @@ TEST(Profile, AxisYUsesTheSlopeAcrossTheSlide) {
 TEST(Profile, SceneProfileCentresTheFingerPathOnTheFeature) {
   capture::SceneSpec spec;  // 180 frames at 60 Hz, 2.4 mm/s
   const auto p = profile_of_scene(spec);
-  EXPECT_EQ(p.shape, "bump");
+  EXPECT_EQ(p.shape, ProfileShape::bump);
   const double travel = 2.4 * 179 / 60.0;
   EXPECT_NEAR(p.finger_x0_mm + p.velocity_x_mm_per_s * 179 / 60.0 / 2, p.feature_x_mm, 1e-9);
   EXPECT_NEAR(p.feature_x_mm - p.finger_x0_mm, travel / 2, 1e-9);
   spec.scene = "flat-slide";
-  EXPECT_EQ(profile_of_scene(spec).shape, "flat");
+  EXPECT_EQ(profile_of_scene(spec).shape, ProfileShape::flat);
 }
 
 TEST(Profile, MappingUsesTheStrainFramesOnlyForTheirTimes) {
@@ -100,7 +100,7 @@ TEST(Profile, MappingUsesTheStrainFramesOnlyForTheirTimes) {
       30, 60.0);
   const auto layout = testing::grid_layout(1, 3, 1.0, 1.0);
   MappingParams params;
-  params.method = "profile";
+  params.method = MappingMethod::profile;
   params.rate_hz = 60;
   params.gain_um_per_strain = 40;
   params.slew_limit_um_per_s = 1e9;
@@ -118,8 +118,6 @@ TEST(Profile, MappingUsesTheStrainFramesOnlyForTheirTimes) {
     const auto want = profile_frame(*params.profile, layout, t, 40);
     for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(out.frame(f)[c], want[c], 1e-4);
   }
-  params.profile->shape = "ridge";
-  EXPECT_THROW(map_strain_movie(movie, layout, params), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "synthetic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -64,6 +65,15 @@ capture::StrainMovie make_movie(const GridSpec& grid, const Displacement& displa
     movie.frames.push_back(make_frame(grid, displacement, k / frame_rate_hz, k - 1, k));
   }
   return movie;
+}
+
+void add_tracks(capture::StrainMovie& movie) {
+  for (const auto& p : movie.frames.front().points_from) movie.tracks.push_back(p);
+  for (const auto& f : movie.frames) {
+    for (const auto& p : f.points_to) movie.tracks.push_back(p);
+  }
+  std::stable_sort(movie.tracks.begin(), movie.tracks.end(),
+                   [](const auto& a, const auto& b) { return a.track_id < b.track_id; });
 }
 
 display::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,

@@ -32,6 +32,10 @@ capture::StrainFrame make_frame(const GridSpec& grid, const Displacement& displa
 capture::StrainMovie make_movie(const GridSpec& grid, const Displacement& displacement,
                                 std::int32_t frames, double frame_rate_hz = 60.0);
 
+// Fills movie.tracks from the frames' points, ordered by track, as the strain movie file wants
+// every point's track in /tracks.
+void add_tracks(capture::StrainMovie& movie);
+
 // A layout built by hand, so these tests do not depend on display's built-in layouts.
 display::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,
                             double pitch_y_mm,

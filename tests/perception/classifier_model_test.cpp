@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/recording_csv.hpp"
@@ -18,13 +19,6 @@ namespace {
 
 const std::filesystem::path kMaterials =
     std::filesystem::path(TACTILE_TEST_DATA_DIR) / "biotac-materials";
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("tactile_classifier_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path) << text;
@@ -70,7 +64,8 @@ std::string error_of(F&& f) {
 }  // namespace
 
 TEST(RecordingLabels, ReadsClassesAndValues) {
-  const auto dir = fresh_dir("labels");
+  const tactile::test::TempDir dir_tmp("labels");
+  const std::filesystem::path& dir = dir_tmp.path();
   write_text(dir / "l.csv", "file,class,value\na_bio.csv,planar,-2.5\nb_bio.csv,conical,10\n");
   const auto l = perception::read_recording_labels(dir / "l.csv");
   ASSERT_EQ(l.rows.size(), 2u);
@@ -78,11 +73,11 @@ TEST(RecordingLabels, ReadsClassesAndValues) {
   EXPECT_EQ(l.rows[0].file, "a_bio.csv");
   EXPECT_EQ(l.rows[1].label, "conical");
   EXPECT_DOUBLE_EQ(l.rows[0].value, -2.5);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(RecordingLabels, MalformedFilesAreNamedErrors) {
-  const auto dir = fresh_dir("labels_bad");
+  const tactile::test::TempDir dir_tmp("labels_bad");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto error = [&](const std::string& text) {
     write_text(dir / "bad.csv", text);
     return error_of([&] { perception::read_recording_labels(dir / "bad.csv"); });
@@ -99,7 +94,6 @@ TEST(RecordingLabels, MalformedFilesAreNamedErrors) {
             std::string::npos);
   for (const auto& text : {"file,class\na.csv\n", "file,class\n"})
     EXPECT_NE(error(text).find((dir / "bad.csv").string()), std::string::npos) << text;
-  std::filesystem::remove_all(dir);
 }
 
 // The paper's groups are the 23 stroke inputs of procedure_inputs, in the same order.
@@ -110,7 +104,9 @@ TEST(RecordingInputs, PaperGroupsAreTheStrokeInputs) {
   const auto r = perception::read_sensor_csv(kMaterials / "mat1_1_bio.csv");
   EXPECT_EQ(perception::recording_inputs(r, o),
             perception::procedure_inputs(r, perception::Procedure::distal_proximal, o.contact));
-  o.groups = {"bands", "hht"};  // order of the groups is fixed whatever the order asked
+  o.groups = {
+      perception::InputGroup::bands,
+      perception::InputGroup::hht};  // order of the groups is fixed whatever the order asked
   const auto names = perception::recording_input_names(o);
   ASSERT_EQ(names.size(), 2u + 7u);
   EXPECT_EQ(names[0], "dp.vib.if_first");
@@ -124,7 +120,8 @@ TEST(RecordingInputs, PaperGroupsAreTheStrokeInputs) {
 }
 
 TEST(ClassifierModel, FileRoundTripGivesTheSameModelAndPredictions) {
-  const auto dir = fresh_dir("round_trip");
+  const tactile::test::TempDir dir_tmp("round_trip");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto data =
       perception::load_labelled_recordings(kMaterials, kMaterials / "labels.csv", {}, {}, 2);
   ASSERT_EQ(data.rows.size(), 16u);
@@ -148,11 +145,11 @@ TEST(ClassifierModel, FileRoundTripGivesTheSameModelAndPredictions) {
   const perception::Classifier a(model), b(back);
   for (const auto& row : data.rows)
     EXPECT_EQ(a.predict(row).class_index, b.predict(row).class_index);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
-  const auto dir = fresh_dir("model_bad");
+  const tactile::test::TempDir dir_tmp("model_bad");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto data =
       perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "1"), {}, {}, 2);
   perception::write_classifier_model(dir / "m.json", perception::make_classifier_model(data, {}));
@@ -173,6 +170,11 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   j["input_groups"] = {"means"};  // names of 23 inputs, groups of 14
   EXPECT_NE(error(j).find("mismatched inputs"), std::string::npos);
   j = good;
+  j["input_groups"] = {"means", "colour"};
+  EXPECT_NE(error(j).find("unknown input group 'colour' (known: means, rates, hht, bands)"),
+            std::string::npos)
+      << error(j);
+  j = good;
   j["training"][0]["inputs"].erase(0);
   EXPECT_NE(error(j).find("has 22 inputs, the model 23"), std::string::npos);
   j = good;
@@ -183,11 +185,11 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
       error_of([&] { perception::read_classifier_model(dir / "bad.json"); }).find("not valid JSON"),
       std::string::npos);
   EXPECT_NE(error(j).find((dir / "bad.json").string()), std::string::npos);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(LabelledRecordings, BadRecordingsAndLabelsNameTheFile) {
-  const auto dir = fresh_dir("recordings_bad");
+  const tactile::test::TempDir dir_tmp("recordings_bad");
+  const std::filesystem::path& dir = dir_tmp.path();
   perception::write_sensor_csv(dir / "flat_bio.csv", recording(0));
   perception::write_sensor_csv(dir / "brief_bio.csv", recording(5));
   perception::write_sensor_csv(dir / "good_bio.csv", recording(60));
@@ -209,14 +211,14 @@ TEST(LabelledRecordings, BadRecordingsAndLabelsNameTheFile) {
   const auto unknown = error("good_bio.csv,velvet\n", {"mat1", "mat7"});
   EXPECT_NE(unknown.find("good_bio.csv: unknown label 'velvet'"), std::string::npos) << unknown;
   EXPECT_EQ(error("good_bio.csv,x\n"), "(no error)");
-  std::filesystem::remove_all(dir);
 }
 
 // Trained on trials 1 and 2 of the 4 vendored materials, tested on trials 3 and 4: 8 held-out
 // recordings, chance 1 in 4. At least 6 of 8 right by chance has probability 0.004 (binomial),
 // so a classifier that reaches it learns the material from the signals.
 TEST(Classifier, LearnsRealMaterialsBetterThanChance) {
-  const auto dir = fresh_dir("learn");
+  const tactile::test::TempDir dir_tmp("learn");
+  const std::filesystem::path& dir = dir_tmp.path();
   const auto train =
       perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "12"), {}, {}, 2);
   const auto model = perception::make_classifier_model(train, {});
@@ -229,7 +231,6 @@ TEST(Classifier, LearnsRealMaterialsBetterThanChance) {
   for (const auto& row : t.confusion)
     for (int v : row) counted += v;
   EXPECT_EQ(counted, 8);
-  std::filesystem::remove_all(dir);
 }
 
 // Stratified folds: with 4 trials of each of 4 classes and 4 folds, every fold tests one trial
@@ -266,4 +267,16 @@ TEST(RecordingInputs, ProcedureNamesRoundTrip) {
   perception::set_recording_procedure(o, "stroke");
   EXPECT_FALSE(o.contact.feature_from_kinematics);
   EXPECT_THROW(perception::set_recording_procedure(o, "tap"), std::invalid_argument);
+}
+
+// Input groups are named in model files and on the command line: names round-trip, keep their
+// spelling, and an unknown one is refused with the accepted ones.
+TEST(RecordingInputs, InputGroupNamesRoundTrip) {
+  for (const auto g : perception::kInputGroups)
+    EXPECT_EQ(perception::parse_input_group(perception::to_string(g)), g);
+  EXPECT_EQ(perception::to_string(perception::InputGroup::hht), "hht");
+  EXPECT_EQ(perception::to_string(perception::InputGroup::bands), "bands");
+  const std::string message = error_of([] { perception::parse_input_group("spectrum"); });
+  EXPECT_NE(message.find("'spectrum'"), std::string::npos) << message;
+  EXPECT_NE(message.find("means, rates, hht, bands"), std::string::npos) << message;
 }

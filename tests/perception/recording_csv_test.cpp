@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/perception/recording_csv.hpp"
 
@@ -74,10 +75,10 @@ TEST(SensorCsv, RoundTripThroughAFile) {
     for (int k = 0; k < 22; ++k) r.vibration.push_back(2048 + k * 0.25 - i);
     for (int e = 0; e < 19; ++e) r.electrodes[e].push_back(3000 + e + 0.125 * i);
   }
-  const auto path = std::filesystem::temp_directory_path() / "tactile_sensor_csv_test.csv";
+  const tactile::test::TempDir dir;
+  const auto path = dir / "sensor.csv";
   perception::write_sensor_csv(path, r);
   const auto back = perception::read_sensor_csv(path);
-  std::filesystem::remove(path);
   ASSERT_EQ(back.rows(), 3u);
   EXPECT_EQ(back.pressure, r.pressure);
   EXPECT_EQ(back.vibration, r.vibration);

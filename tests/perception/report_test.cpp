@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/perception/report.hpp"
 
 namespace perception = tactile::perception;
@@ -77,8 +78,8 @@ TEST(AccuracyByFootprint, MisclassifiedLineJoinsBumpsAndPitsWorstShareFirst) {
 }
 
 TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
-  const fs::path dir = fs::temp_directory_path() / "tactile_accuracy_by_footprint_test";
-  fs::create_directories(dir);
+  const tactile::test::TempDir dir_tmp;
+  const fs::path& dir = dir_tmp.path();
   std::vector<perception::TimedCascade> rows = {
       {result("all", 1, {1.25, 2.5, -1.25}, {0}), 0},
       {result("dp", 1, {1.25, 2.5, -1.25}, {0, 1}), 0},
@@ -101,5 +102,4 @@ TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
   EXPECT_NE(svg.find("series: all (2/3); dp (1/3)"), std::string::npos) << svg.substr(0, 600);
   EXPECT_THROW(perception::write_accuracy_by_footprint_chart(dir / "missing" / "x.svg", rows, 1),
                std::runtime_error);
-  fs::remove_all(dir);
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/perception/seeds.hpp"
 
 namespace perception = tactile::perception;
@@ -74,7 +75,8 @@ TEST(SeedSpread, RefusesTablesWithOtherRows) {
 }
 
 TEST(SeedSpread, CsvHasEveryRowOfEverySeed) {
-  const fs::path path = fs::temp_directory_path() / "tactile_table2_seeds_test.csv";
+  const tactile::test::TempDir dir;
+  const fs::path path = dir / "seeds.csv";
   perception::write_table2_seeds_csv(path, three_seeds());
   std::ifstream in(path);
   std::vector<std::string> lines;
@@ -86,11 +88,11 @@ TEST(SeedSpread, CsvHasEveryRowOfEverySeed) {
   // 83 / 96 = 0.86458...
   EXPECT_EQ(lines[3], "6,all,1,83,96,0.8646,0.5000,0.2500,0.1250,1.5000");
   EXPECT_EQ(lines[6], "7,dp,2,70,96,0.7292,0.5000,0.2500,0.1250,1.5000");
-  fs::remove(path);
 }
 
 TEST(SeedSpread, CsvToAMissingFolderFailsNamingThePath) {
-  const fs::path path = fs::temp_directory_path() / "tactile_no_such_dir" / "t.csv";
+  const tactile::test::TempDir dir;
+  const fs::path path = dir / "tactile_no_such_dir" / "t.csv";
   try {
     perception::write_table2_seeds_csv(path, three_seeds());
     FAIL() << "wrote into a missing folder";

@@ -25,7 +25,7 @@ using Bytes = std::vector<std::uint8_t>;
 
 std::optional<DeviceDescription> find_hid() {
   for (const auto& d : list_usb_devices()) {
-    if (d.backend == "hidapi") return d;
+    if (d.backend == Backend::hidapi) return d;
   }
   return std::nullopt;
 }
@@ -89,7 +89,7 @@ TEST(UsbHidraw, OpensAndTheDeviceReceivesExactlyTheEncodedFramesInReports) {
   ASSERT_TRUE(device.has_value());
   auto t = open_usb_transport(*device);
   const DeviceInfo info = t->info();  // a GET_REPORT feature request answered by the firmware
-  EXPECT_EQ(info.backend, "hidapi");
+  EXPECT_EQ(info.backend, Backend::hidapi);
   EXPECT_EQ(info.layout.rows, 10);
   EXPECT_EQ(info.layout.cols, 10);
   EXPECT_DOUBLE_EQ(info.layout.max_rate_hz, 1000);

@@ -18,7 +18,7 @@
 namespace tactile::display {
 namespace {
 
-std::optional<DeviceDescription> find(const std::string& backend) {
+std::optional<DeviceDescription> find(Backend backend) {
   for (const auto& d : list_usb_devices()) {
     if (d.backend == backend) return d;
   }
@@ -51,7 +51,7 @@ void wait_received(Transport& t, std::uint64_t n) {
 
 TEST(UsbLibusb, EnumeratesOpensAndStreamsExactlyTheEncodedFrames) {
   test::FakeDisplay fake;
-  const auto device = find("libusb");
+  const auto device = find(Backend::libusb);
   ASSERT_TRUE(device.has_value()) << "libusb does not see the fake display";
   EXPECT_EQ(device->vendor_id, 0x1209);
   EXPECT_TRUE(device->accessible);
@@ -60,7 +60,7 @@ TEST(UsbLibusb, EnumeratesOpensAndStreamsExactlyTheEncodedFrames) {
 
   auto t = open_usb_transport(*device);
   const DeviceInfo info = t->info();
-  EXPECT_EQ(info.backend, "libusb");
+  EXPECT_EQ(info.backend, Backend::libusb);
   EXPECT_EQ(info.layout.rows, 10);
   EXPECT_EQ(info.layout.cols, 10);
   EXPECT_DOUBLE_EQ(info.layout.max_rate_hz, 1000);
@@ -79,7 +79,7 @@ TEST(UsbLibusb, EnumeratesOpensAndStreamsExactlyTheEncodedFrames) {
 
 TEST(UsbLibusb, UnplugMidStreamIsAClearErrorWithinBoundedTime) {
   test::FakeDisplay fake;
-  const auto device = find("libusb");
+  const auto device = find(Backend::libusb);
   ASSERT_TRUE(device.has_value());
   UsbTransportOptions options;
   options.timeout = std::chrono::milliseconds(500);
@@ -113,14 +113,14 @@ TEST(UsbLibusb, UnplugMidStreamIsAClearErrorWithinBoundedTime) {
 TEST(UsbLibusb, PluggedBackInTheNextStreamWorks) {
   {
     test::FakeDisplay fake;
-    auto t = open_usb_transport(*find("libusb"));
+    auto t = open_usb_transport(*find(Backend::libusb));
     t->start(1000);
     stream(*t, 1, 10);
     fake.unplug();
     EXPECT_THROW(stream(*t, 11, 1000), TransportError);
   }
   test::FakeDisplay again;
-  const auto device = find("libusb");
+  const auto device = find(Backend::libusb);
   ASSERT_TRUE(device.has_value());
   auto t = open_usb_transport(*device);
   t->start(1000);
@@ -132,7 +132,7 @@ TEST(UsbLibusb, PluggedBackInTheNextStreamWorks) {
 
 TEST(UsbLibusb, PlayerStreamsAMovieDevicePaced) {
   test::FakeDisplay fake;
-  auto t = open_usb_transport(*find("libusb"));
+  auto t = open_usb_transport(*find(Backend::libusb));
   const PlaybackReport r = testing::play_and_check(*t);
   // Every frame the player sent crossed the bus as one transfer, in order.
   const auto transfers = fake.bulk_transfers();

@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/perception/arff.hpp"
 #include "tactile/perception/eval.hpp"
 #include "tactile/perception/svm_model.hpp"
@@ -72,12 +72,9 @@ class WekaGolden : public ::testing::Test {
   static void SetUpTestSuite() {
     data_ = new perception::PerceptionDataset(perception::simulate_dataset(4, 7));
     split_ = new perception::PerceptionSplit(perception::split_per_block(*data_, 0.25));
-    dir_ = new std::filesystem::path(std::filesystem::temp_directory_path() /
-                                     ("tactile_weka_" + std::to_string(::getpid())));
-    std::filesystem::create_directories(*dir_);
+    dir_ = new tactile::test::TempDir("suite");
   }
   static void TearDownTestSuite() {
-    std::filesystem::remove_all(*dir_);
     delete data_;
     delete split_;
     delete dir_;
@@ -89,11 +86,11 @@ class WekaGolden : public ::testing::Test {
   }
   static perception::PerceptionDataset* data_;
   static perception::PerceptionSplit* split_;
-  static std::filesystem::path* dir_;
+  static tactile::test::TempDir* dir_;
 };
 perception::PerceptionDataset* WekaGolden::data_ = nullptr;
 perception::PerceptionSplit* WekaGolden::split_ = nullptr;
-std::filesystem::path* WekaGolden::dir_ = nullptr;
+tactile::test::TempDir* WekaGolden::dir_ = nullptr;
 
 }  // namespace
 

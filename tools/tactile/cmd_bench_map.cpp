@@ -62,13 +62,14 @@ void add_bench_map(CLI::App& bench, Action& action) {
           layout.cols, std::thread::hardware_concurrency());
       fmt::print("{:<14} {:<12} {:>8} {:>10} {:>10} {:>10} {:>12}\n", "method", "strain", "frames",
                  "median ms", "min ms", "max ms", "median cpu ms");
-      for (const std::string strain : {"per-frame", "accumulated"}) {
+      for (const auto strain : mapping::kStrainModes) {
         mapping::MappingParams params;
         params.strain = strain;
         const auto source = mapping::strain_source(movie, params);
-        for (const auto& method : mapping::mapping_method_names()) {
+        for (const auto method : mapping::kMappingMethods) {
           params.method = method;
-          if (method == "profile") params.profile = mapping::profile_of_scene(spec);
+          if (method == mapping::MappingMethod::profile)
+            params.profile = mapping::profile_of_scene(spec);
           std::vector<double> ms, cpu_ms;
           std::int32_t frames = 0;
           for (int r = 0; r < opt->repeats; ++r) {
@@ -84,9 +85,9 @@ void add_bench_map(CLI::App& bench, Action& action) {
           }
           std::sort(ms.begin(), ms.end());
           std::sort(cpu_ms.begin(), cpu_ms.end());
-          fmt::print("{:<14} {:<12} {:>8} {:>10.1f} {:>10.1f} {:>10.1f} {:>12.1f}\n", method,
-                     strain, frames, ms[ms.size() / 2], ms.front(), ms.back(),
-                     cpu_ms[cpu_ms.size() / 2]);
+          fmt::print("{:<14} {:<12} {:>8} {:>10.1f} {:>10.1f} {:>10.1f} {:>12.1f}\n",
+                     to_string(method), to_string(strain), frames, ms[ms.size() / 2], ms.front(),
+                     ms.back(), cpu_ms[cpu_ms.size() / 2]);
         }
       }
       fmt::print(

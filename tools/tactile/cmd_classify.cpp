@@ -11,6 +11,7 @@
 
 #include "command.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/report.hpp"
@@ -39,15 +40,18 @@ int train(const TrainOptions& o) {
   perception::set_recording_procedure(in, o.procedure);
   in.contact.baseline_at = o.baseline_at == "start" ? perception::ContactOptions::BaselineAt::start
                                                     : perception::ContactOptions::BaselineAt::end;
-  if (!o.inputs.empty())
-    in.groups = o.inputs;
-  else if (in.procedure == perception::Procedure::static_contact)
-    in.groups = {"means"};
+  if (!o.inputs.empty()) {
+    in.groups.clear();
+    for (const auto& name : o.inputs) in.groups.push_back(perception::parse_input_group(name));
+  } else if (in.procedure == perception::Procedure::static_contact) {
+    in.groups = {perception::InputGroup::means};
+  }
   const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
   fmt::print(
       "classify train: {} recordings, {} classes, {} inputs ({} as {}), analysed in {:.2f} s\n",
-      data.rows.size(), data.class_names.size(), data.input_names.size(), fmt::join(in.groups, ","),
-      o.procedure, seconds_since(t0));
+      data.rows.size(), data.class_names.size(), data.input_names.size(),
+      fmt::join(o.inputs.empty() ? names_of(in.groups) : o.inputs, ","), o.procedure,
+      seconds_since(t0));
   perception::SvmOptions svm;
   svm.degree = o.degree;
   svm.c = o.c;
@@ -187,7 +191,7 @@ void add_classify(CLI::App& app, Action& action) {
         "band powers of the vibration, for comparison); default: the paper's, means,rates,hht "
         "(static: means)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"means", "rates", "hht", "bands"}));
+      ->check(CLI::IsMember(names_of(perception::kInputGroups)));
   tr->add_option("--kernel-degree", t->degree, "Exponent of the polynomial kernel")
       ->check(CLI::IsMember({1, 2}))
       ->capture_default_str();

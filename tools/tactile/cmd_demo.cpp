@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "playback.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
@@ -36,7 +37,7 @@ struct DemoOptions {
   // triangles must not shrink the whole movie.
   mapping::MappingParams mapping = [] {
     mapping::MappingParams p;
-    p.normalisation = "p99";
+    p.normalisation = mapping::Normalisation::p99;
     p.peak_fraction = 0.8;
     return p;
   }();
@@ -119,7 +120,7 @@ int run_demo(DemoOptions& opt) {
   timer.report(
       4, "map",
       fmt::format("{} frames of {} x {} ({}) at {:g} Hz, {}", movie.frame_count, layout.rows,
-                  layout.cols, layout.name, movie.rate_hz, opt.mapping.method));
+                  layout.cols, layout.name, movie.rate_hz, to_string(opt.mapping.method)));
   const fs::path movie_path = opt.out / "movie.h5";
   display::write_tactile_movie(movie_path, movie);
   if (opt.keep) display::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);
@@ -156,9 +157,8 @@ void add_demo(CLI::App& app, Action& action) {
   sub->add_option("--layout", opt->layout, "Contactor layout: stress, stress2 or latero")
       ->check(CLI::IsMember({"stress", "stress2", "latero"}))
       ->capture_default_str();
-  sub->add_option("--method", opt->mapping.method, "Mapping method")
-      ->check(CLI::IsMember(mapping::mapping_method_names()))
-      ->capture_default_str();
+  add_mode_option(*sub, "--method", opt->mapping.method, mapping::kMappingMethodNames,
+                  "Mapping method");
   add_scene_options(*sub, opt->scene);
   sub->callback([opt, &action] { action = [opt] { return run_demo(*opt); }; });
 }

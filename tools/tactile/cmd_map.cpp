@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
@@ -42,22 +43,17 @@ void add_map(CLI::App& app, Action& action) {
                   "Contactor layout: stress, stress2, latero, or a custom layout FILE.json\n"
                   "(schema in docs/formats.md)")
       ->capture_default_str();
-  sub->add_option("--method", opt->params.method, "Mapping method")
-      ->check(CLI::IsMember(mapping::mapping_method_names()))
-      ->capture_default_str();
+  add_mode_option(*sub, "--method", opt->params.method, mapping::kMappingMethodNames,
+                  "Mapping method");
   sub->add_option("--gain", opt->params.gain_um_per_strain,
                   "Micrometres of deflection per unit strain")
       ->capture_default_str();
-  sub->add_option("--normalise", opt->params.normalisation,
+  add_mode_option(*sub, "--normalise", opt->params.normalisation, mapping::kNormalisationNames,
                   "none: gain as given; peak: scale so the largest deflection fills the range;\n"
-                  "p99: the same with the 99th percentile")
-      ->check(CLI::IsMember(mapping::normalisation_names()))
-      ->capture_default_str();
-  sub->add_option("--strain", opt->params.strain,
+                  "p99: the same with the 99th percentile");
+  add_mode_option(*sub, "--strain", opt->params.strain, mapping::kStrainModeNames,
                   "per-frame: the movie's strain frames as captured; accumulated: strain from\n"
-                  "the reference frame along the tracks (contactors follow the skin)")
-      ->check(CLI::IsMember(mapping::strain_names()))
-      ->capture_default_str();
+                  "the reference frame along the tracks (contactors follow the skin)");
   sub->add_option("--reference-frame", opt->params.accumulate.reference_frame,
                   "Camera frame the accumulated strain starts from (-1: the first)")
       ->capture_default_str();

@@ -9,7 +9,6 @@
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
 #include "playback.hpp"
-#include "strain_panel.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
@@ -18,6 +17,7 @@
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
 #include "tactile/display/viewer.hpp"
+#include "tactile/mapping/strain_panel.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -100,16 +100,17 @@ void add_view(CLI::App& app, Action& action) {
       }
       std::vector<NamedPath> inputs = {{"MOVIE_H5", opt->movie}};
       if (!opt->strain.empty()) inputs.push_back({"--strain", opt->strain});
-      const auto source =
-          opt->no_strain ? std::nullopt : find_source_strain(movie, opt->movie, opt->strain);
+      const auto source = opt->no_strain
+                              ? std::nullopt
+                              : mapping::find_source_strain(movie, opt->movie, opt->strain);
       if (source && opt->strain.empty()) inputs.push_back({"the movie's source", *source});
       if (!opt->screenshot.empty()) {
         refuse_output_over_input({output_file("--screenshot", opt->screenshot)}, inputs);
       }
       if (source) {
         try {
-          opt->viewer.field = strain_side_field(capture::read_strain_movie(*source),
-                                                "strain: " + source->filename().string());
+          opt->viewer.field = mapping::strain_side_field(capture::read_strain_movie(*source),
+                                                         "strain: " + source->filename().string());
         } catch (const std::invalid_argument& e) {
           // Asked for: an error. Found through the provenance: show the movie without it.
           if (!opt->strain.empty()) throw std::invalid_argument(source->string() + ": " + e.what());
@@ -151,8 +152,8 @@ void add_devices(CLI::App& app, Action& action) {
         return 0;
       }
       for (const auto& d : devices) {
-        fmt::print("{:<7} {:04x}:{:04x} {:<12} {} {} {}{}\n", d.backend, d.vendor_id, d.product_id,
-                   d.path, d.manufacturer, d.product, d.serial,
+        fmt::print("{:<7} {:04x}:{:04x} {:<12} {} {} {}{}\n", to_string(d.backend), d.vendor_id,
+                   d.product_id, d.path, d.manufacturer, d.product, d.serial,
                    d.accessible ? "" : "  (no permission: install the udev rules)");
       }
       return 0;

@@ -4,6 +4,7 @@
 
 #include "tactile/display/devices.hpp"
 #include "tactile/display/emulated_device.hpp"
+#include "tactile/display/playback_plan.hpp"
 #include "tactile/display/player.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
@@ -15,11 +16,7 @@ namespace tactile::cli {
 namespace {
 
 void print_report(const display::PlaybackReport& r) {
-  fmt::print(
-      "play: {} frames played at {:g} Hz ({:.2f} s device time, {:.3f} s wall), {} underruns, "
-      "{} malformed, {} samples clamped, {} slew-limited\n",
-      r.frames_played, r.rate_hz, r.duration_s, r.wall_s, r.underruns, r.malformed,
-      r.clamped_samples, r.slew_limited_samples);
+  fmt::print("play: {}", display::playback_summary_line(r));
 }
 
 int play_headless(const display::TactileMovie& movie, const PlayChoice& choice) {
@@ -38,56 +35,48 @@ int play_headless(const display::TactileMovie& movie, const PlayChoice& choice) 
   return 0;
 }
 
-// The vendor interface (libusb) when the display offers it, else its HID interface: bulk
-// carries every array size at full rate, HID at full speed only small ones (docs/protocol.md).
-const display::DeviceDescription* pick_device(const std::vector<display::DeviceDescription>& all) {
-  for (const char* backend : {"libusb", "hidapi"}) {
-    for (const auto& d : all) {
-      if (d.backend == backend && d.accessible) return &d;
-    }
-  }
-  return nullptr;
-}
-
 int play_on_device(const display::TactileMovie& movie, const PlayChoice& choice,
                    const display::DeviceDescription& device) {
   fmt::print("play: streaming to {} {} ({} {})\n",
-             device.product.empty() ? "display" : device.product, device.serial, device.backend,
-             device.path);
+             device.product.empty() ? "display" : device.product, device.serial,
+             to_string(device.backend), device.path);
   auto transport = display::open_usb_transport(device);
   display::PlayOptions options;
   options.loops = choice.loops;
   // TransportError (unplugged, refused) propagates: the command fails with its message.
-  const display::PlaybackReport report = display::play_movie(movie, *transport, options);
-  print_report(report);
+  print_report(display::play_movie(movie, *transport, options));
   return 0;
 }
 
 }  // namespace
 
 int play_anywhere(const display::TactileMovie& movie, const PlayChoice& choice) {
-  if (!choice.headless) {
-    const auto devices = display::list_usb_devices();
-    if (const auto* device = pick_device(devices)) return play_on_device(movie, choice, *device);
-    if (!devices.empty()) {
-      fmt::print(
-          "play: found a display at {} but cannot open it (permissions: install "
-          "display/udev/70-tactile-display.rules, see README); using the emulator\n",
-          devices.front().path);
-    }
-    if (display::screen_available()) {
+  const auto devices =
+      choice.headless ? std::vector<display::DeviceDescription>{} : display::list_usb_devices();
+  const display::PlaybackPlan plan =
+      display::plan_playback(choice.headless, devices, display::screen_available);
+  if (plan.unopenable) {
+    fmt::print(
+        "play: found a display at {} but cannot open it (permissions: install "
+        "display/udev/70-tactile-display.rules, see README); using the emulator\n",
+        plan.unopenable->path);
+  }
+  switch (plan.target) {
+    case display::PlaybackTarget::device:
+      return play_on_device(movie, choice, *plan.device);
+    case display::PlaybackTarget::window: {
       fmt::print("play: no display attached; opening the emulator window\n");
       display::ViewerOptions viewer;
       viewer.loop = choice.loops > 1;
       display::run_viewer(movie, viewer);
       return 0;
     }
-    fmt::print(
-        "play: no display attached and no screen; playing headless into the emulated "
-        "device\n");
-  } else {
-    fmt::print("play: headless (emulated device)\n");
+    case display::PlaybackTarget::headless:
+      break;
   }
+  fmt::print("play: {}\n", choice.headless ? "headless (emulated device)"
+                                           : "no display attached and no screen; playing "
+                                             "headless into the emulated device");
   return play_headless(movie, choice);
 }
 

@@ -18,6 +18,7 @@
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/perception/recording_csv.hpp"
 
@@ -163,7 +164,7 @@ void write_classifier_model(const std::filesystem::path& path, const ClassifierM
   j["format"] = "tactile classifier model";
   j["version"] = m.version;
   j["procedure"] = recording_procedure_name(m.options);
-  j["input_groups"] = m.options.groups;
+  j["input_groups"] = names_of(m.options.groups);
   j["contact"] = {
       {"baseline_at",
        m.options.contact.baseline_at == ContactOptions::BaselineAt::end ? "end" : "start"},
@@ -211,7 +212,14 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
-  m.options.groups = array_of<std::string>(j, "input_groups", where);
+  m.options.groups.clear();  // the file's groups, not the defaults
+  for (const auto& name : array_of<std::string>(j, "input_groups", where)) {
+    try {
+      m.options.groups.push_back(parse_input_group(name));
+    } catch (const std::invalid_argument& e) {
+      throw FormatError(fmt::format("{}: {}", where, e.what()));
+    }
+  }
   const auto& contact = field(j, "contact", where, &nlohmann::json::is_object, "an object");
   const auto& at = field(contact, "baseline_at", where, &nlohmann::json::is_string, "a string");
   if (at != "end" && at != "start")
@@ -236,7 +244,7 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         "{}: mismatched inputs: the model has {} inputs ({}), this program computes {} for {} "
         "with groups {} ({}): retrain the model",
         where, m.input_names.size(), fmt::join(m.input_names, ","), expected.size(),
-        recording_procedure_name(m.options), fmt::join(m.options.groups, ","),
+        recording_procedure_name(m.options), fmt::join(names_of(m.options.groups), ","),
         fmt::join(expected, ",")));
   m.class_names = array_of<std::string>(j, "class_names", where);
   const auto& svm = field(j, "svm", where, &nlohmann::json::is_object, "an object");

@@ -30,8 +30,9 @@ void check_groups(const RecordingInputOptions& o) {
   if (o.groups.empty()) throw std::invalid_argument("no input groups selected");
   for (const auto& g : o.groups)
     if (std::find(known.begin(), known.end(), g) == known.end())
-      throw std::invalid_argument(fmt::format("input group '{}' does not apply to {} (has: {})", g,
-                                              recording_procedure_name(o), fmt::join(known, ", ")));
+      throw std::invalid_argument(fmt::format("input group '{}' does not apply to {} (has: {})",
+                                              to_string(g), recording_procedure_name(o),
+                                              fmt::join(names_of(known), ", ")));
 }
 
 // Mean power per band of the mean-removed vibration, log10 (plus 1 so silence gives 0).
@@ -66,7 +67,15 @@ std::vector<double> band_powers(const SensorRecording& r, std::size_t row_begin,
 
 }  // namespace
 
-void set_recording_procedure(RecordingInputOptions& o, const std::string& name) {
+std::string to_string(InputGroup group) {
+  return name_in(kInputGroupNames, group);
+}
+
+InputGroup parse_input_group(std::string_view name) {
+  return parse_name("input group", name, kInputGroupNames);
+}
+
+void set_recording_procedure(RecordingInputOptions& o, std::string_view name) {
   if (name == "stroke" || name == "static") {
     o.procedure = name == "stroke" ? Procedure::distal_proximal : Procedure::static_contact;
     o.contact.feature_from_kinematics = false;
@@ -89,34 +98,40 @@ std::string recording_procedure_name(const RecordingInputOptions& o) {
   return o.contact.feature_from_kinematics ? procedure_short_name(o.procedure) : "stroke";
 }
 
-std::vector<std::string> recording_input_groups(Procedure p) {
-  if (is_static(p)) return {"means"};
-  return {"means", "rates", "hht", "bands"};
+std::vector<InputGroup> recording_input_groups(Procedure p) {
+  if (is_static(p)) return {InputGroup::means};
+  return {kInputGroups.begin(), kInputGroups.end()};
 }
 
 namespace {
 
-// Columns [first, second) of procedure_inputs that a group takes ("bands" takes none: it is
+// Columns [first, second) of procedure_inputs that a group takes (bands takes none: it is
 // computed apart).
-std::pair<std::size_t, std::size_t> group_columns(Procedure p, const std::string& group) {
-  if (group == "means") return {0, is_static(p) ? kSignals : 2 * kSignals};
-  if (group == "rates") return {2 * kSignals, 3 * kSignals};
-  if (group == "hht") return {3 * kSignals, 3 * kSignals + 2};
+std::pair<std::size_t, std::size_t> group_columns(Procedure p, InputGroup group) {
+  switch (group) {
+    case InputGroup::means:
+      return {0, is_static(p) ? kSignals : 2 * kSignals};
+    case InputGroup::rates:
+      return {2 * kSignals, 3 * kSignals};
+    case InputGroup::hht:
+      return {3 * kSignals, 3 * kSignals + 2};
+    case InputGroup::bands:
+      break;
+  }
   return {0, 0};
 }
 
 // The selected groups, in the fixed order of recording_input_groups.
-std::vector<std::string> selected_groups(const RecordingInputOptions& o) {
+std::vector<InputGroup> selected_groups(const RecordingInputOptions& o) {
   check_groups(o);
-  std::vector<std::string> selected;
+  std::vector<InputGroup> selected;
   for (const auto& g : recording_input_groups(o.procedure))
     if (std::find(o.groups.begin(), o.groups.end(), g) != o.groups.end()) selected.push_back(g);
   return selected;
 }
 
 template <typename T>
-void append_group(std::vector<T>& out, const std::vector<T>& all, Procedure p,
-                  const std::string& group) {
+void append_group(std::vector<T>& out, const std::vector<T>& all, Procedure p, InputGroup group) {
   const auto [first, last] = group_columns(p, group);
   out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(first),
              all.begin() + static_cast<std::ptrdiff_t>(last));
@@ -128,9 +143,9 @@ std::vector<std::string> recording_input_names(const RecordingInputOptions& o) {
   const auto all = procedure_input_names(o.procedure);
   const std::string ep = procedure_short_name(o.procedure);
   std::vector<std::string> names;
-  for (const auto& g : selected_groups(o)) {
+  for (const auto g : selected_groups(o)) {
     append_group(names, all, o.procedure, g);
-    if (g == "bands")
+    if (g == InputGroup::bands)
       for (std::size_t b = 0; b + 1 < kBandEdgesHz.size(); ++b)
         names.push_back(
             fmt::format("{}.band.{:g}_{:g}hz", ep, kBandEdgesHz[b], kBandEdgesHz[b + 1]));
@@ -142,9 +157,9 @@ std::vector<double> recording_inputs(const SensorRecording& r, const RecordingIn
   const auto groups = selected_groups(o);
   const auto all = procedure_inputs(r, o.procedure, o.contact);
   std::vector<double> inputs;
-  for (const auto& g : groups) {
+  for (const auto g : groups) {
     append_group(inputs, all, o.procedure, g);
-    if (g == "bands") {
+    if (g == InputGroup::bands) {
       const auto c = find_contact(r, o.contact);
       const auto f = find_feature_contact(r, o.procedure, c, o.contact);
       const auto bands = band_powers(r, f.begin, f.end);

@@ -134,8 +134,8 @@ int enumerate() {
   // The project's own listing: both back ends, each with the strings read from the device.
   for (const auto& d : td::list_usb_devices()) {
     std::printf("VM: listed backend=%s path=%s interface=%d product=%s serial=%s accessible=%d\n",
-                d.backend.c_str(), d.path.c_str(), d.interface_number, d.product.c_str(),
-                d.serial.c_str(), d.accessible ? 1 : 0);
+                td::to_string(d.backend).c_str(), d.path.c_str(), d.interface_number,
+                d.product.c_str(), d.serial.c_str(), d.accessible ? 1 : 0);
   }
   return 0;
 }
@@ -161,7 +161,7 @@ td::TactileMovie make_movie(const td::DeviceInfo& info, double rate_hz, double s
 
 td::DeviceDescription find_backend(const std::string& backend) {
   for (const auto& d : td::list_usb_devices()) {
-    if (d.backend == backend) return d;
+    if (td::to_string(d.backend) == backend) return d;
   }
   throw td::TransportError("no display listed through " + backend);
 }

@@ -14,7 +14,7 @@ namespace tactile::display {
 // `layout_name` and the identity strings come from elsewhere (USB string descriptors, or the
 // emulator's options). Throws TransportError naming the problem for a reply of the wrong
 // length or protocol version.
-DeviceInfo decode_device_info(std::span<const std::uint8_t> reply, const std::string& backend,
+DeviceInfo decode_device_info(std::span<const std::uint8_t> reply, Backend backend,
                               const std::string& name, const std::string& serial,
                               const std::string& layout_name);
 

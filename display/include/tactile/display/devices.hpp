@@ -8,13 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "tactile/display/transport.hpp"
+
 namespace tactile::display {
 
 inline constexpr std::uint16_t kUsbVendorId = 0x1209;
 inline constexpr std::uint16_t kUsbProductId = 0x0001;
 
 struct DeviceDescription {
-  std::string backend;  // "libusb" (vendor interface) or "hidapi" (HID interface)
+  Backend backend = Backend::libusb;  // libusb (vendor interface) or hidapi (HID interface)
   std::uint16_t vendor_id = 0;
   std::uint16_t product_id = 0;
   std::uint8_t bus = 0;       // libusb only

@@ -2,13 +2,16 @@
 // One interface for every way of reaching a display: libusb (vendor bulk), hidapi (HID
 // reports) and the in-process emulated device. The player and the viewer only see this.
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <map>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
+#include "tactile/common/names.hpp"
 #include "tactile/display/tactile_movie.hpp"
 
 namespace tactile::display {
@@ -20,9 +23,23 @@ class TransportError : public std::runtime_error {
   explicit TransportError(const std::string& what) : std::runtime_error(what) {}
 };
 
+// How a display is reached: the in-process emulated device, USB through libusb (vendor
+// interface) or hidapi (HID interface), or a Latero controller over UDP.
+enum class Backend { emulated, libusb, hidapi, latero };
+inline constexpr std::array<Named<Backend>, 4> kBackendNames = {{
+    {Backend::emulated, "emulated"},
+    {Backend::libusb, "libusb"},
+    {Backend::hidapi, "hidapi"},
+    {Backend::latero, "latero"},
+}};
+inline constexpr auto kBackends = values_of(kBackendNames);
+std::string to_string(Backend backend);
+// Throws std::invalid_argument naming the bad name and the accepted ones.
+Backend parse_backend(std::string_view name);
+
 // What the device reports about itself (the "device information" control request).
 struct DeviceInfo {
-  std::string backend;  // "emulated", "libusb", "hidapi"
+  Backend backend = Backend::emulated;
   std::string name;
   std::string serial;
   std::string firmware_version;

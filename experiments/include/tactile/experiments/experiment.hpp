@@ -3,6 +3,7 @@
 // any work, run in parallel, written into one folder. The JSON schema is in docs/formats.md
 // ("Experiment files"); tools/experiments/methods.json is an example.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -12,6 +13,7 @@
 
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/fidelity.hpp"
@@ -20,12 +22,19 @@
 
 namespace tactile::experiments {
 
+// "file": a strain movie file; "synthetic": capture's scene rendered to images and measured
+// (render_sequence + measure_strain); "ground-truth": the scene's exact strain (ground_truth.hpp).
+enum class SourceKind { file, synthetic, ground_truth };
+inline constexpr std::array<Named<SourceKind>, 3> kSourceKindNames = {{
+    {SourceKind::file, "file"},
+    {SourceKind::synthetic, "synthetic"},
+    {SourceKind::ground_truth, "ground-truth"},
+}};
+std::string to_string(SourceKind kind);
+
 struct ExperimentSource {
   std::string name;
-  // "file": a strain movie file; "synthetic": capture's scene rendered to images and measured
-  // (render_sequence + measure_strain); "ground-truth": the scene's exact strain
-  // (ground_truth.hpp).
-  std::string kind;
+  SourceKind kind = SourceKind::file;
   std::filesystem::path path;                  // file
   capture::SceneSpec scene;                    // synthetic, ground-truth
   double grid_spacing_mm = 0.3;                // ground-truth

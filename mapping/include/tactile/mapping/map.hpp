@@ -10,11 +10,14 @@
 //   4. linear resampling from the camera frame times to rate_hz (resample.hpp);
 //   5. clamp to the layout's deflection range and slew-rate limit (limits.hpp).
 
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/accumulate.hpp"
 #include "tactile/mapping/limits.hpp"
@@ -24,27 +27,58 @@
 
 namespace tactile::mapping {
 
+// "proportional" or "integrated" (see methods.hpp), or "profile" (profile.hpp: model-driven,
+// needs MappingParams::profile; the strain frames then only give the times, and the gain is
+// micrometres per unit slope).
+enum class MappingMethod { proportional, integrated, profile };
+// "none": deflections are gain * strain as they come. "peak": after the method, every deflection
+// is rescaled by one factor so that the movie's largest |deflection| equals peak_fraction of the
+// smaller side of the layout's deflection range (then the gain's magnitude does not matter).
+// "p99": the same with the 99th percentile of the non-zero |deflections| in place of the largest,
+// so that a few outliers of a noisy measurement do not shrink the whole movie (the top percent
+// then clamps).
+enum class Normalisation { none, peak, p99 };
+// "per-frame": the strain movie's own StrainFrames. "accumulated": strain from
+// accumulate.reference_frame to each later frame along the tracks (accumulate.hpp).
+enum class StrainMode { per_frame, accumulated };
+
+// The names written in files and accepted on the command line and in experiment files.
+inline constexpr std::array<Named<MappingMethod>, 3> kMappingMethodNames = {{
+    {MappingMethod::proportional, "proportional"},
+    {MappingMethod::integrated, "integrated"},
+    {MappingMethod::profile, "profile"},
+}};
+inline constexpr std::array<Named<Normalisation>, 3> kNormalisationNames = {{
+    {Normalisation::none, "none"},
+    {Normalisation::peak, "peak"},
+    {Normalisation::p99, "p99"},
+}};
+inline constexpr std::array<Named<StrainMode>, 2> kStrainModeNames = {{
+    {StrainMode::per_frame, "per-frame"},
+    {StrainMode::accumulated, "accumulated"},
+}};
+inline constexpr auto kMappingMethods = values_of(kMappingMethodNames);
+inline constexpr auto kNormalisations = values_of(kNormalisationNames);
+inline constexpr auto kStrainModes = values_of(kStrainModeNames);
+
+// The parsers throw std::invalid_argument naming the bad name and the accepted ones.
+std::string to_string(MappingMethod method);
+std::string to_string(Normalisation normalisation);
+std::string to_string(StrainMode strain);
+MappingMethod parse_mapping_method(std::string_view name);
+Normalisation parse_normalisation(std::string_view name);
+StrainMode parse_strain_mode(std::string_view name);
+
 struct MappingParams {
-  // "proportional" or "integrated" (see methods.hpp), or "profile" (profile.hpp: model-driven,
-  // needs `profile`; the strain frames then only give the times, and the gain is micrometres per
-  // unit slope).
-  std::string method = "proportional";
+  MappingMethod method = MappingMethod::proportional;
   std::optional<SurfaceProfile> profile;
   // Micrometres of deflection per unit strain (for "integrated": per millimetre of pitch, so 1000
   // reproduces the skin's extension). 1000 um per unit strain = 1 um per 0.1 % strain.
   double gain_um_per_strain = 1000.0;
-  // "none": deflections are gain * strain as they come. "peak": after the method, every
-  // deflection is rescaled by one factor so that the movie's largest |deflection| equals
-  // peak_fraction of the smaller side of the layout's deflection range (then the gain's magnitude
-  // does not matter). "p99": the same with the 99th percentile of the non-zero |deflections| in
-  // place of the largest, so that a few outliers of a noisy measurement do not shrink the whole
-  // movie (the top percent then clamps).
-  std::string normalisation = "none";
+  Normalisation normalisation = Normalisation::none;
   double peak_fraction = 1.0;
   double rate_hz = 700.0;
-  // "per-frame": the strain movie's own StrainFrames. "accumulated": strain from
-  // accumulate.reference_frame to each later frame along the tracks (accumulate.hpp).
-  std::string strain = "per-frame";
+  StrainMode strain = StrainMode::per_frame;
   AccumulateOptions accumulate;
   // Where the contactor grid sits on the field; unset = default_placement(movie).
   std::optional<Placement> placement;
@@ -54,15 +88,9 @@ struct MappingParams {
   std::string program_version;
 };
 
-// Names accepted in MappingParams::method / ::normalisation / ::strain.
-std::vector<std::string> mapping_method_names();
-std::vector<std::string> normalisation_names();
-std::vector<std::string> strain_names();
-
-// Checks the parameters against the layout before any work: unknown method or normalisation,
-// non-positive or non-finite gain, rate, slew limit or scale, peak_fraction outside (0, 1], rate
-// above layout.max_rate_hz, a layout without contactors. Throws std::invalid_argument naming the
-// problem.
+// Checks the parameters against the layout before any work: non-positive or non-finite gain, rate,
+// slew limit or scale, peak_fraction outside (0, 1], rate above layout.max_rate_hz, a layout
+// without contactors. Throws std::invalid_argument naming the problem.
 void validate(const MappingParams& params, const display::Layout& layout);
 
 // The parameters as a JSON object (stored in Provenance::mapping_parameters_json). The placement

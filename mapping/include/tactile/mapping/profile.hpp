@@ -10,19 +10,34 @@
 // the finger moves at constant velocity over the surface. Movies of this method are directly
 // comparable with measurement-driven ones of the same scene (experiments run both).
 
+#include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/display/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
+// "bump" (Gaussian up), "hole" (Gaussian down), "flat".
+enum class ProfileShape { bump, hole, flat };
+inline constexpr std::array<Named<ProfileShape>, 3> kProfileShapeNames = {{
+    {ProfileShape::bump, "bump"},
+    {ProfileShape::hole, "hole"},
+    {ProfileShape::flat, "flat"},
+}};
+inline constexpr auto kProfileShapes = values_of(kProfileShapeNames);
+std::string to_string(ProfileShape shape);
+// Throws std::invalid_argument naming the bad name and the accepted ones.
+ProfileShape parse_profile_shape(std::string_view name);
+
 struct SurfaceProfile {
-  std::string shape = "bump";  // "bump" (Gaussian up), "hole" (Gaussian down), "flat"
-  double height_mm = 0.5;      // bump height or hole depth
-  double width_mm = 3.0;       // full width at half maximum
-  double feature_x_mm = 0;     // feature centre on the surface
+  ProfileShape shape = ProfileShape::bump;
+  double height_mm = 0.5;   // bump height or hole depth
+  double width_mm = 3.0;    // full width at half maximum
+  double feature_x_mm = 0;  // feature centre on the surface
   double feature_y_mm = 0;
   double finger_x0_mm = 0;  // finger (grid centre) over the surface at t = 0
   double finger_y0_mm = 0;
@@ -40,7 +55,7 @@ double profile_height_mm(const SurfaceProfile& profile, double x_mm, double y_mm
 capture::PointMm profile_gradient(const SurfaceProfile& profile, double x_mm, double y_mm);
 
 // One frame at time t_s, row-major, before normalisation and limits. Throws
-// std::invalid_argument for an unknown shape or a non-positive width.
+// std::invalid_argument for a non-positive width.
 std::vector<double> profile_frame(const SurfaceProfile& profile, const display::Layout& layout,
                                   double t_s, double gain_um_per_slope);
 

@@ -10,17 +10,33 @@
 // Not the paper's, for comparison with the HHT: "bands" (log10 power of the vibration over the
 // whole contact in 7 octave bands, 10-1100 Hz, 7). Static contact has only "means" (7).
 
+#include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "tactile/common/names.hpp"
 #include "tactile/perception/features.hpp"
 #include "tactile/perception/recording.hpp"
 
 namespace tactile::perception {
 
+enum class InputGroup { means, rates, hht, bands };
+inline constexpr std::array<Named<InputGroup>, 4> kInputGroupNames = {{
+    {InputGroup::means, "means"},
+    {InputGroup::rates, "rates"},
+    {InputGroup::hht, "hht"},
+    {InputGroup::bands, "bands"},
+}};
+inline constexpr auto kInputGroups = values_of(kInputGroupNames);
+// The names of model files and of `classify train --inputs`. The parser throws
+// std::invalid_argument naming the bad name and the accepted ones.
+std::string to_string(InputGroup group);
+InputGroup parse_input_group(std::string_view name);
+
 struct RecordingInputOptions {
   Procedure procedure = Procedure::distal_proximal;
-  std::vector<std::string> groups = {"means", "rates", "hht"};
+  std::vector<InputGroup> groups = {InputGroup::means, InputGroup::rates, InputGroup::hht};
   // Real slides begin in contact (tests/data/biotac-materials), so the free-air baseline is at
   // the end; the kinematics of the paper's scenes are unknown, so all contact is feature.
   ContactOptions contact = [] {
@@ -36,11 +52,11 @@ struct RecordingInputOptions {
 // "roll" (feature contact from the paper's kinematics, as the 76 inputs of Table 2). Sets
 // `o.procedure` and `o.contact.feature_from_kinematics`; throws std::invalid_argument naming the
 // word for any other.
-void set_recording_procedure(RecordingInputOptions& o, const std::string& name);
+void set_recording_procedure(RecordingInputOptions& o, std::string_view name);
 std::string recording_procedure_name(const RecordingInputOptions& o);
 
-// The groups a procedure has ("means", "rates", "hht", "bands" for strokes; "means" for static).
-std::vector<std::string> recording_input_groups(Procedure p);
+// The groups a procedure has (all four for strokes; means for static).
+std::vector<InputGroup> recording_input_groups(Procedure p);
 
 // Names of the selected inputs, in order (e.g. "dp.w1.pressure", "dp.vib.if_first",
 // "dp.band.10_20hz"). Throws std::invalid_argument for a group the procedure does not have.

@@ -1,4 +1,6 @@
-#include "strain_panel.hpp"
+// Strain movie -> the viewer's side field, and finding the strain movie a tactile movie came from.
+
+#include "tactile/mapping/strain_panel.hpp"
 
 #include <fmt/format.h>
 
@@ -10,7 +12,7 @@
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/common/h5.hpp"
 
-namespace tactile::cli {
+namespace tactile::mapping {
 
 display::SideField strain_side_field(const capture::StrainMovie& strain, const std::string& title) {
   if (strain.frames.empty()) throw std::invalid_argument("strain movie has no strain frames");
@@ -83,4 +85,4 @@ std::optional<std::filesystem::path> find_source_strain(
   return std::nullopt;
 }
 
-}  // namespace tactile::cli
+}  // namespace tactile::mapping

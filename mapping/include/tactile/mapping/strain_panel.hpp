@@ -1,15 +1,17 @@
 #pragma once
 // The viewer's side panel from a strain movie: its Delaunay edges with their relative length
-// change, in movie time. Lives in tools because display knows nothing of strain.
+// change, in movie time. Lives in mapping, which already joins capture's strain to display's
+// types, because display knows nothing of strain.
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/display/side_field.hpp"
 #include "tactile/display/tactile_movie.hpp"
 
-namespace tactile::cli {
+namespace tactile::mapping {
 
 // Each strain frame becomes a field frame: every edge between its two points at the end of
 // the frame pair, valued by rel_change, shown from the frame's time relative to the first
@@ -25,4 +27,4 @@ std::optional<std::filesystem::path> find_source_strain(const display::TactileMo
                                                         const std::filesystem::path& movie_path,
                                                         const std::filesystem::path& explicit_path);
 
-}  // namespace tactile::cli
+}  // namespace tactile::mapping

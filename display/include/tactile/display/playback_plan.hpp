@@ -1,0 +1,39 @@
+#pragma once
+// Where `tactile play` sends a movie, decided from what is attached and whether a screen exists,
+// before anything is opened: a display if one can be opened, else the emulator window if there
+// is a screen, else headless into the emulated device.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/display/devices.hpp"
+#include "tactile/display/player.hpp"
+
+namespace tactile::display {
+
+enum class PlaybackTarget { device, window, headless };
+
+struct PlaybackPlan {
+  PlaybackTarget target = PlaybackTarget::headless;
+  std::optional<DeviceDescription> device;  // target device: the one to open
+  // A display is attached but none can be opened (permissions): worth telling the user, since
+  // the movie then goes elsewhere although a display is there.
+  std::optional<DeviceDescription> unopenable;
+};
+
+// The vendor interface (libusb) of an accessible display when one offers it, else an accessible
+// HID interface, else nothing.
+std::optional<DeviceDescription> pick_device(const std::vector<DeviceDescription>& devices);
+
+// `headless`: skip device and window even when present. `screen` is asked only when no device
+// can take the movie (probing a screen opens a connection to it).
+PlaybackPlan plan_playback(bool headless, const std::vector<DeviceDescription>& devices,
+                           const std::function<bool()>& screen);
+
+// What a playback did in one line ending in a newline, as `tactile play` prints it
+// (format_playback_report in player.hpp gives the full account).
+std::string playback_summary_line(const PlaybackReport& report);
+
+}  // namespace tactile::display

@@ -1,0 +1,42 @@
+// Where a movie plays; see playback_plan.hpp.
+
+#include "tactile/display/playback_plan.hpp"
+
+#include <fmt/format.h>
+
+namespace tactile::display {
+
+std::optional<DeviceDescription> pick_device(const std::vector<DeviceDescription>& devices) {
+  // Bulk carries every array size at full rate, HID at full speed only small ones
+  // (docs/protocol.md).
+  for (const Backend backend : {Backend::libusb, Backend::hidapi}) {
+    for (const auto& d : devices) {
+      if (d.backend == backend && d.accessible) return d;
+    }
+  }
+  return std::nullopt;
+}
+
+PlaybackPlan plan_playback(bool headless, const std::vector<DeviceDescription>& devices,
+                           const std::function<bool()>& screen) {
+  PlaybackPlan plan;
+  if (headless) return plan;
+  plan.device = pick_device(devices);
+  if (plan.device) {
+    plan.target = PlaybackTarget::device;
+    return plan;
+  }
+  if (!devices.empty()) plan.unopenable = devices.front();
+  plan.target = screen() ? PlaybackTarget::window : PlaybackTarget::headless;
+  return plan;
+}
+
+std::string playback_summary_line(const PlaybackReport& r) {
+  return fmt::format(
+      "{} frames played at {:g} Hz ({:.2f} s device time, {:.3f} s wall), {} underruns, "
+      "{} malformed, {} samples clamped, {} slew-limited\n",
+      r.frames_played, r.rate_hz, r.duration_s, r.wall_s, r.underruns, r.malformed,
+      r.clamped_samples, r.slew_limited_samples);
+}
+
+}  // namespace tactile::display
