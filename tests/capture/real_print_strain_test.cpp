@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "../common/temp_dir.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
@@ -17,7 +18,6 @@
 #include "tactile/capture/print_warp.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/error.hpp"
-#include "common/temp_dir.hpp"
 
 namespace tactile::capture {
 namespace {
