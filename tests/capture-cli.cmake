@@ -128,3 +128,8 @@ print_warp_cli_expect(bad_marks 1 "bad_marks.txt:2: expected two numbers" synth 
                       --from-print ${pw_print} --marks ${pw_dir}/bad_marks.txt)
 print_warp_cli_expect(out_over_print 2 "OUT_DIR.*--from-print|--from-print.*OUT_DIR" synth
                       ${pw_dir}/out --from-print ${pw_dir}/out/frame_000.png)
+print_warp_cli_expect(bench_prints_missing_dir 2 "PRINTS_DIR" bench prints ${pw_dir}/nowhere)
+print_warp_cli_expect(bench_prints_no_prints 1 "no marked prints" bench prints ${pw_dir}/out
+                      --out ${pw_dir}/bench)
+print_warp_cli_expect(bench_prints_bad_frames 2 "--frames: 5 is out of range" bench prints
+                      ${pw_dir} --frames 5)

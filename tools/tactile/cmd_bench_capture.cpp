@@ -20,6 +20,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "sweep_failures.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/strain.hpp"
@@ -268,8 +269,7 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       fmt::print("\nstability sweeps (bump, {} frames; failure: rms error > {} or < {} points)\n",
                  sweep_frames, opt->max_rms, opt->min_points);
       for (const auto& s : sweeps()) {
-        // Accuracy and yield fail at different points; each is reported on its own.
-        double accuracy_fails = -1, yield_fails = -1;
+        SweepFailures failures;
         for (double v : s.values) {
           capture::SceneSpec spec;
           spec.frame_count = sweep_frames;
@@ -289,16 +289,10 @@ void add_bench_capture(CLI::App& bench, Action& action) {
           sw << fmt::format("\"{}\",{},{:.1f},{:.6g},{:.6g},{:.0f},{}\n", s.name, v,
                             frames_per_s(r), r.eval.rms_error, r.eval.rms_truth,
                             r.eval.median_tracked_points, accurate && enough ? 1 : 0);
-          if (!accurate && accuracy_fails < 0) accuracy_fails = v;
-          if (!enough && yield_fails < 0) yield_fails = v;
-          if (accuracy_fails >= 0 && yield_fails >= 0) break;
+          failures.note(v, accurate, enough);
+          if (failures.both_failed()) break;
         }
-        auto where = [&](double v) {
-          return v >= 0 ? fmt::format("fails at {}", v)
-                        : fmt::format("holds up to {}", s.values.back());
-        };
-        fmt::print("  -> {}: strain error {}; landmark yield {}\n", s.name, where(accuracy_fails),
-                   where(yield_fails));
+        fmt::print("{}", failures.summary(s.name, s.values.back()));
       }
       csv::finish(sw, sweep_path);
       fmt::print("bench capture: wrote {}\n", sweep_path.string());

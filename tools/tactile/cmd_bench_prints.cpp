@@ -17,6 +17,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "sweep_failures.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/pore_training_io.hpp"
@@ -299,7 +300,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
           "points)\n",
           print.name, opt->frames, opt->max_rms, opt->min_points);
       for (const auto& s : sweeps) {
-        double accuracy_fails = -1, yield_fails = -1;
+        SweepFailures failures;
         for (const double v : s.values) {
           auto spec = spec_for(print);
           s.apply(spec, v);
@@ -310,16 +311,10 @@ void add_bench_prints(CLI::App& bench, Action& action) {
           sw << fmt::format("\"{}\",{},{:.6g},{:.6g},{:.5f},{:.0f},{}\n", s.name, v,
                             r.eval.rms_error, r.eval.rms_truth, r.eval.correlation,
                             r.eval.median_tracked_points, accurate && enough ? 1 : 0);
-          if (!accurate && accuracy_fails < 0) accuracy_fails = v;
-          if (!enough && yield_fails < 0) yield_fails = v;
-          if (accuracy_fails >= 0 && yield_fails >= 0) break;
+          failures.note(v, accurate, enough);
+          if (failures.both_failed()) break;
         }
-        auto where = [&](double v) {
-          return v >= 0 ? fmt::format("fails at {}", v)
-                        : fmt::format("holds up to {}", s.values.back());
-        };
-        fmt::print("  -> {}: strain error {}; landmark yield {}\n", s.name, where(accuracy_fails),
-                   where(yield_fails));
+        fmt::print("{}", failures.summary(s.name, s.values.back()));
       }
       csv::finish(sw, sweep_path);
       fmt::print("bench prints: wrote {}\n", sweep_path.string());
