@@ -302,9 +302,9 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
       for (const auto i : members) {
         const auto& p = ex.runs[i].params;
         ChartSeries& s = chart.series.emplace_back();
-        s.label = fmt::format("{} {} {} gain {:g} ({:g} Hz)", to_string(p.method),
-                              to_string(p.strain), to_string(p.normalisation),
-                              p.gain_um_per_strain, p.rate_hz);
+        s.label =
+            fmt::format("{} {} {} gain {:g} ({:g} Hz)", to_string(p.method), to_string(p.strain),
+                        to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz);
         s.y = report.results[i].activity_um;
         for (std::size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k) * dt_s);
       }

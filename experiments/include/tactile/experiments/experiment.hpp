@@ -120,9 +120,9 @@ struct ExperimentReport {
 // write_movies), plots/correlation.png, plots/saturation.png and
 // plots/activity-<source>-<layout>.png; with a perception section also
 // perception/table2-<mapping>.csv per mapping (and table2-sensor.csv), perception/summary.csv
-// and plots/perception.png; every plot also as .svg (common/chart.hpp). The same experiment gives the same files, whatever the
-// thread count (up to the creation time). `progress` (optional) is called from worker threads with
-// a short message.
+// and plots/perception.png; every plot also as .svg (common/chart.hpp). The same experiment gives
+// the same files, whatever the thread count (up to the creation time). `progress` (optional) is
+// called from worker threads with a short message.
 ExperimentReport run_experiment(Experiment experiment, const std::filesystem::path& out_dir,
                                 int threads,
                                 const std::function<void(const std::string&)>& progress = {});
