@@ -457,7 +457,29 @@ int run(const Options& o) {
     if (err) {
       std::printf("FIGURE unplug_to_error_ms=%.1f (host: device_del sent to the line read)\n",
                   1e3 * (err->t - unplugged_sent));
-      check(err->t - unplugged_sent <= 0.1, "reported within 100 ms of the unplug");
+      // The bound is the client's: from the guest kernel's own "USB disconnect" to the client's
+      // error, both on the guest's clock. The host's figure also holds QEMU's hot-unplug and,
+      // under TCG, the emulated kernel's handling of it, which a physical unplug does not have.
+      double disconnect_s = -1;
+      for (const auto& l : all(lines, "VM-DMESG: ")) {
+        if (l.text.find("USB disconnect") != std::string::npos) {
+          disconnect_s = dmesg_time(l.text);
+          break;
+        }
+      }
+      const double error_s = num(err->text, "at_s");
+      check(disconnect_s >= 0, "the guest kernel logged the disconnect");
+      if (disconnect_s >= 0) {
+        std::printf(
+            "FIGURE disconnect_to_error_ms=%.1f (guest clock: kernel's USB disconnect to "
+            "the client's error)\n",
+            1e3 * (error_s - disconnect_s));
+        const bool in_time = error_s - disconnect_s <= 0.1;
+        check(in_time, "reported within 100 ms of the kernel's disconnect");
+        // An emulated guest CPU is slow and shared; a late report there is run once more, as a
+        // starved bridge is.
+        if (!in_time && !kvm) starved = true;
+      }
     }
     const auto exit1 = first(lines, "VM: step=play:");
     check(exit1 && field(exit1->text, "exit") == "1", "the client exits 1");
@@ -515,10 +537,11 @@ int main(int argc, char** argv) {
   signal(SIGPIPE, SIG_IGN);
   const int rc = run(o);
   if (rc == 0 || !starved) return rc;
-  // Only a run whose failure came with a starved host is repeated, once; both are printed.
+  // Only a run whose failure came with a starved host (or a late unplug report on an emulated
+  // CPU) is repeated, once; both are printed.
   std::printf(
-      "vm: the host machine starved the bridge (a tick over %.0f ms late) during a "
-      "failed run; running the scenario once more\n",
+      "vm: the host starved the bridge (a tick over %.0f ms late) or the emulated guest reported "
+      "the unplug late during a failed run; running the scenario once more\n",
       kStarvedMs);
   failures = 0;
   starved = false;
