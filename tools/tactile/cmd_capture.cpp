@@ -343,8 +343,8 @@ void add_capture(CLI::App& app, Action& action) {
       }
       params.refine = refine;
       params.refinement.window_mm = opt->refine_window_mm;
-      // As choose_capture_settings pairs them: the longer fit goes with refinement.
-      params.smoothing_half_window = opt->smoothing.value_or(refine ? 5 : 3);
+      params.smoothing_half_window =
+          opt->smoothing.value_or(capture::smoothing_half_window_for(refine));
       use_pore_detector(pores, model, 1.0 / c.mm_per_px, "capture", params.features);
       params.assignment =
           opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;

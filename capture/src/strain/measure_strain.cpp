@@ -68,7 +68,7 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
   if (choice.ridge_blob_pores > choice.paper_pores) {
     choice.detector = PoreDetector::ridge_blob;
     choice.refine = true;
-    choice.smoothing_half_window = 5;
+    choice.smoothing_half_window = smoothing_half_window_for(true);
   }
   return choice;
 }

@@ -57,12 +57,17 @@ StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_fram
 // refinement made the strain error worse); the ridge-blob detector's centres on real prints
 // move with noise and the ridge beside the pore, and refinement cuts their strain error
 // about threefold. Measured figures: docs/capture-models.md.
+// The trajectory smoothing that goes with refinement or without it. Refined positions carry
+// little noise of their own, so a longer fit averages more of what is left (measured on prints
+// 01-10: 5 better than 3 and 7 on every print).
+inline int smoothing_half_window_for(bool refine) {
+  return refine ? 5 : CaptureParams{}.smoothing_half_window;
+}
+
 struct CaptureChoice {
   PoreDetector detector = PoreDetector::paper;
   bool refine = false;
-  // Refined positions carry little noise of their own, so a longer fit averages more of what is
-  // left (measured on prints 01-10: 5 better than 3 and 7 on every print).
-  int smoothing_half_window = 3;
+  int smoothing_half_window = smoothing_half_window_for(false);
   int paper_pores = 0;  // pores each detector found on the frame
   int ridge_blob_pores = 0;
 };
