@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "../common/temp_dir.hpp"
 #include "csv_rows.hpp"
@@ -42,7 +43,8 @@ TEST(ClassifyCli, TrainTestPredictOnRealRecordings) {
   const auto t = run_tactile("classify train --recordings " + kMaterials + " --labels " +
                              labels_of_trials(dir, "12") + " --out " + model + " --threads 2");
   ASSERT_EQ(t.exit_code, 0) << t.output;
-  EXPECT_NE(t.output.find("8 recordings, 4 classes, 23 inputs"), std::string::npos) << t.output;
+  // The default of slides: pressure and 19 electrodes over two halves, 7 band powers.
+  EXPECT_NE(t.output.find("8 recordings, 4 classes, 47 inputs"), std::string::npos) << t.output;
   const auto r =
       run_tactile("classify test --model " + model + " --recordings " + kMaterials + " --labels " +
                   labels_of_trials(dir, "34") + " --csv " + (dir / "out").string());
@@ -89,15 +91,19 @@ TEST(ClassifyCli, CrossValidationReportsMeanAndSpread) {
   EXPECT_NE(r.output.find("cross-validation (4 folds, stratified): accuracy "), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("pooled "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("16 recordings, 4 classes, 21 inputs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("16 recordings, 4 classes, 47 inputs"), std::string::npos) << r.output;
 }
 
 TEST(ClassifyCli, BadInputNamesTheFile) {
   const tactile::test::TempDir dir_tmp("bad");
   const std::filesystem::path& dir = dir_tmp.path();
   const auto model = (dir / "model.json").string();
+  // The paper's inputs with a free-air baseline at the end, which the untared recordings below
+  // need for "no contact" to mean anything (without a baseline, 1000 counts is contact).
   ASSERT_EQ(run_tactile("classify train --recordings " + kMaterials + " --labels " +
-                        labels_of_trials(dir, "1") + " --out " + model)
+                        labels_of_trials(dir, "1") + " --out " + model +
+                        " --baseline-at end --electrodes clusters --trim 0 --inputs "
+                        "means,rates,hht")
                 .exit_code,
             0);
   // A label the model does not know.
@@ -132,7 +138,8 @@ TEST(ClassifyCli, BadInputNamesTheFile) {
   EXPECT_NE(p.output.find("mat14_2_bio.csv: mat"), std::string::npos) << p.output;  // the rest run
   std::ofstream(dir / "flat.csv") << "file,class\nflat_bio.csv,mat1\n";
   const auto t = run_tactile("classify train --recordings " + dir.string() + " --labels " +
-                             (dir / "flat.csv").string() + " --out " + (dir / "x.json").string());
+                             (dir / "flat.csv").string() + " --out " + (dir / "x.json").string() +
+                             " --baseline-at end");
   EXPECT_EQ(t.exit_code, 1);
   EXPECT_NE(t.output.find("flat_bio.csv: no contact"), std::string::npos) << t.output;
   // A model from another format version, and one whose inputs are not this program's.
@@ -145,12 +152,12 @@ TEST(ClassifyCli, BadInputNamesTheFile) {
     const auto at = text.find(from);
     return text.substr(0, at) + to + text.substr(at + from.size());
   };
-  ASSERT_NE(text.find("\"version\": 1"), std::string::npos);
-  std::ofstream(dir / "v2.json") << replaced("\"version\": 1", "\"version\": 2");
-  const auto v2 = run_tactile("classify predict --model " + (dir / "v2.json").string() + " " +
+  ASSERT_NE(text.find("\"version\": 2"), std::string::npos);
+  std::ofstream(dir / "v3.json") << replaced("\"version\": 2", "\"version\": 3");
+  const auto v3 = run_tactile("classify predict --model " + (dir / "v3.json").string() + " " +
                               kMaterials + "/mat1_1_bio.csv");
-  EXPECT_EQ(v2.exit_code, 1);
-  EXPECT_NE(v2.output.find("v2.json: model format version 2"), std::string::npos) << v2.output;
+  EXPECT_EQ(v3.exit_code, 1);
+  EXPECT_NE(v3.output.find("v3.json: model format version 3"), std::string::npos) << v3.output;
   std::ofstream(dir / "inputs.json") << replaced("\"dp.vib.if_last\"", "\"dp.vib.if_end\"");
   const auto in =
       run_tactile("classify test --model " + (dir / "inputs.json").string() + " --recordings " +
@@ -180,6 +187,17 @@ TEST(ClassifyCli, UsageErrors) {
                         "/labels.csv --out /tmp/x.json --cv 1")
                 .exit_code,
             2);
+  // The options of real slides: a bad value is a usage error naming it.
+  for (const auto& [option, named] :
+       {std::pair<std::string, std::string>{"--trim 0.7", "trim fraction 0.7 is outside"},
+        {"--trim -0.1", "trim fraction -0.1"},
+        {"--electrodes all", "all"},
+        {"--baseline-at middle", "middle"}}) {
+    const auto r = run_tactile("classify train --recordings " + kMaterials + " --labels " +
+                               kMaterials + "/labels.csv --out /tmp/x.json " + option);
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_NE(r.output.find(named), std::string::npos) << r.output;
+  }
   EXPECT_EQ(
       run_tactile("classify predict --model /nonexistent.json " + kMaterials + "/mat1_1_bio.csv")
           .exit_code,

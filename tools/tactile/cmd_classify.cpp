@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "command.hpp"
 #include "tactile/common/csv.hpp"
@@ -26,8 +27,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 struct TrainOptions {
   std::filesystem::path recordings, labels, out;
   std::string procedure = "stroke";
-  std::string baseline_at = "end";
-  std::vector<std::string> inputs;  // empty: the paper's for the procedure
+  // Unset: the procedure's default (perception::default_recording_inputs).
+  std::optional<std::string> baseline_at, electrodes;
+  std::optional<double> trim;
+  std::vector<std::string> inputs;  // empty: the procedure's default
   int degree = 1;
   double c = 1.0;
   int cv = 0;
@@ -36,22 +39,21 @@ struct TrainOptions {
 
 int train(const TrainOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  perception::RecordingInputOptions in;
-  perception::set_recording_procedure(in, o.procedure);
-  in.contact.baseline_at = o.baseline_at == "start" ? perception::ContactOptions::BaselineAt::start
-                                                    : perception::ContactOptions::BaselineAt::end;
+  auto in = perception::default_recording_inputs(o.procedure);
+  if (o.baseline_at) in.contact.baseline_at = perception::parse_baseline_at(*o.baseline_at);
+  if (o.electrodes) in.contact.electrodes = perception::parse_electrodes(*o.electrodes);
+  if (o.trim) in.contact.trim_fraction = *o.trim;
   if (!o.inputs.empty()) {
     in.groups.clear();
     for (const auto& name : o.inputs) in.groups.push_back(perception::parse_input_group(name));
-  } else if (in.procedure == perception::Procedure::static_contact) {
-    in.groups = {perception::InputGroup::means};
   }
   const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
   fmt::print(
-      "classify train: {} recordings, {} classes, {} inputs ({} as {}), analysed in {:.2f} s\n",
+      "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, electrodes "
+      "{}, trim {:g}), analysed in {:.2f} s\n",
       data.rows.size(), data.class_names.size(), data.input_names.size(),
-      fmt::join(o.inputs.empty() ? names_of(in.groups) : o.inputs, ","), o.procedure,
-      seconds_since(t0));
+      fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
+      to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
   perception::SvmOptions svm;
   svm.degree = o.degree;
   svm.c = o.c;
@@ -182,14 +184,38 @@ void add_classify(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
       ->capture_default_str();
   tr->add_option("--baseline-at", t->baseline_at,
-                 "Where the free-air baseline is: end (recordings that begin in contact) or start")
-      ->check(CLI::IsMember({"start", "end"}))
-      ->capture_default_str();
-  tr->add_option(
-        "--inputs", t->inputs,
-        "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
-        "band powers of the vibration, for comparison); default: the paper's, means,rates,hht "
-        "(static: means)")
+                 "Where the free-air baseline is: end (recordings that begin in contact), start, "
+                 "or none (the recording software already subtracted one); default: none for "
+                 "stroke, end otherwise")
+      ->check(CLI::IsMember(names_of(values_of(perception::kBaselineAtNames))));
+  tr->add_option("--electrodes", t->electrodes,
+                 "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
+                 "(all 19 electrodes); default: each for stroke, clusters otherwise")
+      ->check(CLI::IsMember(names_of(values_of(perception::kElectrodesNames))));
+  tr->add_option("--trim", t->trim,
+                 "Strokes: fraction of the contact left out at each end, in [0, 0.5) (the press "
+                 "and the lift of a slide); default: 0.1 for stroke, 0 otherwise")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double fraction = 0;
+            try {
+              fraction = std::stod(text);
+            } catch (const std::exception&) {
+              return std::string();  // not a number: the conversion reports it
+            }
+            try {
+              perception::check_trim_fraction(fraction);
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "in [0, 0.5)"));
+  tr->add_option("--inputs", t->inputs,
+                 "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
+                 "band powers of the vibration), stds (standard deviation of each signal over the "
+                 "contact); default: stroke means,bands; dp, ru, roll the paper's "
+                 "means,rates,hht; static means")
       ->delimiter(',')
       ->check(CLI::IsMember(names_of(perception::kInputGroups)));
   tr->add_option("--kernel-degree", t->degree, "Exponent of the polynomial kernel")

@@ -165,12 +165,12 @@ void write_classifier_model(const std::filesystem::path& path, const ClassifierM
   j["version"] = m.version;
   j["procedure"] = recording_procedure_name(m.options);
   j["input_groups"] = names_of(m.options.groups);
-  j["contact"] = {
-      {"baseline_at",
-       m.options.contact.baseline_at == ContactOptions::BaselineAt::end ? "end" : "start"},
-      {"baseline_s", m.options.contact.baseline_s},
-      {"threshold_fraction", m.options.contact.threshold_fraction},
-      {"min_threshold", m.options.contact.min_threshold}};
+  j["contact"] = {{"baseline_at", to_string(m.options.contact.baseline_at)},
+                  {"baseline_s", m.options.contact.baseline_s},
+                  {"threshold_fraction", m.options.contact.threshold_fraction},
+                  {"min_threshold", m.options.contact.min_threshold},
+                  {"trim_fraction", m.options.contact.trim_fraction},
+                  {"electrodes", to_string(m.options.contact.electrodes)}};
   j["input_names"] = m.input_names;
   j["class_names"] = m.class_names;
   j["svm"] = {{"kernel", "polynomial"},
@@ -200,10 +200,12 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         fmt::format("{}: not a classifier model (format '{}')", where, format.get<std::string>()));
   const auto& version =
       field(j, "version", where, &nlohmann::json::is_number_integer, "an integer");
-  if (version.get<int>() != kClassifierModelVersion)
-    throw FormatError(
-        fmt::format("{}: model format version {}, this program reads version {}: retrain the model",
-                    where, version.get<int>(), kClassifierModelVersion));
+  // Version 1 had no trim_fraction or electrodes: its inputs are those of no trim and clusters.
+  const bool v1 = version.get<int>() == 1;
+  if (!v1 && version.get<int>() != kClassifierModelVersion)
+    throw FormatError(fmt::format(
+        "{}: model format version {}, this program reads versions 1 to {}: retrain the model",
+        where, version.get<int>(), kClassifierModelVersion));
   ClassifierModel m;
   try {
     set_recording_procedure(
@@ -221,14 +223,22 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
     }
   }
   const auto& contact = field(j, "contact", where, &nlohmann::json::is_object, "an object");
-  const auto& at = field(contact, "baseline_at", where, &nlohmann::json::is_string, "a string");
-  if (at != "end" && at != "start")
-    throw FormatError(fmt::format("{}: contact.baseline_at must be 'start' or 'end'", where));
-  m.options.contact.baseline_at =
-      at == "end" ? ContactOptions::BaselineAt::end : ContactOptions::BaselineAt::start;
+  const auto word = [&](const nlohmann::json& o, const char* key) {
+    return field(o, key, where, &nlohmann::json::is_string, "a string").get<std::string>();
+  };
   const auto number = [&](const nlohmann::json& o, const char* key) {
     return field(o, key, where, &nlohmann::json::is_number, "a number").get<double>();
   };
+  try {
+    m.options.contact.baseline_at = parse_baseline_at(word(contact, "baseline_at"));
+    if (!v1) {
+      m.options.contact.electrodes = parse_electrodes(word(contact, "electrodes"));
+      m.options.contact.trim_fraction = number(contact, "trim_fraction");
+      check_trim_fraction(m.options.contact.trim_fraction);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: contact: {}", where, e.what()));
+  }
   m.options.contact.baseline_s = number(contact, "baseline_s");
   m.options.contact.threshold_fraction = number(contact, "threshold_fraction");
   m.options.contact.min_threshold = number(contact, "min_threshold");

@@ -18,7 +18,6 @@ using perception::kElectrodeClusterCount;
 using perception::kElectrodeCount;
 using perception::Procedure;
 
-constexpr int kSignals = 1 + kElectrodeClusterCount;  // pressure + 6 clusters
 constexpr double kVibrationWindowS = 0.25;
 
 double mean(const std::vector<double>& v, std::size_t begin, std::size_t end) {
@@ -27,27 +26,23 @@ double mean(const std::vector<double>& v, std::size_t begin, std::size_t end) {
   return end > begin ? s / static_cast<double>(end - begin) : 0.0;
 }
 
-// Pressure and the 6 electrode-cluster means, each relative to its baseline, per row.
-std::array<std::vector<double>, kSignals> signals(const perception::SensorRecording& r,
-                                                  const ContactOptions& o) {
-  const auto n_base =
-      std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(o.baseline_s * r.rate_hz)));
-  const std::size_t rows = r.rows();
-  const std::size_t b0 = o.baseline_at == ContactOptions::BaselineAt::start ? 0 : rows - n_base;
-  std::array<std::vector<double>, kSignals> s;
-  for (auto& v : s) v.assign(rows, 0.0);
-  const double p0 = mean(r.pressure, b0, b0 + n_base);
-  for (std::size_t i = 0; i < rows; ++i) s[0][i] = r.pressure[i] - p0;
-  std::array<int, kElectrodeClusterCount> members{};
-  for (int e = 0; e < kElectrodeCount; ++e) {
-    const int c = perception::kElectrodeCluster[e];
-    ++members[c];
-    const double e0 = mean(r.electrodes[e], b0, b0 + n_base);
-    for (std::size_t i = 0; i < rows; ++i) s[1 + c][i] += r.electrodes[e][i] - e0;
+std::size_t baseline_rows(const perception::SensorRecording& r, const ContactOptions& o) {
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(o.baseline_s * r.rate_hz)));
+}
+
+// Mean of v over the baseline rows (0 when there is no baseline to take).
+double baseline_of(const std::vector<double>& v, const perception::SensorRecording& r,
+                   const ContactOptions& o) {
+  const std::size_t n = baseline_rows(r, o);
+  switch (o.baseline_at) {
+    case ContactOptions::BaselineAt::start:
+      return mean(v, 0, n);
+    case ContactOptions::BaselineAt::end:
+      return mean(v, r.rows() - n, r.rows());
+    case ContactOptions::BaselineAt::none:
+      break;
   }
-  for (int c = 0; c < kElectrodeClusterCount; ++c)
-    for (double& v : s[1 + c]) v /= members[c];
-  return s;
+  return 0.0;
 }
 
 double slope_per_s(const std::vector<double>& v, std::size_t begin, std::size_t end,
@@ -67,14 +62,65 @@ double slope_per_s(const std::vector<double>& v, std::size_t begin, std::size_t 
 
 }  // namespace
 
+std::string to_string(ContactOptions::BaselineAt at) {
+  return name_in(kBaselineAtNames, at);
+}
+
+ContactOptions::BaselineAt parse_baseline_at(std::string_view name) {
+  return parse_name("baseline place", name, kBaselineAtNames);
+}
+
+std::string to_string(ContactOptions::Electrodes e) {
+  return name_in(kElectrodesNames, e);
+}
+
+ContactOptions::Electrodes parse_electrodes(std::string_view name) {
+  return parse_name("electrode signals", name, kElectrodesNames);
+}
+
+void check_trim_fraction(double trim_fraction) {
+  if (!(trim_fraction >= 0.0 && trim_fraction < 0.5))
+    throw std::invalid_argument(fmt::format(
+        "trim fraction {:g} is outside [0, 0.5): it is left out at each end of the contact",
+        trim_fraction));
+}
+
+std::vector<std::vector<double>> contact_signals(const perception::SensorRecording& r,
+                                                 const ContactOptions& o) {
+  const bool each = o.electrodes == ContactOptions::Electrodes::each;
+  const std::size_t rows = r.rows();
+  std::vector<std::vector<double>> s(1 + (each ? kElectrodeCount : kElectrodeClusterCount),
+                                     std::vector<double>(rows, 0.0));
+  const double p0 = baseline_of(r.pressure, r, o);
+  for (std::size_t i = 0; i < rows; ++i) s[0][i] = r.pressure[i] - p0;
+  std::array<int, kElectrodeClusterCount> members{};
+  for (int e = 0; e < kElectrodeCount; ++e) {
+    const int c = each ? e : perception::kElectrodeCluster[e];
+    ++members[static_cast<std::size_t>(perception::kElectrodeCluster[e])];
+    const double e0 = baseline_of(r.electrodes[e], r, o);
+    for (std::size_t i = 0; i < rows; ++i) s[1 + c][i] += r.electrodes[e][i] - e0;
+  }
+  if (!each)
+    for (int c = 0; c < kElectrodeClusterCount; ++c)
+      for (double& v : s[1 + c]) v /= members[c];
+  return s;
+}
+
+std::vector<std::string> contact_signal_names(const ContactOptions& o) {
+  const bool each = o.electrodes == ContactOptions::Electrodes::each;
+  std::vector<std::string> names = {"pressure"};
+  for (int i = 1; i <= (each ? kElectrodeCount : kElectrodeClusterCount); ++i)
+    names.push_back(fmt::format("{}{}", each ? 'e' : 'c', i));
+  return names;
+}
+
 ContactSegment find_contact(const perception::SensorRecording& r, const ContactOptions& o) {
   const auto n_base = static_cast<std::size_t>(std::lround(o.baseline_s * r.rate_hz));
   if (n_base == 0 || r.rows() < n_base + 1 || r.pressure.size() != r.rows())
     throw std::runtime_error(fmt::format("{}: {} rows, too short for a {} s baseline", r.source,
                                          r.rows(), o.baseline_s));
   ContactSegment c;
-  const std::size_t b0 = o.baseline_at == ContactOptions::BaselineAt::start ? 0 : r.rows() - n_base;
-  c.baseline_pressure = mean(r.pressure, b0, b0 + n_base);
+  c.baseline_pressure = baseline_of(r.pressure, r, o);
   c.threshold = std::max(o.min_threshold, o.threshold_fraction * std::abs(c.baseline_pressure));
   const auto above = [&](std::size_t i) {
     return r.pressure[i] - c.baseline_pressure > c.threshold;
@@ -94,8 +140,11 @@ ContactSegment find_contact(const perception::SensorRecording& r, const ContactO
   return c;
 }
 
-FeatureContact find_feature_contact(const perception::SensorRecording& r, Procedure p,
-                                    const ContactSegment& c, const ContactOptions& o) {
+namespace {
+
+// The feature contact before trimming.
+FeatureContact untrimmed_feature_contact(const perception::SensorRecording& r, Procedure p,
+                                         const ContactSegment& c, const ContactOptions& o) {
   if (p == Procedure::static_contact || !o.feature_from_kinematics) return {c.begin, c.end};
   const perception::ProcedureKinematics k = perception::paper_kinematics(p);
   const auto row = [&](double s) {
@@ -109,7 +158,9 @@ FeatureContact find_feature_contact(const perception::SensorRecording& r, Proced
   const std::size_t move_begin = row(k.approach_s);
   const std::size_t move_end = row(k.approach_s + k.stroke_mm / k.speed_mm_s);
   if (move_end < move_begin + 8) return {c.begin, c.end};
-  const auto s = signals(r, o);
+  ContactOptions clusters = o;  // the activity is the clusters' whatever the inputs use
+  clusters.electrodes = ContactOptions::Electrodes::clusters;
+  const auto s = contact_signals(r, clusters);
   std::vector<double> activity(move_end - move_begin, 0.0);
   double peak = 0;
   for (std::size_t i = move_begin; i < move_end; ++i) {
@@ -126,14 +177,26 @@ FeatureContact find_feature_contact(const perception::SensorRecording& r, Proced
   return {move_begin + first, move_begin + last};
 }
 
-std::size_t procedure_input_count(Procedure p) {
-  return p == Procedure::static_contact ? kSignals : 3 * kSignals + 2;
+}  // namespace
+
+FeatureContact find_feature_contact(const perception::SensorRecording& r, Procedure p,
+                                    const ContactSegment& c, const ContactOptions& o) {
+  check_trim_fraction(o.trim_fraction);
+  const FeatureContact f = untrimmed_feature_contact(r, p, c, o);
+  if (p == Procedure::static_contact || o.trim_fraction == 0.0) return f;
+  const auto cut =
+      static_cast<std::size_t>(std::lround(o.trim_fraction * static_cast<double>(f.end - f.begin)));
+  return {f.begin + cut, f.end - cut};
 }
 
-std::vector<std::string> procedure_input_names(Procedure p) {
+std::size_t procedure_input_count(Procedure p, const ContactOptions& o) {
+  const std::size_t signals = contact_signal_names(o).size();
+  return p == Procedure::static_contact ? signals : 3 * signals + 2;
+}
+
+std::vector<std::string> procedure_input_names(Procedure p, const ContactOptions& o) {
   const std::string ep = perception::procedure_short_name(p);
-  std::vector<std::string> signal_names = {"pressure"};
-  for (int c = 1; c <= kElectrodeClusterCount; ++c) signal_names.push_back(fmt::format("c{}", c));
+  const auto signal_names = contact_signal_names(o);
   std::vector<std::string> names;
   if (p == Procedure::static_contact) {
     for (const auto& s : signal_names) names.push_back(ep + ".mid." + s);
@@ -150,7 +213,7 @@ std::vector<std::string> procedure_input_names(Procedure p) {
 std::vector<double> procedure_inputs(const perception::SensorRecording& r, Procedure p,
                                      const ContactOptions& o) {
   const ContactSegment c = find_contact(r, o);
-  const auto s = signals(r, o);
+  const auto s = contact_signals(r, o);
   std::vector<double> inputs;
   if (p == Procedure::static_contact) {
     const std::size_t len = c.end - c.begin;

@@ -17,7 +17,6 @@
 namespace tactile::perception {
 namespace {
 
-constexpr int kSignals = 1 + kElectrodeClusterCount;
 // Octave bands of the vibration up to its Nyquist frequency (1100 Hz at 2200 Hz).
 constexpr std::array<double, 8> kBandEdgesHz = {10, 20, 40, 80, 160, 320, 640, 1100};
 
@@ -65,6 +64,21 @@ std::vector<double> band_powers(const SensorRecording& r, std::size_t row_begin,
   return out;
 }
 
+// Standard deviation (population) of each signal over rows [begin, end): how much it varies
+// over the slide, which the window means do not see.
+std::vector<double> signal_stds(const SensorRecording& r, const ContactOptions& o,
+                                std::size_t begin, std::size_t end) {
+  std::vector<double> out;
+  for (const auto& v : contact_signals(r, o)) {
+    double m = 0, ss = 0;
+    for (std::size_t i = begin; i < end; ++i) m += v[i];
+    m /= static_cast<double>(end - begin);
+    for (std::size_t i = begin; i < end; ++i) ss += (v[i] - m) * (v[i] - m);
+    out.push_back(std::sqrt(ss / static_cast<double>(end - begin)));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string to_string(InputGroup group) {
@@ -98,6 +112,20 @@ std::string recording_procedure_name(const RecordingInputOptions& o) {
   return o.contact.feature_from_kinematics ? procedure_short_name(o.procedure) : "stroke";
 }
 
+RecordingInputOptions default_recording_inputs(std::string_view procedure) {
+  RecordingInputOptions o;
+  set_recording_procedure(o, procedure);
+  if (is_static(o.procedure)) {
+    o.groups = {InputGroup::means};
+  } else if (!o.contact.feature_from_kinematics) {
+    o.groups = {InputGroup::means, InputGroup::bands};
+    o.contact.baseline_at = ContactOptions::BaselineAt::none;
+    o.contact.electrodes = ContactOptions::Electrodes::each;
+    o.contact.trim_fraction = 0.1;
+  }
+  return o;
+}
+
 std::vector<InputGroup> recording_input_groups(Procedure p) {
   if (is_static(p)) return {InputGroup::means};
   return {kInputGroups.begin(), kInputGroups.end()};
@@ -105,17 +133,20 @@ std::vector<InputGroup> recording_input_groups(Procedure p) {
 
 namespace {
 
-// Columns [first, second) of procedure_inputs that a group takes (bands takes none: it is
-// computed apart).
-std::pair<std::size_t, std::size_t> group_columns(Procedure p, InputGroup group) {
+// Columns [first, second) of procedure_inputs that a group takes (bands and stds take none:
+// they are computed apart).
+std::pair<std::size_t, std::size_t> group_columns(const RecordingInputOptions& o,
+                                                  InputGroup group) {
+  const std::size_t n = contact_signal_names(o.contact).size();
   switch (group) {
     case InputGroup::means:
-      return {0, is_static(p) ? kSignals : 2 * kSignals};
+      return {0, is_static(o.procedure) ? n : 2 * n};
     case InputGroup::rates:
-      return {2 * kSignals, 3 * kSignals};
+      return {2 * n, 3 * n};
     case InputGroup::hht:
-      return {3 * kSignals, 3 * kSignals + 2};
+      return {3 * n, 3 * n + 2};
     case InputGroup::bands:
+    case InputGroup::stds:
       break;
   }
   return {0, 0};
@@ -131,8 +162,9 @@ std::vector<InputGroup> selected_groups(const RecordingInputOptions& o) {
 }
 
 template <typename T>
-void append_group(std::vector<T>& out, const std::vector<T>& all, Procedure p, InputGroup group) {
-  const auto [first, last] = group_columns(p, group);
+void append_group(std::vector<T>& out, const std::vector<T>& all, const RecordingInputOptions& o,
+                  InputGroup group) {
+  const auto [first, last] = group_columns(o, group);
   out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(first),
              all.begin() + static_cast<std::ptrdiff_t>(last));
 }
@@ -140,15 +172,17 @@ void append_group(std::vector<T>& out, const std::vector<T>& all, Procedure p, I
 }  // namespace
 
 std::vector<std::string> recording_input_names(const RecordingInputOptions& o) {
-  const auto all = procedure_input_names(o.procedure);
+  const auto all = procedure_input_names(o.procedure, o.contact);
   const std::string ep = procedure_short_name(o.procedure);
   std::vector<std::string> names;
   for (const auto g : selected_groups(o)) {
-    append_group(names, all, o.procedure, g);
+    append_group(names, all, o, g);
     if (g == InputGroup::bands)
       for (std::size_t b = 0; b + 1 < kBandEdgesHz.size(); ++b)
         names.push_back(
             fmt::format("{}.band.{:g}_{:g}hz", ep, kBandEdgesHz[b], kBandEdgesHz[b + 1]));
+    if (g == InputGroup::stds)
+      for (const auto& s : contact_signal_names(o.contact)) names.push_back(ep + ".std." + s);
   }
   return names;
 }
@@ -157,13 +191,20 @@ std::vector<double> recording_inputs(const SensorRecording& r, const RecordingIn
   const auto groups = selected_groups(o);
   const auto all = procedure_inputs(r, o.procedure, o.contact);
   std::vector<double> inputs;
+  const auto feature_contact = [&] {
+    return find_feature_contact(r, o.procedure, find_contact(r, o.contact), o.contact);
+  };
   for (const auto g : groups) {
-    append_group(inputs, all, o.procedure, g);
+    append_group(inputs, all, o, g);
     if (g == InputGroup::bands) {
-      const auto c = find_contact(r, o.contact);
-      const auto f = find_feature_contact(r, o.procedure, c, o.contact);
+      const auto f = feature_contact();
       const auto bands = band_powers(r, f.begin, f.end);
       inputs.insert(inputs.end(), bands.begin(), bands.end());
+    }
+    if (g == InputGroup::stds) {
+      const auto f = feature_contact();
+      const auto stds = signal_stds(r, o.contact, f.begin, f.end);
+      inputs.insert(inputs.end(), stds.begin(), stds.end());
     }
   }
   return inputs;

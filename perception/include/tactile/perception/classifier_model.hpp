@@ -19,7 +19,8 @@
 
 namespace tactile::perception {
 
-inline constexpr int kClassifierModelVersion = 1;
+// Version 2 added contact.trim_fraction and contact.electrodes; version 1 files are still read.
+inline constexpr int kClassifierModelVersion = 2;
 
 // One row of a labels file `file,class[,value]`.
 struct RecordingLabel {

@@ -8,7 +8,10 @@
 // each half of the contact, 14), "rates" (their initial rates of change, 7), "hht" (mean
 // instantaneous frequency of the first IMF of the vibration over the first and last 250 ms, 2).
 // Not the paper's, for comparison with the HHT: "bands" (log10 power of the vibration over the
-// whole contact in 7 octave bands, 10-1100 Hz, 7). Static contact has only "means" (7).
+// whole contact in 7 octave bands, 10-1100 Hz, 7) and "stds" (standard deviation of pressure
+// and of each electrode signal over the feature contact, 7 or 20). Static contact has only
+// "means" (7). With `contact.electrodes` each, the 6 clusters become the 19 electrodes in every
+// group (means 40, rates 20, stds 20).
 
 #include <array>
 #include <string>
@@ -21,12 +24,13 @@
 
 namespace tactile::perception {
 
-enum class InputGroup { means, rates, hht, bands };
-inline constexpr std::array<Named<InputGroup>, 4> kInputGroupNames = {{
+enum class InputGroup { means, rates, hht, bands, stds };
+inline constexpr std::array<Named<InputGroup>, 5> kInputGroupNames = {{
     {InputGroup::means, "means"},
     {InputGroup::rates, "rates"},
     {InputGroup::hht, "hht"},
     {InputGroup::bands, "bands"},
+    {InputGroup::stds, "stds"},
 }};
 inline constexpr auto kInputGroups = values_of(kInputGroupNames);
 // The names of model files and of `classify train --inputs`. The parser throws
@@ -55,7 +59,16 @@ struct RecordingInputOptions {
 void set_recording_procedure(RecordingInputOptions& o, std::string_view name);
 std::string recording_procedure_name(const RecordingInputOptions& o);
 
-// The groups a procedure has (all four for strokes; means for static).
+// The inputs `classify train --procedure NAME` uses unless told otherwise. The paper's scenes
+// (dp, ru, roll, static): the paper's groups, clusters, no trim, baseline at the end. Real slides
+// ("stroke"): each electrode, no baseline (the files are tared by the recording software, and
+// many end still in contact, so their last 0.2 s is no baseline), 10 % trimmed at each end, and
+// groups means and bands: the set with the best 5-fold cross-validation on 200 real slides of
+// 20 materials among those measured (docs/perception-models.md; the paper's rates and HHT add
+// nothing there). Throws std::invalid_argument as set_recording_procedure.
+RecordingInputOptions default_recording_inputs(std::string_view procedure);
+
+// The groups a procedure has (all for strokes; means for static).
 std::vector<InputGroup> recording_input_groups(Procedure p);
 
 // Names of the selected inputs, in order (e.g. "dp.w1.pressure", "dp.vib.if_first",
