@@ -62,6 +62,23 @@ std::string error_of(F&& f) {
   return "(no error)";
 }
 
+// The model file, as JSON, of the vendored trials 1 trained with `options`, written to dir/m.json.
+nlohmann::json model_file_json(const std::filesystem::path& dir,
+                               const perception::RecordingInputOptions& options = {}) {
+  const auto data =
+      perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "1"), options, {}, 2);
+  perception::write_classifier_model(dir / "m.json", perception::make_classifier_model(data, {}));
+  nlohmann::json j;
+  std::ifstream(dir / "m.json") >> j;
+  return j;
+}
+
+// The error of reading `j` as a model file (written to dir/bad.json), or "(no error)".
+std::string model_file_error(const std::filesystem::path& dir, const nlohmann::json& j) {
+  write_text(dir / "bad.json", j.dump());
+  return error_of([&] { perception::read_classifier_model(dir / "bad.json"); });
+}
+
 }  // namespace
 
 TEST(RecordingLabels, ReadsClassesAndValues) {
@@ -151,15 +168,8 @@ TEST(ClassifierModel, FileRoundTripGivesTheSameModelAndPredictions) {
 TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   const tactile::test::TempDir dir_tmp("model_bad");
   const std::filesystem::path& dir = dir_tmp.path();
-  const auto data =
-      perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "1"), {}, {}, 2);
-  perception::write_classifier_model(dir / "m.json", perception::make_classifier_model(data, {}));
-  nlohmann::json good;
-  std::ifstream(dir / "m.json") >> good;
-  const auto error = [&](const nlohmann::json& j) {
-    write_text(dir / "bad.json", j.dump());
-    return error_of([&] { perception::read_classifier_model(dir / "bad.json"); });
-  };
+  const auto good = model_file_json(dir);
+  const auto error = [&](const nlohmann::json& j) { return model_file_error(dir, j); };
   auto j = good;
   j["version"] = perception::kClassifierModelVersion + 1;
   EXPECT_NE(error(j).find("model format version 3, this program reads versions 1 to 2"),
@@ -350,21 +360,14 @@ TEST(RecordingInputs, DefaultsByProcedure) {
 TEST(ClassifierModel, ReadsVersionOneAndChecksTheNewFields) {
   const tactile::test::TempDir dir_tmp("model_v1");
   const std::filesystem::path& dir = dir_tmp.path();
-  auto options = perception::default_recording_inputs("stroke");
-  const auto data =
-      perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "1"), options, {}, 2);
-  perception::write_classifier_model(dir / "m.json", perception::make_classifier_model(data, {}));
+  const auto options = perception::default_recording_inputs("stroke");
+  const auto good = model_file_json(dir, options);
   const auto back = perception::read_classifier_model(dir / "m.json");
   EXPECT_EQ(back.options.contact.electrodes, options.contact.electrodes);
   EXPECT_EQ(back.options.contact.trim_fraction, options.contact.trim_fraction);
   EXPECT_EQ(back.options.contact.baseline_at, options.contact.baseline_at);
-  EXPECT_EQ(back.input_names, data.input_names);
-  nlohmann::json good;
-  std::ifstream(dir / "m.json") >> good;
-  const auto error = [&](const nlohmann::json& j) {
-    write_text(dir / "bad.json", j.dump());
-    return error_of([&] { perception::read_classifier_model(dir / "bad.json"); });
-  };
+  EXPECT_EQ(back.input_names, perception::recording_input_names(options));
+  const auto error = [&](const nlohmann::json& j) { return model_file_error(dir, j); };
   auto j = good;
   j["contact"]["electrodes"] = "all";
   EXPECT_NE(error(j).find("'all'"), std::string::npos) << error(j);
@@ -375,10 +378,7 @@ TEST(ClassifierModel, ReadsVersionOneAndChecksTheNewFields) {
   j["contact"].erase("trim_fraction");
   EXPECT_NE(error(j).find("missing field 'trim_fraction'"), std::string::npos) << error(j);
   // A version 1 file of the paper's inputs (clusters, no trim, no new fields) still reads.
-  const auto paper =
-      perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "1"), {}, {}, 2);
-  perception::write_classifier_model(dir / "p.json", perception::make_classifier_model(paper, {}));
-  std::ifstream(dir / "p.json") >> j;
+  j = model_file_json(dir);
   j["version"] = 1;
   j["contact"].erase("trim_fraction");
   j["contact"].erase("electrodes");
@@ -386,5 +386,5 @@ TEST(ClassifierModel, ReadsVersionOneAndChecksTheNewFields) {
   const auto v1 = perception::read_classifier_model(dir / "bad.json");
   EXPECT_EQ(v1.options.contact.electrodes, perception::ContactOptions::Electrodes::clusters);
   EXPECT_EQ(v1.options.contact.trim_fraction, 0.0);
-  EXPECT_EQ(v1.input_names, paper.input_names);
+  EXPECT_EQ(v1.input_names, perception::recording_input_names({}));
 }
