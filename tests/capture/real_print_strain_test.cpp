@@ -182,11 +182,10 @@ TEST(PrintWarp, SequenceFolderIsAGroundTruthAndBrokenOnesAreNamed) {
 
 // The acceptance figures on two prints that no setting of the strain pipeline was tuned on
 // (the refinement was tuned on prints 01-10; the shipped pore model was trained on all 15).
-// Asserted: >= 150 tracked landmarks per frame, edge strain RMS error <= 0.0025, and better than
-// Lucas-Kanade on the same frames in both error and correlation. Not asserted: correlation
-// >= 0.96, which these prints reach on some sequences only (0.95-0.97 frame to frame, and over
-// 5 frames too: the error grows with the strain, as a translation-only window under a strain
-// gradient makes it); the figures are printed.
+// Asserted on the 8 % travelling wave: >= 150 tracked landmarks per frame, edge strain RMS error
+// <= 0.0025, correlation with the exact warp >= 0.96, and better than Lucas-Kanade on the same
+// frames in both error and correlation. Weaker patterns (1 % wave, 4 % stretch) do not all
+// reach 0.96 (see docs/capture-models.md); the figures over 5 frames are printed.
 TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
   for (const char* nn : {"12", "14"}) {
     const GrayImage print = read_image(print_path(nn, "image_"));
@@ -224,6 +223,7 @@ TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
                 ours_span5.rms_error, ours_span5.correlation, ours_span5.rms_truth);
     EXPECT_GE(ours.median_tracked_points, 150) << nn;
     EXPECT_LE(ours.rms_error, 0.0025) << nn;
+    EXPECT_GE(ours.correlation, 0.96) << nn;
     EXPECT_LT(ours.rms_error, lk.rms_error) << nn;
     EXPECT_GT(ours.correlation, lk.correlation) << nn;
   }

@@ -126,7 +126,7 @@ StrainMovie measure_strain(
   std::vector<Track> tracks = track_features(features, cal, tp);
   if (progress) progress("track", 1, 1);
   if (params.refine) {
-    refine_tracks(frames, tracks, px_per_mm, params.refinement);
+    refine_tracks(frames, tracks, px_per_mm, params.refinement, params.threads);
     smooth_tracks(tracks, params.smoothing_half_window);
     if (progress) progress("refine", 1, 1);
   }

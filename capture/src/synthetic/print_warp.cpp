@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -59,6 +60,47 @@ PointMm pattern_displacement(const PrintWarpSpec& s, PointMm d, int frame) {
     default:  // bump
       return {a * d.x_mm * g, a * d.y_mm * g};
   }
+}
+
+// Lanczos (a = 4) weights for the 8 taps around a sample at fraction t of a pixel, normalised.
+// The frames must move by exactly the warp: cubic convolution (OpenCV's INTER_CUBIC) shifts a
+// print's fine detail by a few hundredths of a pixel depending on the sample's fraction, and
+// OpenCV's remap rounds positions to 1/32 pixel; either is as large as the error of the best
+// trackers, so the truth would not be exact. With Lanczos-4 in double precision the step error of
+// an image tracker on a pure slide of 0.4 px per frame fell from 0.06 px to 0.015 px, the
+// tracker's own floor.
+std::array<double, 8> lanczos_weights(double t) {
+  std::array<double, 8> w{};
+  double sum = 0;
+  for (int i = 0; i < 8; ++i) {
+    const double d = (i - 3) - t;
+    const double v = std::abs(d) < 1e-12
+                         ? 1.0
+                         : std::sin(kPi * d) * std::sin(kPi * d / 4) / (kPi * kPi * d * d / 4);
+    w[static_cast<std::size_t>(i)] = v;
+    sum += v;
+  }
+  for (auto& v : w) v /= sum;
+  return w;
+}
+
+// `source` (CV_32F) at (x, y); `outside` beyond its border (skin out of contact).
+float sample_lanczos(const cv::Mat& source, double x, double y, float outside) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const auto wx = lanczos_weights(x - fx), wy = lanczos_weights(y - fy);
+  const int x0 = static_cast<int>(fx) - 3, y0 = static_cast<int>(fy) - 3;
+  double sum = 0;
+  for (int j = 0; j < 8; ++j) {
+    const int yy = y0 + j;
+    double row = 0;
+    for (int i = 0; i < 8; ++i) {
+      const int xx = x0 + i;
+      const bool inside = xx >= 0 && yy >= 0 && xx < source.cols && yy < source.rows;
+      row += wx[static_cast<std::size_t>(i)] * (inside ? source.at<float>(yy, xx) : outside);
+    }
+    sum += wy[static_cast<std::size_t>(j)] * row;
+  }
+  return static_cast<float>(sum);
 }
 
 double rotation_rad(const PrintWarpSpec& s, int frame) {
@@ -186,17 +228,14 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   seq.frames.resize(static_cast<std::size_t>(spec.frame_count));
   cv::parallel_for_(cv::Range(0, spec.frame_count), [&](const cv::Range& range) {
     for (int f = range.start; f < range.end; ++f) {
-      cv::Mat map_x(h, w, CV_32F), map_y(h, w, CV_32F);
+      cv::Mat frame(h, w, CV_32F);
       for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
           const PointMm m = warp_to_material(spec, {x / spec.px_per_mm, y / spec.px_per_mm}, f);
-          map_x.at<float>(y, x) = static_cast<float>(m.x_mm * spec.px_per_mm);
-          map_y.at<float>(y, x) = static_cast<float>(m.y_mm * spec.px_per_mm);
+          frame.at<float>(y, x) =
+              sample_lanczos(source, m.x_mm * spec.px_per_mm, m.y_mm * spec.px_per_mm, background);
         }
       }
-      cv::Mat frame;
-      cv::remap(source, frame, map_x, map_y, cv::INTER_CUBIC, cv::BORDER_CONSTANT,
-                cv::Scalar(background));
       const double tau = progress_of(spec, f);
       // Exposure drifts over the sequence, a little more on the right (a lamp warming up).
       cv::Mat gain(h, w, CV_32F);

@@ -1,83 +1,224 @@
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <opencv2/video/tracking.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "camera/cv_image.hpp"
 #include "tactile/capture/track.hpp"
+#include "tactile/common/parallel_for.hpp"
 
 namespace tactile::capture {
+namespace {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+// The landmark's neighbourhood in its reference frame, ready for inverse-compositional
+// alignment (Baker and Matthews): the grey levels, their offsets from the landmark, their
+// weights, the steepest-descent images of an affine warp and the inverse of their Hessian. All
+// of it depends on the reference alone, so it is computed once for every later frame.
+struct Reference {
+  std::vector<double> grey, dx, dy, weight;
+  std::vector<Vector6> descent;
+  Matrix6 hessian_inverse = Matrix6::Zero();
+  double weighted_mean = 0;
+  double weighted_spread = 0;
+};
+
+// Bilinear interpolation in double precision (OpenCV's warps round positions to 1/32 pixel,
+// as much as the error being sought); false outside the image.
+bool sample(const cv::Mat& image, double x, double y, double& value) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+  if (ix < 0 || iy < 0 || ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
+  const double ax = x - fx, ay = y - fy;
+  const float* r0 = image.ptr<float>(iy) + ix;
+  const float* r1 = image.ptr<float>(iy + 1) + ix;
+  value = (1 - ay) * ((1 - ax) * r0[0] + ax * r0[1]) + ay * ((1 - ax) * r1[0] + ax * r1[1]);
+  return true;
+}
+
+// The reference around (x, y) in a smoothed frame; false where the window leaves the frame or
+// holds too little texture to align.
+bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_side, int room_px,
+                    Reference& ref) {
+  ref = Reference{};
+  // Near the frame's border the window is cut to the part inside it, with room for the
+  // landmark to move; a window cut to less than a quarter is no reference.
+  const int cx = static_cast<int>(std::lround(x_px)), cy = static_cast<int>(std::lround(y_px));
+  const int left = std::max(cx - half_side, room_px),
+            right = std::min(cx + half_side, smooth.cols - 1 - room_px);
+  const int top = std::max(cy - half_side, room_px),
+            bottom = std::min(cy + half_side, smooth.rows - 1 - room_px);
+  if (4 * (right - left + 1) * (bottom - top + 1) < (2 * half_side + 1) * (2 * half_side + 1)) {
+    return false;
+  }
+  // Gaussian weights favour the landmark's own surroundings where the skin's strain varies
+  // across the window.
+  const double sigma = half_side / 1.5;
+  Matrix6 hessian = Matrix6::Zero();
+  double sw = 0, swg = 0, swgg = 0;
+  for (int v = top; v <= bottom; ++v) {
+    const float* row = smooth.ptr<float>(v);
+    const float* up = smooth.ptr<float>(v - 1);
+    const float* down = smooth.ptr<float>(v + 1);
+    for (int u = left; u <= right; ++u) {
+      const double ox = u - x_px, oy = v - y_px;
+      const double w = std::exp(-(ox * ox + oy * oy) / (2 * sigma * sigma));
+      const double gx = 0.5 * (row[u + 1] - row[u - 1]);
+      const double gy = 0.5 * (down[u] - up[u]);
+      Vector6 d;
+      d << gx * ox, gy * ox, gx * oy, gy * oy, gx, gy;
+      hessian += w * d * d.transpose();
+      ref.grey.push_back(row[u]);
+      ref.dx.push_back(ox);
+      ref.dy.push_back(oy);
+      ref.weight.push_back(w);
+      ref.descent.push_back(d);
+      sw += w;
+      swg += w * row[u];
+      swgg += w * row[u] * row[u];
+    }
+  }
+  ref.weighted_mean = swg / sw;
+  ref.weighted_spread = std::sqrt(std::max(0.0, swgg / sw - ref.weighted_mean * ref.weighted_mean));
+  const Eigen::FullPivLU<Matrix6> lu(hessian);
+  if (!lu.isInvertible() || ref.weighted_spread < 1e-3) return false;
+  ref.hessian_inverse = lu.inverse();
+  return true;
+}
+
+struct Aligned {
+  bool ok = false;
+  double x_px = 0, y_px = 0;
+  Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+};
+
+// Finds where the reference's landmark is in `smooth` (warp x -> position + linear x), from a
+// start. Gain and offset of the grey levels are fitted at every step, so a change of exposure
+// does not move the result.
+Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y_px,
+              const Eigen::Matrix2d& linear, const RefineParams& params) {
+  Aligned a;
+  Eigen::Vector2d position(x_px, y_px);
+  Eigen::Matrix2d l = linear;
+  const std::size_t n = ref.grey.size();
+  std::vector<double> warped(n);
+  double correlation = 0;
+  bool converged = false;
+  for (int it = 0; it < params.max_iterations && !converged; ++it) {
+    double sw = 0, swi = 0, swii = 0, swit = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = position.x() + l(0, 0) * ref.dx[i] + l(0, 1) * ref.dy[i];
+      const double y = position.y() + l(1, 0) * ref.dx[i] + l(1, 1) * ref.dy[i];
+      if (!sample(smooth, x, y, warped[i])) return a;
+      const double w = ref.weight[i];
+      sw += w;
+      swi += w * warped[i];
+      swii += w * warped[i] * warped[i];
+      swit += w * warped[i] * ref.grey[i];
+    }
+    const double mean = swi / sw;
+    const double spread = std::sqrt(std::max(0.0, swii / sw - mean * mean));
+    if (spread < 1e-3) return a;
+    correlation = (swit / sw - mean * ref.weighted_mean) / (spread * ref.weighted_spread);
+    // Grey levels of the frame brought to the reference's mean and spread.
+    Vector6 b = Vector6::Zero();
+    const double gain = ref.weighted_spread / spread;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double e = ref.weighted_mean + gain * (warped[i] - mean) - ref.grey[i];
+      b += ref.weight[i] * e * ref.descent[i];
+    }
+    const Vector6 p = ref.hessian_inverse * b;
+    Eigen::Matrix2d step_linear;
+    step_linear << 1 + p(0), p(2), p(1), 1 + p(3);
+    if (std::abs(step_linear.determinant()) < 1e-6) return a;
+    // Inverse composition: W <- W o dW^-1.
+    l = l * step_linear.inverse();
+    position -= l * Eigen::Vector2d(p(4), p(5));
+    converged = std::hypot(p(4), p(5)) < params.stop_step_px &&
+                p.head<4>().cwiseAbs().maxCoeff() < params.stop_step_px / 10;
+  }
+  a.x_px = position.x();
+  a.y_px = position.y();
+  a.linear = l;
+  const double distortion = (l - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff();
+  a.ok = converged && correlation >= params.min_correlation &&
+         distortion <= params.max_distortion && std::isfinite(a.x_px) && std::isfinite(a.y_px);
+  return a;
+}
+
+}  // namespace
 
 RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
-                          double px_per_mm, const RefineParams& params) {
+                          double px_per_mm, const RefineParams& params, int threads) {
   if (!(px_per_mm > 0)) throw std::invalid_argument("refine_tracks: px_per_mm must be > 0");
   if (!(params.window_mm > 0)) throw std::invalid_argument("refine_tracks: window_mm must be > 0");
-  if (!(params.anchor_weight >= 0 && params.anchor_weight <= 1)) {
-    throw std::invalid_argument("refine_tracks: anchor_weight must be 0 to 1");
+  if (!(params.min_correlation >= 0 && params.min_correlation < 1)) {
+    throw std::invalid_argument("refine_tracks: min_correlation must be 0 to 1");
   }
-  RefineStats stats;
+  if (!(params.presmoothing_px >= 0)) {
+    throw std::invalid_argument("refine_tracks: presmoothing_px must be >= 0");
+  }
   const int n = static_cast<int>(frames.size());
   for (const auto& t : tracks) {
     if (t.first_frame < 0 || t.last_frame() >= n) {
       throw std::invalid_argument("refine_tracks: a track reaches beyond the frames");
     }
   }
-  const int side =
-      std::max(5, 2 * static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)) + 1);
-  const cv::Size window(side, side);
-  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
+  const int half_side =
+      std::max(2, static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)));
+  const double max_offset_px = params.max_offset_mm * px_per_mm;
+  const int room_px = 1 + static_cast<int>(std::ceil(max_offset_px));
+  // Smoothing takes the noise out of the gradients and keeps bilinear interpolation exact
+  // enough (it is exact for the slowly varying grey levels that remain).
+  std::vector<cv::Mat> smooth(frames.size());
+  parallel_for(frames.size(), worker_count(threads), [&](std::size_t f) {
+    as_mat(frames[f]).convertTo(smooth[f], CV_32F);
+    if (params.presmoothing_px > 0) {
+      cv::GaussianBlur(smooth[f], smooth[f], {0, 0}, params.presmoothing_px);
+    }
+  });
 
-  // The detected positions stay the anchors; `refined` is filled frame by frame.
-  std::vector<Track> refined = tracks;
-  std::vector<cv::Point2f> from, to, back;
-  std::vector<std::size_t> which;
-  std::vector<unsigned char> ok_fwd, ok_back;
-  std::vector<float> err;
-  for (int f = 0; f + 1 < n; ++f) {
-    from.clear();
-    to.clear();
-    which.clear();
-    for (std::size_t i = 0; i < tracks.size(); ++i) {
-      const Track& d = tracks[i];
-      if (d.first_frame > f || d.last_frame() < f + 1) continue;
-      const auto k = static_cast<std::size_t>(f - d.first_frame);
-      const Track& r = refined[i];
-      from.emplace_back(static_cast<float>(r.x_px[k]), static_cast<float>(r.y_px[k]));
-      // Started from the detected step: within a pixel or two of the true one.
-      to.emplace_back(static_cast<float>(r.x_px[k] + d.x_px[k + 1] - d.x_px[k]),
-                      static_cast<float>(r.y_px[k] + d.y_px[k + 1] - d.y_px[k]));
-      which.push_back(i);
-    }
-    if (from.empty()) continue;
-    const cv::Mat a = as_mat(frames[static_cast<std::size_t>(f)]);
-    const cv::Mat b = as_mat(frames[static_cast<std::size_t>(f + 1)]);
-    cv::calcOpticalFlowPyrLK(a, b, from, to, ok_fwd, err, window, 1, stop,
-                             cv::OPTFLOW_USE_INITIAL_FLOW);
-    back = from;
-    cv::calcOpticalFlowPyrLK(b, a, to, back, ok_back, err, window, 1, stop,
-                             cv::OPTFLOW_USE_INITIAL_FLOW);
-    for (std::size_t j = 0; j < which.size(); ++j) {
-      const Track& d = tracks[which[j]];
-      Track& r = refined[which[j]];
-      const auto k = static_cast<std::size_t>(f - d.first_frame);
-      double x = r.x_px[k] + d.x_px[k + 1] - d.x_px[k];
-      double y = r.y_px[k] + d.y_px[k + 1] - d.y_px[k];
-      ++stats.steps;
-      const bool confirmed =
-          ok_fwd[j] && ok_back[j] &&
-          std::hypot(back[j].x - from[j].x, back[j].y - from[j].y) <= params.max_back_error_px &&
-          std::hypot(to[j].x - x, to[j].y - y) <= 0.5 * side;
-      if (confirmed) {
-        x = to[j].x;
-        y = to[j].y;
-      } else {
-        ++stats.rejected;
+  std::vector<long> steps(tracks.size(), 0), rejected(tracks.size(), 0);
+  parallel_for(tracks.size(), worker_count(threads), [&](std::size_t i) {
+    const Track detected = tracks[i];
+    Track& t = tracks[i];
+    const auto frame_of = [&](std::size_t k) -> const cv::Mat& {
+      return smooth[static_cast<std::size_t>(detected.first_frame) + k];
+    };
+    Reference ref;
+    bool have_ref = make_reference(frame_of(0), t.x_px[0], t.y_px[0], half_side, room_px, ref);
+    Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+    for (std::size_t k = 1; k < detected.x_px.size(); ++k) {
+      // Started where the detections say the landmark moved.
+      const double x = t.x_px[k - 1] + detected.x_px[k] - detected.x_px[k - 1];
+      const double y = t.y_px[k - 1] + detected.y_px[k] - detected.y_px[k - 1];
+      ++steps[i];
+      const Aligned a = have_ref ? align(ref, frame_of(k), x, y, linear, params) : Aligned{};
+      if (a.ok &&
+          std::hypot(a.x_px - detected.x_px[k], a.y_px - detected.y_px[k]) <= max_offset_px) {
+        t.x_px[k] = a.x_px;
+        t.y_px[k] = a.y_px;
+        linear = a.linear;
+        continue;
       }
-      r.x_px[k + 1] = x + params.anchor_weight * (d.x_px[k + 1] - x);
-      r.y_px[k + 1] = y + params.anchor_weight * (d.y_px[k + 1] - y);
+      // Not confirmed: keep the detected step (or the detection, should the chained steps have
+      // wandered from it) and measure the next frames against this one.
+      ++rejected[i];
+      const bool near = std::hypot(x - detected.x_px[k], y - detected.y_px[k]) <= max_offset_px;
+      t.x_px[k] = near ? x : detected.x_px[k];
+      t.y_px[k] = near ? y : detected.y_px[k];
+      linear = Eigen::Matrix2d::Identity();
+      have_ref = make_reference(frame_of(k), t.x_px[k], t.y_px[k], half_side, room_px, ref);
     }
+  });
+  RefineStats stats;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    stats.steps += steps[i];
+    stats.rejected += rejected[i];
   }
-  tracks = std::move(refined);
   return stats;
 }
 

@@ -51,14 +51,22 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window);
 
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
-// the image around it gives a precise displacement. Each track's step from frame f to f + 1 is
-// measured by Lucas-Kanade on the landmark's neighbourhood (started from the detected step and
-// checked by tracking back), and the chained positions are pulled gently towards the detections
-// so that they cannot drift. A step that fails the check keeps the detected step.
+// the image around it gives a precise displacement. Each track's neighbourhood in its first
+// frame is the reference, and every later frame is aligned to it by an affine warp, started
+// where the detected step puts the landmark. Measuring against one reference, not frame to
+// frame, keeps the error of each position independent (chained steps add up their errors and
+// the strain, a difference of positions, sees them all), and the affine warp lets the window
+// follow the skin's stretch and rotation, which a translation-only window averages into its
+// position. A frame the image cannot confirm keeps the detected step and becomes the reference
+// of the frames after it.
 struct RefineParams {
-  double window_mm = 0.7;          // Lucas-Kanade window side (about two ridge periods)
-  double anchor_weight = 0.08;     // pull of each frame's detection on the chained position
-  double max_back_error_px = 0.3;  // forward-backward disagreement that rejects a step
+  double window_mm = 0.7;        // reference window side (about two ridge periods)
+  double min_correlation = 0.8;  // alignment's correlation coefficient that confirms a frame
+  double max_distortion = 0.25;  // largest |entry| of the warp's linear part minus identity
+  double max_offset_mm = 0.1;    // largest distance of a confirmed position from the detection
+  int max_iterations = 40;       // of the alignment
+  double stop_step_px = 1e-3;    // the alignment has converged when a step moves less
+  double presmoothing_px = 1.0;  // Gaussian sigma applied to the frames before aligning
 };
 
 struct RefineStats {
@@ -66,7 +74,8 @@ struct RefineStats {
   long rejected = 0;  // of which the image could not confirm (detected step kept)
 };
 
+// Tracks are refined in parallel on `threads` workers (0 = one per core).
 RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
-                          double px_per_mm, const RefineParams& params = {});
+                          double px_per_mm, const RefineParams& params = {}, int threads = 0);
 
 }  // namespace tactile::capture
