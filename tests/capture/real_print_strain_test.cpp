@@ -11,6 +11,7 @@
 #include <string>
 
 #include "../common/temp_dir.hpp"
+#include "real_prints.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
@@ -24,10 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path print_path(const std::string& nn, const char* kind) {
-  return fs::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores" /
-         (std::string(kind) + nn + (std::string(kind) == "image_" ? ".jpg" : ".txt"));
-}
+using test::print_path;
+using test::spec_for;
 
 // A movie's tracked points back as tracks (each track's points are consecutive frames).
 std::vector<Track> tracks_of(const StrainMovie& movie) {
@@ -44,16 +43,6 @@ std::vector<Track> tracks_of(const StrainMovie& movie) {
   std::vector<Track> tracks;
   for (auto& [id, t] : by_id) tracks.push_back(std::move(t));
   return tracks;
-}
-
-PrintWarpSpec spec_for(const GrayImage& print, WarpPattern pattern, double strain) {
-  PrintWarpSpec s;
-  s.width_px = print.width_px;
-  s.height_px = print.height_px;
-  s.pattern = pattern;
-  s.strain = strain;
-  s.frame_count = 30;
-  return s;
 }
 
 TEST(PrintWarp, ImageAndMaterialMapsInvertEachOther) {

@@ -11,7 +11,9 @@
 #include <map>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
+#include "real_prints.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
@@ -20,8 +22,6 @@
 namespace tactile::capture {
 namespace {
 
-namespace fs = std::filesystem;
-
 struct Case {
   PrintSequence seq;
   std::vector<Track> truth;     // every mark in view in every frame, at its exact position
@@ -29,15 +29,10 @@ struct Case {
 };
 
 Case make_case(WarpPattern pattern, double strain, double detection_noise_px) {
-  const fs::path dir = fs::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores";
-  const GrayImage print = read_image(dir / "image_12.jpg");
-  const auto marks = read_pore_marks(dir / "pores_12.txt", print.width_px, print.height_px);
-  PrintWarpSpec s;
-  s.width_px = print.width_px;
-  s.height_px = print.height_px;
-  s.pattern = pattern;
-  s.strain = strain;
-  s.frame_count = 30;
+  const GrayImage print = read_image(test::print_path("12", "image_"));
+  const auto marks =
+      read_pore_marks(test::print_path("12", "pores_"), print.width_px, print.height_px);
+  const PrintWarpSpec s = test::spec_for(print, pattern, strain);
   Case c;
   c.seq = render_print_sequence(s, print, marks);
   std::map<std::int32_t, Track> by_id;
@@ -60,6 +55,19 @@ Case make_case(WarpPattern pattern, double strain, double detection_noise_px) {
     c.detected.push_back(d);
   }
   return c;
+}
+
+// The tracks nearest the frame's centre, nearest first (their windows stay inside the frames).
+std::vector<std::size_t> central(const Case& c) {
+  std::vector<std::size_t> order(c.truth.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto distance = [&](std::size_t i) {
+    return std::hypot(c.truth[i].x_px[0] - c.seq.spec.width_px / 2.0,
+                      c.truth[i].y_px[0] - c.seq.spec.height_px / 2.0);
+  };
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return distance(a) < distance(b); });
+  return order;
 }
 
 // RMS over tracks and frames of the error of each track's motion since its first frame (a
@@ -87,11 +95,24 @@ TEST(RefineTracks, RecoversTheExactMotionFromNoisyDetections) {
   ASSERT_GT(c.truth.size(), 100u);
   std::vector<Track> refined = c.detected;
   const RefineStats stats = refine_tracks(c.seq.frames, refined, c.seq.spec.px_per_mm);
-  std::vector<double> before, after;
-  for (std::size_t i = 0; i < refined.size(); ++i) {
-    before.push_back(motion_error_px({c.detected[i]}, {c.truth[i]}));
-    after.push_back(motion_error_px({refined[i]}, {c.truth[i]}));
+  // A refined track starts at its detection (its reference), which finds its truth again: the
+  // refinement drops and renumbers the tracks it cannot confirm.
+  std::map<std::pair<double, double>, std::size_t> by_start;
+  for (std::size_t i = 0; i < c.detected.size(); ++i) {
+    by_start[{c.detected[i].x_px[0], c.detected[i].y_px[0]}] = i;
   }
+  std::vector<double> before, after;
+  for (const auto& d : c.detected)
+    before.push_back(motion_error_px({d}, {c.truth[&d - &c.detected[0]]}));
+  for (const auto& r : refined) {
+    const auto it = by_start.find({r.x_px[0], r.y_px[0]});
+    ASSERT_NE(it, by_start.end());
+    Track truth = c.truth[it->second];  // over the frames the refined track kept
+    truth.x_px.resize(r.x_px.size());
+    truth.y_px.resize(r.y_px.size());
+    after.push_back(motion_error_px({r}, {truth}));
+  }
+  ASSERT_GT(after.size(), c.truth.size() * 9 / 10);
   std::sort(before.begin(), before.end());
   std::sort(after.begin(), after.end());
   const auto quantile = [](const std::vector<double>& v, double q) {
@@ -105,46 +126,54 @@ TEST(RefineTracks, RecoversTheExactMotionFromNoisyDetections) {
   EXPECT_LT(quantile(after, 0.5), 0.05);
   std::printf("motion error per track: median %.4f px, 90th percentile %.4f px (detections %.3f)\n",
               quantile(after, 0.5), quantile(after, 0.9), quantile(before, 0.5));
-  EXPECT_EQ(stats.steps, static_cast<long>(c.truth.size()) * 29);
-  EXPECT_LT(stats.rejected, stats.steps / 20);
+  EXPECT_LT(stats.cut, static_cast<long>(c.truth.size()) / 10);
 }
 
-TEST(RefineTracks, AStepTheImageCannotConfirmKeepsTheDetectedStep) {
+TEST(RefineTracks, ATrackEndsWhereTheImageCannotConfirmIt) {
   Case c = make_case(WarpPattern::rigid, 0.0, 0.3);
-  ASSERT_FALSE(c.truth.empty());
-  // One track's detections jump 10 px in frame 10 (another pore taken for it): beyond the
-  // largest offset of a confirmed position, so the refined track follows its detections there.
-  std::vector<Track> refined = {c.detected[0]};
-  for (std::size_t k = 10; k < refined[0].x_px.size(); ++k) refined[0].x_px[k] += 10.0;
-  const Track detected = refined[0];
-  const RefineStats stats = refine_tracks(c.seq.frames, refined, c.seq.spec.px_per_mm);
-  EXPECT_GE(stats.rejected, 1);
-  EXPECT_NEAR(refined[0].x_px[10] - refined[0].x_px[9], detected.x_px[10] - detected.x_px[9], 1e-9);
-  for (std::size_t k = 0; k < refined[0].x_px.size(); ++k) {
-    EXPECT_TRUE(std::isfinite(refined[0].x_px[k]) && std::isfinite(refined[0].y_px[k]));
-  }
-}
-
-TEST(RefineTracks, TracksAtTheBorderAreRefinedOrLeftAsDetected) {
-  Case c = make_case(WarpPattern::rigid, 0.0, 0.3);
-  // A landmark on the very edge of the frames, and one that moves out of them.
-  Track edge;
-  edge.x_px.assign(30, 0.0);
-  edge.y_px.assign(30, 120.0);
-  Track leaving;
-  for (int k = 0; k < 30; ++k) {
-    leaving.x_px.push_back(300.0 + k);
-    leaving.y_px.push_back(100.0);
-  }
-  std::vector<Track> tracks = {edge, leaving};
+  ASSERT_GE(c.truth.size(), 2u);
+  // One track's detections jump 10 px in frame 15 (another pore taken for it): beyond the
+  // largest offset of a confirmed position, so the track ends at frame 14.
+  const auto order = central(c);
+  const std::size_t a = order[0], b = order[1];
+  std::vector<Track> tracks = {c.detected[a], c.detected[b]};
+  for (std::size_t k = 15; k < tracks[0].x_px.size(); ++k) tracks[0].x_px[k] += 10.0;
   const RefineStats stats = refine_tracks(c.seq.frames, tracks, c.seq.spec.px_per_mm);
-  EXPECT_EQ(stats.steps, 58);
-  for (const auto& t : tracks) {
-    for (std::size_t k = 0; k < t.x_px.size(); ++k) {
-      EXPECT_TRUE(std::isfinite(t.x_px[k]) && std::isfinite(t.y_px[k]));
-    }
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_EQ(tracks[0].last_frame(), 14);
+  EXPECT_EQ(tracks[1].last_frame(), 29);
+  EXPECT_EQ(stats.cut, 1);
+  EXPECT_EQ(stats.dropped, 0);
+  for (std::size_t k = 1; k < tracks[0].x_px.size(); ++k) {
+    const double step = tracks[0].x_px[k] - tracks[0].x_px[k - 1];
+    const double truth = c.truth[a].x_px[k] - c.truth[a].x_px[k - 1];
+    EXPECT_NEAR(step, truth, 0.1) << "frame " << k;
   }
-  EXPECT_GT(stats.rejected, 0);  // the one that leaves
+}
+
+TEST(RefineTracks, TracksWithoutEnoughConfirmedFramesAreDroppedAndTheRestRenumbered) {
+  Case c = make_case(WarpPattern::rigid, 0.0, 0.3);
+  // A landmark outside the frames (no reference), one whose detections jump at frame 5 (fewer
+  // than min_frames confirmed), and a good one.
+  Track outside;
+  outside.id = 7;
+  outside.x_px.assign(30, -40.0);
+  outside.y_px.assign(30, 120.0);
+  const auto order = central(c);
+  Track jumping = c.detected[order[0]];
+  jumping.id = 8;
+  for (std::size_t k = 5; k < jumping.x_px.size(); ++k) jumping.y_px[k] += 12.0;
+  Track good = c.detected[order[1]];
+  good.id = 9;
+  std::vector<Track> tracks = {outside, jumping, good};
+  const RefineStats stats = refine_tracks(c.seq.frames, tracks, c.seq.spec.px_per_mm);
+  ASSERT_EQ(tracks.size(), 1u);
+  EXPECT_EQ(tracks[0].id, 0);
+  EXPECT_EQ(tracks[0].x_px.size(), 30u);
+  EXPECT_NEAR(tracks[0].x_px[29] - tracks[0].x_px[0],
+              c.truth[order[1]].x_px[29] - c.truth[order[1]].x_px[0], 0.1);
+  EXPECT_EQ(stats.cut, 2);
+  EXPECT_EQ(stats.dropped, 2);
 }
 
 TEST(RefineTracks, BadArgumentsAreRefused) {
@@ -156,6 +185,9 @@ TEST(RefineTracks, BadArgumentsAreRefused) {
   EXPECT_THROW(refine_tracks(c.seq.frames, tracks, 47, p), std::invalid_argument);
   p = {};
   p.min_correlation = 1.5;
+  EXPECT_THROW(refine_tracks(c.seq.frames, tracks, 47, p), std::invalid_argument);
+  p = {};
+  p.min_frames = 1;
   EXPECT_THROW(refine_tracks(c.seq.frames, tracks, 47, p), std::invalid_argument);
   tracks[0].first_frame = 5;  // its 30 positions reach frame 34 of 30
   EXPECT_THROW(refine_tracks(c.seq.frames, tracks, 47), std::invalid_argument);

@@ -56,7 +56,7 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
   }
   // Gaussian weights favour the landmark's own surroundings where the skin's strain varies
   // across the window.
-  const double sigma = half_side / 1.5;
+  const double sigma = half_side;
   Matrix6 hessian = Matrix6::Zero();
   double sw = 0, swg = 0, swgg = 0;
   for (int v = top; v <= bottom; ++v) {
@@ -97,7 +97,8 @@ struct Aligned {
 
 // Finds where the reference's landmark is in `smooth` (warp x -> position + linear x), from a
 // start. Gain and offset of the grey levels are fitted at every step, so a change of exposure
-// does not move the result.
+// does not move the result. Where part of the warped window falls outside the frame (a landmark
+// near the border), the rest is used if it holds at least half of the weight.
 Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y_px,
               const Eigen::Matrix2d& linear, const RefineParams& params) {
   Aligned a;
@@ -105,32 +106,51 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   Eigen::Matrix2d l = linear;
   const std::size_t n = ref.grey.size();
   std::vector<double> warped(n);
+  std::vector<char> inside(n);
+  double total_weight = 0;
+  for (const double w : ref.weight) total_weight += w;
   double correlation = 0;
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
-    double sw = 0, swi = 0, swii = 0, swit = 0;
+    double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double x = position.x() + l(0, 0) * ref.dx[i] + l(0, 1) * ref.dy[i];
       const double y = position.y() + l(1, 0) * ref.dx[i] + l(1, 1) * ref.dy[i];
-      if (!sample(smooth, x, y, warped[i])) return a;
-      const double w = ref.weight[i];
+      inside[i] = sample(smooth, x, y, warped[i]);
+      if (!inside[i]) continue;
+      const double w = ref.weight[i], g = ref.grey[i];
       sw += w;
       swi += w * warped[i];
       swii += w * warped[i] * warped[i];
-      swit += w * warped[i] * ref.grey[i];
+      swt += w * g;
+      swtt += w * g * g;
+      swit += w * warped[i] * g;
     }
-    const double mean = swi / sw;
+    if (2 * sw < total_weight) return a;
+    const double mean = swi / sw, ref_mean = swt / sw;
     const double spread = std::sqrt(std::max(0.0, swii / sw - mean * mean));
-    if (spread < 1e-3) return a;
-    correlation = (swit / sw - mean * ref.weighted_mean) / (spread * ref.weighted_spread);
+    const double ref_spread = std::sqrt(std::max(0.0, swtt / sw - ref_mean * ref_mean));
+    if (spread < 1e-3 || ref_spread < 1e-3) return a;
+    correlation = (swit / sw - mean * ref_mean) / (spread * ref_spread);
     // Grey levels of the frame brought to the reference's mean and spread.
     Vector6 b = Vector6::Zero();
-    const double gain = ref.weighted_spread / spread;
+    Matrix6 hessian = Matrix6::Zero();
+    const bool whole = sw == total_weight;
+    const double gain = ref_spread / spread;
     for (std::size_t i = 0; i < n; ++i) {
-      const double e = ref.weighted_mean + gain * (warped[i] - mean) - ref.grey[i];
+      if (!inside[i]) continue;
+      const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
       b += ref.weight[i] * e * ref.descent[i];
+      if (!whole) hessian += ref.weight[i] * ref.descent[i] * ref.descent[i].transpose();
     }
-    const Vector6 p = ref.hessian_inverse * b;
+    Vector6 p;
+    if (whole) {
+      p = ref.hessian_inverse * b;
+    } else {
+      const Eigen::FullPivLU<Matrix6> lu(hessian);
+      if (!lu.isInvertible()) return a;
+      p = lu.solve(b);
+    }
     Eigen::Matrix2d step_linear;
     step_linear << 1 + p(0), p(2), p(1), 1 + p(3);
     if (std::abs(step_linear.determinant()) < 1e-6) return a;
@@ -158,6 +178,7 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
   if (!(params.min_correlation >= 0 && params.min_correlation < 1)) {
     throw std::invalid_argument("refine_tracks: min_correlation must be 0 to 1");
   }
+  if (params.min_frames < 2) throw std::invalid_argument("refine_tracks: min_frames must be >= 2");
   if (!(params.presmoothing_px >= 0)) {
     throw std::invalid_argument("refine_tracks: presmoothing_px must be >= 0");
   }
@@ -181,7 +202,8 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
     }
   });
 
-  std::vector<long> steps(tracks.size(), 0), rejected(tracks.size(), 0);
+  std::vector<long> steps(tracks.size(), 0);
+  std::vector<char> cut(tracks.size(), 0);
   parallel_for(tracks.size(), worker_count(threads), [&](std::size_t i) {
     const Track detected = tracks[i];
     Track& t = tracks[i];
@@ -189,36 +211,48 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
       return smooth[static_cast<std::size_t>(detected.first_frame) + k];
     };
     Reference ref;
-    bool have_ref = make_reference(frame_of(0), t.x_px[0], t.y_px[0], half_side, room_px, ref);
-    Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
-    for (std::size_t k = 1; k < detected.x_px.size(); ++k) {
-      // Started where the detections say the landmark moved.
-      const double x = t.x_px[k - 1] + detected.x_px[k] - detected.x_px[k - 1];
-      const double y = t.y_px[k - 1] + detected.y_px[k] - detected.y_px[k - 1];
-      ++steps[i];
-      const Aligned a = have_ref ? align(ref, frame_of(k), x, y, linear, params) : Aligned{};
-      if (a.ok &&
-          std::hypot(a.x_px - detected.x_px[k], a.y_px - detected.y_px[k]) <= max_offset_px) {
+    std::size_t confirmed = 0;  // positions [0, confirmed) are measured against the reference
+    if (make_reference(frame_of(0), t.x_px[0], t.y_px[0], half_side, room_px, ref)) {
+      confirmed = 1;
+      Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+      for (std::size_t k = 1; k < detected.x_px.size(); ++k) {
+        ++steps[i];
+        // Started where the detections say the landmark moved.
+        const Aligned a =
+            align(ref, frame_of(k), t.x_px[k - 1] + detected.x_px[k] - detected.x_px[k - 1],
+                  t.y_px[k - 1] + detected.y_px[k] - detected.y_px[k - 1], linear, params);
+        if (!a.ok ||
+            std::hypot(a.x_px - detected.x_px[k], a.y_px - detected.y_px[k]) > max_offset_px) {
+          break;
+        }
         t.x_px[k] = a.x_px;
         t.y_px[k] = a.y_px;
         linear = a.linear;
-        continue;
+        confirmed = k + 1;
       }
-      // Not confirmed: keep the detected step (or the detection, should the chained steps have
-      // wandered from it) and measure the next frames against this one.
-      ++rejected[i];
-      const bool near = std::hypot(x - detected.x_px[k], y - detected.y_px[k]) <= max_offset_px;
-      t.x_px[k] = near ? x : detected.x_px[k];
-      t.y_px[k] = near ? y : detected.y_px[k];
-      linear = Eigen::Matrix2d::Identity();
-      have_ref = make_reference(frame_of(k), t.x_px[k], t.y_px[k], half_side, room_px, ref);
     }
+    cut[i] = confirmed < detected.x_px.size();
+    t.x_px.resize(confirmed);
+    t.y_px.resize(confirmed);
   });
   RefineStats stats;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     stats.steps += steps[i];
-    stats.rejected += rejected[i];
+    stats.cut += cut[i];
   }
+  // A track ends at the first frame the image does not confirm: from there on its positions
+  // could only be the detections, whose noise (about 0.5 px on real prints) would dominate the
+  // strain of every edge the track is in.
+  std::vector<Track> kept;
+  for (auto& t : tracks) {
+    if (static_cast<int>(t.x_px.size()) < params.min_frames) {
+      ++stats.dropped;
+      continue;
+    }
+    kept.push_back(std::move(t));
+  }
+  for (std::size_t i = 0; i < kept.size(); ++i) kept[i].id = static_cast<std::int32_t>(i);
+  tracks = std::move(kept);
   return stats;
 }
 

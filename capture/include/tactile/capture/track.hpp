@@ -57,8 +57,8 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window);
 // frame, keeps the error of each position independent (chained steps add up their errors and
 // the strain, a difference of positions, sees them all), and the affine warp lets the window
 // follow the skin's stretch and rotation, which a translation-only window averages into its
-// position. A frame the image cannot confirm keeps the detected step and becomes the reference
-// of the frames after it.
+// position. A track ends at the first frame the image does not confirm; tracks left shorter
+// than min_frames are dropped, and the rest renumbered 0.. in their order.
 struct RefineParams {
   double window_mm = 0.7;        // reference window side (about two ridge periods)
   double min_correlation = 0.8;  // alignment's correlation coefficient that confirms a frame
@@ -66,12 +66,14 @@ struct RefineParams {
   double max_offset_mm = 0.1;    // largest distance of a confirmed position from the detection
   int max_iterations = 40;       // of the alignment
   double stop_step_px = 1e-3;    // the alignment has converged when a step moves less
-  double presmoothing_px = 1.0;  // Gaussian sigma applied to the frames before aligning
+  double presmoothing_px = 0.6;  // Gaussian sigma applied to the frames before aligning
+  int min_frames = 10;           // shortest refined track kept
 };
 
 struct RefineStats {
-  long steps = 0;     // frame-to-frame steps measured
-  long rejected = 0;  // of which the image could not confirm (detected step kept)
+  long steps = 0;    // frame-to-frame alignments tried
+  long cut = 0;      // tracks ended early, where the image did not confirm a frame
+  long dropped = 0;  // of which left shorter than min_frames, and removed
 };
 
 // Tracks are refined in parallel on `threads` workers (0 = one per core).
