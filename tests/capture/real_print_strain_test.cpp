@@ -1,6 +1,7 @@
 // Strain on real skin: real PolyU HRF prints moved by an exact warp (print_warp.hpp), measured
 // with the default settings and against Lucas-Kanade on the same sequences.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <tuple>
 
 #include "../common/temp_dir.hpp"
 #include "real_prints.hpp"
@@ -171,16 +173,19 @@ TEST(PrintWarp, SequenceFolderIsAGroundTruthAndBrokenOnesAreNamed) {
 
 // The acceptance figures on two prints that no setting of the strain pipeline was tuned on
 // (the refinement was tuned on prints 01-10; the shipped pore model was trained on all 15).
-// Asserted on the 8 % travelling wave: >= 150 tracked landmarks per frame, edge strain RMS error
-// <= 0.0025, correlation with the exact warp >= 0.96, and better than Lucas-Kanade on the same
-// frames in both error and correlation. Weaker patterns (1 % wave, 4 % stretch) do not all
-// reach 0.96 (see docs/capture-models.md); the figures over 5 frames are printed.
+// Asserted on the 8 % travelling wave and the 4 % bump: >= 150 tracked landmarks per frame, edge
+// strain RMS error <= 0.0025, correlation with the exact warp >= 0.96, and better than
+// Lucas-Kanade on the same frames in both error and correlation. The weakest sequences (1 %
+// wave, 4 % stretch) reach 0.96 on most prints but not all (0.937-0.956 on three of the 15;
+// docs/capture-models.md), so they are not asserted; the figures over 5 frames are printed.
 TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
-  for (const char* nn : {"12", "14"}) {
+  for (const auto& [nn, pattern, strain] :
+       {std::tuple{"12", WarpPattern::wave, 0.08}, std::tuple{"14", WarpPattern::wave, 0.08},
+        std::tuple{"12", WarpPattern::bump, 0.04}, std::tuple{"14", WarpPattern::bump, 0.04}}) {
+    SCOPED_TRACE(fmt::format("print {}, {} at {} %", nn, to_string(pattern), 100 * strain));
     const GrayImage print = read_image(print_path(nn, "image_"));
     const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
-    const PrintSequence seq =
-        render_print_sequence(spec_for(print, WarpPattern::wave, 0.08), print, marks);
+    const PrintSequence seq = render_print_sequence(spec_for(print, pattern, strain), print, marks);
     GroundTruth truth;
     truth.calibration = seq.calibration;
     truth.landmarks = seq.landmarks;
@@ -204,10 +209,10 @@ TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
                                            1, params.max_edge_ratio),
                         truth);
     std::printf(
-        "print %s: ours tracked %.0f rms %.5f corr %.4f; Lucas-Kanade tracked %.0f rms %.5f "
+        "print %s, %s: ours tracked %.0f rms %.5f corr %.4f; Lucas-Kanade tracked %.0f rms %.5f "
         "corr %.4f (true strain rms %.5f)\n",
-        nn, ours.median_tracked_points, ours.rms_error, ours.correlation, lk.median_tracked_points,
-        lk.rms_error, lk.correlation, ours.rms_truth);
+        nn, std::string(to_string(pattern)).c_str(), ours.median_tracked_points, ours.rms_error,
+        ours.correlation, lk.median_tracked_points, lk.rms_error, lk.correlation, ours.rms_truth);
     std::printf("print %s over 5 frames: ours rms %.5f corr %.4f (true strain rms %.5f)\n", nn,
                 ours_span5.rms_error, ours_span5.correlation, ours_span5.rms_truth);
     EXPECT_GE(ours.median_tracked_points, 150) << nn;
