@@ -15,15 +15,14 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 // The landmark's neighbourhood in its reference frame, ready for inverse-compositional
-// alignment (Baker and Matthews): the grey levels, their offsets from the landmark, their
-// weights, the steepest-descent images of an affine warp and the inverse of their Hessian. All
-// of it depends on the reference alone, so it is computed once for every later frame.
+// alignment (the warp's update is measured on the reference, not on the frame): the grey levels,
+// their offsets from the landmark, their weights, the steepest-descent images of an affine warp and
+// the inverse of their Hessian. All of it depends on the reference alone, so it is computed once
+// for every later frame.
 struct Reference {
   std::vector<double> grey, dx, dy, weight;
   std::vector<Vector6> descent;
   Matrix6 hessian_inverse = Matrix6::Zero();
-  double weighted_mean = 0;
-  double weighted_spread = 0;
 };
 
 // Bilinear interpolation in double precision (OpenCV's warps round positions to 1/32 pixel,
@@ -39,8 +38,8 @@ bool sample(const cv::Mat& image, double x, double y, double& value) {
   return true;
 }
 
-// The reference around (x, y) in a smoothed frame; false where the window leaves the frame or
-// holds too little texture to align.
+// The reference around (x, y) in a smoothed frame; false where too little of the window is
+// inside the frame or it holds too little texture to align.
 bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_side, int room_px,
                     Reference& ref) {
   ref = Reference{};
@@ -81,10 +80,10 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
       swgg += w * row[u] * row[u];
     }
   }
-  ref.weighted_mean = swg / sw;
-  ref.weighted_spread = std::sqrt(std::max(0.0, swgg / sw - ref.weighted_mean * ref.weighted_mean));
+  const double mean = swg / sw;
+  const double spread = std::sqrt(std::max(0.0, swgg / sw - mean * mean));
   const Eigen::FullPivLU<Matrix6> lu(hessian);
-  if (!lu.isInvertible() || ref.weighted_spread < 1e-3) return false;
+  if (!lu.isInvertible() || spread < 1e-3) return false;
   ref.hessian_inverse = lu.inverse();
   return true;
 }
@@ -113,11 +112,13 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
     double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
+    std::size_t inside_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double x = position.x() + l(0, 0) * ref.dx[i] + l(0, 1) * ref.dy[i];
       const double y = position.y() + l(1, 0) * ref.dx[i] + l(1, 1) * ref.dy[i];
       inside[i] = sample(smooth, x, y, warped[i]);
       if (!inside[i]) continue;
+      ++inside_count;
       const double w = ref.weight[i], g = ref.grey[i];
       sw += w;
       swi += w * warped[i];
@@ -135,7 +136,7 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
     // Grey levels of the frame brought to the reference's mean and spread.
     Vector6 b = Vector6::Zero();
     Matrix6 hessian = Matrix6::Zero();
-    const bool whole = sw == total_weight;
+    const bool whole = inside_count == n;
     const double gain = ref_spread / spread;
     for (std::size_t i = 0; i < n; ++i) {
       if (!inside[i]) continue;
@@ -192,8 +193,7 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
       std::max(2, static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)));
   const double max_offset_px = params.max_offset_mm * px_per_mm;
   const int room_px = 1 + static_cast<int>(std::ceil(max_offset_px));
-  // Smoothing takes the noise out of the gradients and keeps bilinear interpolation exact
-  // enough (it is exact for the slowly varying grey levels that remain).
+  // A little smoothing takes noise out of the gradients that the alignment follows.
   std::vector<cv::Mat> smooth(frames.size());
   parallel_for(frames.size(), worker_count(threads), [&](std::size_t f) {
     as_mat(frames[f]).convertTo(smooth[f], CV_32F);
