@@ -279,13 +279,13 @@ void add_capture(CLI::App& app, Action& action) {
       ->capture_default_str();
   add_pore_options(*sub, opt->pores, opt->pore_model, true);
   sub->add_option("--refine", opt->refine,
-                  "Sub-pixel refinement of every track against the images (Lucas-Kanade on\n"
-                  "each landmark's neighbourhood, pulled towards the detections): auto = with\n"
-                  "the ridge-blob detector, whose centres on real prints are noisy")
+                  "Sub-pixel refinement of every track against the images (each landmark's\n"
+                  "neighbourhood aligned to its first frame by an affine warp): auto = with the\n"
+                  "ridge-blob detector, whose centres on real prints are noisy")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   sub->add_option("--refine-window", opt->refine_window_mm,
-                  "Side of the refinement's Lucas-Kanade window, mm (smaller follows strain\n"
+                  "Side of the refinement's alignment window, mm (smaller follows strain\n"
                   "gradients better, larger averages more noise)")
       ->check(within(0.1, 5.0))
       ->capture_default_str();
@@ -337,7 +337,8 @@ void add_capture(CLI::App& app, Action& action) {
             pores, choice.paper_pores, choice.ridge_blob_pores);
       }
       if (opt->refine == "auto") {
-        refine = pores == "ridge-blob";
+        refine = capture::refinement_for(pores == "ridge-blob" ? capture::PoreDetector::ridge_blob
+                                                               : capture::PoreDetector::paper);
         fmt::print("capture: refinement against the images: {} (--refine overrides)\n",
                    refine ? "on" : "off");
       }

@@ -33,7 +33,9 @@ int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem
                      std::optional<std::filesystem::path> marks, capture::PrintWarpSpec warp) {
   if (!marks) marks = marks_beside(image);
   std::vector<std::filesystem::path> writes = {"landmarks.csv", "scene.json"};
-  for (int f = 0; f < warp.frame_count; ++f) writes.push_back(fmt::format("frame_{:03d}.png", f));
+  for (int f = 0; f < warp.frame_count; ++f) {
+    writes.push_back(capture::frame_file_name(static_cast<std::size_t>(f)));
+  }
   refuse_output_over_input({output_folder("OUT_DIR", out_dir, writes)},
                            {{"--from-print", image}, {"--marks", marks.value_or(image)}});
   const capture::GrayImage print = capture::read_image(image);

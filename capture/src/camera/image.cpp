@@ -97,4 +97,13 @@ std::vector<GrayImage> read_frames(const std::filesystem::path& dir) {
   return frames;
 }
 
+std::string frame_file_name(std::size_t i) {
+  return fmt::format("frame_{:03d}.png", i);
+}
+
+void write_frames(const std::filesystem::path& dir, const std::vector<GrayImage>& frames) {
+  std::filesystem::create_directories(dir);
+  for (std::size_t i = 0; i < frames.size(); ++i) write_png(dir / frame_file_name(i), frames[i]);
+}
+
 }  // namespace tactile::capture

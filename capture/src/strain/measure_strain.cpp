@@ -65,11 +65,9 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
   CaptureChoice choice;
   choice.paper_pores = pores_with(PoreDetector::paper);
   choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
-  if (choice.ridge_blob_pores > choice.paper_pores) {
-    choice.detector = PoreDetector::ridge_blob;
-    choice.refine = true;
-    choice.smoothing_half_window = smoothing_half_window_for(true);
-  }
+  if (choice.ridge_blob_pores > choice.paper_pores) choice.detector = PoreDetector::ridge_blob;
+  choice.refine = refinement_for(choice.detector);
+  choice.smoothing_half_window = smoothing_half_window_for(choice.refine);
   return choice;
 }
 

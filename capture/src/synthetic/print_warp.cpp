@@ -63,12 +63,11 @@ PointMm pattern_displacement(const PrintWarpSpec& s, PointMm d, int frame) {
 }
 
 // Lanczos (a = 4) weights for the 8 taps around a sample at fraction t of a pixel, normalised.
-// The frames must move by exactly the warp: cubic convolution (OpenCV's INTER_CUBIC) shifts a
-// print's fine detail by a few hundredths of a pixel depending on the sample's fraction, and
-// OpenCV's remap rounds positions to 1/32 pixel; either is as large as the error of the best
-// trackers, so the truth would not be exact. With Lanczos-4 in double precision the step error of
-// an image tracker on a pure slide of 0.4 px per frame fell from 0.06 px to 0.015 px, the
-// tracker's own floor.
+// The frames must move by exactly the warp. Cubic convolution (OpenCV's INTER_CUBIC) shifts a
+// print's fine detail by a few hundredths of a pixel depending on the sample's fraction: on a
+// pure slide of 0.4 px per frame an image tracker's step error was 0.06 px, the same whether the
+// cubic was OpenCV's remap or evaluated exactly; with Lanczos-4 in double precision it fell to
+// 0.015 px, the tracker's own floor.
 std::array<double, 8> lanczos_weights(double t) {
   std::array<double, 8> w{};
   double sum = 0;
@@ -270,10 +269,7 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
 }
 
 void write_print_sequence(const std::filesystem::path& dir, const PrintSequence& seq) {
-  std::filesystem::create_directories(dir);
-  for (std::size_t i = 0; i < seq.frames.size(); ++i) {
-    write_png(dir / fmt::format("frame_{:03d}.png", i), seq.frames[i]);
-  }
+  write_frames(dir, seq.frames);
   write_landmarks_csv(dir / "landmarks.csv", seq.landmarks);
   const PrintWarpSpec& s = seq.spec;
   nlohmann::json j;

@@ -190,10 +190,7 @@ SyntheticSequence render_sequence(const SceneSpec& spec,
 }
 
 void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence) {
-  std::filesystem::create_directories(dir);
-  for (std::size_t i = 0; i < sequence.frames.size(); ++i) {
-    write_png(dir / fmt::format("frame_{:03d}.png", i), sequence.frames[i]);
-  }
+  write_frames(dir, sequence.frames);
   // The dot grid goes in its own folder so that `tactile capture DIR` sees only the frames.
   std::filesystem::create_directories(dir / "calibration");
   write_png(dir / "calibration" / "dot_grid.png", sequence.dot_grid);

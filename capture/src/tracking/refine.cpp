@@ -23,10 +23,11 @@ struct Reference {
   std::vector<double> grey, dx, dy, weight;
   std::vector<Vector6> descent;
   Matrix6 hessian_inverse = Matrix6::Zero();
+  double total_weight = 0;
 };
 
-// Bilinear interpolation in double precision (OpenCV's warps round positions to 1/32 pixel,
-// as much as the error being sought); false outside the image.
+// Bilinear interpolation in double precision (OpenCV's warps round sample positions to 1/32
+// pixel, and the alignment is after hundredths of a pixel); false outside the image.
 bool sample(const cv::Mat& image, double x, double y, double& value) {
   const double fx = std::floor(x), fy = std::floor(y);
   const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
@@ -80,6 +81,7 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
       swgg += w * row[u] * row[u];
     }
   }
+  ref.total_weight = sw;
   const double mean = swg / sw;
   const double spread = std::sqrt(std::max(0.0, swgg / sw - mean * mean));
   const Eigen::FullPivLU<Matrix6> lu(hessian);
@@ -106,8 +108,6 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   const std::size_t n = ref.grey.size();
   std::vector<double> warped(n);
   std::vector<char> inside(n);
-  double total_weight = 0;
-  for (const double w : ref.weight) total_weight += w;
   double correlation = 0;
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
@@ -127,7 +127,7 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
       swtt += w * g * g;
       swit += w * warped[i] * g;
     }
-    if (2 * sw < total_weight) return a;
+    if (2 * sw < ref.total_weight) return a;
     const double mean = swi / sw, ref_mean = swt / sw;
     const double spread = std::sqrt(std::max(0.0, swii / sw - mean * mean));
     const double ref_spread = std::sqrt(std::max(0.0, swtt / sw - ref_mean * ref_mean));

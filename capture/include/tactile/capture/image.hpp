@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace tactile::capture {
@@ -32,5 +33,12 @@ std::vector<std::filesystem::path> list_frames(const std::filesystem::path& dir)
 // All frames of `dir` in name order. Throws tactile::FormatError naming the first file whose
 // size differs from the first frame's.
 std::vector<GrayImage> read_frames(const std::filesystem::path& dir);
+
+// The file name of frame i as write_frames writes it: frame_000.png, frame_001.png, ...
+std::string frame_file_name(std::size_t i);
+
+// Writes frames under frame_file_name in `dir` (created if missing), the layout read_frames
+// reads back in order.
+void write_frames(const std::filesystem::path& dir, const std::vector<GrayImage>& frames);
 
 }  // namespace tactile::capture

@@ -56,10 +56,13 @@ StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_fram
 // are clean bright discs whose grey-level centres are precise (on the synthetic scenes
 // refinement made the strain error worse); the ridge-blob detector's centres on real prints
 // move with noise and the ridge beside the pore, and refinement cuts their strain error
-// about threefold. Measured figures: docs/capture-models.md.
+// several-fold. Measured figures: docs/capture-models.md.
+inline bool refinement_for(PoreDetector detector) {
+  return detector == PoreDetector::ridge_blob;
+}
 // The trajectory smoothing that goes with refinement or without it. Refined positions carry
-// little noise of their own, so a longer fit averages more of what is left (measured on prints
-// 01-10: 5 better than 3 and 7 on every print).
+// independent errors from frame to frame, so a longer fit averages more of them (half-window 5
+// against 8 and 12: longer helps still strain patterns and blurs travelling ones).
 inline int smoothing_half_window_for(bool refine) {
   return refine ? 5 : CaptureParams{}.smoothing_half_window;
 }
