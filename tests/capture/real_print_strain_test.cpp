@@ -186,17 +186,11 @@ TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
     const GrayImage print = read_image(print_path(nn, "image_"));
     const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
     const PrintSequence seq = render_print_sequence(spec_for(print, pattern, strain), print, marks);
-    GroundTruth truth;
-    truth.calibration = seq.calibration;
-    truth.landmarks = seq.landmarks;
-    truth.warp = seq.spec;
+    const GroundTruth truth = ground_truth_of(seq);
 
     const CaptureChoice choice = choose_capture_settings(seq.frames[0], seq.spec.px_per_mm);
     EXPECT_EQ(choice.detector, PoreDetector::ridge_blob) << nn;
-    CaptureParams params;
-    params.features.pore_detector = choice.detector;
-    params.refine = choice.refine;
-    params.smoothing_half_window = choice.smoothing_half_window;
+    const CaptureParams params = with_choice({}, choice);
     const StrainMovie movie = measure_strain(seq.frames, seq.calibration, 60, params);
     const Evaluation ours = evaluate_strain(movie, truth);
     const Evaluation ours_span5 =

@@ -25,6 +25,7 @@
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/median.hpp"
 #include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
@@ -46,11 +47,8 @@ struct Row {
 
 capture::StrainMovie landmarks_default(const PrintSequence& seq) {
   // The settings `tactile capture` picks when given only the scale.
-  const auto choice = capture::choose_capture_settings(seq.frames[0], seq.spec.px_per_mm);
-  capture::CaptureParams p;
-  p.features.pore_detector = choice.detector;
-  p.refine = choice.refine;
-  p.smoothing_half_window = choice.smoothing_half_window;
+  capture::CaptureParams p =
+      capture::with_choice({}, capture::choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
   p.min_track_frames = std::min(p.min_track_frames, seq.spec.frame_count);
   return capture::measure_strain(seq.frames, seq.calibration, seq.spec.frame_rate_hz, p);
 }
@@ -84,11 +82,7 @@ std::vector<Method> methods(bool with_baselines) {
 }
 
 capture::Evaluation evaluate(const capture::StrainMovie& movie, const PrintSequence& seq) {
-  capture::GroundTruth truth;
-  truth.calibration = seq.calibration;
-  truth.landmarks = seq.landmarks;
-  truth.warp = seq.spec;
-  return capture::evaluate_strain(movie, truth);
+  return capture::evaluate_strain(movie, capture::ground_truth_of(seq));
 }
 
 Row run(const Method& m, const PrintSequence& seq) {
@@ -100,12 +94,6 @@ Row run(const Method& m, const PrintSequence& seq) {
   r.frames_per_s = s > 0 ? seq.frames.size() / s : 0.0;
   r.eval = evaluate(movie, seq);
   return r;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 void print_row(const Row& r, const std::string& lead) {

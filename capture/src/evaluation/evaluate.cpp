@@ -8,19 +8,17 @@
 #include <unordered_map>
 
 #include "tactile/common/csv.hpp"
+#include "tactile/common/median.hpp"
 
 namespace tactile::capture {
 
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
+GroundTruth ground_truth_of(const PrintSequence& seq) {
+  GroundTruth truth;
+  truth.calibration = seq.calibration;
+  truth.landmarks = seq.landmarks;
+  truth.warp = seq.spec;
+  return truth;
 }
-
-}  // namespace
 
 int truth_frame_count(const GroundTruth& truth) {
   return truth.warp ? truth.warp->frame_count : truth.spec.frame_count;

@@ -71,6 +71,13 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
   return choice;
 }
 
+CaptureParams with_choice(CaptureParams params, const CaptureChoice& choice) {
+  params.features.pore_detector = choice.detector;
+  params.refine = choice.refine;
+  params.smoothing_half_window = choice.smoothing_half_window;
+  return params;
+}
+
 StrainMovie measure_strain(
     const std::vector<GrayImage>& frames, const Calibration& calibration, double frame_rate_hz,
     const CaptureParams& params,

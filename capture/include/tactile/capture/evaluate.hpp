@@ -21,6 +21,9 @@ struct GroundTruth {
   std::optional<PrintWarpSpec> warp;     // a warped real print (format tactile-print-warp)
 };
 
+// The truth of a rendered real-print sequence, as read_ground_truth reads it from its folder.
+GroundTruth ground_truth_of(const PrintSequence& sequence);
+
 // Frames of the truth's sequence, and the true relative length change of a segment (image
 // millimetres at frame_from, seen again at frame_to), whichever kind of truth it is.
 int truth_frame_count(const GroundTruth& truth);

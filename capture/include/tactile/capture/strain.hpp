@@ -76,6 +76,8 @@ struct CaptureChoice {
 };
 CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_per_mm,
                                       const FeatureParams& base = pores_only());
+// `params` with the choice's detector, refinement and smoothing.
+CaptureParams with_choice(CaptureParams params, const CaptureChoice& choice);
 
 // The whole pipeline: extract -> match and track -> strain. `progress` is called with the stage
 // name ("extract", "track", "strain") and counts.
