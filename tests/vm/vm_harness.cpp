@@ -260,15 +260,18 @@ void check_play(const std::vector<Line>& lines, const std::string& backend, doub
       sent > 0 ? 1e6 * bridge.bridge_cpu_s / sent : 0.0);
 }
 
-// What an earlier test of the run found, from the first word of the verdict file; nullopt when
-// there is none yet (or it holds something else, which is then decided again).
+// What an earlier test of the run found: the verdict file is "kvm: REASON" or "tcg: REASON".
+// nullopt when there is none yet, or when it holds something else (said, then decided again).
 std::optional<Accel> read_verdict(const std::string& path) {
   if (path.empty()) return std::nullopt;
   std::ifstream in(path);
-  std::string word;
-  if (!(in >> word)) return std::nullopt;
+  std::string line;
+  if (!std::getline(in, line)) return std::nullopt;
+  const std::string word = line.substr(0, line.find(':'));
   if (word == "kvm") return Accel::kvm;
   if (word == "tcg") return Accel::tcg;
+  std::printf("vm: %s holds neither kvm: nor tcg: (\"%s\"); deciding again\n", path.c_str(),
+              line.c_str());
   return std::nullopt;
 }
 
@@ -575,12 +578,16 @@ int main(int argc, char** argv) {
   } else {
     std::printf("vm: TCG: no usable /dev/kvm\n");
   }
-  auto record = [&](const std::string& text) {
+  bool verdict_reads_back = true;
+  auto record = [&](Accel chosen, const std::string& reason) {
     if (o.kvm_hang || o.verdict_path.empty()) return;
+    const std::string text = std::string(chosen == Accel::kvm ? "kvm" : "tcg") + ": " + reason;
     try {
       tactile::write_text_atomically(o.verdict_path, text + "\n");
       std::printf("vm: verdict for the later tests: %s (%s)\n", text.c_str(),
                   o.verdict_path.c_str());
+      verdict_reads_back = read_verdict(o.verdict_path) == chosen;
+      check(verdict_reads_back, "the verdict file reads back as written");
     } catch (const std::exception& e) {
       // Only the later tests' time depends on it: each then decides again.
       std::printf("vm: verdict not kept: %s\n", e.what());
@@ -592,10 +599,10 @@ int main(int argc, char** argv) {
     std::printf("vm: TCG, because the KVM guest had not reached its init within %s\n",
                 bound.c_str());
     accel = Accel::tcg;
-    record("tcg: a KVM guest did not reach its init within " + bound);
+    record(Accel::tcg, "a KVM guest did not reach its init within " + bound);
     rc = run(o, accel);
   } else if (verdict != accel) {
-    record(accel == Accel::kvm ? "kvm: a KVM guest reached its init" : "tcg: no usable /dev/kvm");
+    record(accel, accel == Accel::kvm ? "a KVM guest reached its init" : "no usable /dev/kvm");
   }
   if (rc != 0 && starved) {
     // Only a run whose failure came with a starved host (or a late unplug report on an emulated
@@ -614,5 +621,5 @@ int main(int argc, char** argv) {
           "the verdict file for the other tests is unchanged");
     if (failures > 0) rc = 1;
   }
-  return rc;
+  return verdict_reads_back ? rc : 1;
 }
