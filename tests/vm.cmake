@@ -60,8 +60,9 @@ add_dependencies(vm_harness vm_initramfs)
 # KVM or TCG is decided once per ctest run: the first vm test boots its guest under KVM (when
 # /dev/kvm is there) and falls back to TCG if the guest's init has not printed its first line
 # within 20 s (vm_harness.cpp: some hosts offer a /dev/kvm on which a paused start succeeds but
-# a guest never boots); the verdict file keeps the outcome for the later tests. The fixture
-# removes the verdict of an earlier run first, so each run decides on the machine it runs on.
+# a guest never boots); the verdict file keeps the outcome for the later tests, which run one
+# at a time (RUN_SERIAL below), and it is replaced atomically. The fixture removes the verdict
+# of an earlier run first, so each run decides on the machine it runs on.
 set(vm_verdict ${vm_dir}/accelerator)
 add_test(NAME vm.forget_accelerator COMMAND ${CMAKE_COMMAND} -E rm -f ${vm_verdict})
 set_tests_properties(vm.forget_accelerator PROPERTIES LABELS vm FIXTURES_SETUP vm_accelerator)
@@ -93,4 +94,5 @@ set_tests_properties(vm.enumerate vm.enumerate_defect vm.play_libusb vm.play_lib
                      vm.play_hidraw
                      vm.play_hidraw_high_speed vm.unplug_replug vm.unplug_replug_hidraw
                      vm.kvm_hang_falls_back
-                     PROPERTIES LABELS vm TIMEOUT 300 RUN_SERIAL TRUE FIXTURES_REQUIRED vm_accelerator)
+                     PROPERTIES LABELS vm TIMEOUT 300 RUN_SERIAL TRUE
+                                FIXTURES_REQUIRED vm_accelerator)
