@@ -60,8 +60,8 @@ struct Options {
   double seconds = 10;
   double timeout_s = 120;
   // A KVM guest reaches its init in well under this on a working host, even a loaded one: it is
-  // above the TCG boot measured on a 2-core host loaded by other builds (17.5 s), and a guest
-  // under KVM boots faster than the same guest emulated (tests/vm.cmake).
+  // above the slowest TCG boot measured on a 2-core host loaded by other builds (19 s at a load
+  // average of 17; 5-8 s idle), and a guest boots faster under KVM than emulated.
   double kvm_bound_s = 20;
   std::string verdict_path;  // empty: decide for this run only
   bool kvm_hang = false;
