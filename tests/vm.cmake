@@ -22,13 +22,16 @@ set(TACTILE_VM_MODULES /lib/modules/${tactile_vm_kernel_version})
 set(vm_display_dir ${PROJECT_SOURCE_DIR}/display/src)
 file(GLOB vm_firmware_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/firmware/src/*.c)
 add_executable(vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/vm_client.cpp
-               ${vm_display_dir}/player.cpp ${vm_display_dir}/emulated_device.cpp
-               ${vm_display_dir}/frame_codec.cpp ${vm_display_dir}/control_codec.cpp
-               ${vm_display_dir}/layouts.cpp ${vm_display_dir}/libusb_transport.cpp
-               ${vm_display_dir}/hidapi_transport.cpp ${vm_display_dir}/devices.cpp
-               ${vm_firmware_sources})
+               ${vm_display_dir}/play/player.cpp ${vm_display_dir}/emulator/emulated_device.cpp
+               ${vm_display_dir}/transports/frame_codec.cpp
+               ${vm_display_dir}/transports/control_codec.cpp
+               ${PROJECT_SOURCE_DIR}/movie/src/layouts.cpp
+               ${vm_display_dir}/transports/libusb_transport.cpp
+               ${vm_display_dir}/transports/hidapi_transport.cpp
+               ${vm_display_dir}/transports/devices.cpp ${vm_firmware_sources})
 # common/include for its header-only names.hpp (display's mode enums); none of common's sources.
 target_include_directories(vm_client PRIVATE ${PROJECT_SOURCE_DIR}/display/include
+                                             ${PROJECT_SOURCE_DIR}/movie/include
                                              ${PROJECT_SOURCE_DIR}/common/include
                                              ${PROJECT_SOURCE_DIR}/firmware/include)
 target_link_libraries(vm_client PRIVATE tactile_warnings fmt::fmt PkgConfig::LIBUSB

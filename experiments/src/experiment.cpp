@@ -17,8 +17,8 @@
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
 #include "tactile/common/names.hpp"
-#include "tactile/display/layout_json.hpp"
 #include "tactile/mapping/profile.hpp"
+#include "tactile/movie/layout_json.hpp"
 #include "tactile/perception/recording.hpp"
 #include "tactile/perception/sensor_scene.hpp"
 
@@ -270,7 +270,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
     }
     if (std::filesystem::path(ref).extension() == ".json") ex.layout_files.emplace_back(ref);
     try {
-      ex.layouts.push_back(display::resolve_layout(ref));
+      ex.layouts.push_back(movie::resolve_layout(ref));
     } catch (const std::exception& e) {
       cx.fail(fmt::format("layouts[{}]: {}", i, e.what()));
     }

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
@@ -18,10 +19,9 @@
 #include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/common/version.hpp"
-#include "tactile/display/layout_json.hpp"
-#include "tactile/display/movie_io.hpp"
 #include "tactile/experiments/experiment.hpp"
-#include "tactile/mapping/ground_truth.hpp"
+#include "tactile/movie/layout_json.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace tactile::experiments {
 
@@ -44,7 +44,7 @@ namespace {
 capture::StrainMovie prepare(const ExperimentSource& s) {
   if (s.kind == SourceKind::file) return *s.loaded;
   if (s.kind == SourceKind::ground_truth)
-    return ground_truth_strain_movie(s.scene, s.grid_spacing_mm);
+    return capture::ground_truth_strain_movie(s.scene, s.grid_spacing_mm);
   const auto sequence = capture::render_sequence(s.scene);
   auto movie =
       capture::measure_strain(sequence.frames, sequence.calibration, s.scene.frame_rate_hz);
@@ -171,7 +171,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
       movie.provenance.created_utc = created;
       const fs::path file = out_dir / "movies" / (run.id + ".h5");
       const std::lock_guard lock(hdf5_mutex);
-      display::write_tactile_movie(file, movie);
+      movie::write_tactile_movie(file, movie);
       movie_files[i] = file.string();
     }
     say(fmt::format("run {} done: correlation {:.3f}", run.id, r.metrics.strain_correlation));
@@ -199,7 +199,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
     j["threads"] = report.threads;
     for (const auto& s : ex.sources) j["sources"].push_back(source_json(s));
     for (const auto& l : ex.layouts)
-      j["layouts"].push_back(nlohmann::json::parse(display::layout_to_json(l)));
+      j["layouts"].push_back(nlohmann::json::parse(movie::layout_to_json(l)));
     for (std::size_t i = 0; i < ex.runs.size(); ++i) {
       const auto& run = ex.runs[i];
       nlohmann::json rj;

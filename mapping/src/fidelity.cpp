@@ -32,20 +32,20 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
 
 }  // namespace
 
-FidelityMetrics fidelity(const display::TactileMovie& movie, const capture::StrainMovie& source,
+FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::StrainMovie& source,
                          const Placement& placement, double um_per_strain,
                          double slew_limit_um_per_s, const StrainFieldOptions& field_options) {
   if (!(um_per_strain > 0) || !std::isfinite(um_per_strain)) {
     throw std::invalid_argument(
         fmt::format("fidelity: um_per_strain {} must be positive", um_per_strain));
   }
-  display::validate(movie);
+  movie::validate(movie);
   const auto& layout = movie.layout;
   const auto n = static_cast<std::size_t>(layout.contactor_count());
   const auto frames = static_cast<std::size_t>(movie.frame_count);
   FidelityMetrics m;
 
-  const bool along_x = layout.axis == display::DeflectionAxis::x;
+  const bool along_x = layout.axis == movie::DeflectionAxis::x;
   const double pitch_mm = along_x ? layout.pitch_x_mm : layout.pitch_y_mm;
   const auto dir = deflection_direction(layout, placement);
   const auto positions = contactor_positions_mm(layout, placement);

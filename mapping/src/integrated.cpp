@@ -7,10 +7,10 @@
 
 namespace tactile::mapping {
 
-std::vector<double> integrated_frame(const StrainField& field, const display::Layout& layout,
+std::vector<double> integrated_frame(const StrainField& field, const movie::Layout& layout,
                                      const Placement& placement, double gain_um_per_strain) {
   const auto n = deflection_direction(layout, placement);
-  const bool along_x = layout.axis == display::DeflectionAxis::x;
+  const bool along_x = layout.axis == movie::DeflectionAxis::x;
   // Lines run along the deflection axis: rows for axis x, columns for axis y.
   const std::int32_t lines = along_x ? layout.rows : layout.cols;
   const std::int32_t length = along_x ? layout.cols : layout.rows;

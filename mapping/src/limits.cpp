@@ -9,7 +9,7 @@
 
 namespace tactile::mapping {
 
-display::TactileMovie apply_limits(display::TactileMovie movie, double slew_limit_um_per_s) {
+movie::TactileMovie apply_limits(movie::TactileMovie movie, double slew_limit_um_per_s) {
   if (!(slew_limit_um_per_s > 0)) {
     throw std::invalid_argument(
         fmt::format("slew limit {} um/s must be positive", slew_limit_um_per_s));

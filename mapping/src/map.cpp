@@ -16,7 +16,7 @@
 namespace tactile::mapping {
 namespace {
 
-using MethodFrame = std::vector<double> (*)(const StrainField&, const display::Layout&,
+using MethodFrame = std::vector<double> (*)(const StrainField&, const movie::Layout&,
                                             const Placement&, double);
 
 MethodFrame method_frame(MappingMethod method) {
@@ -33,7 +33,7 @@ MethodFrame method_frame(MappingMethod method) {
 
 // The |deflection| that "peak" normalisation maps the movie's peak to: the smaller side of a
 // range around neutral, so that neither direction saturates.
-double peak_target_um(const display::Layout& layout, double fraction) {
+double peak_target_um(const movie::Layout& layout, double fraction) {
   const double lo = layout.deflection_min_um;
   const double hi = layout.deflection_max_um;
   const double side = (lo < 0 && hi > 0) ? std::min(-lo, hi) : std::max(std::abs(lo), std::abs(hi));
@@ -69,7 +69,7 @@ capture::StrainMovie strain_source(const capture::StrainMovie& movie, const Mapp
   return movie;
 }
 
-MappingResult map_strain_frames(const capture::StrainMovie& movie, const display::Layout& layout,
+MappingResult map_strain_frames(const capture::StrainMovie& movie, const movie::Layout& layout,
                                 const MappingParams& params) {
   validate(params, layout);
   if (movie.frames.empty()) {
@@ -120,7 +120,7 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
 
   const auto display_frames = resample_linear(camera, params.rate_hz);
 
-  display::TactileMovie out;
+  movie::TactileMovie out;
   out.layout = layout;
   out.rate_hz = params.rate_hz;
   out.frame_count = static_cast<std::int32_t>(display_frames.t_s.size());
@@ -138,8 +138,8 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const display
   return result;
 }
 
-display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
-                                       const display::Layout& layout, const MappingParams& params) {
+movie::TactileMovie map_strain_movie(const capture::StrainMovie& movie, const movie::Layout& layout,
+                                     const MappingParams& params) {
   validate(params, layout);
   if (params.strain == StrainMode::accumulated) {
     return map_strain_frames(accumulate_along_tracks(movie, params.accumulate), layout, params)

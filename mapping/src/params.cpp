@@ -40,7 +40,7 @@ StrainMode parse_strain_mode(std::string_view name) {
   return parse_name("strain", name, kStrainModeNames);
 }
 
-void validate(const MappingParams& params, const display::Layout& layout) {
+void validate(const MappingParams& params, const movie::Layout& layout) {
   if (params.method == MappingMethod::profile) {
     if (!params.profile) {
       throw std::invalid_argument(

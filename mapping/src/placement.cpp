@@ -49,7 +49,7 @@ Placement default_placement(const capture::StrainMovie& movie) {
   return placement;
 }
 
-capture::PointMm contactor_position_mm(const display::Layout& layout, const Placement& placement,
+capture::PointMm contactor_position_mm(const movie::Layout& layout, const Placement& placement,
                                        std::int32_t row, std::int32_t col) {
   const double u = (col - (layout.cols - 1) / 2.0) * layout.pitch_x_mm * placement.scale;
   const double v = (row - (layout.rows - 1) / 2.0) * layout.pitch_y_mm * placement.scale;
@@ -58,7 +58,7 @@ capture::PointMm contactor_position_mm(const display::Layout& layout, const Plac
   return {placement.centre_x_mm + c * u - s * v, placement.centre_y_mm + s * u + c * v};
 }
 
-std::vector<capture::PointMm> contactor_positions_mm(const display::Layout& layout,
+std::vector<capture::PointMm> contactor_positions_mm(const movie::Layout& layout,
                                                      const Placement& placement) {
   std::vector<capture::PointMm> positions;
   positions.reserve(static_cast<std::size_t>(std::max(layout.contactor_count(), 0)));

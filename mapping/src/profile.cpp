@@ -74,13 +74,13 @@ capture::PointMm profile_gradient(const SurfaceProfile& p, double x_mm, double y
   return {-h * (x_mm - p.feature_x_mm) / (s * s), -h * (y_mm - p.feature_y_mm) / (s * s)};
 }
 
-std::vector<double> profile_frame(const SurfaceProfile& profile, const display::Layout& layout,
+std::vector<double> profile_frame(const SurfaceProfile& profile, const movie::Layout& layout,
                                   double t_s, double gain_um_per_slope) {
   Placement finger;
   finger.centre_x_mm = profile.finger_x0_mm + profile.velocity_x_mm_per_s * t_s;
   finger.centre_y_mm = profile.finger_y0_mm + profile.velocity_y_mm_per_s * t_s;
   const auto positions = contactor_positions_mm(layout, finger);
-  const bool along_x = layout.axis == display::DeflectionAxis::x;
+  const bool along_x = layout.axis == movie::DeflectionAxis::x;
   std::vector<double> deflection_um(positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const auto g = profile_gradient(profile, positions[i].x_mm, positions[i].y_mm);

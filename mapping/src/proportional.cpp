@@ -6,18 +6,18 @@
 
 namespace tactile::mapping {
 
-capture::PointMm deflection_direction(const display::Layout& layout, const Placement& placement) {
+capture::PointMm deflection_direction(const movie::Layout& layout, const Placement& placement) {
   const double c = std::cos(placement.rotation_rad);
   const double s = std::sin(placement.rotation_rad);
   // The layout's unit x is (c, s) in the field, its unit y is (-s, c): see contactor_position_mm.
-  if (layout.axis == display::DeflectionAxis::x) return {c, s};
+  if (layout.axis == movie::DeflectionAxis::x) return {c, s};
   return {-s, c};
 }
 
-std::vector<capture::PointMm> sample_points_mm(const display::Layout& layout,
+std::vector<capture::PointMm> sample_points_mm(const movie::Layout& layout,
                                                const Placement& placement) {
   auto points = contactor_positions_mm(layout, placement);
-  const bool along_x = layout.axis == display::DeflectionAxis::x;
+  const bool along_x = layout.axis == movie::DeflectionAxis::x;
   const auto cols = static_cast<std::size_t>(layout.cols);
   const std::size_t n = points.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -31,7 +31,7 @@ std::vector<capture::PointMm> sample_points_mm(const display::Layout& layout,
   return points;
 }
 
-std::vector<double> proportional_frame(const StrainField& field, const display::Layout& layout,
+std::vector<double> proportional_frame(const StrainField& field, const movie::Layout& layout,
                                        const Placement& placement, double gain_um_per_strain) {
   const auto n = deflection_direction(layout, placement);
   const auto positions = contactor_positions_mm(layout, placement);

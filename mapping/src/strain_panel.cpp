@@ -14,9 +14,9 @@
 
 namespace tactile::mapping {
 
-display::SideField strain_side_field(const capture::StrainMovie& strain, const std::string& title) {
+movie::SideField strain_side_field(const capture::StrainMovie& strain, const std::string& title) {
   if (strain.frames.empty()) throw std::invalid_argument("strain movie has no strain frames");
-  display::SideField field;
+  movie::SideField field;
   field.title = title;
   field.full_scale = capture::strain_map_full_scale(strain);
   if (!(field.full_scale > 0)) {
@@ -28,7 +28,7 @@ display::SideField strain_side_field(const capture::StrainMovie& strain, const s
   for (const capture::StrainFrame& f : strain.frames) {
     std::unordered_map<std::int32_t, const capture::TrackedPoint*> by_track;
     for (const auto& p : f.points_to) by_track[p.track_id] = &p;
-    display::FieldFrame out;
+    movie::FieldFrame out;
     out.t_s = f.t_s - t0;
     for (const capture::StrainEdge& e : f.edges) {
       const auto a = by_track.find(e.track_a);
@@ -59,12 +59,12 @@ display::SideField strain_side_field(const capture::StrainMovie& strain, const s
   }
   field.width_mm = max_x - min_x;
   field.height_mm = max_y - min_y;
-  display::validate(field);
+  movie::validate(field);
   return field;
 }
 
 std::optional<std::filesystem::path> find_source_strain(
-    const display::TactileMovie& movie, const std::filesystem::path& movie_path,
+    const movie::TactileMovie& movie, const std::filesystem::path& movie_path,
     const std::filesystem::path& explicit_path) {
   namespace fs = std::filesystem;
   if (!explicit_path.empty()) return explicit_path;

@@ -11,11 +11,11 @@
 #include <memory>
 #include <thread>
 
+#include "../movie/test_movies.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/latero_emulator.hpp"
 #include "tactile/display/latero_transport.hpp"
 #include "tactile/display/player.hpp"
-#include "test_movies.hpp"
 
 namespace tactile::display {
 namespace {
@@ -220,7 +220,8 @@ TEST(LateroTransport, WorksOverIpv6Loopback) {
 TEST(LateroTransport, PlaysEveryFramePacedByTheHostClockAndStopsAtCentre) {
   RunningEmulator emulator;
   LateroTransport t(emulator.address(), patient());
-  const TactileMovie movie = testing::sine_movie(latero_layout(), 750, 300, 90);  // 0.4 s
+  const movie::TactileMovie movie =
+      movie::testing::sine_movie(movie::latero_layout(), 750, 300, 90);  // 0.4 s
   const auto wall0 = Clock::now();
   const PlaybackReport r = play_movie(movie, t);
   const double wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
@@ -251,7 +252,7 @@ TEST(LateroTransport, CountsRepliesTheDeviceLeftOut) {
   o.drop_every_nth_reply = 7;
   RunningEmulator emulator(o);
   LateroTransport t(emulator.address(), patient());
-  play_movie(testing::sine_movie(latero_layout(), 750, 150, 50), t);
+  play_movie(movie::testing::sine_movie(movie::latero_layout(), 750, 150, 50), t);
   const LateroLinkStats s = t.stats();
   const LateroEmulatorCounters c = emulator->counters();
   ASSERT_GT(c.replies_dropped, 20u);

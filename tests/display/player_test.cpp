@@ -7,18 +7,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../movie/test_movies.hpp"
 #include "tactile/display/control_codec.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/player.hpp"
-#include "test_movies.hpp"
 
 namespace tactile::display {
 namespace {
 
 using ::testing::HasSubstr;
 
-EmulatedDeviceOptions device_for(const Layout& layout) {
+EmulatedDeviceOptions device_for(const movie::Layout& layout) {
   EmulatedDeviceOptions o;
   o.layout = layout;
   return o;
@@ -26,7 +26,7 @@ EmulatedDeviceOptions device_for(const Layout& layout) {
 
 // Plays `movie` in simulated time and checks that the device output is the movie, frame by
 // frame, in order: output tick ramp_in + f must equal frame f (quantised to 0.1 um).
-void expect_played_exactly(const TactileMovie& movie) {
+void expect_played_exactly(const movie::TactileMovie& movie) {
   EmulatedDevice device(device_for(movie.layout));
   PlayOptions options;
   const PlaybackReport r = play_movie(movie, device, options);
@@ -44,7 +44,7 @@ void expect_played_exactly(const TactileMovie& movie) {
   EXPECT_GE(r.min_fifo_fill, capacity / 2 - 2);
   EXPECT_LE(r.max_fifo_fill, capacity / 2 + 1);
   EXPECT_NEAR(r.duration_s, static_cast<double>(r.frames_sent) / movie.rate_hz, 1e-9);
-  const TactileMovie out = device.recording();
+  const movie::TactileMovie out = device.recording();
   ASSERT_EQ(out.frame_count, r.frames_sent);
   for (std::int32_t f = 0; f < movie.frame_count; ++f) {
     const auto want = movie.frame(f);
@@ -63,20 +63,20 @@ void expect_played_exactly(const TactileMovie& movie) {
 }
 
 TEST(Player, StressAt700HzPlaysEveryFrameInOrder) {
-  expect_played_exactly(testing::sine_movie(stress_layout(), 700, 2100, 45));  // 3 s
+  expect_played_exactly(movie::testing::sine_movie(movie::stress_layout(), 700, 2100, 45));  // 3 s
 }
 
 TEST(Player, LateroAt750HzPlaysEveryFrameInOrder) {
-  expect_played_exactly(testing::sine_movie(latero_layout(), 750, 2250, 90));  // 3 s
+  expect_played_exactly(movie::testing::sine_movie(movie::latero_layout(), 750, 2250, 90));  // 3 s
 }
 
 TEST(Player, SixtySecondsAt1kHzWithoutUnderrunInSimulatedTime) {
-  Layout layout = stress_layout();  // 100 contactors, the STReSS grid
+  movie::Layout layout = movie::stress_layout();  // 100 contactors, the STReSS grid
   layout.max_rate_hz = 1000;
   EmulatedDeviceOptions o = device_for(layout);
   o.record_outputs = false;
   EmulatedDevice device(o);
-  const PlaybackReport r = play_movie(testing::sine_movie(layout, 1000, 60000, 40), device);
+  const PlaybackReport r = play_movie(movie::testing::sine_movie(layout, 1000, 60000, 40), device);
   EXPECT_EQ(r.frames_played, r.frames_sent);
   EXPECT_EQ(r.frames_sent, 60000 + r.ramp_frames);
   EXPECT_EQ(r.underruns, 0);
@@ -89,14 +89,15 @@ TEST(Player, SixtySecondsAt1kHzWithoutUnderrunInSimulatedTime) {
 }
 
 TEST(Player, OutOfRangeValuesAreClampedByTheFirmwareWhenAllowed) {
-  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 700, 80);  // +-80 > +-50
+  const movie::TactileMovie movie =
+      movie::testing::sine_movie(movie::stress_layout(), 700, 700, 80);  // +-80 > +-50
   EmulatedDevice device(device_for(movie.layout));
   PlayOptions options;
   options.allow_out_of_range = true;
   const PlaybackReport r = play_movie(movie, device, options);
   EXPECT_GT(r.clamped_samples, 0);
   EXPECT_EQ(r.frames_played, r.frames_sent);
-  const TactileMovie out = device.recording();
+  const movie::TactileMovie out = device.recording();
   const auto ramp_in = r.ramp_frames / 2;
   int clamped = 0, exact = 0;
   for (std::int32_t f = 0; f < movie.frame_count; ++f) {
@@ -114,23 +115,23 @@ TEST(Player, OutOfRangeValuesAreClampedByTheFirmwareWhenAllowed) {
 
 TEST(Player, SlewLimitShapesAStep) {
   // A 0 -> 40 um step: the firmware limits it to 20 mm/s = 20 um per tick at 1 kHz.
-  Layout layout = latero_layout();
+  movie::Layout layout = movie::latero_layout();
   layout.max_rate_hz = 1000;  // the arithmetic above is per 1 kHz tick
-  TactileMovie movie = testing::sine_movie(layout, 1000, 20, 0);
+  movie::TactileMovie movie = movie::testing::sine_movie(layout, 1000, 20, 0);
   for (std::int32_t f = 10; f < 20; ++f) {
     for (float& v : movie.frame(f)) v = 40;
   }
   PlayOptions options;
   options.ramp_s = 0;
   PlaybackReport r;
-  const TactileMovie out = render_through_device(movie, device_for(layout), options, &r);
+  const movie::TactileMovie out = render_through_device(movie, device_for(layout), options, &r);
   EXPECT_GT(r.slew_limited_samples, 0);
   EXPECT_FLOAT_EQ(out.frame(9)[0], 0);
   EXPECT_FLOAT_EQ(out.frame(10)[0], 20);
   EXPECT_FLOAT_EQ(out.frame(11)[0], 40);
 }
 
-void expect_refused(const TactileMovie& movie, const EmulatedDeviceOptions& o,
+void expect_refused(const movie::TactileMovie& movie, const EmulatedDeviceOptions& o,
                     const std::string& words) {
   EmulatedDevice device(o);
   try {
@@ -143,21 +144,22 @@ void expect_refused(const TactileMovie& movie, const EmulatedDeviceOptions& o,
 }
 
 TEST(Player, RefusesMoviesTheDeviceCannotPlay) {
-  const auto stress = device_for(stress_layout());
-  expect_refused(testing::sine_movie(latero_layout(), 700, 10, 10), stress,
+  const auto stress = device_for(movie::stress_layout());
+  expect_refused(movie::testing::sine_movie(movie::latero_layout(), 700, 10, 10), stress,
                  "is 8 x 8 contactors but device");
-  expect_refused(testing::sine_movie(stress2_layout(), 1000, 10, 10), device_for(latero_layout()),
-                 "pitch 1.2 x 1.4 mm");
-  expect_refused(testing::sine_movie(stress_layout(), 1000, 10, 10), stress,
+  expect_refused(movie::testing::sine_movie(movie::stress2_layout(), 1000, 10, 10),
+                 device_for(movie::latero_layout()), "pitch 1.2 x 1.4 mm");
+  expect_refused(movie::testing::sine_movie(movie::stress_layout(), 1000, 10, 10), stress,
                  "rate 1000 Hz exceeds the device maximum 700 Hz");
-  expect_refused(testing::sine_movie(stress_layout(), 699.5, 10, 10), stress,
+  expect_refused(movie::testing::sine_movie(movie::stress_layout(), 699.5, 10, 10), stress,
                  "not a whole number of hertz");
-  expect_refused(testing::sine_movie(stress_layout(), 700, 10, 60), stress,
+  expect_refused(movie::testing::sine_movie(movie::stress_layout(), 700, 10, 60), stress,
                  "outside the device range [-50, 50] um");
 }
 
 TEST(Player, RealTimeClockPlaysAtTheDeviceRate) {
-  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 140, 30);  // 0.2 s
+  const movie::TactileMovie movie =
+      movie::testing::sine_movie(movie::stress_layout(), 700, 140, 30);  // 0.2 s
   EmulatedDeviceOptions o = device_for(movie.layout);
   o.clock = EmulatedClock::real_time;
   EmulatedDevice device(o);
@@ -171,7 +173,7 @@ TEST(Player, RealTimeClockPlaysAtTheDeviceRate) {
 }
 
 TEST(EmulatedDevice, CountsMalformedFramesAndNeverPlaysThem) {
-  EmulatedDevice device(device_for(stress_layout()));
+  EmulatedDevice device(device_for(movie::stress_layout()));
   device.start(700);
   std::vector<float> frame(100, 5);
   auto good = encode_frame(frame, 0);
@@ -192,12 +194,12 @@ TEST(EmulatedDevice, CountsMalformedFramesAndNeverPlaysThem) {
   EXPECT_EQ(s.rejected_by_reason.at("bad_checksum"), 1u);
   EXPECT_EQ(s.rejected_by_reason.at("bad_length"), 1u);
   EXPECT_EQ(s.rejected_by_reason.at("bad_sequence"), 1u);
-  const TactileMovie out = device.recording();
+  const movie::TactileMovie out = device.recording();
   for (float v : out.deflection_um) EXPECT_LE(v, 5.0f);
 }
 
 TEST(EmulatedDevice, SimulatedClockRunsOneTickPerPeriod) {
-  EmulatedDevice device(device_for(stress_layout()));
+  EmulatedDevice device(device_for(movie::stress_layout()));
   device.start(700);
   // 1/700 s rounded up to whole nanoseconds: every wait covers exactly one more tick.
   const std::chrono::nanoseconds period(1'000'000'000 / 700 + 1);
@@ -209,14 +211,14 @@ TEST(EmulatedDevice, SimulatedClockRunsOneTickPerPeriod) {
 }
 
 TEST(EmulatedDevice, WatchdogBringsTheOutputsHome) {
-  Layout layout = latero_layout();
+  movie::Layout layout = movie::latero_layout();
   layout.max_rate_hz = 1000;  // the tick counts below are at 1 kHz
   EmulatedDevice device(device_for(layout));
   device.start(1000);
   std::vector<float> frame(64, 90);
   for (std::uint32_t s = 0; s < 10; ++s) ASSERT_TRUE(device.send_frame(encode_frame(frame, s)));
   device.wait(std::chrono::milliseconds(30));  // 10 frames, then 20 ms of silence
-  const TactileMovie out = device.recording();
+  const movie::TactileMovie out = device.recording();
   ASSERT_EQ(out.frame_count, 30);
   EXPECT_FLOAT_EQ(out.frame(9)[0], 90);
   EXPECT_FLOAT_EQ(out.frame(29)[0], 0);
@@ -225,7 +227,7 @@ TEST(EmulatedDevice, WatchdogBringsTheOutputsHome) {
 
 TEST(EmulatedDevice, RecordsTheFirmwareStateAfterEveryTick) {
   // STReSS: +-50 um; 20 mm/s at 700 Hz is 285 units (28.5 um) per tick.
-  EmulatedDevice device(device_for(stress_layout()));
+  EmulatedDevice device(device_for(movie::stress_layout()));
   device.start(700);
   std::vector<float> frame(100, 80);  // beyond the range: every sample clamped to 50 um
   for (std::uint32_t s = 0; s < 10; ++s) ASSERT_TRUE(device.send_frame(encode_frame(frame, s)));
@@ -278,7 +280,8 @@ class HiccupTransport final : public Transport {
 };
 
 PlaybackReport play_with_hiccup(std::chrono::milliseconds hiccup) {
-  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 1400, 30);
+  const movie::TactileMovie movie =
+      movie::testing::sine_movie(movie::stress_layout(), 700, 1400, 30);
   EmulatedDevice device(device_for(movie.layout));
   HiccupTransport link(device, 1000, hiccup);
   return play_movie(movie, link);
@@ -296,11 +299,11 @@ TEST(Player, HostHiccupShorterThanHalfTheFifoCostsNothing) {
 }
 
 TEST(Player, LoopsRepeatTheMovieBetweenOneRampInAndOneRampOut) {
-  const TactileMovie movie = testing::sine_movie(stress_layout(), 700, 70, 20);
+  const movie::TactileMovie movie = movie::testing::sine_movie(movie::stress_layout(), 700, 70, 20);
   PlayOptions o;
   o.loops = 3;
   PlaybackReport r;
-  const TactileMovie out = render_through_device(movie, device_for(movie.layout), o, &r);
+  const movie::TactileMovie out = render_through_device(movie, device_for(movie.layout), o, &r);
   EXPECT_EQ(r.movie_frames, 210);
   EXPECT_EQ(r.frames_played, 210 + r.ramp_frames);
   const auto ramp_in = static_cast<std::int32_t>(r.ramp_frames / 2);
@@ -316,8 +319,8 @@ namespace tactile::display {
 namespace {
 
 TEST(EmulatedDevice, ReportsItsGeometryThroughTheControlReply) {
-  Layout l = latero_layout();
-  l.axis = DeflectionAxis::y;
+  movie::Layout l = movie::latero_layout();
+  l.axis = movie::DeflectionAxis::y;
   EmulatedDevice device(device_for(l));
   const DeviceInfo info = device.info();
   EXPECT_EQ(info.backend, Backend::emulated);
@@ -325,7 +328,7 @@ TEST(EmulatedDevice, ReportsItsGeometryThroughTheControlReply) {
   EXPECT_EQ(info.layout.rows, 8);
   EXPECT_DOUBLE_EQ(info.layout.pitch_y_mm, 1.6125);  // exact through nanometres
   EXPECT_DOUBLE_EQ(info.layout.contactor_height_mm, 1.4);
-  EXPECT_EQ(info.layout.axis, DeflectionAxis::y);
+  EXPECT_EQ(info.layout.axis, movie::DeflectionAxis::y);
   EXPECT_DOUBLE_EQ(info.layout.deflection_max_um, 100);
   EXPECT_DOUBLE_EQ(info.layout.max_rate_hz, 750);
   EXPECT_DOUBLE_EQ(info.max_slew_um_per_s, 20000);

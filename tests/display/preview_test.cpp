@@ -6,9 +6,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "../common/temp_dir.hpp"
-#include "tactile/display/frame_geometry.hpp"
+#include "../movie/test_movies.hpp"
 #include "tactile/display/preview.hpp"
-#include "test_movies.hpp"
+#include "tactile/movie/frame_geometry.hpp"
 
 namespace tactile::display {
 namespace {
@@ -16,33 +16,33 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(FrameGeometry, StrainIsTheRelativeChangeOfNeighbourDistance) {
-  Layout l = stress_layout();  // 1 mm pitch along x
+  movie::Layout l = movie::stress_layout();  // 1 mm pitch along x
   std::vector<float> frame(100, 0);
   for (int c = 0; c < 10; ++c) frame[static_cast<std::size_t>(3 * 10 + c)] = 10.0f * c;
-  const auto strain = neighbour_strain(l, frame);
+  const auto strain = movie::neighbour_strain(l, frame);
   // Neighbours 1 mm apart move 10 um further apart: 1 % stretch, also at the edges.
   EXPECT_NEAR(strain[3 * 10 + 0], 0.01, 1e-9);
   EXPECT_NEAR(strain[3 * 10 + 5], 0.01, 1e-9);
   EXPECT_NEAR(strain[3 * 10 + 9], 0.01, 1e-9);
   EXPECT_DOUBLE_EQ(strain[4 * 10 + 5], 0);
-  const auto shapes = frame_shapes(l, frame, 8);
+  const auto shapes = movie::frame_shapes(l, frame, 8);
   EXPECT_NEAR(shapes[3 * 10 + 9].x_mm, 9 + 0.09 * 8, 1e-6);
   EXPECT_DOUBLE_EQ(shapes[3 * 10 + 9].rest_x_mm, 9);
-  EXPECT_DOUBLE_EQ(auto_magnification(l), 8);  // 50 um drawn as 0.4 mm
-  TactileMovie small;
+  EXPECT_DOUBLE_EQ(movie::auto_magnification(l), 8);  // 50 um drawn as 0.4 mm
+  movie::TactileMovie small;
   small.layout = l;
   small.frame_count = 1;
   small.deflection_um.assign(100, 0.0f);
-  EXPECT_DOUBLE_EQ(auto_magnification(small), 8);  // still: falls back to the range
+  EXPECT_DOUBLE_EQ(movie::auto_magnification(small), 8);  // still: falls back to the range
   small.deflection_um[42] = -10.0f;
-  EXPECT_DOUBLE_EQ(auto_magnification(small), 40);  // its 10 um peak drawn as 0.4 mm
-  EXPECT_EQ(strain_colour(0.01, 0.01), (std::array<std::uint8_t, 3>{255, 0, 0}));
-  EXPECT_EQ(strain_colour(-0.02, 0.01), (std::array<std::uint8_t, 3>{0, 0, 255}));
-  EXPECT_EQ(strain_colour(0, 0.01), (std::array<std::uint8_t, 3>{255, 255, 255}));
+  EXPECT_DOUBLE_EQ(movie::auto_magnification(small), 40);  // its 10 um peak drawn as 0.4 mm
+  EXPECT_EQ(movie::strain_colour(0.01, 0.01), (std::array<std::uint8_t, 3>{255, 0, 0}));
+  EXPECT_EQ(movie::strain_colour(-0.02, 0.01), (std::array<std::uint8_t, 3>{0, 0, 255}));
+  EXPECT_EQ(movie::strain_colour(0, 0.01), (std::array<std::uint8_t, 3>{255, 255, 255}));
 }
 
 TEST(Preview, ImageHasTheDocumentedSizeAndContent) {
-  const TactileMovie m = testing::sine_movie(stress_layout(), 700, 700, 40);
+  const movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 700, 40);
   const tactile::test::TempDir dir;
   const fs::path p = dir / "sine.png";
   PreviewOptions o;
@@ -83,7 +83,7 @@ TEST(Preview, ImageHasTheDocumentedSizeAndContent) {
 }
 
 TEST(Preview, UniformStretchIsRedAndAStillMovieIsWhite) {
-  TactileMovie m = testing::sine_movie(stress_layout(), 700, 2, 0);
+  movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 2, 0);
   for (int c = 0; c < 10; ++c) {
     for (int r = 0; r < 10; ++r) m.frame(1)[static_cast<std::size_t>(r * 10 + c)] = 4.0f * c;
   }
@@ -115,7 +115,7 @@ TEST(Preview, UniformStretchIsRedAndAStillMovieIsWhite) {
 }
 
 TEST(Preview, RejectsBadOptionsAndUnwritablePaths) {
-  const TactileMovie m = testing::sine_movie(stress_layout(), 700, 10, 10);
+  const movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 10, 10);
   PreviewOptions o;
   o.frames = 0;
   EXPECT_THROW(write_preview_strip(tactile::test::TempDir() / "x.png", m, o),

@@ -1,5 +1,5 @@
 // The viewer's side field: colour rule, frame choice in time, placement, malformed fields.
-#include "tactile/display/side_field.hpp"
+#include "tactile/movie/side_field.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 namespace tactile::display {
 namespace {
 
-SideField field_of(std::vector<double> times) {
-  SideField f;
+movie::SideField field_of(std::vector<double> times) {
+  movie::SideField f;
   f.full_scale = 0.1;
   f.width_mm = 10;
   f.height_mm = 5;
@@ -22,38 +22,38 @@ SideField field_of(std::vector<double> times) {
 
 TEST(SideField, GreyRunsFromBlackThroughMidGreyToWhiteAndSaturates) {
   // capture's strain maps: -full_scale black, 0 mid grey (255 / 2 rounded), +full_scale white.
-  EXPECT_EQ(field_grey(-0.1, 0.1), 0);
-  EXPECT_EQ(field_grey(0.0, 0.1), 128);
-  EXPECT_EQ(field_grey(0.1, 0.1), 255);
-  EXPECT_EQ(field_grey(0.05, 0.1), 191);  // 255 * 0.75 = 191.25
-  EXPECT_EQ(field_grey(-5.0, 0.1), 0);
-  EXPECT_EQ(field_grey(5.0, 0.1), 255);
+  EXPECT_EQ(movie::field_grey(-0.1, 0.1), 0);
+  EXPECT_EQ(movie::field_grey(0.0, 0.1), 128);
+  EXPECT_EQ(movie::field_grey(0.1, 0.1), 255);
+  EXPECT_EQ(movie::field_grey(0.05, 0.1), 191);  // 255 * 0.75 = 191.25
+  EXPECT_EQ(movie::field_grey(-5.0, 0.1), 0);
+  EXPECT_EQ(movie::field_grey(5.0, 0.1), 255);
 }
 
 TEST(SideField, ShowsTheLastFrameStartedAtOrBeforeTheTime) {
-  const SideField f = field_of({0.0, 0.1, 0.2});
-  EXPECT_EQ(field_frame_at(f, -1.0), 0u);  // before the first: the first
-  EXPECT_EQ(field_frame_at(f, 0.0), 0u);
-  EXPECT_EQ(field_frame_at(f, 0.0999), 0u);
-  EXPECT_EQ(field_frame_at(f, 0.1), 1u);
-  EXPECT_EQ(field_frame_at(f, 0.25), 2u);
-  EXPECT_EQ(field_frame_at(f, 100.0), 2u);
-  EXPECT_THROW(field_frame_at(SideField{}, 0.0), std::invalid_argument);
+  const movie::SideField f = field_of({0.0, 0.1, 0.2});
+  EXPECT_EQ(movie::field_frame_at(f, -1.0), 0u);  // before the first: the first
+  EXPECT_EQ(movie::field_frame_at(f, 0.0), 0u);
+  EXPECT_EQ(movie::field_frame_at(f, 0.0999), 0u);
+  EXPECT_EQ(movie::field_frame_at(f, 0.1), 1u);
+  EXPECT_EQ(movie::field_frame_at(f, 0.25), 2u);
+  EXPECT_EQ(movie::field_frame_at(f, 100.0), 2u);
+  EXPECT_THROW(movie::field_frame_at(movie::SideField{}, 0.0), std::invalid_argument);
 }
 
 TEST(SideField, FitsUniformlyAndCentred) {
   // 10 x 5 mm into 200 x 200 px: width limits, 200 * 0.88 / 10 = 17.6 px/mm, centred.
-  const ViewTransform t = fit_field(field_of({0}), 200, 200);
+  const movie::ViewTransform t = movie::fit_field(field_of({0}), 200, 200);
   EXPECT_DOUBLE_EQ(t.px_per_mm, 17.6);
   EXPECT_DOUBLE_EQ(t.origin_x_px, 12.0);
   EXPECT_DOUBLE_EQ(t.origin_y_px, (200 - 5 * 17.6) / 2);
-  const ViewTransform p = pane_field_view(field_of({0}), PixelRect{300, 50, 200, 200});
+  const movie::ViewTransform p = pane_field_view(field_of({0}), PixelRect{300, 50, 200, 200});
   EXPECT_DOUBLE_EQ(p.origin_x_px, 312.0);
   EXPECT_DOUBLE_EQ(p.origin_y_px, 50 + (200 - 5 * 17.6) / 2);
 }
 
 TEST(SideField, MalformedFieldsAreRefusedWithTheReason) {
-  const auto message = [](const SideField& f) {
+  const auto message = [](const movie::SideField& f) {
     try {
       validate(f);
     } catch (const std::invalid_argument& e) {
@@ -62,8 +62,8 @@ TEST(SideField, MalformedFieldsAreRefusedWithTheReason) {
     return std::string("accepted");
   };
   EXPECT_EQ(message(field_of({0, 0.1})), "accepted");
-  EXPECT_NE(message(SideField{}).find("no frames"), std::string::npos);
-  SideField f = field_of({0, 0.1});
+  EXPECT_NE(message(movie::SideField{}).find("no frames"), std::string::npos);
+  movie::SideField f = field_of({0, 0.1});
   f.full_scale = 0;
   EXPECT_NE(message(f).find("full scale"), std::string::npos);
   f = field_of({0, 0.1});

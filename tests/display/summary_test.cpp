@@ -4,8 +4,8 @@
 
 #include <cmath>
 
+#include "../movie/test_movies.hpp"
 #include "tactile/display/summary.hpp"
-#include "test_movies.hpp"
 
 namespace tactile::display {
 namespace {
@@ -15,7 +15,8 @@ using ::testing::HasSubstr;
 TEST(Summary, SineOfKnownAmplitude) {
   // 2 s at 700 Hz of a 5 Hz sine of 30 um: whole periods, so RMS = 30 / sqrt(2) exactly
   // (up to float rounding) and every 0.1 s window holds half a period: the same RMS.
-  const TactileMovie m = testing::sine_movie(stress_layout(), 700, 1400, 30, 5);
+  const movie::TactileMovie m =
+      movie::testing::sine_movie(movie::stress_layout(), 700, 1400, 30, 5);
   const MovieSummary s = summarize(m);
   EXPECT_EQ(s.layout_name, "stress");
   EXPECT_EQ(s.frame_count, 1400);
@@ -30,7 +31,7 @@ TEST(Summary, SineOfKnownAmplitude) {
 
 TEST(Summary, ActivityFollowsAnEnvelopeAndSaturationIsCounted) {
   // 0.5 s still, then 0.5 s with every contactor at the +50 um limit.
-  TactileMovie m = testing::sine_movie(stress_layout(), 700, 700, 0);
+  movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 700, 0);
   for (std::int32_t f = 350; f < 700; ++f) {
     for (float& v : m.frame(f)) v = 50;
   }
@@ -49,7 +50,7 @@ TEST(Summary, ActivityFollowsAnEnvelopeAndSaturationIsCounted) {
 }
 
 TEST(Summary, RefusesAnInvalidMovie) {
-  TactileMovie m = testing::sine_movie(stress_layout(), 700, 10, 1);
+  movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 10, 1);
   m.frame_count = 11;
   EXPECT_THROW(summarize(m), std::invalid_argument);
 }

@@ -13,7 +13,7 @@
 
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
-#include "tactile/display/movie_io.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -36,7 +36,7 @@ class DemoTest : public ::testing::Test {
 };
 
 // Root-mean-square deflection of each frame.
-std::vector<double> activity(const tactile::display::TactileMovie& m) {
+std::vector<double> activity(const tactile::movie::TactileMovie& m) {
   std::vector<double> a(static_cast<std::size_t>(m.frame_count));
   for (std::int32_t f = 0; f < m.frame_count; ++f) {
     double s = 0;
@@ -82,7 +82,7 @@ TEST_F(DemoTest, StrainMovieCoversTheScene) {
 }
 
 TEST_F(DemoTest, MovieHasTheStressShapeRateAndDuration) {
-  const auto movie = tactile::display::read_tactile_movie(out_ / "movie.h5");
+  const auto movie = tactile::movie::read_tactile_movie(out_ / "movie.h5");
   EXPECT_EQ(movie.layout.name, "stress");
   EXPECT_EQ(movie.layout.rows, 10);
   EXPECT_EQ(movie.layout.cols, 10);
@@ -96,7 +96,7 @@ TEST_F(DemoTest, MovieHasTheStressShapeRateAndDuration) {
 }
 
 TEST_F(DemoTest, ActivityRisesAndFallsAsTheBumpPasses) {
-  const auto movie = tactile::display::read_tactile_movie(out_ / "movie.h5");
+  const auto movie = tactile::movie::read_tactile_movie(out_ / "movie.h5");
   const std::vector<double> a = activity(movie);
   const std::size_t n = a.size();
   ASSERT_GT(n, 100u);

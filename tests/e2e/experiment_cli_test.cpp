@@ -10,7 +10,7 @@
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
-#include "tactile/display/movie_io.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace fs = std::filesystem;
 using tactile::test::run_tactile;
@@ -80,10 +80,10 @@ TEST(ExperimentCli, MapTakesACustomLayoutFileAndRefusesABadOne) {
   r = run_tactile("map " + strain.string() + " --out " + (d / "m.h5").string() + " --layout " +
                   (d / "lab.json").string() + " --rate-hz 500 --strain accumulated");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto movie = tactile::display::read_tactile_movie(d / "m.h5");
+  const auto movie = tactile::movie::read_tactile_movie(d / "m.h5");
   EXPECT_EQ(movie.layout.name, "lab");
   EXPECT_EQ(movie.layout.cols, 7);
-  EXPECT_EQ(movie.layout.axis, tactile::display::DeflectionAxis::y);
+  EXPECT_EQ(movie.layout.axis, tactile::movie::DeflectionAxis::y);
   EXPECT_THAT(movie.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"accumulated\""));
 }
 

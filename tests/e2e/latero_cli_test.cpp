@@ -22,9 +22,9 @@
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
+#include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
-#include "tactile/display/movie_io.hpp"
-#include "tactile/mapping/ground_truth.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace fs = std::filesystem;
 using tactile::test::run_tactile;
@@ -45,9 +45,9 @@ int free_udp_port() {
   return ntohs(a.sin_port);
 }
 
-fs::path write_movie(const fs::path& dir, const tactile::display::Layout& layout, double rate_hz,
+fs::path write_movie(const fs::path& dir, const tactile::movie::Layout& layout, double rate_hz,
                      int frames) {
-  tactile::display::TactileMovie m;
+  tactile::movie::TactileMovie m;
   m.layout = layout;
   m.rate_hz = rate_hz;
   m.frame_count = frames;
@@ -62,7 +62,7 @@ fs::path write_movie(const fs::path& dir, const tactile::display::Layout& layout
   m.provenance.program_version = "test";
   m.provenance.source = "sine";
   const fs::path path = dir / (layout.name + ".h5");
-  tactile::display::write_tactile_movie(path, m);
+  tactile::movie::write_tactile_movie(path, m);
   return path;
 }
 
@@ -108,7 +108,7 @@ TEST(LateroCli, PlaysTenSecondsAt750HzAndTheEmulatorCountsAgree) {
   const tactile::test::TempDir d_tmp("play");
   const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
-  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 7500);  // 10 s
+  const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 7500);  // 10 s
   const auto r = with_emulator(
       port, "", "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port), d);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -138,7 +138,7 @@ TEST(LateroCli, BladeMappingIsTheUsersToSet) {
   const tactile::test::TempDir d_tmp("mapping");
   const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
-  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 75);
+  const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 75);
   const std::string play = "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port);
   const auto r = with_emulator(port, "", play + " --blade-centre-raw 128 --blade-max-raw 255", d);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -155,7 +155,7 @@ TEST(LateroCli, MissedRepliesAreCountedByTheSender) {
   const tactile::test::TempDir d_tmp("loss");
   const std::filesystem::path& d = d_tmp.path();
   const int port = free_udp_port();
-  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 750);  // 1 s
+  const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 750);  // 1 s
   const auto r =
       with_emulator(port, "--drop-every 10",
                     "play " + movie.string() + " --latero 127.0.0.1:" + std::to_string(port), d);
@@ -170,7 +170,7 @@ TEST(LateroCli, MissedRepliesAreCountedByTheSender) {
 TEST(LateroCli, StressMovieIsRefusedNamingBothLayouts) {
   const tactile::test::TempDir d_tmp("stress");
   const std::filesystem::path& d = d_tmp.path();
-  const fs::path movie = write_movie(d, tactile::display::stress_layout(), 700, 10);
+  const fs::path movie = write_movie(d, tactile::movie::stress_layout(), 700, 10);
   const auto r = run_tactile("play " + movie.string() +
                              " --latero 127.0.0.1:" + std::to_string(free_udp_port()));
   EXPECT_EQ(r.exit_code, 1);
@@ -182,7 +182,7 @@ TEST(LateroCli, StressMovieIsRefusedNamingBothLayouts) {
 TEST(LateroCli, BadAddressesAreUsageErrors) {
   const tactile::test::TempDir d_tmp("usage");
   const std::filesystem::path& d = d_tmp.path();
-  const fs::path movie = write_movie(d, tactile::display::latero_layout(), 750, 10);
+  const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 10);
   for (const auto& [address, why] :
        std::vector<std::pair<std::string, std::string>>{{"127.0.0.1:0", "outside 1..65535"},
                                                         {"127.0.0.1:65536", "outside 1..65535"},
@@ -224,16 +224,16 @@ TEST(LateroCli, MapForTheLateroLayoutMakesA750HzMovie) {
   tactile::capture::SceneSpec spec;
   spec.frame_count = 12;
   tactile::capture::write_strain_movie(d / "strain.h5",
-                                       tactile::mapping::ground_truth_strain_movie(spec, 0.25));
+                                       tactile::capture::ground_truth_strain_movie(spec, 0.25));
   const auto r = run_tactile("map " + (d / "strain.h5").string() + " --layout latero --out " +
                              (d / "movie.h5").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto movie = tactile::display::read_tactile_movie(d / "movie.h5");
+  const auto movie = tactile::movie::read_tactile_movie(d / "movie.h5");
   EXPECT_EQ(movie.layout.name, "latero");
   EXPECT_DOUBLE_EQ(movie.rate_hz, 750);
   // Asked for explicitly, another rate is kept.
   const auto r2 = run_tactile("map " + (d / "strain.h5").string() +
                               " --layout latero --rate-hz 500 --out " + (d / "m2.h5").string());
   ASSERT_EQ(r2.exit_code, 0) << r2.output;
-  EXPECT_DOUBLE_EQ(tactile::display::read_tactile_movie(d / "m2.h5").rate_hz, 500);
+  EXPECT_DOUBLE_EQ(tactile::movie::read_tactile_movie(d / "m2.h5").rate_hz, 500);
 }

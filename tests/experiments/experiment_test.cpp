@@ -11,8 +11,8 @@
 
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
-#include "tactile/display/movie_io.hpp"
 #include "tactile/experiments/experiment.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace tactile::experiments {
 namespace {
@@ -87,10 +87,8 @@ TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
   };
   EXPECT_EQ(strip_timing(table_of(one / "metrics.csv")),
             strip_timing(table_of(two / "metrics.csv")));
-  const auto a =
-      display::read_tactile_movie(one / "movies/002-bump-stress-integrated-per-frame.h5");
-  const auto b =
-      display::read_tactile_movie(two / "movies/002-bump-stress-integrated-per-frame.h5");
+  const auto a = movie::read_tactile_movie(one / "movies/002-bump-stress-integrated-per-frame.h5");
+  const auto b = movie::read_tactile_movie(two / "movies/002-bump-stress-integrated-per-frame.h5");
   EXPECT_EQ(a.deflection_um, b.deflection_um);
   EXPECT_THAT(a.provenance.source, HasSubstr("experiment 'small'"));
   EXPECT_THAT(a.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"per-frame\""));

@@ -5,15 +5,15 @@
 
 #include <cmath>
 
-#include "tactile/display/frame_geometry.hpp"
 #include "tactile/display/viewer.hpp"
+#include "tactile/movie/frame_geometry.hpp"
 
 namespace tactile::display {
 namespace {
 
 TEST(LiveViewer, DrawsWhatTheSourceGivesAtTheContactorPositions) {
   ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
-  const Layout layout = latero_layout();
+  const movie::Layout layout = movie::latero_layout();
   LiveFrame frame;
   for (int r = 0; r < 8; ++r) {
     for (int c = 0; c < 8; ++c) frame.deflection_um.push_back(10.0f * static_cast<float>(c));
@@ -36,9 +36,9 @@ TEST(LiveViewer, DrawsWhatTheSourceGivesAtTheContactorPositions) {
   ASSERT_EQ(r.frames_drawn, 2);
   const RenderedImage& img = r.last_image;
   ASSERT_EQ(img.width, 400);
-  const double mag = auto_magnification(layout);
-  const ViewTransform t = pane_view(layout, mag, viewer_panes(400, 400, false).contactors);
-  for (const ContactorShape& c : frame_shapes(layout, frame.deflection_um, mag)) {
+  const double mag = movie::auto_magnification(layout);
+  const movie::ViewTransform t = pane_view(layout, mag, viewer_panes(400, 400, false).contactors);
+  for (const movie::ContactorShape& c : movie::frame_shapes(layout, frame.deflection_um, mag)) {
     const int x = static_cast<int>(std::lround(t.origin_x_px + c.x_mm * t.px_per_mm));
     const int y = static_cast<int>(std::lround(t.origin_y_px + c.y_mm * t.px_per_mm));
     const auto px = img.at(x, y);
@@ -53,7 +53,7 @@ TEST(LiveViewer, SourceWithNothingToShowClosesTheWindow) {
   LiveViewerOptions o;
   o.visible = false;
   const ViewerResult r = run_live_viewer(
-      latero_layout(), []() -> std::optional<LiveFrame> { return std::nullopt; }, o);
+      movie::latero_layout(), []() -> std::optional<LiveFrame> { return std::nullopt; }, o);
   EXPECT_EQ(r.frames_drawn, 0);
 }
 
@@ -62,7 +62,7 @@ TEST(LiveViewer, RefusesAFrameOfTheWrongSize) {
   LiveViewerOptions o;
   o.visible = false;
   EXPECT_THROW(run_live_viewer(
-                   latero_layout(),
+                   movie::latero_layout(),
                    []() -> std::optional<LiveFrame> {
                      return LiveFrame{{1.0f, 2.0f}, {}};
                    },

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "tactile/display/frame_geometry.hpp"
+#include "../movie/test_movies.hpp"
 #include "tactile/display/viewer.hpp"
-#include "test_movies.hpp"
+#include "tactile/movie/frame_geometry.hpp"
 
 namespace tactile::display {
 namespace {
@@ -24,7 +24,7 @@ bool is_background(std::array<std::uint8_t, 3> c) {
 TEST(Viewer, DrawsAKnownPatternAtTheContactorPositions) {
   ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
   // Frame 1: uniform stretch along x, every contactor 4 um per column further right.
-  TactileMovie m = testing::sine_movie(stress_layout(), 700, 2, 0);
+  movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 2, 0);
   for (int r = 0; r < 10; ++r) {
     for (int c = 0; c < 10; ++c) m.frame(1)[static_cast<std::size_t>(r * 10 + c)] = 4.0f * c;
   }
@@ -41,9 +41,9 @@ TEST(Viewer, DrawsAKnownPatternAtTheContactorPositions) {
   const RenderedImage& img = r.last_image;
   ASSERT_EQ(img.width, 400);
   ASSERT_EQ(img.height, 400);
-  const double mag = auto_magnification(m.layout);
-  const ViewTransform t = pane_view(m.layout, mag, viewer_panes(400, 400, false).contactors);
-  for (const ContactorShape& c : frame_shapes(m.layout, m.frame(1), mag)) {
+  const double mag = movie::auto_magnification(m.layout);
+  const movie::ViewTransform t = pane_view(m.layout, mag, viewer_panes(400, 400, false).contactors);
+  for (const movie::ContactorShape& c : movie::frame_shapes(m.layout, m.frame(1), mag)) {
     const int x = static_cast<int>(std::lround(t.origin_x_px + c.x_mm * t.px_per_mm));
     const int y = static_cast<int>(std::lround(t.origin_y_px + c.y_mm * t.px_per_mm));
     EXPECT_TRUE(is_red(img.at(x + 2, y + 2))) << "contactor centre " << x << "," << y;
@@ -60,7 +60,7 @@ TEST(Viewer, ShowsTheFirmwareClampNotTheRawMovie) {
   ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
   // Every contactor asked for +80 um; the STReSS firmware clamps at +50 um. Uniform
   // deflection means no strain: white contactors.
-  TactileMovie m = testing::sine_movie(stress_layout(), 700, 20, 0);
+  movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, 20, 0);
   for (float& v : m.deflection_um) v = 80;
   ViewerOptions o;
   o.play.allow_out_of_range = true;
@@ -72,8 +72,8 @@ TEST(Viewer, ShowsTheFirmwareClampNotTheRawMovie) {
   o.height_px = 400;
   const ViewerResult r = run_viewer(m, o);
   const RenderedImage& img = r.last_image;
-  const double mag = auto_magnification(m.layout);  // 8: 50 um -> 0.4 mm
-  const ViewTransform t = pane_view(m.layout, mag, viewer_panes(400, 400, false).contactors);
+  const double mag = movie::auto_magnification(m.layout);  // 8: 50 um -> 0.4 mm
+  const movie::ViewTransform t = pane_view(m.layout, mag, viewer_panes(400, 400, false).contactors);
   const auto pixel = [&](double x_mm, double y_mm) {
     return img.at(static_cast<int>(std::lround(t.origin_x_px + x_mm * t.px_per_mm)),
                   static_cast<int>(std::lround(t.origin_y_px + y_mm * t.px_per_mm)));
@@ -90,8 +90,8 @@ TEST(Viewer, ShowsTheFirmwareClampNotTheRawMovie) {
 
 // A movie whose every frame is a uniform deflection that grows with the frame index: the
 // displayed frame is read off the contactors' position.
-TactileMovie ramp_movie(std::int32_t frames) {
-  TactileMovie m = testing::sine_movie(stress_layout(), 700, frames, 0);
+movie::TactileMovie ramp_movie(std::int32_t frames) {
+  movie::TactileMovie m = movie::testing::sine_movie(movie::stress_layout(), 700, frames, 0);
   for (std::int32_t f = 0; f < frames; ++f) {
     const float d = -45.0f + 90.0f * static_cast<float>(f) / static_cast<float>(frames - 1);
     for (std::size_t i = 0; i < 100; ++i)
@@ -103,7 +103,7 @@ TactileMovie ramp_movie(std::int32_t frames) {
 TEST(Viewer, ScrubBarSeeksToTheClickedFrameAndShowsIt) {
   ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
   const std::int32_t frames = 101;
-  const TactileMovie m = ramp_movie(frames);
+  const movie::TactileMovie m = ramp_movie(frames);
   const ViewerPanes panes = viewer_panes(400, 400, false);
   // Click a quarter of the way along the bar, drag to three quarters, release.
   const PixelRect& bar = panes.scrub;
@@ -129,9 +129,9 @@ TEST(Viewer, ScrubBarSeeksToTheClickedFrameAndShowsIt) {
   // Frame 75 deflects every contactor by -45 + 90 * 0.75 = +22.5 um; x8: +0.18 mm. Contactor
   // (5, 5) (rest 5.0 mm, 0.5 mm wide) then spans 4.93..5.43 mm; frame 0 would put it at
   // 4.39..4.89 mm.
-  const double mag = auto_magnification(m.layout);
+  const double mag = movie::auto_magnification(m.layout);
   ASSERT_DOUBLE_EQ(mag, 8.0);
-  const ViewTransform t = pane_view(m.layout, mag, panes.contactors);
+  const movie::ViewTransform t = pane_view(m.layout, mag, panes.contactors);
   const auto pixel = [&](double x_mm, double y_mm) {
     return img.at(static_cast<int>(std::lround(t.origin_x_px + x_mm * t.px_per_mm)),
                   static_cast<int>(std::lround(t.origin_y_px + y_mm * t.px_per_mm)));
@@ -155,7 +155,8 @@ TEST(Viewer, InfoStripCarriesText) {
   o.exit_after_frames = 3;
   o.width_px = 400;
   o.height_px = 400;
-  const ViewerResult r = run_viewer(testing::sine_movie(stress_layout(), 700, 20, 10), o);
+  const ViewerResult r =
+      run_viewer(movie::testing::sine_movie(movie::stress_layout(), 700, 20, 10), o);
   // Dear ImGui's text is light grey on its dark window: some bright pixels in the strip, none
   // of them in the strip of an empty window would be.
   const PixelRect info = viewer_panes(400, 400, false).info;
@@ -172,8 +173,8 @@ TEST(Viewer, InfoStripCarriesText) {
 
 // Two frames of a two-edge field: the horizontal edge stretched and the vertical one
 // compressed, then the other way round from t = 0.05 s.
-SideField two_edge_field() {
-  SideField f;
+movie::SideField two_edge_field() {
+  movie::SideField f;
   f.title = "strain";
   f.full_scale = 0.1;
   f.width_mm = 10;
@@ -185,7 +186,8 @@ SideField two_edge_field() {
 
 TEST(Viewer, DrawsTheSourceFieldBesideTheArrayInStep) {
   ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
-  const TactileMovie m = testing::sine_movie(stress_layout(), 100, 10, 10);  // 10 ms frames
+  const movie::TactileMovie m =
+      movie::testing::sine_movie(movie::stress_layout(), 100, 10, 10);  // 10 ms frames
   ViewerOptions o;
   o.through_device = false;
   o.visible = false;
@@ -195,7 +197,7 @@ TEST(Viewer, DrawsTheSourceFieldBesideTheArrayInStep) {
   o.height_px = 400;
   o.field = two_edge_field();
   const ViewerPanes panes = viewer_panes(600, 400, true);
-  const ViewTransform t = pane_field_view(*o.field, panes.field);
+  const movie::ViewTransform t = pane_field_view(*o.field, panes.field);
   const auto pixel = [&](const RenderedImage& img, double x_mm, double y_mm) {
     return img.at(static_cast<int>(std::lround(t.origin_x_px + x_mm * t.px_per_mm)),
                   static_cast<int>(std::lround(t.origin_y_px + y_mm * t.px_per_mm)));
@@ -221,12 +223,12 @@ TEST(Viewer, DrawsTheSourceFieldBesideTheArrayInStep) {
 }
 
 TEST(Viewer, RefusesAMalformedField) {
-  SideField f = two_edge_field();
+  movie::SideField f = two_edge_field();
   f.frames[1].t_s = 0;  // not after the first
   ViewerOptions o;
   o.visible = false;
   o.field = f;
-  EXPECT_THROW(run_viewer(testing::sine_movie(stress_layout(), 100, 10, 10), o),
+  EXPECT_THROW(run_viewer(movie::testing::sine_movie(movie::stress_layout(), 100, 10, 10), o),
                std::invalid_argument);
 }
 

@@ -25,8 +25,8 @@ capture::StrainMovie growing_uniform_stretch() {
 // One 1 x 4 row at 2 mm pitch centred on the field, played at the camera rate: display frame k
 // shows strain frame k. Each frame's neighbour differences are `scale * um_per_strain * pitch *
 // e_k`, so the imposed strain is scale * e_k.
-display::TactileMovie row_movie(double scale, double um_per_strain) {
-  display::TactileMovie movie;
+movie::TactileMovie row_movie(double scale, double um_per_strain) {
+  movie::TactileMovie movie;
   movie.layout = grid_layout(1, 4, 2.0, 1.0);
   movie.layout.deflection_min_um = -1000;
   movie.layout.deflection_max_um = 1000;
@@ -57,7 +57,7 @@ TEST(Fidelity, DoubledStrainCorrelatesFullyButErrsByTheSourceItself) {
 }
 
 TEST(Fidelity, SaturationSlewAndSmoothnessCountExactly) {
-  display::TactileMovie movie;
+  movie::TactileMovie movie;
   movie.layout = grid_layout(1, 2, 1.0, 1.0);  // range [-50, 50]
   movie.rate_hz = 100;
   movie.frame_count = 4;

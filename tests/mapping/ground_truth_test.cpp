@@ -9,9 +9,9 @@
 #include <iostream>
 #include <vector>
 
+#include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/synth.hpp"
 #include "tactile/mapping/fidelity.hpp"
-#include "tactile/mapping/ground_truth.hpp"
 #include "tactile/mapping/map.hpp"
 
 namespace tactile::mapping {
@@ -20,7 +20,7 @@ namespace {
 using capture::PointMm;
 
 capture::StrainMovie ground_truth_movie(const capture::SceneSpec& spec, double h_mm) {
-  return ground_truth_strain_movie(spec, h_mm);
+  return capture::ground_truth_strain_movie(spec, h_mm);
 }
 
 double correlation(const std::vector<double>& a, const std::vector<double>& b) {
@@ -40,7 +40,7 @@ TEST(GroundTruthBump, IntegratedReproducesTheSourceStrainAlongTheAxis) {
   capture::SceneSpec spec;  // the demo scene: bump 0.5 mm high, 3 mm wide, 2.4 mm/s, 60 Hz
   spec.frame_count = 60;    // one second is enough to cross the contactors and keeps this fast
   const auto movie = ground_truth_movie(spec, 0.3);
-  display::Layout layout;  // STReSS geometry, built here so this test needs no display code
+  movie::Layout layout;  // STReSS geometry, built here so this test needs no display code
   layout.name = "stress";
   layout.rows = 10;
   layout.cols = 10;
@@ -85,7 +85,7 @@ TEST(GroundTruthBump, ProportionalFollowsTheLocalSourceStrain) {
   capture::SceneSpec spec;
   spec.frame_count = 60;
   const auto movie = ground_truth_movie(spec, 0.3);
-  display::Layout layout;
+  movie::Layout layout;
   layout.name = "stress";
   layout.rows = 10;
   layout.cols = 10;
@@ -121,7 +121,7 @@ TEST(GroundTruthBump, AccumulatedAlongTracksReproducesTheStrainFromTheReferenceF
   capture::SceneSpec spec;
   spec.frame_count = 45;
   const auto movie = ground_truth_movie(spec, 0.3);
-  display::Layout layout;
+  movie::Layout layout;
   layout.name = "stress";
   layout.rows = 10;
   layout.cols = 10;

@@ -107,7 +107,7 @@ TEST(MapStrainMovie, ProportionalFollowsTheStrainAlongTheDeflectionAxis) {
   auto out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0), params);
   for (const float d : out.deflection_um) ASSERT_NEAR(d, 1000 * kA, tol_um);
 
-  out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0, display::DeflectionAxis::y), params);
+  out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0, movie::DeflectionAxis::y), params);
   for (const float d : out.deflection_um) ASSERT_NEAR(d, 1000 * kB, tol_um);
 
   // The grid turned a quarter: the layout's x axis now lies along the field's y.
@@ -196,7 +196,7 @@ TEST(MapStrainMovie, IntegratedReproducesTheExtensionBetweenContactors) {
     }
   }
   // Along y, the ramp runs down the columns.
-  out = map_strain_movie(uniform_movie(4), grid_layout(5, 8, 1.0, 1.2, display::DeflectionAxis::y),
+  out = map_strain_movie(uniform_movie(4), grid_layout(5, 8, 1.0, 1.2, movie::DeflectionAxis::y),
                          params);
   for (std::int32_t r = 0; r < 5; ++r) {
     EXPECT_NEAR(out.frame(3)[static_cast<std::size_t>(r * 8 + 5)], 1000 * kB * 1.2 * (r - 2), 0.2);
@@ -243,14 +243,14 @@ TEST(MapStrainMovie, IntegratedLeavesUnmeasuredContactorsNeutral) {
 TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
   const auto movie = bump_movie(MovingBump{}, 0.7);
   for (const char* name : {"stress", "stress2", "latero"}) {
-    const auto layout = display::layout_by_name(name);
+    const auto layout = movie::layout_by_name(name);
     for (const auto method : {MappingMethod::proportional, MappingMethod::integrated}) {
       MappingParams params;
       params.method = method;
       const auto out = map_strain_movie(movie, layout, params);
       EXPECT_EQ(out.layout.name, name);
       EXPECT_EQ(out.frame_count, kBumpDisplayFrames);
-      EXPECT_NO_THROW(display::validate(out)) << name << " " << to_string(method);
+      EXPECT_NO_THROW(movie::validate(out)) << name << " " << to_string(method);
       float peak = 0;
       for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
       EXPECT_GT(peak, 5.0f) << name << " " << to_string(method);

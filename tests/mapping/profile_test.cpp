@@ -71,7 +71,7 @@ TEST(Profile, HoleIsTheNegativeOfTheBumpAndFlatIsStill) {
 }
 
 TEST(Profile, AxisYUsesTheSlopeAcrossTheSlide) {
-  auto layout = testing::grid_layout(3, 1, 1.0, 1.5, display::DeflectionAxis::y);
+  auto layout = testing::grid_layout(3, 1, 1.0, 1.5, movie::DeflectionAxis::y);
   auto p = bump_at_origin();
   p.finger_x0_mm = 0;  // centred on the bump: along y the contactors sit at -1.5, 0, 1.5
   const auto d = profile_frame(p, layout, 0.0, 100.0);

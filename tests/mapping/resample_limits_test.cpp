@@ -42,8 +42,8 @@ TEST(Resample, SingleFrameAndErrors) {
   EXPECT_THROW(resample_linear(TimedFrames{{0.1, 0.2}, 1, {1}}, 700), std::invalid_argument);
 }
 
-display::TactileMovie constant_movie(std::int32_t frames, float value) {
-  display::TactileMovie movie;
+movie::TactileMovie constant_movie(std::int32_t frames, float value) {
+  movie::TactileMovie movie;
   movie.layout = testing::grid_layout(2, 2, 1, 1);
   movie.rate_hz = 700;
   movie.frame_count = frames;

@@ -47,7 +47,7 @@ capture::StrainMovie two_frames() {
 }
 
 TEST(StrainPanel, FramesStartAtTheFirstStrainFrameAndKeepEveryPointInView) {
-  const display::SideField f = strain_side_field(two_frames(), "strain: s.h5");
+  const movie::SideField f = strain_side_field(two_frames(), "strain: s.h5");
   EXPECT_EQ(f.title, "strain: s.h5");
   ASSERT_EQ(f.frames.size(), 2u);
   EXPECT_DOUBLE_EQ(f.frames[0].t_s, 0.0);
@@ -93,7 +93,7 @@ TEST(StrainPanel, SourceStrainIsTheExplicitOneElseTheProvenancesIfItIsAStrainMov
   capture::write_strain_movie(dir / "strain.h5", strain);
   std::ofstream(dir / "notes.h5") << "not HDF5";
 
-  display::TactileMovie movie;
+  movie::TactileMovie movie;
   const auto movie_path = dir / "movie.h5";
   EXPECT_EQ(find_source_strain(movie, movie_path, "/any/explicit.h5"),
             std::filesystem::path("/any/explicit.h5"));

@@ -76,9 +76,9 @@ void add_tracks(capture::StrainMovie& movie) {
                    [](const auto& a, const auto& b) { return a.track_id < b.track_id; });
 }
 
-display::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,
-                            double pitch_y_mm, display::DeflectionAxis axis) {
-  display::Layout layout;
+movie::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,
+                          double pitch_y_mm, movie::DeflectionAxis axis) {
+  movie::Layout layout;
   layout.name = "test";
   layout.rows = rows;
   layout.cols = cols;

@@ -7,7 +7,7 @@
 #include <functional>
 
 #include "tactile/capture/strain_movie.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping::testing {
 
@@ -37,8 +37,7 @@ capture::StrainMovie make_movie(const GridSpec& grid, const Displacement& displa
 void add_tracks(capture::StrainMovie& movie);
 
 // A layout built by hand, so these tests do not depend on display's built-in layouts.
-display::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,
-                            double pitch_y_mm,
-                            display::DeflectionAxis axis = display::DeflectionAxis::x);
+movie::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,
+                          double pitch_y_mm, movie::DeflectionAxis axis = movie::DeflectionAxis::x);
 
 }  // namespace tactile::mapping::testing

@@ -14,9 +14,9 @@ namespace {
 using ::testing::HasSubstr;
 
 // A 2 x 12 layout at 700 Hz: columns 0-1 cluster 0, 2-3 cluster 1, ... 10-11 cluster 5.
-display::TactileMovie movie_2x12(std::int32_t frames) {
-  display::TactileMovie m;
-  m.layout = display::stress_layout();
+movie::TactileMovie movie_2x12(std::int32_t frames) {
+  movie::TactileMovie m;
+  m.layout = movie::stress_layout();
   m.layout.name = "test";
   m.layout.rows = 2;
   m.layout.cols = 12;
@@ -29,7 +29,7 @@ display::TactileMovie movie_2x12(std::int32_t frames) {
 }
 
 TEST(MovieSignals, ClustersSplitTheColumnsIntoSixBandsAlongX) {
-  auto layout = display::stress_layout();  // 10 columns
+  auto layout = movie::stress_layout();  // 10 columns
   const auto c = contactor_clusters(layout);
   ASSERT_EQ(c.size(), 100u);
   // floor(6 (col + 0.5) / 10): columns 0..9 -> 0 0 1 2 2 3 3 4 5 5, the same on every row.

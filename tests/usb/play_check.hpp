@@ -6,13 +6,14 @@
 
 #include <cstdio>
 
+#include "../movie/test_movies.hpp"
 #include "tactile/display/player.hpp"
-#include "test_movies.hpp"
 
 namespace tactile::display::testing {
 
 inline PlaybackReport play_and_check(Transport& transport) {
-  const TactileMovie movie = sine_movie(stress_layout(), 700, 140, 20);
+  const movie::TactileMovie movie =
+      movie::testing::sine_movie(movie::stress_layout(), 700, 140, 20);
   const PlaybackReport r = play_movie(movie, transport);
   std::printf("%s", format_playback_report(r).c_str());
   EXPECT_EQ(r.frames_played, r.frames_sent);

@@ -5,11 +5,13 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(tactile_modules common capture display mapping perception experiments)
+set(tactile_modules common movie capture display mapping perception experiments)
 foreach(module ${tactile_modules})
   set_target_properties(tactile_${module} PROPERTIES EXPORT_NAME ${module})
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
+set_target_properties(tactile_chart PROPERTIES EXPORT_NAME chart)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/common/chart/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 set_target_properties(tactile_firmware PROPERTIES EXPORT_NAME firmware)
 set_target_properties(tactile_hdf5 PROPERTIES EXPORT_NAME hdf5)
 set_target_properties(tactile_warnings PROPERTIES EXPORT_NAME warnings)
@@ -20,7 +22,7 @@ target_include_directories(tactile_common PUBLIC $<INSTALL_INTERFACE:${CMAKE_INS
 
 # tactile_warnings travels only as a link-time name of the static libraries (it adds no flags
 # to a consumer's own code).
-install(TARGETS tactile_common tactile_capture tactile_display tactile_mapping tactile_perception
+install(TARGETS tactile_common tactile_chart tactile_movie tactile_capture tactile_display tactile_mapping tactile_perception
                 tactile_experiments tactile_firmware tactile_hdf5 tactile_warnings
         EXPORT tactileTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -11,11 +11,11 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain.hpp"
-#include "tactile/display/tactile_movie.hpp"
-#include "tactile/mapping/ground_truth.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/mapping/profile.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::cli {
 
@@ -44,7 +44,7 @@ void add_bench_map(CLI::App& bench, Action& action) {
     action = [opt] {
       capture::SceneSpec spec;
       spec.frame_count = opt->frames + 1;
-      auto movie = mapping::ground_truth_strain_movie(spec, opt->spacing_mm);
+      auto movie = capture::ground_truth_strain_movie(spec, opt->spacing_mm);
       // Measured movies come Delaunay-triangulated with an edge list; make this one alike.
       std::size_t points = 0;
       for (auto& f : movie.frames) {
@@ -53,7 +53,7 @@ void add_bench_map(CLI::App& bench, Action& action) {
         capture::triangulate_strain(f.points_from, f.points_to, 3.0, f.edges, f.triangles);
         points += f.points_from.size();
       }
-      const auto layout = display::stress_layout();
+      const auto layout = movie::stress_layout();
       fmt::print(
           "bench map: {} strain frames, {:.0f} landmarks and {:.0f} triangles per frame on "
           "average -> {} {}x{} at 700 Hz; {} hardware threads\n",

@@ -30,8 +30,8 @@ double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-display::Layout square_layout(int side, double max_rate_hz) {
-  display::Layout l = display::stress_layout();
+movie::Layout square_layout(int side, double max_rate_hz) {
+  movie::Layout l = movie::stress_layout();
   l.name = fmt::format("{}x{}", side, side);
   l.rows = side;
   l.cols = side;
@@ -66,7 +66,7 @@ struct Throughput {
 
 // Pushes `frames` through a simulated-clock device as fast as the host can: fill the FIFO,
 // let one tick pass, repeat. The wall-clock rate is the highest the host path sustains.
-Throughput throughput(const display::Layout& layout, int frames) {
+Throughput throughput(const movie::Layout& layout, int frames) {
   Throughput out;
   const Patterns pattern(layout.contactor_count());
   double t0 = cpu_seconds();
@@ -105,7 +105,7 @@ struct Pacing {
 
 // Real-time device at `rate_hz`, the host keeping its FIFO about half full from the status
 // reports: the spread of submission times is what the player sees on a live device.
-Pacing paced(const display::Layout& layout, double rate_hz, double seconds) {
+Pacing paced(const movie::Layout& layout, double rate_hz, double seconds) {
   display::EmulatedDeviceOptions options;
   options.layout = layout;
   options.clock = display::EmulatedClock::real_time;

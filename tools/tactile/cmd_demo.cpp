@@ -18,8 +18,8 @@
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/version.hpp"
-#include "tactile/display/movie_io.hpp"
 #include "tactile/mapping/map.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -62,7 +62,7 @@ class StageTimer {
 };
 
 int run_demo(DemoOptions& opt) {
-  const display::Layout layout = display::layout_by_name(opt.layout);
+  const movie::Layout layout = movie::layout_by_name(opt.layout);
   opt.mapping.rate_hz = layout.max_rate_hz;  // each layout at its own rate, as `tactile map`
   capture::validate(opt.scene);
   mapping::validate(opt.mapping, layout);
@@ -114,7 +114,7 @@ int run_demo(DemoOptions& opt) {
   }
 
   opt.mapping.program_version = kVersion;
-  display::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt.mapping);
+  movie::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt.mapping);
   movie.provenance.source = strain_path.string();
   movie.provenance.created_utc = h5::utc_now_iso8601();
   timer.report(
@@ -122,8 +122,8 @@ int run_demo(DemoOptions& opt) {
       fmt::format("{} frames of {} x {} ({}) at {:g} Hz, {}", movie.frame_count, layout.rows,
                   layout.cols, layout.name, movie.rate_hz, to_string(opt.mapping.method)));
   const fs::path movie_path = opt.out / "movie.h5";
-  display::write_tactile_movie(movie_path, movie);
-  if (opt.keep) display::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);
+  movie::write_tactile_movie(movie_path, movie);
+  if (opt.keep) movie::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);
 
   fmt::print("  5 play\n");
   PlayChoice choice;

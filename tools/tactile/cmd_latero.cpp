@@ -28,9 +28,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A movie for another layout cannot play on the Latero's 8 x 8 blades; say what would.
-void check_latero_movie(const display::TactileMovie& movie) {
-  const display::Layout latero = display::latero_layout();
-  const display::Layout& m = movie.layout;
+void check_latero_movie(const movie::TactileMovie& movie) {
+  const movie::Layout latero = movie::latero_layout();
+  const movie::Layout& m = movie.layout;
   if (m.rows != latero.rows || m.cols != latero.cols ||
       std::abs(m.pitch_x_mm - latero.pitch_x_mm) > 1e-6 ||
       std::abs(m.pitch_y_mm - latero.pitch_y_mm) > 1e-6) {
@@ -95,7 +95,7 @@ void show_live(display::LateroEmulator& emulator, const display::LateroBladeMapp
                     mapping.full_scale_um));
     return f;
   };
-  display::run_live_viewer(display::latero_layout(), next);
+  display::run_live_viewer(movie::latero_layout(), next);
 }
 
 }  // namespace
@@ -141,7 +141,7 @@ void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& m
       ->capture_default_str();
 }
 
-int play_on_latero(const display::TactileMovie& movie, const LateroPlayOptions& o, int loops) {
+int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& o, int loops) {
   check_latero_movie(movie);
   display::LateroTransportOptions transport;
   transport.mapping = o.mapping;
@@ -268,8 +268,8 @@ void add_bench_latero(CLI::App& bench, Action& action) {
       e.drop_every_nth_reply = opt->drop_every;
       display::LateroEmulator emulator(e);
 
-      display::TactileMovie movie;
-      movie.layout = display::latero_layout();
+      movie::TactileMovie movie;
+      movie.layout = movie::latero_layout();
       movie.rate_hz = opt->rate_hz;
       movie.frame_count = static_cast<std::int32_t>(std::lround(opt->seconds * opt->rate_hz));
       movie.deflection_um.resize(static_cast<std::size_t>(movie.frame_count) * 64);

@@ -14,9 +14,9 @@
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
-#include "tactile/display/layout_json.hpp"
-#include "tactile/display/movie_io.hpp"
 #include "tactile/mapping/map.hpp"
+#include "tactile/movie/layout_json.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -71,25 +71,25 @@ void add_map(CLI::App& app, Action& action) {
       std::vector<Output> outputs = {output_file("--out", opt->out)};
       if (opt->csv) outputs.push_back(output_file("--csv", *opt->csv));
       refuse_output_over_input(outputs, inputs);
-      const display::Layout layout = display::resolve_layout(opt->layout);
+      const movie::Layout layout = movie::resolve_layout(opt->layout);
       if (!rate_given) opt->params.rate_hz = layout.max_rate_hz;
       mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
       const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);
       const auto t0 = std::chrono::steady_clock::now();
       opt->params.program_version = kVersion;
-      display::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt->params);
+      movie::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt->params);
       const double ms =
           1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       movie.provenance.source = opt->strain.string();
       movie.provenance.created_utc = h5::utc_now_iso8601();
-      display::write_tactile_movie(opt->out, movie);
+      movie::write_tactile_movie(opt->out, movie);
       fmt::print(
           "map: {} strain frames -> {} frames of {} x {} at {:g} Hz ({:.2f} s) in {:.1f} ms -> "
           "{}\n",
           strain.frames.size(), movie.frame_count, layout.rows, layout.cols, movie.rate_hz,
           movie.duration_s(), ms, opt->out.string());
       if (opt->csv) {
-        display::export_tactile_csv(*opt->csv, movie);
+        movie::export_tactile_csv(*opt->csv, movie);
         fmt::print("map: wrote {}\n", opt->csv->string());
       }
       return 0;

@@ -13,11 +13,11 @@
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/display/devices.hpp"
-#include "tactile/display/movie_io.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
 #include "tactile/display/viewer.hpp"
 #include "tactile/mapping/strain_panel.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -50,7 +50,7 @@ void add_play(CLI::App& app, Action& action) {
       // that writes the preview) is decided only while playing.
       refuse_output_over_input({output_file("--preview", opt->choice.preview_png)},
                                {{"MOVIE_H5", opt->movie}});
-      const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
       if (!opt->latero.address.empty()) {
         return play_on_latero(movie, opt->latero, opt->choice.loops);
       }
@@ -91,7 +91,7 @@ void add_view(CLI::App& app, Action& action) {
                   "Draw the window once (at --at), write it to this PNG and quit");
   sub->callback([opt, &action] {
     action = [opt] {
-      const display::TactileMovie movie = display::read_tactile_movie(opt->movie);
+      const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
       if (!opt->screenshot.empty()) {
         opt->viewer.visible = false;
         opt->viewer.start_paused = true;
@@ -185,7 +185,7 @@ void add_info(CLI::App& app, Action& action) {
             m.field_height_mm, m.calibration.method, m.source);
         return 0;
       }
-      const display::TactileMovie movie = display::read_tactile_movie(*file);
+      const movie::TactileMovie movie = movie::read_tactile_movie(*file);
       fmt::print("{}: tactile movie, {}\n", file->string(), movie.provenance.mapping_method);
       fmt::print("{}", display::format_summary(display::summarize(movie)));
       return 0;

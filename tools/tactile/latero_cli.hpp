@@ -7,7 +7,7 @@
 #include <string>
 
 #include "tactile/display/latero_protocol.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::cli {
 
@@ -25,7 +25,7 @@ void add_latero_play_options(CLI::App& play, LateroPlayOptions& options);
 void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& mapping);
 
 // Plays `movie` on the Latero at options.address and prints the link's figures.
-int play_on_latero(const display::TactileMovie& movie, const LateroPlayOptions& options, int loops);
+int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& options, int loops);
 
 // Probes the Latero at `address` and prints what it reports.
 int print_latero_device(const std::string& address);

@@ -19,13 +19,13 @@ void print_report(const display::PlaybackReport& r) {
   fmt::print("play: {}", display::playback_summary_line(r));
 }
 
-int play_headless(const display::TactileMovie& movie, const PlayChoice& choice) {
+int play_headless(const movie::TactileMovie& movie, const PlayChoice& choice) {
   display::EmulatedDeviceOptions device;
   device.layout = movie.layout;
   display::PlayOptions options;
   options.loops = choice.loops;
   display::PlaybackReport report;
-  const display::TactileMovie output =
+  const movie::TactileMovie output =
       display::render_through_device(movie, device, options, &report);
   print_report(report);
   display::write_preview_strip(choice.preview_png, output, display::PreviewOptions{});
@@ -35,7 +35,7 @@ int play_headless(const display::TactileMovie& movie, const PlayChoice& choice) 
   return 0;
 }
 
-int play_on_device(const display::TactileMovie& movie, const PlayChoice& choice,
+int play_on_device(const movie::TactileMovie& movie, const PlayChoice& choice,
                    const display::DeviceDescription& device) {
   fmt::print("play: streaming to {} {} ({} {})\n",
              device.product.empty() ? "display" : device.product, device.serial,
@@ -50,7 +50,7 @@ int play_on_device(const display::TactileMovie& movie, const PlayChoice& choice,
 
 }  // namespace
 
-int play_anywhere(const display::TactileMovie& movie, const PlayChoice& choice) {
+int play_anywhere(const movie::TactileMovie& movie, const PlayChoice& choice) {
   const auto devices =
       choice.headless ? std::vector<display::DeviceDescription>{} : display::list_usb_devices();
   const display::PlaybackPlan plan =

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::cli {
 
@@ -15,6 +15,6 @@ struct PlayChoice {
   int loops = 1;
 };
 
-int play_anywhere(const display::TactileMovie& movie, const PlayChoice& choice);
+int play_anywhere(const movie::TactileMovie& movie, const PlayChoice& choice);
 
 }  // namespace tactile::cli

@@ -14,7 +14,7 @@ namespace tactile::perception {
 using perception::kElectrodeClusterCount;
 using perception::kElectrodeCount;
 
-std::vector<int> contactor_clusters(const display::Layout& layout) {
+std::vector<int> contactor_clusters(const movie::Layout& layout) {
   if (layout.cols < kElectrodeClusterCount)
     throw std::invalid_argument(
         fmt::format("movie signals: layout '{}' has {} columns, fewer than the {} clusters",
@@ -28,9 +28,9 @@ std::vector<int> contactor_clusters(const display::Layout& layout) {
   return clusters;
 }
 
-perception::SensorRecording movie_signals(const display::TactileMovie& movie,
+perception::SensorRecording movie_signals(const movie::TactileMovie& movie,
                                           const std::string& source) {
-  display::validate(movie);
+  movie::validate(movie);
   const auto clusters = contactor_clusters(movie.layout);
   perception::SensorRecording r;
   r.source = source;

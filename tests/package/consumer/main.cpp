@@ -6,9 +6,9 @@
 
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/version.hpp"
-#include "tactile/display/layout_json.hpp"
-#include "tactile/display/movie_io.hpp"
 #include "tactile/mapping/map.hpp"
+#include "tactile/movie/layout_json.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -17,11 +17,11 @@ int main(int argc, char** argv) {
   }
   try {
     const auto strain = tactile::capture::read_strain_movie(argv[1]);
-    const auto layout = tactile::display::resolve_layout("stress");
+    const auto layout = tactile::movie::resolve_layout("stress");
     tactile::mapping::MappingParams params;
     const auto movie = tactile::mapping::map_strain_movie(strain, layout, params);
-    tactile::display::write_tactile_movie(argv[2], movie);
-    const auto back = tactile::display::read_tactile_movie(argv[2]);
+    tactile::movie::write_tactile_movie(argv[2], movie);
+    const auto back = tactile::movie::read_tactile_movie(argv[2]);
     std::printf("tactile %s: %zu strain frames -> %d movie frames at %g Hz\n", tactile::kVersion,
                 strain.frames.size(), back.frame_count, back.rate_hz);
     return back.frame_count == movie.frame_count && back.frame_count > 0 ? 0 : 1;

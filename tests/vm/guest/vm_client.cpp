@@ -141,8 +141,9 @@ int enumerate() {
 }
 
 // A movie of the device's geometry: every contactor on a slow sine of its own phase.
-td::TactileMovie make_movie(const td::DeviceInfo& info, double rate_hz, double seconds) {
-  td::TactileMovie movie;
+tactile::movie::TactileMovie make_movie(const td::DeviceInfo& info, double rate_hz,
+                                        double seconds) {
+  tactile::movie::TactileMovie movie;
   movie.layout = info.layout;
   movie.rate_hz = rate_hz;
   movie.frame_count = static_cast<std::int32_t>(std::lround(rate_hz * seconds));
@@ -260,7 +261,7 @@ int play(const std::string& backend, double rate_hz, double seconds, double wait
     const td::DeviceDescription dev = find_backend(backend);
     auto transport = td::open_usb_transport(dev);
     const td::DeviceInfo info = transport->info();
-    const td::TactileMovie movie = make_movie(info, rate_hz, seconds);
+    const tactile::movie::TactileMovie movie = make_movie(info, rate_hz, seconds);
     std::printf("VM: playing backend=%s path=%s rate=%g frames=%d at_s=%.3f\n", backend.c_str(),
                 dev.path.c_str(), rate_hz, movie.frame_count, uptime_s());
     std::fflush(stdout);

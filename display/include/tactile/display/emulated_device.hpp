@@ -10,21 +10,17 @@
 #include <span>
 #include <vector>
 
-#include "tactile/display/tactile_movie.hpp"
 #include "tactile/display/transport.hpp"
+#include "tactile/movie/limits.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::display {
 
 enum class EmulatedClock { simulated, real_time };
 
-// The firmware's default slew limit, and so the one mappings apply (mapping/limits.hpp refers
-// here). Assumption: 20 mm/s lets a contactor cross the whole +-50 um STReSS range in 5 ms, fast
-// enough for any strain-derived movie yet a real limit on step inputs.
-inline constexpr double kDefaultMaxSlewUmPerS = 20000.0;
-
 struct EmulatedDeviceOptions {
-  Layout layout = stress_layout();
-  double max_slew_um_per_s = kDefaultMaxSlewUmPerS;
+  movie::Layout layout = movie::stress_layout();
+  double max_slew_um_per_s = movie::kDefaultSlewLimitUmPerS;
   double watchdog_timeout_s = 0.005;
   EmulatedClock clock = EmulatedClock::simulated;
   bool record_outputs = true;
@@ -62,7 +58,7 @@ class EmulatedDevice final : public Transport {
   double now_s() const;
   // Outputs recorded since the last start(): one frame of rows x cols deflections (um) per
   // tick, row-major, at the rate given to start().
-  TactileMovie recording() const;
+  movie::TactileMovie recording() const;
   std::int64_t recorded_ticks() const;
   // The firmware's state after each recorded tick (same ticks as recording()).
   std::vector<DeviceTick> recorded_states() const;

@@ -29,7 +29,7 @@ struct LateroAddress {
 LateroAddress parse_latero_address(const std::string& text);
 
 struct LateroTransportOptions {
-  Layout layout = latero_layout();
+  movie::Layout layout = movie::latero_layout();
   LateroBladeMapping mapping;
   // A reply later than this after its request counts as missed (OpenLatero waits 5 ms).
   std::chrono::milliseconds reply_timeout{5};

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "tactile/display/emulated_device.hpp"
-#include "tactile/display/tactile_movie.hpp"
 #include "tactile/display/transport.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::display {
 
@@ -47,13 +47,13 @@ struct PlaybackReport {
 // Throws std::invalid_argument naming the first reason the movie cannot play on the device:
 // grid size or pitch differs, rate above the device maximum or not a whole number of hertz,
 // deflections outside the device range (unless allowed), movie invalid.
-void check_movie_against_device(const TactileMovie& movie, const DeviceInfo& device,
+void check_movie_against_device(const movie::TactileMovie& movie, const DeviceInfo& device,
                                 const PlayOptions& options = {});
 
 // Checks, starts the device at the movie's rate, streams ramp-in, the movie (loops times) and
 // ramp-out (last frame marked end-of-stream), waits for the FIFO to drain, stops the device
 // and reports the device's counters. Throws TransportError when the link fails or stalls.
-PlaybackReport play_movie(const TactileMovie& movie, Transport& transport,
+PlaybackReport play_movie(const movie::TactileMovie& movie, Transport& transport,
                           const PlayOptions& options = {});
 
 // Several lines of text for people: frames sent/played, underruns, malformed, clamped, times.
@@ -62,9 +62,10 @@ std::string format_playback_report(const PlaybackReport& report);
 // Plays the movie into a simulated-clock emulated device and returns what the firmware output
 // (ramps included): what the viewer shows. `device.clock` is forced to simulated. `states`,
 // when given, receives the firmware's state after each output frame.
-TactileMovie render_through_device(const TactileMovie& movie, EmulatedDeviceOptions device,
-                                   const PlayOptions& options = {},
-                                   PlaybackReport* report = nullptr,
-                                   std::vector<DeviceTick>* states = nullptr);
+movie::TactileMovie render_through_device(const movie::TactileMovie& movie,
+                                          EmulatedDeviceOptions device,
+                                          const PlayOptions& options = {},
+                                          PlaybackReport* report = nullptr,
+                                          std::vector<DeviceTick>* states = nullptr);
 
 }  // namespace tactile::display

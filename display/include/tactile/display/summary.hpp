@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::display {
 
@@ -27,10 +27,10 @@ struct MovieSummary {
 };
 
 // RMS deflection over the contactors of each frame.
-std::vector<double> frame_rms_um(const TactileMovie& movie);
+std::vector<double> frame_rms_um(const movie::TactileMovie& movie);
 
 // Throws std::invalid_argument for an invalid movie (see validate()).
-MovieSummary summarize(const TactileMovie& movie);
+MovieSummary summarize(const movie::TactileMovie& movie);
 
 // Several lines of human-readable text, ending in a newline.
 std::string format_summary(const MovieSummary& summary);

@@ -12,7 +12,7 @@
 #include <string_view>
 
 #include "tactile/common/names.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::display {
 
@@ -46,7 +46,7 @@ struct DeviceInfo {
   std::uint32_t protocol_version = 0;
   // Geometry; deflection_min/max_um are the firmware's clamp limits, max_rate_hz its fastest
   // playout rate.
-  Layout layout;
+  movie::Layout layout;
   double max_slew_um_per_s = 0;
   double watchdog_timeout_s = 0;
   std::uint32_t fifo_capacity_frames = 0;

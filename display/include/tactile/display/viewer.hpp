@@ -21,8 +21,8 @@
 
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/player.hpp"
-#include "tactile/display/side_field.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/side_field.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::display {
 
@@ -55,8 +55,9 @@ std::int32_t scrub_frame(const PixelRect& bar, double x_px, std::int32_t frame_c
 double scrub_handle_x(const PixelRect& bar, std::int32_t frame, std::int32_t frame_count);
 
 // fit_view() into a pane: the same transform, offset to the pane's corner.
-ViewTransform pane_view(const Layout& layout, double magnification, const PixelRect& pane);
-ViewTransform pane_field_view(const SideField& field, const PixelRect& pane);
+movie::ViewTransform pane_view(const movie::Layout& layout, double magnification,
+                               const PixelRect& pane);
+movie::ViewTransform pane_field_view(const movie::SideField& field, const PixelRect& pane);
 
 // A pointer state fed to the viewer instead of the real mouse from drawn frame `at_frame` on
 // (tests and recordings drive the scrub bar with these, through the same code as the mouse).
@@ -78,14 +79,14 @@ struct ViewerOptions {
   int width_px = 800;  // doubled when a field is shown beside the array
   int height_px = 800;
   bool visible = true;
-  double magnification = 0;  // 0 = auto_magnification(layout)
+  double magnification = 0;  // 0 = movie::auto_magnification(layout)
   // For tests and recordings: advance exactly one movie frame per drawn window frame instead
   // of following the wall clock, and close after this many drawn frames (-1 = run until the
   // user closes the window).
   bool fixed_step = false;
   std::int64_t exit_after_frames = -1;
   std::vector<PointerEvent> scripted_pointer;  // in drawn-frame order; empty = the real mouse
-  std::optional<SideField> field;              // drawn beside the array, synchronised in time
+  std::optional<movie::SideField> field;       // drawn beside the array, synchronised in time
 };
 
 struct RenderedImage {
@@ -120,7 +121,7 @@ bool screen_available();
 // Opens the window and plays until closed (or exit_after_frames). Throws std::runtime_error
 // naming the GLFW error when no window can be opened, std::invalid_argument for a movie the
 // emulated device cannot play or an invalid side field.
-ViewerResult run_viewer(const TactileMovie& movie, const ViewerOptions& options = {});
+ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& options = {});
 
 // A live source instead of a movie (e.g. an emulated device on the network): what to show now.
 struct LiveFrame {
@@ -132,7 +133,7 @@ struct LiveViewerOptions {
   int width_px = 800;
   int height_px = 800;
   bool visible = true;
-  double magnification = 0;             // 0 = auto_magnification(layout)
+  double magnification = 0;             // 0 = movie::auto_magnification(layout)
   std::int64_t exit_after_frames = -1;  // for tests: close after this many drawn frames
 };
 
@@ -140,7 +141,7 @@ struct LiveViewerOptions {
 // refresh rate), until the window is closed, `next` returns nothing, or exit_after_frames.
 // Throws std::runtime_error when no window can be opened, std::invalid_argument for a frame
 // of the wrong size.
-ViewerResult run_live_viewer(const Layout& layout,
+ViewerResult run_live_viewer(const movie::Layout& layout,
                              const std::function<std::optional<LiveFrame>()>& next,
                              const LiveViewerOptions& options = {});
 

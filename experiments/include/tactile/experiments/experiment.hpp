@@ -15,9 +15,9 @@
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
-#include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/fidelity.hpp"
 #include "tactile/mapping/map.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 #include "tactile/perception/report.hpp"
 
 namespace tactile::experiments {
@@ -68,7 +68,7 @@ struct Experiment {
   std::string origin;  // the file it came from
   bool write_movies = true;
   std::vector<ExperimentSource> sources;
-  std::vector<display::Layout> layouts;
+  std::vector<movie::Layout> layouts;
   std::vector<std::filesystem::path> layout_files;  // the layouts read from files
   std::vector<ExperimentRun> runs;
   std::optional<ExperimentPerception> perception;

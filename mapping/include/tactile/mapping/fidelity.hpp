@@ -13,9 +13,9 @@
 #include <cstdint>
 
 #include "tactile/capture/strain_movie.hpp"
-#include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/placement.hpp"
 #include "tactile/mapping/strain_field.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
@@ -38,7 +38,7 @@ struct FidelityMetrics {
 };
 
 // Throws std::invalid_argument for um_per_strain <= 0 or an inconsistent movie.
-FidelityMetrics fidelity(const display::TactileMovie& movie, const capture::StrainMovie& source,
+FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::StrainMovie& source,
                          const Placement& placement, double um_per_strain,
                          double slew_limit_um_per_s, const StrainFieldOptions& field = {});
 

@@ -18,12 +18,12 @@
 
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/common/names.hpp"
-#include "tactile/display/tactile_movie.hpp"
 #include "tactile/mapping/accumulate.hpp"
 #include "tactile/mapping/limits.hpp"
 #include "tactile/mapping/placement.hpp"
 #include "tactile/mapping/profile.hpp"
 #include "tactile/mapping/strain_field.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
@@ -82,7 +82,7 @@ struct MappingParams {
   AccumulateOptions accumulate;
   // Where the contactor grid sits on the field; unset = default_placement(movie).
   std::optional<Placement> placement;
-  double slew_limit_um_per_s = kDefaultSlewLimitUmPerS;
+  double slew_limit_um_per_s = movie::kDefaultSlewLimitUmPerS;
   StrainFieldOptions field;
   // Recorded in the provenance; empty = this library's version.
   std::string program_version;
@@ -91,7 +91,7 @@ struct MappingParams {
 // Checks the parameters against the layout before any work: non-positive or non-finite gain, rate,
 // slew limit or scale, peak_fraction outside (0, 1], rate above layout.max_rate_hz, a layout
 // without contactors. Throws std::invalid_argument naming the problem.
-void validate(const MappingParams& params, const display::Layout& layout);
+void validate(const MappingParams& params, const movie::Layout& layout);
 
 // The parameters as a JSON object (stored in Provenance::mapping_parameters_json). The placement
 // written is the one actually used; normalisation_factor is the factor "peak" or "p99" applied
@@ -100,7 +100,7 @@ std::string parameters_json(const MappingParams& params, const Placement& placem
                             double normalisation_factor = 1.0);
 
 struct MappingResult {
-  display::TactileMovie movie;
+  movie::TactileMovie movie;
   Placement placement;              // the one used (params.placement or the default)
   double normalisation_factor = 1;  // applied by "peak" / "p99"; 1 for "none"
   // Deflection difference per unit strain per mm of pitch actually used by "integrated", and
@@ -114,14 +114,14 @@ capture::StrainMovie strain_source(const capture::StrainMovie& movie, const Mapp
 
 // Maps the StrainFrames of `source` as they are (params.strain is only recorded: pass the
 // movie strain_source() returned), and says what placement and scale it used.
-MappingResult map_strain_frames(const capture::StrainMovie& source, const display::Layout& layout,
+MappingResult map_strain_frames(const capture::StrainMovie& source, const movie::Layout& layout,
                                 const MappingParams& params);
 
 // Maps the strain movie onto the layout: map_strain_frames(strain_source(movie, params), ...).
 // Throws std::invalid_argument for bad parameters (see validate), an empty strain movie, or strain
 // frame times that do not increase. Provenance gets method, parameters, source and program version;
 // created_utc is left to the caller.
-display::TactileMovie map_strain_movie(const capture::StrainMovie& movie,
-                                       const display::Layout& layout, const MappingParams& params);
+movie::TactileMovie map_strain_movie(const capture::StrainMovie& movie, const movie::Layout& layout,
+                                     const MappingParams& params);
 
 }  // namespace tactile::mapping

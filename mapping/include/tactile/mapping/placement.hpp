@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
@@ -32,11 +32,11 @@ Placement default_placement(const capture::StrainMovie& movie);
 // Field position of contactor (row, col). The grid centre is the midpoint between the corner
 // contactors; contactor (r, c) sits at ((c - (cols - 1) / 2) * pitch_x, (r - (rows - 1) / 2) *
 // pitch_y) from it, scaled and rotated.
-capture::PointMm contactor_position_mm(const display::Layout& layout, const Placement& placement,
+capture::PointMm contactor_position_mm(const movie::Layout& layout, const Placement& placement,
                                        std::int32_t row, std::int32_t col);
 
 // The same for every contactor, row-major.
-std::vector<capture::PointMm> contactor_positions_mm(const display::Layout& layout,
+std::vector<capture::PointMm> contactor_positions_mm(const movie::Layout& layout,
                                                      const Placement& placement);
 
 }  // namespace tactile::mapping

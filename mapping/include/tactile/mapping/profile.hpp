@@ -17,7 +17,7 @@
 
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/names.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
@@ -56,7 +56,7 @@ capture::PointMm profile_gradient(const SurfaceProfile& profile, double x_mm, do
 
 // One frame at time t_s, row-major, before normalisation and limits. Throws
 // std::invalid_argument for a non-positive width.
-std::vector<double> profile_frame(const SurfaceProfile& profile, const display::Layout& layout,
+std::vector<double> profile_frame(const SurfaceProfile& profile, const movie::Layout& layout,
                                   double t_s, double gain_um_per_slope);
 
 }  // namespace tactile::mapping

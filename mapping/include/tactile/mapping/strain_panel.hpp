@@ -8,8 +8,8 @@
 #include <string>
 
 #include "tactile/capture/strain_movie.hpp"
-#include "tactile/display/side_field.hpp"
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/side_field.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping {
 
@@ -18,12 +18,12 @@ namespace tactile::mapping {
 // frame's (the tactile movie's time 0, as mapping::resample starts there). Full scale as in
 // capture's strain maps (99th percentile of |rel_change|). Throws std::invalid_argument for a
 // strain movie without frames or edges, or with an edge naming a point the frame lacks.
-display::SideField strain_side_field(const capture::StrainMovie& strain, const std::string& title);
+movie::SideField strain_side_field(const capture::StrainMovie& strain, const std::string& title);
 
 // The strain movie to show beside `movie`: `explicit_path` when given (it must be a readable
 // strain movie), else the movie's provenance source when that names an existing strain movie
 // file (as given, then beside the movie file); nothing otherwise.
-std::optional<std::filesystem::path> find_source_strain(const display::TactileMovie& movie,
+std::optional<std::filesystem::path> find_source_strain(const movie::TactileMovie& movie,
                                                         const std::filesystem::path& movie_path,
                                                         const std::filesystem::path& explicit_path);
 

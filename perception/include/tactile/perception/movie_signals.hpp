@@ -17,18 +17,18 @@
 #include <string>
 #include <vector>
 
-#include "tactile/display/tactile_movie.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 #include "tactile/perception/features.hpp"
 #include "tactile/perception/recording.hpp"
 
 namespace tactile::perception {
 
 // Cluster (0 = proximal .. 5 = distal) of every contactor, row-major.
-std::vector<int> contactor_clusters(const display::Layout& layout);
+std::vector<int> contactor_clusters(const movie::Layout& layout);
 
-// Throws std::invalid_argument for an invalid movie (display::validate), fewer than 6 columns or
+// Throws std::invalid_argument for an invalid movie (movie::validate), fewer than 6 columns or
 // a movie shorter than one 100 Hz row.
-perception::SensorRecording movie_signals(const display::TactileMovie& movie,
+perception::SensorRecording movie_signals(const movie::TactileMovie& movie,
                                           const std::string& source);
 
 // Contact options for movie signals: the baseline (free air) is exactly 0, so contact is where

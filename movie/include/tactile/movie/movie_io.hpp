@@ -1,0 +1,28 @@
+#pragma once
+// Tactile movie files: HDF5 (the format users keep, schema in display/FORMAT.md) and CSV export.
+
+#include <filesystem>
+
+#include "tactile/movie/tactile_movie.hpp"
+
+namespace tactile::movie {
+
+// Version of the HDF5 schema written by write_tactile_movie (root attribute format_version).
+inline constexpr int kTactileMovieFormatVersion = 1;
+
+// Writes `movie` as HDF5, atomically (an existing file is replaced only on success).
+// Throws std::invalid_argument if the movie is inconsistent (see validate()), and
+// std::runtime_error if the file cannot be written.
+void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie);
+
+// Reads a movie written by write_tactile_movie. Throws tactile::FormatError naming the file and
+// the problem: missing, empty, truncated or not HDF5; wrong format attribute or version;
+// missing attribute or dataset; wrong dataset type or rank; sizes that disagree with the
+// layout; non-finite deflections.
+TactileMovie read_tactile_movie(const std::filesystem::path& path);
+
+// Exports one row per frame: `frame,t_s,r0c0_um,r0c1_um,...` (row-major contactor order,
+// t_s = frame / rate_hz). Throws std::runtime_error if the file cannot be written.
+void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovie& movie);
+
+}  // namespace tactile::movie

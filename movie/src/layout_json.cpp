@@ -1,0 +1,152 @@
+// Custom layouts from JSON: a strict reader (every field required, nothing unknown accepted).
+
+#include "tactile/movie/layout_json.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "tactile/common/error.hpp"
+#include "tactile/common/json.hpp"
+
+namespace tactile::movie {
+namespace {
+
+using nlohmann::json;
+
+const json& field(const json& j, const char* name, const std::string& where) {
+  return json_required(JsonOrigin{where}, j, name, "");
+}
+
+double number(const json& v, const std::string& what, const std::string& where) {
+  return json_number(JsonOrigin{where}, v, what);
+}
+
+double positive(const json& v, const std::string& what, const std::string& where) {
+  const double x = number(v, what, where);
+  if (!(x > 0)) throw FormatError(fmt::format("{}: '{}' must be positive, got {}", where, what, x));
+  return x;
+}
+
+std::int32_t count(const json& v, const char* what, const std::string& where) {
+  const auto n = json_integer(JsonOrigin{where}, v, what);
+  // 256 x 256 is far beyond any pin array built; it also keeps rows * cols in range.
+  if (n < 1 || n > 256) {
+    throw FormatError(
+        fmt::format("{}: '{}' = {} leaves the grid empty or absurd (1..256)", where, what, n));
+  }
+  return static_cast<std::int32_t>(n);
+}
+
+std::pair<double, double> pair_of(const json& v, const char* what, const std::string& where) {
+  if (!v.is_array() || v.size() != 2) {
+    throw FormatError(
+        fmt::format("{}: '{}' must be an array of two numbers, got {}", where, what, v.dump()));
+  }
+  return {number(v[0], fmt::format("{}[0]", what), where),
+          number(v[1], fmt::format("{}[1]", what), where)};
+}
+
+}  // namespace
+
+Layout parse_layout_json(const std::string& text, const std::string& where) {
+  const json j = parse_json(JsonOrigin{where}, text);
+  if (!j.is_object()) throw FormatError(fmt::format("{}: a layout must be a JSON object", where));
+  static const std::set<std::string> known = {"name",
+                                              "rows",
+                                              "cols",
+                                              "pitch_mm",
+                                              "contactor_size_mm",
+                                              "deflection_axis",
+                                              "deflection_range_um",
+                                              "max_rate_hz"};
+  for (const auto& [key, value] : j.items()) {
+    if (!known.contains(key)) {
+      throw FormatError(fmt::format(
+          "{}: unknown field '{}' (known: name, rows, cols, pitch_mm, contactor_size_mm, "
+          "deflection_axis, deflection_range_um, max_rate_hz)",
+          where, key));
+    }
+  }
+  Layout l;
+  const auto& name = field(j, "name", where);
+  if (!name.is_string() || name.get<std::string>().empty()) {
+    throw FormatError(fmt::format("{}: 'name' must be a non-empty string", where));
+  }
+  l.name = name.get<std::string>();
+  l.rows = count(field(j, "rows", where), "rows", where);
+  l.cols = count(field(j, "cols", where), "cols", where);
+  const auto pitch = field(j, "pitch_mm", where);
+  pair_of(pitch, "pitch_mm", where);
+  l.pitch_x_mm = positive(pitch[0], "pitch_mm[0] (x)", where);
+  l.pitch_y_mm = positive(pitch[1], "pitch_mm[1] (y)", where);
+  const auto size = field(j, "contactor_size_mm", where);
+  pair_of(size, "contactor_size_mm", where);
+  l.contactor_width_mm = positive(size[0], "contactor_size_mm[0] (width)", where);
+  l.contactor_height_mm = positive(size[1], "contactor_size_mm[1] (height)", where);
+  // Contactors wider than their pitch would overlap their neighbours: a unit mix-up (um for mm).
+  if (l.contactor_width_mm > l.pitch_x_mm || l.contactor_height_mm > l.pitch_y_mm) {
+    throw FormatError(fmt::format(
+        "{}: contactor_size_mm [{}, {}] is larger than pitch_mm [{}, {}] (contactors would "
+        "overlap)",
+        where, l.contactor_width_mm, l.contactor_height_mm, l.pitch_x_mm, l.pitch_y_mm));
+  }
+  const auto& axis = field(j, "deflection_axis", where);
+  if (axis == "x") {
+    l.axis = DeflectionAxis::x;
+  } else if (axis == "y") {
+    l.axis = DeflectionAxis::y;
+  } else {
+    throw FormatError(
+        fmt::format("{}: 'deflection_axis' must be \"x\" or \"y\", got {}", where, axis.dump()));
+  }
+  const auto [lo, hi] =
+      pair_of(field(j, "deflection_range_um", where), "deflection_range_um", where);
+  if (!(lo < hi)) {
+    throw FormatError(fmt::format(
+        "{}: 'deflection_range_um' [{}, {}] is empty (min must be below max)", where, lo, hi));
+  }
+  // Neutral (0) is where the firmware parks contactors and where every movie starts.
+  if (!(lo <= 0 && hi >= 0)) {
+    throw FormatError(
+        fmt::format("{}: 'deflection_range_um' [{}, {}] does not contain 0 (the neutral position)",
+                    where, lo, hi));
+  }
+  l.deflection_min_um = lo;
+  l.deflection_max_um = hi;
+  l.max_rate_hz = positive(field(j, "max_rate_hz", where), "max_rate_hz", where);
+  return l;
+}
+
+Layout read_layout_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open layout file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_layout_json(text.str(), path.string());
+}
+
+std::string layout_to_json(const Layout& l) {
+  json j;
+  j["name"] = l.name;
+  j["rows"] = l.rows;
+  j["cols"] = l.cols;
+  j["pitch_mm"] = {l.pitch_x_mm, l.pitch_y_mm};
+  j["contactor_size_mm"] = {l.contactor_width_mm, l.contactor_height_mm};
+  j["deflection_axis"] = l.axis == DeflectionAxis::x ? "x" : "y";
+  j["deflection_range_um"] = {l.deflection_min_um, l.deflection_max_um};
+  j["max_rate_hz"] = l.max_rate_hz;
+  return j.dump(2);
+}
+
+Layout resolve_layout(const std::string& name_or_path) {
+  if (std::filesystem::path(name_or_path).extension() == ".json") {
+    return read_layout_json(name_or_path);
+  }
+  return layout_by_name(name_or_path);
+}
+
+}  // namespace tactile::movie

@@ -1,0 +1,165 @@
+// HDF5 reading/writing and CSV export of tactile movies; schema in display/FORMAT.md.
+#include "tactile/movie/movie_io.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "tactile/common/csv.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/common/h5.hpp"
+
+namespace tactile::movie {
+namespace {
+
+constexpr const char* kFormatName = "tactile-movie";
+constexpr const char* kDataset = "deflection_um";
+
+void write_layout(H5::H5File& file, const Layout& l) {
+  h5::write_attr(file, "layout_name", l.name);
+  h5::write_attr(file, "layout_rows", std::int64_t{l.rows});
+  h5::write_attr(file, "layout_cols", std::int64_t{l.cols});
+  h5::write_attr(file, "layout_pitch_x_mm", l.pitch_x_mm);
+  h5::write_attr(file, "layout_pitch_y_mm", l.pitch_y_mm);
+  h5::write_attr(file, "layout_contactor_width_mm", l.contactor_width_mm);
+  h5::write_attr(file, "layout_contactor_height_mm", l.contactor_height_mm);
+  h5::write_attr(file, "layout_axis", l.axis == DeflectionAxis::x ? "x" : "y");
+  h5::write_attr(file, "layout_deflection_min_um", l.deflection_min_um);
+  h5::write_attr(file, "layout_deflection_max_um", l.deflection_max_um);
+  h5::write_attr(file, "layout_max_rate_hz", l.max_rate_hz);
+}
+
+Layout read_layout(const H5::H5File& file, const std::string& where) {
+  Layout l;
+  l.name = h5::read_attr_string(file, "layout_name", where);
+  const auto rows = h5::read_attr_int(file, "layout_rows", where);
+  const auto cols = h5::read_attr_int(file, "layout_cols", where);
+  // Bounded so that rows * cols cannot overflow and a damaged header cannot ask for gigabytes.
+  if (rows <= 0 || cols <= 0 || rows > 4096 || cols > 4096) {
+    throw FormatError(fmt::format("{}: layout_rows x layout_cols = {} x {} is not a valid grid",
+                                  where, rows, cols));
+  }
+  l.rows = static_cast<std::int32_t>(rows);
+  l.cols = static_cast<std::int32_t>(cols);
+  l.pitch_x_mm = h5::read_attr_double(file, "layout_pitch_x_mm", where);
+  l.pitch_y_mm = h5::read_attr_double(file, "layout_pitch_y_mm", where);
+  l.contactor_width_mm = h5::read_attr_double(file, "layout_contactor_width_mm", where);
+  l.contactor_height_mm = h5::read_attr_double(file, "layout_contactor_height_mm", where);
+  const std::string axis = h5::read_attr_string(file, "layout_axis", where);
+  if (axis != "x" && axis != "y") {
+    throw FormatError(fmt::format("{}: layout_axis is '{}', expected 'x' or 'y'", where, axis));
+  }
+  l.axis = axis == "x" ? DeflectionAxis::x : DeflectionAxis::y;
+  l.deflection_min_um = h5::read_attr_double(file, "layout_deflection_min_um", where);
+  l.deflection_max_um = h5::read_attr_double(file, "layout_deflection_max_um", where);
+  l.max_rate_hz = h5::read_attr_double(file, "layout_max_rate_hz", where);
+  return l;
+}
+
+// Provenance is optional on reading: a movie made by another tool may lack it.
+std::string optional_string(const H5::H5File& file, const std::string& name,
+                            const std::string& where) {
+  return h5::has_attr(file, name) ? h5::read_attr_string(file, name, where) : std::string();
+}
+
+}  // namespace
+
+void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie) {
+  validate(movie);
+  h5::write_file_atomically(path, [&](H5::H5File& file) {
+    h5::write_attr(file, "format", kFormatName);
+    h5::write_attr(file, "format_version", std::int64_t{kTactileMovieFormatVersion});
+    h5::write_attr(file, "rate_hz", movie.rate_hz);
+    h5::write_attr(file, "frame_count", std::int64_t{movie.frame_count});
+    h5::write_attr(file, "units", "um");
+    write_layout(file, movie.layout);
+    const Provenance& p = movie.provenance;
+    h5::write_attr(file, "provenance_program_version", p.program_version);
+    h5::write_attr(file, "provenance_created_utc",
+                   p.created_utc.empty() ? h5::utc_now_iso8601() : p.created_utc);
+    h5::write_attr(file, "provenance_source", p.source);
+    h5::write_attr(file, "provenance_mapping_method", p.mapping_method);
+    h5::write_attr(file, "provenance_mapping_parameters_json", p.mapping_parameters_json);
+    h5::write_dataset(
+        file, kDataset, movie.deflection_um,
+        {static_cast<hsize_t>(movie.frame_count), static_cast<hsize_t>(movie.layout.rows),
+         static_cast<hsize_t>(movie.layout.cols)});
+  });
+}
+
+TactileMovie read_tactile_movie(const std::filesystem::path& path) {
+  H5::H5File file = h5::open_for_reading(path);
+  const std::string where = path.string();
+  if (!h5::has_attr(file, "format")) {
+    throw FormatError(fmt::format("{}: attribute 'format' is missing; not a tactile movie", where));
+  }
+  const std::string format = h5::read_attr_string(file, "format", where);
+  if (format != kFormatName) {
+    throw FormatError(fmt::format("{}: format is '{}', expected '{}'", where, format, kFormatName));
+  }
+  const auto version = h5::read_attr_int(file, "format_version", where);
+  if (version < 1 || version > kTactileMovieFormatVersion) {
+    throw FormatError(
+        fmt::format("{}: format_version {} is not supported (this program reads 1..{})", where,
+                    version, kTactileMovieFormatVersion));
+  }
+  const std::string units = h5::read_attr_string(file, "units", where);
+  if (units != "um") {
+    throw FormatError(fmt::format("{}: units is '{}', expected 'um'", where, units));
+  }
+
+  TactileMovie movie;
+  movie.rate_hz = h5::read_attr_double(file, "rate_hz", where);
+  if (!std::isfinite(movie.rate_hz) || movie.rate_hz <= 0) {
+    throw FormatError(fmt::format("{}: rate_hz {} must be positive", where, movie.rate_hz));
+  }
+  movie.layout = read_layout(file, where);
+  const auto frames = h5::read_attr_int(file, "frame_count", where);
+
+  std::vector<hsize_t> dims;
+  movie.deflection_um = h5::read_floats(file, kDataset, 3, dims, where);
+  if (dims[0] != static_cast<hsize_t>(frames)) {
+    throw FormatError(fmt::format("{}/{}: has {} frames but frame_count says {}", where, kDataset,
+                                  dims[0], frames));
+  }
+  if (dims[1] != static_cast<hsize_t>(movie.layout.rows) ||
+      dims[2] != static_cast<hsize_t>(movie.layout.cols)) {
+    throw FormatError(fmt::format("{}/{}: frames are {} x {} but the layout is {} x {}", where,
+                                  kDataset, dims[1], dims[2], movie.layout.rows,
+                                  movie.layout.cols));
+  }
+  movie.frame_count = static_cast<std::int32_t>(frames);
+  movie.provenance.program_version = optional_string(file, "provenance_program_version", where);
+  movie.provenance.created_utc = optional_string(file, "provenance_created_utc", where);
+  movie.provenance.source = optional_string(file, "provenance_source", where);
+  movie.provenance.mapping_method = optional_string(file, "provenance_mapping_method", where);
+  movie.provenance.mapping_parameters_json =
+      optional_string(file, "provenance_mapping_parameters_json", where);
+  try {
+    validate(movie);  // NaN values and layout ranges
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", where, e.what()));
+  }
+  return movie;
+}
+
+void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovie& movie) {
+  validate(movie);
+  std::string header = "frame,t_s";
+  for (std::int32_t r = 0; r < movie.layout.rows; ++r) {
+    for (std::int32_t c = 0; c < movie.layout.cols; ++c) header += fmt::format(",r{}c{}_um", r, c);
+  }
+  std::ofstream out = csv::open_with_header(csv_path, header);
+  std::string line;
+  for (std::int32_t f = 0; f < movie.frame_count; ++f) {
+    line = fmt::format("{},{}", f, f / movie.rate_hz);
+    for (float v : movie.frame(f)) fmt::format_to(std::back_inserter(line), ",{}", v);
+    line += '\n';
+    out << line;
+  }
+  csv::finish(out, csv_path);
+}
+
+}  // namespace tactile::movie

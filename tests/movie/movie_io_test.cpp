@@ -1,0 +1,239 @@
+// Tactile movie files: HDF5 round trip, every kind of malformed file, CSV export.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <H5Cpp.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include "../common/temp_dir.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/common/h5.hpp"
+#include "tactile/movie/movie_io.hpp"
+#include "test_movies.hpp"
+
+namespace tactile::movie {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class MovieIo : public ::testing::Test {
+ protected:
+  // A valid movie file, then `edit` changes it in place through the raw HDF5 API.
+  fs::path edited(const std::string& name, const std::function<void(H5::H5File&)>& edit) {
+    const fs::path p = dir_ / name;
+    write_tactile_movie(p, testing::sine_movie(stress_layout(), 700, 7, 20));
+    H5::H5File f(p.string(), H5F_ACC_RDWR);
+    edit(f);
+    f.close();
+    return p;
+  }
+
+  void expect_format_error(const fs::path& p, const std::string& words) {
+    try {
+      read_tactile_movie(p);
+      FAIL() << p << " was accepted; expected an error about " << words;
+    } catch (const FormatError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(words));
+      EXPECT_THAT(e.what(), HasSubstr(p.filename().string()));  // names the file
+    }
+  }
+
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
+};
+
+TEST_F(MovieIo, RoundTripKeepsEverything) {
+  TactileMovie m = testing::sine_movie(latero_layout(), 1000, 123, 33.3);
+  m.provenance.created_utc = "2026-11-22T20:00:00Z";
+  m.layout.axis = DeflectionAxis::y;
+  const fs::path p = dir_ / "movie.h5";
+  write_tactile_movie(p, m);
+  const TactileMovie r = read_tactile_movie(p);
+  EXPECT_EQ(r.layout.name, "latero");
+  EXPECT_EQ(r.layout.rows, 8);
+  EXPECT_EQ(r.layout.cols, 8);
+  EXPECT_DOUBLE_EQ(r.layout.pitch_y_mm, 1.6125);
+  EXPECT_DOUBLE_EQ(r.layout.contactor_height_mm, 1.4);
+  EXPECT_EQ(r.layout.axis, DeflectionAxis::y);
+  EXPECT_DOUBLE_EQ(r.layout.deflection_min_um, -100);
+  EXPECT_DOUBLE_EQ(r.layout.max_rate_hz, 750);
+  EXPECT_DOUBLE_EQ(r.rate_hz, 1000);
+  EXPECT_EQ(r.frame_count, 123);
+  EXPECT_EQ(r.deflection_um, m.deflection_um);  // float32 on disk: bit-exact
+  EXPECT_EQ(r.provenance.program_version, "test");
+  EXPECT_EQ(r.provenance.created_utc, "2026-11-22T20:00:00Z");
+  EXPECT_EQ(r.provenance.source, "sine");
+  EXPECT_EQ(r.provenance.mapping_method, "none");
+  EXPECT_EQ(r.provenance.mapping_parameters_json, R"({"amplitude_um":1})");
+}
+
+TEST_F(MovieIo, SchemaIsWhatFormatMdDocuments) {
+  const fs::path p = dir_ / "movie.h5";
+  write_tactile_movie(p, testing::sine_movie(stress_layout(), 700, 5, 10));
+  H5::H5File f(p.string(), H5F_ACC_RDONLY);
+  EXPECT_EQ(h5::read_attr_string(f, "format", "t"), "tactile-movie");
+  EXPECT_EQ(h5::read_attr_int(f, "format_version", "t"), 1);
+  EXPECT_EQ(h5::read_attr_string(f, "units", "t"), "um");
+  EXPECT_FALSE(h5::read_attr_string(f, "provenance_created_utc", "t").empty());
+  H5::DataSet ds = f.openDataSet("deflection_um");
+  EXPECT_EQ(ds.getTypeClass(), H5T_FLOAT);
+  EXPECT_EQ(ds.getFloatType().getSize(), 4u);
+  hsize_t dims[3];
+  ASSERT_EQ(ds.getSpace().getSimpleExtentDims(dims), 3);
+  EXPECT_EQ(dims[0], 5u);
+  EXPECT_EQ(dims[1], 10u);
+  EXPECT_EQ(dims[2], 10u);
+}
+
+TEST_F(MovieIo, EmptyMovieRoundTrips) {
+  TactileMovie m = testing::sine_movie(stress_layout(), 700, 0, 10);
+  const fs::path p = dir_ / "empty_movie.h5";
+  write_tactile_movie(p, m);
+  EXPECT_EQ(read_tactile_movie(p).frame_count, 0);
+}
+
+TEST_F(MovieIo, MissingEmptyTruncatedAndForeignFiles) {
+  expect_format_error(dir_ / "nothing_here.h5", "no such file");
+  const fs::path empty = dir_ / "empty.h5";
+  std::ofstream(empty).close();
+  expect_format_error(empty, "empty");
+  const fs::path text = dir_ / "text.h5";
+  std::ofstream(text) << "frame,t_s\n0,0\n";
+  expect_format_error(text, "not an HDF5 file");
+  // Truncation: the superblock survives but the objects it points to do not.
+  const fs::path good = dir_ / "good.h5";
+  write_tactile_movie(good, testing::sine_movie(stress_layout(), 700, 2000, 20));
+  const fs::path cut = dir_ / "cut.h5";
+  fs::copy_file(good, cut);
+  fs::resize_file(cut, fs::file_size(good) / 2);
+  try {
+    read_tactile_movie(cut);
+    FAIL() << "truncated file accepted";
+  } catch (const FormatError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("cut.h5"));
+    EXPECT_THAT(e.what(), ::testing::AnyOf(HasSubstr("truncated"), HasSubstr("cannot read")));
+  }
+}
+
+TEST_F(MovieIo, WrongSchema) {
+  expect_format_error(edited("noformat.h5", [](H5::H5File& f) { f.removeAttr("format"); }),
+                      "'format' is missing");
+  expect_format_error(edited("strain.h5",
+                             [](H5::H5File& f) {
+                               f.removeAttr("format");
+                               h5::write_attr(f, "format", "strain-movie");
+                             }),
+                      "format is 'strain-movie'");
+  expect_format_error(edited("future.h5",
+                             [](H5::H5File& f) {
+                               f.removeAttr("format_version");
+                               h5::write_attr(f, "format_version", std::int64_t{2});
+                             }),
+                      "format_version 2 is not supported");
+  expect_format_error(edited("norate.h5", [](H5::H5File& f) { f.removeAttr("rate_hz"); }),
+                      "'rate_hz' is missing");
+  expect_format_error(edited("textrate.h5",
+                             [](H5::H5File& f) {
+                               f.removeAttr("rate_hz");
+                               h5::write_attr(f, "rate_hz", "fast");
+                             }),
+                      "rate_hz");
+  expect_format_error(edited("mm.h5",
+                             [](H5::H5File& f) {
+                               f.removeAttr("units");
+                               h5::write_attr(f, "units", "mm");
+                             }),
+                      "units is 'mm'");
+  expect_format_error(edited("nodata.h5", [](H5::H5File& f) { f.unlink("deflection_um"); }),
+                      "deflection_um: dataset is missing");
+}
+
+TEST_F(MovieIo, WrongDatasetTypeRankAndSize) {
+  expect_format_error(
+      edited(
+          "int.h5",
+          [](H5::H5File& f) {
+            f.unlink("deflection_um");
+            h5::write_dataset(f, "deflection_um", std::vector<std::int32_t>(700, 1), {7, 10, 10});
+          }),
+      "expected floating-point");
+  expect_format_error(
+      edited("rank2.h5",
+             [](H5::H5File& f) {
+               f.unlink("deflection_um");
+               h5::write_dataset(f, "deflection_um", std::vector<float>(700, 1), {7, 100});
+             }),
+      "expected 3 dimension(s), found 2");
+  expect_format_error(
+      edited("size.h5",
+             [](H5::H5File& f) {
+               f.unlink("deflection_um");
+               h5::write_dataset(f, "deflection_um", std::vector<float>(630, 1), {7, 9, 10});
+             }),
+      "frames are 9 x 10 but the layout is 10 x 10");
+  expect_format_error(
+      edited("frames.h5",
+             [](H5::H5File& f) {
+               f.unlink("deflection_um");
+               h5::write_dataset(f, "deflection_um", std::vector<float>(600, 1), {6, 10, 10});
+             }),
+      "has 6 frames but frame_count says 7");
+  expect_format_error(edited("nan.h5",
+                             [](H5::H5File& f) {
+                               std::vector<float> v(700, 1);
+                               v[4 * 100 + 5 * 10 + 6] = std::numeric_limits<float>::quiet_NaN();
+                               f.unlink("deflection_um");
+                               h5::write_dataset(f, "deflection_um", v, {7, 10, 10});
+                             }),
+                      "frame 4, row 5, col 6 is not finite");
+  expect_format_error(edited("grid.h5",
+                             [](H5::H5File& f) {
+                               f.removeAttr("layout_rows");
+                               h5::write_attr(f, "layout_rows", std::int64_t{-3});
+                             }),
+                      "layout_rows x layout_cols = -3 x 10");
+}
+
+TEST_F(MovieIo, FailedWriteLeavesTheOldFile) {
+  const fs::path p = dir_ / "keep.h5";
+  write_tactile_movie(p, testing::sine_movie(stress_layout(), 700, 3, 10));
+  TactileMovie bad = testing::sine_movie(stress_layout(), 700, 3, 10);
+  bad.deflection_um.resize(bad.deflection_um.size() - 1);
+  EXPECT_THROW(write_tactile_movie(p, bad), std::invalid_argument);
+  EXPECT_EQ(read_tactile_movie(p).frame_count, 3);
+}
+
+TEST_F(MovieIo, CsvHasOneRowPerFrame) {
+  const TactileMovie m = testing::sine_movie(stress2_layout(), 1000, 4, 12.5);
+  const fs::path p = dir_ / "movie.csv";
+  export_tactile_csv(p, m);
+  std::ifstream in(p);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("frame,t_s,r0c0_um,r0c1_um,", 0), 0u);
+  EXPECT_NE(header.find(",r7c7_um"), std::string::npos);
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), 2 + 64 - 1);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<double> cells;
+    while (std::getline(ss, cell, ',')) cells.push_back(std::stod(cell));
+    ASSERT_EQ(cells.size(), 66u);
+    EXPECT_EQ(cells[0], rows);
+    EXPECT_DOUBLE_EQ(cells[1], rows / 1000.0);
+    EXPECT_FLOAT_EQ(static_cast<float>(cells[2 + 9]), m.frame(rows)[9]);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
+}
+
+}  // namespace
+}  // namespace tactile::movie
