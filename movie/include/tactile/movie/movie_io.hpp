@@ -1,5 +1,5 @@
 #pragma once
-// Tactile movie files: HDF5 (the format users keep, schema in display/FORMAT.md) and CSV export.
+// Tactile movie files: HDF5 (the format users keep, schema in docs/formats.md) and CSV export.
 
 #include <filesystem>
 
