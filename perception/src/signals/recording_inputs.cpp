@@ -240,17 +240,17 @@ std::vector<std::vector<double>> recording_inputs_by_group(const SensorRecording
   if (has(InputGroup::means) || has(InputGroup::rates) || has(InputGroup::hht))
     all = procedure_inputs(r, o.procedure, o.contact);
   FeatureContact f;
+  std::vector<double> bands;  // once, for bands and stats
   if (has(InputGroup::bands) || has(InputGroup::stds) || has(InputGroup::stats))
     f = find_feature_contact(r, o.procedure, find_contact(r, o.contact), o.contact);
+  if (has(InputGroup::bands) || has(InputGroup::stats)) bands = band_powers(r, f.begin, f.end);
   std::vector<std::vector<double>> out;
   for (const auto g : o.groups) {
     auto& inputs = out.emplace_back();
     append_group(inputs, all, o, g);
     if (g == InputGroup::stats) inputs = signal_stats(r, o.contact, f.begin, f.end);
-    if (g == InputGroup::bands || g == InputGroup::stats) {
-      const auto bands = band_powers(r, f.begin, f.end);
+    if (g == InputGroup::bands || g == InputGroup::stats)
       inputs.insert(inputs.end(), bands.begin(), bands.end());
-    }
     if (g == InputGroup::stds) inputs = signal_stds(r, o.contact, f.begin, f.end);
   }
   return out;
