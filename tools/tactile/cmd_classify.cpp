@@ -32,8 +32,8 @@ struct TrainOptions {
   std::optional<std::string> baseline_at, electrodes;
   std::optional<double> trim;
   std::vector<std::string> inputs;  // empty: the procedure's default
-  std::optional<int> degree;        // unset: 1, or searched with --select
-  std::optional<double> c;          // unset: 1, or searched with --select
+  std::optional<int> degree;        // unset: the procedure's default, or searched with --select
+  std::optional<double> c;          // unset: the procedure's default, or searched with --select
   bool select = false;
   int cv = 0;
   int threads = 0;
