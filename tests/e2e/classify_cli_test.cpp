@@ -12,6 +12,7 @@
 #include "../common/temp_dir.hpp"
 #include "csv_rows.hpp"
 #include "run.hpp"
+#include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/recording_csv.hpp"
 
 using tactile::test::read_csv_rows;
@@ -43,8 +44,8 @@ TEST(ClassifyCli, TrainTestPredictOnRealRecordings) {
   const auto t = run_tactile("classify train --recordings " + kMaterials + " --labels " +
                              labels_of_trials(dir, "12") + " --out " + model + " --threads 2");
   ASSERT_EQ(t.exit_code, 0) << t.output;
-  // The default of slides: pressure and 19 electrodes over two halves, 7 band powers.
-  EXPECT_NE(t.output.find("8 recordings, 4 classes, 47 inputs"), std::string::npos) << t.output;
+  // The default of slides: pressure and 6 electrode clusters over two halves, 7 band powers.
+  EXPECT_NE(t.output.find("8 recordings, 4 classes, 21 inputs"), std::string::npos) << t.output;
   const auto r =
       run_tactile("classify test --model " + model + " --recordings " + kMaterials + " --labels " +
                   labels_of_trials(dir, "34") + " --csv " + (dir / "out").string());
@@ -91,7 +92,45 @@ TEST(ClassifyCli, CrossValidationReportsMeanAndSpread) {
   EXPECT_NE(r.output.find("cross-validation (4 folds, stratified): accuracy "), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("pooled "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("16 recordings, 4 classes, 47 inputs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("16 recordings, 4 classes, 21 inputs"), std::string::npos) << r.output;
+}
+
+// --select with --cv: the nested figure (every recording tested once by an outer fold), each
+// fold's choice, the choice on all recordings, and a model file that records it; options the
+// user names are not searched.
+TEST(ClassifyCli, SelectReportsNestedCrossValidationAndRecordsTheChoice) {
+  const tactile::test::TempDir dir_tmp("select");
+  const std::filesystem::path& dir = dir_tmp.path();
+  const auto r = run_tactile("classify train --recordings " + kMaterials + " --labels " +
+                             kMaterials + "/labels.csv --out " + (dir / "m.json").string() +
+                             " --cv 4 --select --trim 0.1 --kernel-degree 1 --baseline-at none");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // 5 input sets x 2 electrode signals x 3 values of C.
+  EXPECT_NE(r.output.find("nested cross-validation (4 outer folds, stratified; options chosen in "
+                          "each by up to 5-fold cross-validation of its training rows among 30 "
+                          "candidates): accuracy "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("pooled "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("/16\n"), std::string::npos) << r.output;
+  for (const char* fold : {"  fold 1 chose ", "  fold 4 chose "})
+    EXPECT_NE(r.output.find(fold), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("classify train --select: 16 recordings, 4 classes; chose "),
+            std::string::npos)
+      << r.output;
+  const auto model = tactile::perception::read_classifier_model(dir / "m.json");
+  ASSERT_TRUE(model.selection.has_value());
+  ASSERT_EQ(model.selection->candidates.size(), 30u);
+  for (const auto& c : model.selection->candidates) {
+    EXPECT_EQ(c.inputs.contact.trim_fraction, 0.1);
+    EXPECT_EQ(c.svm.degree, 1);
+    EXPECT_EQ(c.inputs.contact.baseline_at, tactile::perception::ContactOptions::BaselineAt::none);
+    EXPECT_EQ(c.tested, 16);
+  }
+  const auto& chosen = model.selection->candidates[model.selection->chosen];
+  EXPECT_EQ(model.options.groups, chosen.inputs.groups);
+  EXPECT_EQ(model.options.contact.electrodes, chosen.inputs.contact.electrodes);
+  EXPECT_EQ(model.svm.c, chosen.svm.c);
 }
 
 TEST(ClassifyCli, BadInputNamesTheFile) {
@@ -152,12 +191,12 @@ TEST(ClassifyCli, BadInputNamesTheFile) {
     const auto at = text.find(from);
     return text.substr(0, at) + to + text.substr(at + from.size());
   };
-  ASSERT_NE(text.find("\"version\": 2"), std::string::npos);
-  std::ofstream(dir / "v3.json") << replaced("\"version\": 2", "\"version\": 3");
-  const auto v3 = run_tactile("classify predict --model " + (dir / "v3.json").string() + " " +
+  ASSERT_NE(text.find("\"version\": 3"), std::string::npos);
+  std::ofstream(dir / "v4.json") << replaced("\"version\": 3", "\"version\": 4");
+  const auto v4 = run_tactile("classify predict --model " + (dir / "v4.json").string() + " " +
                               kMaterials + "/mat1_1_bio.csv");
-  EXPECT_EQ(v3.exit_code, 1);
-  EXPECT_NE(v3.output.find("v3.json: model format version 3"), std::string::npos) << v3.output;
+  EXPECT_EQ(v4.exit_code, 1);
+  EXPECT_NE(v4.output.find("v4.json: model format version 4"), std::string::npos) << v4.output;
   std::ofstream(dir / "inputs.json") << replaced("\"dp.vib.if_last\"", "\"dp.vib.if_end\"");
   const auto in =
       run_tactile("classify test --model " + (dir / "inputs.json").string() + " --recordings " +

@@ -12,7 +12,9 @@
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/perception/classifier_model.hpp"
+#include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
+#include "tactile/perception/report.hpp"
 
 namespace perception = tactile::perception;
 
@@ -172,7 +174,7 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   const auto error = [&](const nlohmann::json& j) { return model_file_error(dir, j); };
   auto j = good;
   j["version"] = perception::kClassifierModelVersion + 1;
-  EXPECT_NE(error(j).find("model format version 3, this program reads versions 1 to 2"),
+  EXPECT_NE(error(j).find("model format version 4, this program reads versions 1 to 3"),
             std::string::npos)
       << error(j);
   j = good;
@@ -183,8 +185,9 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   EXPECT_NE(error(j).find("mismatched inputs"), std::string::npos);
   j = good;
   j["input_groups"] = {"means", "colour"};
-  EXPECT_NE(error(j).find("unknown input group 'colour' (known: means, rates, hht, bands, stds)"),
-            std::string::npos)
+  EXPECT_NE(
+      error(j).find("unknown input group 'colour' (known: means, rates, hht, bands, stds, stats)"),
+      std::string::npos)
       << error(j);
   j = good;
   j["training"][0]["inputs"].erase(0);
@@ -245,7 +248,7 @@ TEST(Classifier, LearnsRealMaterialsBetterThanChance) {
   EXPECT_EQ(counted, 8);
 }
 
-// The inputs of real slides (each electrode, no baseline, trimmed, means and bands) learn the
+// The inputs of real slides (clusters, no baseline, trimmed, means and bands) learn the
 // vendored materials too: at least 7 of the 8 held-out recordings, which chance (1 in 4) gives
 // with probability 0.0004 (binomial).
 TEST(Classifier, SlideDefaultsLearnRealMaterials) {
@@ -254,7 +257,8 @@ TEST(Classifier, SlideDefaultsLearnRealMaterials) {
   const auto options = perception::default_recording_inputs("stroke");
   const auto train =
       perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "12"), options, {}, 2);
-  const auto model = perception::make_classifier_model(train, {});
+  const auto model =
+      perception::make_classifier_model(train, perception::default_svm_options("stroke"));
   const auto test = perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "34"),
                                                          options, model.class_names, 2);
   const auto t = perception::test_classifier(perception::Classifier(model), 4, test);
@@ -307,7 +311,7 @@ TEST(RecordingInputs, InputGroupNamesRoundTrip) {
   EXPECT_EQ(perception::to_string(perception::InputGroup::bands), "bands");
   const std::string message = error_of([] { perception::parse_input_group("spectrum"); });
   EXPECT_NE(message.find("'spectrum'"), std::string::npos) << message;
-  EXPECT_NE(message.find("means, rates, hht, bands, stds"), std::string::npos) << message;
+  EXPECT_NE(message.find("means, rates, hht, bands, stds, stats"), std::string::npos) << message;
 }
 
 // stds: the population standard deviation of each signal over the feature contact. Pressure
@@ -349,9 +353,12 @@ TEST(RecordingInputs, DefaultsByProcedure) {
   const auto slide = perception::default_recording_inputs("stroke");
   EXPECT_EQ(tactile::names_of(slide.groups), (std::vector<std::string>{"means", "bands"}));
   EXPECT_EQ(slide.contact.baseline_at, ContactOptions::BaselineAt::none);
-  EXPECT_EQ(slide.contact.electrodes, ContactOptions::Electrodes::each);
+  EXPECT_EQ(slide.contact.electrodes, ContactOptions::Electrodes::clusters);
   EXPECT_EQ(slide.contact.trim_fraction, 0.1);
-  EXPECT_EQ(perception::recording_input_names(slide).size(), 40u + 7u);
+  EXPECT_EQ(perception::recording_input_names(slide).size(), 14u + 7u);
+  EXPECT_EQ(perception::default_svm_options("stroke").c, 10.0);
+  EXPECT_EQ(perception::default_svm_options("dp").c, 1.0);
+  EXPECT_EQ(perception::default_svm_options("stroke").degree, 1);
   EXPECT_THROW(perception::default_recording_inputs("tap"), std::invalid_argument);
 }
 
@@ -387,4 +394,144 @@ TEST(ClassifierModel, ReadsVersionOneAndChecksTheNewFields) {
   EXPECT_EQ(v1.options.contact.electrodes, perception::ContactOptions::Electrodes::clusters);
   EXPECT_EQ(v1.options.contact.trim_fraction, 0.0);
   EXPECT_EQ(v1.input_names, perception::recording_input_names({}));
+}
+
+// stats: mean and standard deviation of pressure and of each cluster over the contact (baseline
+// at the end: free air at 1000 counts), the vibration's standard deviation, then the same 7 band
+// powers as the bands group. Pressure alternates 1090 / 1110 over the 60 contact rows (mean
+// 100 above the baseline, deviation 10); the vibration alternates 1995 / 2005 over the contact
+// (deviation 5); the electrodes are constant (0, 0).
+TEST(RecordingInputs, StatsAreMeansStdsVibrationAndBands) {
+  auto r = recording(60);
+  for (std::size_t i = 0; i < 60; ++i) r.pressure[i] = i % 2 ? 1110 : 1090;
+  for (std::size_t i = 0; i < 60 * perception::kVibrationPerRow; ++i)
+    r.vibration[i] = i % 2 ? 2005 : 1995;
+  perception::RecordingInputOptions o;
+  o.groups = {perception::InputGroup::stats};
+  const auto names = perception::recording_input_names(o);
+  const auto in = perception::recording_inputs(r, o);
+  ASSERT_EQ(names.size(), 7u * 2 + 1 + 7);
+  ASSERT_EQ(in.size(), names.size());
+  EXPECT_EQ(names[0], "dp.mean.pressure");
+  EXPECT_EQ(names[1], "dp.std.pressure");
+  EXPECT_EQ(names[14], "dp.std.vibration");
+  EXPECT_EQ(names[15], "dp.band.10_20hz");
+  EXPECT_DOUBLE_EQ(in[0], 100);
+  EXPECT_DOUBLE_EQ(in[1], 10);
+  for (std::size_t k = 2; k < 14; ++k) EXPECT_DOUBLE_EQ(in[k], 0) << names[k];
+  EXPECT_DOUBLE_EQ(in[14], 5);
+  o.groups = {perception::InputGroup::bands};
+  const auto bands = perception::recording_inputs(r, o);
+  EXPECT_EQ(std::vector<double>(in.begin() + 15, in.end()), bands);
+  // 19 electrodes: 2 x 20 + 1 + 7, the 48 plain statistics.
+  o.groups = {perception::InputGroup::stats};
+  o.contact.electrodes = perception::ContactOptions::Electrodes::each;
+  EXPECT_EQ(perception::recording_input_names(o).size(), 48u);
+  // stats hold bands and stds: asking for both is refused, naming the group.
+  for (const auto g : {perception::InputGroup::bands, perception::InputGroup::stds}) {
+    o.groups = {perception::InputGroup::stats, g};
+    EXPECT_NE(error_of([&] {
+                perception::recording_input_names(o);
+              }).find("input group '" + perception::to_string(g) + "' is part of 'stats'"),
+              std::string::npos);
+  }
+  o.procedure = perception::Procedure::static_contact;
+  o.groups = {perception::InputGroup::stats};
+  EXPECT_EQ(perception::recording_input_names(o).size(), 48u);
+}
+
+// Selection on the vendored recordings between the plain statistics and the HHT alone (two
+// numbers that carry next to nothing about a texture: 0.09 over 20 materials, chance 0.05):
+// every fold's inner loop and the selection on all rows choose the statistics, the nested
+// figure tests every recording once, and a model of the choice records it and reads back.
+TEST(ModelSelection, ChoosesByInnerFoldsAndScoresByOuterFolds) {
+  const tactile::test::TempDir dir_tmp("select");
+  const auto data =
+      perception::read_labelled_recordings(kMaterials, kMaterials / "labels.csv", {}, 2);
+  auto grid = perception::default_selection_grid("stroke");
+  grid.input_sets = {{perception::InputGroup::hht}, {perception::InputGroup::stats}};
+  grid.baselines = {perception::ContactOptions::BaselineAt::none};
+  grid.electrodes = {perception::ContactOptions::Electrodes::clusters};
+  grid.trims = {0.1};
+  grid.degrees = {1};
+  grid.cs = {1, 10};
+  ASSERT_EQ(grid.size(), 4u);
+  const auto base = perception::default_recording_inputs("stroke");
+  const auto nested = perception::nested_cross_validate(data, base, grid, 4, 5, 2);
+  EXPECT_EQ(nested.outer.tested, 16);
+  ASSERT_EQ(nested.chosen.size(), 4u);
+  for (const auto& c : nested.chosen) {
+    EXPECT_EQ(tactile::names_of(c.inputs.groups), std::vector<std::string>{"stats"});
+    EXPECT_EQ(c.tested, 12);  // the inner loop saw the 12 training rows of its fold only
+  }
+  EXPECT_EQ(nested.overall.folds, 4);  // 5 asked, lowered to the 4 trials of each class
+  ASSERT_EQ(nested.overall.candidates.size(), 4u);
+  const auto& chosen = nested.overall.candidates[nested.overall.chosen];
+  EXPECT_EQ(tactile::names_of(chosen.inputs.groups), std::vector<std::string>{"stats"});
+  for (const auto& c : nested.overall.candidates) EXPECT_LE(c.correct, chosen.correct);
+  // The same choice alone; the model carries it, in version 3 files, and reads back.
+  const auto record = perception::select_options(data, base, grid, 5, {}, 2);
+  EXPECT_EQ(record.chosen, nested.overall.chosen);
+  const auto model = perception::make_selected_model(data, record, 2);
+  EXPECT_EQ(model.svm.c, chosen.svm.c);
+  EXPECT_EQ(model.input_names, perception::recording_input_names(chosen.inputs));
+  const auto path = dir_tmp.path() / "m.json";
+  perception::write_classifier_model(path, model);
+  const auto back = perception::read_classifier_model(path);
+  ASSERT_TRUE(back.selection.has_value());
+  EXPECT_EQ(back.selection->chosen, record.chosen);
+  EXPECT_EQ(back.selection->folds, 4);
+  ASSERT_EQ(back.selection->candidates.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(back.selection->candidates[k].correct, record.candidates[k].correct);
+    EXPECT_EQ(back.selection->candidates[k].svm.c, record.candidates[k].svm.c);
+    EXPECT_EQ(back.selection->candidates[k].inputs.groups, record.candidates[k].inputs.groups);
+  }
+  // A class with one recording leaves nothing to cross-validate the choice with.
+  EXPECT_NE(error_of([&] {
+              perception::select_options(data, base, grid, 5, {0, 1, 4}, 1);
+            }).find("at least 2 recordings of every class"),
+            std::string::npos);
+}
+
+// Version 2 files (no selection) still read; a version 3 file's selection is checked.
+TEST(ClassifierModel, ReadsVersionTwoAndChecksTheSelection) {
+  const tactile::test::TempDir dir_tmp("model_v2");
+  const std::filesystem::path& dir = dir_tmp.path();
+  auto j = model_file_json(dir);
+  const auto error = [&](const nlohmann::json& k) { return model_file_error(dir, k); };
+  j["version"] = 2;
+  EXPECT_EQ(error(j), "(no error)");
+  EXPECT_FALSE(perception::read_classifier_model(dir / "bad.json").selection.has_value());
+  j["version"] = 3;
+  j["selection"] = {{"folds", 5},
+                    {"chosen", 1},
+                    {"candidates",
+                     {{{"input_groups", {"stats"}},
+                       {"baseline_at", "none"},
+                       {"electrodes", "each"},
+                       {"trim_fraction", 0.1},
+                       {"degree", 1},
+                       {"c", 1.0},
+                       {"correct", 3},
+                       {"tested", 4}}}}};
+  EXPECT_NE(error(j).find("selection: chosen 1 is not one of the 1 candidates"), std::string::npos)
+      << error(j);
+  j["selection"]["chosen"] = 0;
+  EXPECT_EQ(error(j), "(no error)");
+  j["selection"]["candidates"][0]["electrodes"] = "some";
+  EXPECT_NE(error(j).find("'some'"), std::string::npos) << error(j);
+}
+
+// Classes confused with each other sit next to each other: 0 and 3 are confused 3 times, 1 and 2
+// once, 4 never; the chain starts at the most confused pair.
+TEST(ConfusionOrder, PutsConfusedClassesTogether) {
+  const std::vector<std::vector<int>> confusion = {
+      {5, 0, 0, 2, 0}, {0, 6, 1, 0, 0}, {0, 0, 7, 0, 0}, {1, 0, 0, 4, 0}, {0, 0, 0, 0, 5}};
+  EXPECT_EQ(perception::confusion_order(confusion), (std::vector<std::size_t>{0, 3, 1, 2, 4}));
+  // A chain grows at either end: 2 is confused with 0 and 0 with 1, so 2, 0, 1 (or reversed).
+  const std::vector<std::vector<int>> chain = {{5, 3, 1}, {0, 5, 0}, {1, 0, 5}};
+  EXPECT_EQ(perception::confusion_order(chain), (std::vector<std::size_t>{2, 0, 1}));
+  const std::vector<std::vector<int>> none = {{3, 0}, {0, 3}};
+  EXPECT_EQ(perception::confusion_order(none), (std::vector<std::size_t>{0, 1}));
 }

@@ -14,6 +14,7 @@
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/perception/classifier_model.hpp"
+#include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/report.hpp"
 
@@ -31,13 +32,59 @@ struct TrainOptions {
   std::optional<std::string> baseline_at, electrodes;
   std::optional<double> trim;
   std::vector<std::string> inputs;  // empty: the procedure's default
-  int degree = 1;
-  double c = 1.0;
+  std::optional<int> degree;        // unset: the procedure's default, or searched with --select
+  std::optional<double> c;          // unset: the procedure's default, or searched with --select
+  bool select = false;
   int cv = 0;
   int threads = 0;
 };
 
+int finish_training(const TrainOptions& o, const perception::ClassifierModel& model,
+                    std::chrono::steady_clock::time_point t0);
+
+// --select: every option the user did not name is searched over the procedure's grid.
+int train_selected(const TrainOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto base = perception::default_recording_inputs(o.procedure);
+  auto grid = perception::default_selection_grid(o.procedure);
+  if (o.baseline_at) grid.baselines = {perception::parse_baseline_at(*o.baseline_at)};
+  if (o.electrodes) grid.electrodes = {perception::parse_electrodes(*o.electrodes)};
+  if (o.trim) grid.trims = {*o.trim};
+  if (!o.inputs.empty()) {
+    grid.input_sets = {{}};
+    for (const auto& name : o.inputs)
+      grid.input_sets.front().push_back(perception::parse_input_group(name));
+  }
+  if (o.degree) grid.degrees = {*o.degree};
+  if (o.c) grid.cs = {*o.c};
+  const auto data = perception::read_labelled_recordings(o.recordings, o.labels, {}, o.threads);
+  constexpr int kInnerFolds = 5;
+  perception::SelectionRecord record;
+  if (o.cv > 0) {
+    const auto nested =
+        perception::nested_cross_validate(data, base, grid, o.cv, kInnerFolds, o.threads);
+    fmt::print(
+        "nested cross-validation ({} outer folds, stratified; options chosen in each by up to "
+        "{}-fold cross-validation of its training rows among {} candidates): accuracy {:.3f} +- "
+        "{:.3f} (folds: {:.3f}); pooled {}/{}\n",
+        o.cv, kInnerFolds, grid.size(), nested.outer.mean, nested.outer.spread,
+        fmt::join(nested.outer.fold_accuracy, ", "), nested.outer.correct, nested.outer.tested);
+    for (std::size_t k = 0; k < nested.chosen.size(); ++k)
+      fmt::print("  fold {} chose {} (inner {:.3f})\n", k + 1,
+                 perception::describe_candidate(nested.chosen[k]), nested.chosen[k].accuracy());
+    record = nested.overall;
+  } else {
+    record = perception::select_options(data, base, grid, kInnerFolds, {}, o.threads);
+  }
+  const auto& chosen = record.candidates.at(record.chosen);
+  fmt::print("classify train --select: {} recordings, {} classes; chose {} ({}-fold CV {:.3f})\n",
+             data.files.size(), data.class_names.size(), perception::describe_candidate(chosen),
+             record.folds, chosen.accuracy());
+  return finish_training(o, perception::make_selected_model(data, record, o.threads), t0);
+}
+
 int train(const TrainOptions& o) {
+  if (o.select) return train_selected(o);
   const auto t0 = std::chrono::steady_clock::now();
   auto in = perception::default_recording_inputs(o.procedure);
   if (o.baseline_at) in.contact.baseline_at = perception::parse_baseline_at(*o.baseline_at);
@@ -54,9 +101,9 @@ int train(const TrainOptions& o) {
       data.rows.size(), data.class_names.size(), data.input_names.size(),
       fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
       to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
-  perception::SvmOptions svm;
-  svm.degree = o.degree;
-  svm.c = o.c;
+  auto svm = perception::default_svm_options(o.procedure);
+  svm.degree = o.degree.value_or(svm.degree);
+  svm.c = o.c.value_or(svm.c);
   if (o.cv > 0) {
     const auto cv = perception::cross_validate(data, svm, o.cv, o.threads);
     fmt::print(
@@ -64,7 +111,19 @@ int train(const TrainOptions& o) {
         "pooled {}/{}\n",
         o.cv, cv.mean, cv.spread, fmt::join(cv.fold_accuracy, ", "), cv.correct, cv.tested);
   }
-  const auto model = perception::make_classifier_model(data, svm);
+  return finish_training(o, perception::make_classifier_model(data, svm), t0);
+}
+
+int finish_training(const TrainOptions& o, const perception::ClassifierModel& model,
+                    std::chrono::steady_clock::time_point t0) {
+  const auto& svm = model.svm;
+  const auto data = perception::LabelledInputs{.options = model.options,
+                                               .input_names = model.input_names,
+                                               .class_names = model.class_names,
+                                               .files = model.files,
+                                               .rows = model.rows,
+                                               .classes = model.classes,
+                                               .values = model.values};
   const perception::Classifier fitted(model);  // checks that it trains before writing the file
   const auto train_fit = perception::test_classifier(fitted, model.class_names.size(), data);
   perception::write_classifier_model(o.out, model);
@@ -105,15 +164,7 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
   }
   fmt::print("accuracy {:.3f} ({}/{})\n", t.accuracy(), t.correct, t.tested);
   if (!csv_dir.empty()) {
-    std::filesystem::create_directories(csv_dir);
-    const auto confusion_path = csv_dir / "confusion.csv";
-    auto out = csv::open_with_header(
-        confusion_path, "true\\predicted," + fmt::format("{}", fmt::join(model.class_names, ",")));
-    for (std::size_t c = 0; c < model.class_names.size(); ++c)
-      out << model.class_names[c] << ',' << fmt::format("{}", fmt::join(t.confusion[c], ","))
-          << '\n';
-    csv::finish(out, confusion_path);
-    perception::write_confusion_chart(csv_dir / "confusion.svg", model.class_names, t.confusion);
+    perception::write_confusion_report(csv_dir, model.class_names, t.confusion);
     const auto predictions_path = csv_dir / "predictions.csv";
     auto pred = csv::open_with_header(predictions_path,
                                       values ? "file,class,predicted,correct,value,predicted_value"
@@ -190,7 +241,7 @@ void add_classify(CLI::App& app, Action& action) {
       ->check(CLI::IsMember(names_of(values_of(perception::kBaselineAtNames))));
   tr->add_option("--electrodes", t->electrodes,
                  "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
-                 "(all 19 electrodes); default: each for stroke, clusters otherwise")
+                 "(all 19 electrodes); default: clusters")
       ->check(CLI::IsMember(names_of(values_of(perception::kElectrodesNames))));
   tr->add_option("--trim", t->trim,
                  "Strokes: fraction of the contact left out at each end, in [0, 0.5) (the press "
@@ -214,18 +265,26 @@ void add_classify(CLI::App& app, Action& action) {
   tr->add_option("--inputs", t->inputs,
                  "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
                  "band powers of the vibration), stds (standard deviation of each signal over the "
-                 "contact); default: stroke means,bands; dp, ru, roll the paper's "
-                 "means,rates,hht; static means")
+                 "contact), stats (plain statistics: mean and standard deviation of each signal, "
+                 "the vibration's, and the bands); default: stroke means,bands; dp, ru, roll the "
+                 "paper's means,rates,hht; static means")
       ->delimiter(',')
       ->check(CLI::IsMember(names_of(perception::kInputGroups)));
-  tr->add_option("--kernel-degree", t->degree, "Exponent of the polynomial kernel")
-      ->check(CLI::IsMember({1, 2}))
-      ->capture_default_str();
-  tr->add_option("--c", t->c, "SVM complexity constant C")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  tr->add_option("--cv", t->cv, "Also report stratified K-fold cross-validation accuracy")
+  tr->add_option("--kernel-degree", t->degree,
+                 "Exponent of the polynomial kernel; default 1 (searched with --select)")
+      ->check(CLI::IsMember({1, 2}));
+  tr->add_option(
+        "--c", t->c,
+        "SVM complexity constant C; default: 10 for stroke, 1 otherwise (searched with --select)")
+      ->check(CLI::PositiveNumber);
+  tr->add_option("--cv", t->cv,
+                 "Also report stratified K-fold cross-validation accuracy (with --select: nested, "
+                 "the choice made again inside each fold)")
       ->check(CLI::Range(2, 1000));
+  tr->add_flag("--select", t->select,
+               "Choose every option not given (inputs, baseline, electrodes, trim, kernel "
+               "exponent, C) by 5-fold cross-validation on these recordings; the model records "
+               "the comparison");
   tr->add_option("--threads", t->threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 256));
   tr->callback([t, &action] { action = [t] { return train(*t); }; });

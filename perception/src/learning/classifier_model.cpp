@@ -110,15 +110,12 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
   return labels;
 }
 
-LabelledInputs load_labelled_recordings(const std::filesystem::path& dir,
-                                        const std::filesystem::path& labels_path,
-                                        const RecordingInputOptions& options,
-                                        const std::vector<std::string>& known_classes,
-                                        int threads) {
+LabelledRecordings read_labelled_recordings(const std::filesystem::path& dir,
+                                            const std::filesystem::path& labels_path,
+                                            const std::vector<std::string>& known_classes,
+                                            int threads) {
   const auto labels = read_recording_labels(labels_path);
-  LabelledInputs d;
-  d.options = options;
-  d.input_names = recording_input_names(options);
+  LabelledRecordings d;
   d.class_names = known_classes;
   for (const auto& l : labels.rows) {
     const auto path = dir / l.file;
@@ -138,11 +135,36 @@ LabelledInputs load_labelled_recordings(const std::filesystem::path& dir,
     d.classes.push_back(static_cast<int>(it - d.class_names.begin()));
     if (labels.has_values) d.values.push_back(l.value);
   }
-  d.rows.resize(d.files.size());
-  parallel_for(d.files.size(), worker_count(threads), [&](std::size_t i) {
-    d.rows[i] = recording_inputs(read_sensor_csv(dir / d.files[i]), options);
-  });
+  d.recordings.resize(d.files.size());
+  parallel_for(d.files.size(), worker_count(threads),
+               [&](std::size_t i) { d.recordings[i] = read_sensor_csv(dir / d.files[i]); });
   return d;
+}
+
+LabelledInputs analyse_recordings(const LabelledRecordings& data,
+                                  const RecordingInputOptions& options, int threads) {
+  LabelledInputs d;
+  d.options = options;
+  d.input_names = recording_input_names(options);
+  d.class_names = data.class_names;
+  d.files = data.files;
+  d.classes = data.classes;
+  d.values = data.values;
+  d.rows.resize(d.files.size());
+  parallel_for(d.files.size(), worker_count(threads),
+               [&](std::size_t i) { d.rows[i] = recording_inputs(data.recordings[i], options); });
+  return d;
+}
+
+LabelledInputs load_labelled_recordings(const std::filesystem::path& dir,
+                                        const std::filesystem::path& labels_path,
+                                        const RecordingInputOptions& options,
+                                        const std::vector<std::string>& known_classes,
+                                        int threads) {
+  // The input names first: a bad set of groups is reported before any file is read.
+  recording_input_names(options);
+  return analyse_recordings(read_labelled_recordings(dir, labels_path, known_classes, threads),
+                            options, threads);
 }
 
 ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptions& svm) {
@@ -159,6 +181,12 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
   return m;
 }
 
+SvmOptions default_svm_options(std::string_view procedure) {
+  SvmOptions svm;
+  if (recording_procedure_name(default_recording_inputs(procedure)) == "stroke") svm.c = 10.0;
+  return svm;
+}
+
 void write_classifier_model(const std::filesystem::path& path, const ClassifierModel& m) {
   nlohmann::json j;
   j["format"] = "tactile classifier model";
@@ -173,6 +201,20 @@ void write_classifier_model(const std::filesystem::path& path, const ClassifierM
                   {"electrodes", to_string(m.options.contact.electrodes)}};
   j["input_names"] = m.input_names;
   j["class_names"] = m.class_names;
+  if (m.selection) {
+    auto& candidates = j["selection"]["candidates"] = nlohmann::json::array();
+    for (const auto& c : m.selection->candidates)
+      candidates.push_back({{"input_groups", names_of(c.inputs.groups)},
+                            {"baseline_at", to_string(c.inputs.contact.baseline_at)},
+                            {"electrodes", to_string(c.inputs.contact.electrodes)},
+                            {"trim_fraction", c.inputs.contact.trim_fraction},
+                            {"degree", c.svm.degree},
+                            {"c", c.svm.c},
+                            {"correct", c.correct},
+                            {"tested", c.tested}});
+    j["selection"]["folds"] = m.selection->folds;
+    j["selection"]["chosen"] = m.selection->chosen;
+  }
   j["svm"] = {{"kernel", "polynomial"},
               {"degree", m.svm.degree},
               {"c", m.svm.c},
@@ -202,7 +244,7 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
       field(j, "version", where, &nlohmann::json::is_number_integer, "an integer");
   // Version 1 had no trim_fraction or electrodes: its inputs are those of no trim and clusters.
   const bool v1 = version.get<int>() == 1;
-  if (!v1 && version.get<int>() != kClassifierModelVersion)
+  if (version.get<int>() < 1 || version.get<int>() > kClassifierModelVersion)
     throw FormatError(fmt::format(
         "{}: model format version {}, this program reads versions 1 to {}: retrain the model",
         where, version.get<int>(), kClassifierModelVersion));
@@ -214,20 +256,27 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
-  m.options.groups.clear();  // the file's groups, not the defaults
-  for (const auto& name : array_of<std::string>(j, "input_groups", where)) {
-    try {
-      m.options.groups.push_back(parse_input_group(name));
-    } catch (const std::invalid_argument& e) {
-      throw FormatError(fmt::format("{}: {}", where, e.what()));
+  const auto groups_of = [&](const nlohmann::json& o) {
+    std::vector<InputGroup> groups;
+    for (const auto& name : array_of<std::string>(o, "input_groups", where)) {
+      try {
+        groups.push_back(parse_input_group(name));
+      } catch (const std::invalid_argument& e) {
+        throw FormatError(fmt::format("{}: {}", where, e.what()));
+      }
     }
-  }
+    return groups;
+  };
+  m.options.groups = groups_of(j);  // the file's groups, not the defaults
   const auto& contact = field(j, "contact", where, &nlohmann::json::is_object, "an object");
   const auto word = [&](const nlohmann::json& o, const char* key) {
     return field(o, key, where, &nlohmann::json::is_string, "a string").get<std::string>();
   };
   const auto number = [&](const nlohmann::json& o, const char* key) {
     return field(o, key, where, &nlohmann::json::is_number, "a number").get<double>();
+  };
+  const auto integer = [&](const nlohmann::json& o, const char* key) {
+    return field(o, key, where, &nlohmann::json::is_number_integer, "an integer").get<int>();
   };
   try {
     m.options.contact.baseline_at = parse_baseline_at(word(contact, "baseline_at"));
@@ -258,8 +307,7 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         fmt::join(expected, ",")));
   m.class_names = array_of<std::string>(j, "class_names", where);
   const auto& svm = field(j, "svm", where, &nlohmann::json::is_object, "an object");
-  m.svm.degree =
-      field(svm, "degree", where, &nlohmann::json::is_number_integer, "an integer").get<int>();
+  m.svm.degree = integer(svm, "degree");
   m.svm.c = number(svm, "c");
   m.svm.tolerance = number(svm, "tolerance");
   m.svm.epsilon = number(svm, "epsilon");
@@ -288,6 +336,38 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
     if (has_values) m.values.push_back(number(row, "value"));
   }
   if (m.rows.empty()) throw FormatError(fmt::format("{}: no training rows", where));
+  if (const auto it = j.find("selection"); it != j.end()) {
+    const auto& sel = field(j, "selection", where, &nlohmann::json::is_object, "an object");
+    SelectionRecord record;
+    record.folds = integer(sel, "folds");
+    const auto& candidates = field(sel, "candidates", where, &nlohmann::json::is_array, "an array");
+    for (const auto& c : candidates) {
+      if (!c.is_object())
+        throw FormatError(fmt::format("{}: selection candidates must be objects", where));
+      SelectionCandidate candidate;
+      candidate.inputs = m.options;
+      candidate.inputs.groups = groups_of(c);
+      try {
+        candidate.inputs.contact.baseline_at = parse_baseline_at(word(c, "baseline_at"));
+        candidate.inputs.contact.electrodes = parse_electrodes(word(c, "electrodes"));
+      } catch (const std::invalid_argument& e) {
+        throw FormatError(fmt::format("{}: selection: {}", where, e.what()));
+      }
+      candidate.inputs.contact.trim_fraction = number(c, "trim_fraction");
+      candidate.svm = m.svm;
+      candidate.svm.degree = integer(c, "degree");
+      candidate.svm.c = number(c, "c");
+      candidate.correct = integer(c, "correct");
+      candidate.tested = integer(c, "tested");
+      record.candidates.push_back(std::move(candidate));
+    }
+    const int chosen = integer(sel, "chosen");
+    if (chosen < 0 || static_cast<std::size_t>(chosen) >= record.candidates.size())
+      throw FormatError(fmt::format("{}: selection: chosen {} is not one of the {} candidates",
+                                    where, chosen, record.candidates.size()));
+    record.chosen = static_cast<std::size_t>(chosen);
+    m.selection = std::move(record);
+  }
   if (m.scaler.min.size() != m.input_names.size() || m.scaler.max.size() != m.input_names.size())
     throw FormatError(
         fmt::format("{}: scaler does not match the {} inputs", where, m.input_names.size()));
@@ -357,15 +437,52 @@ LabelledInputs subset(const LabelledInputs& data, const std::vector<std::size_t>
   return s;
 }
 
+std::vector<int> stratified_folds(const std::vector<int>& classes, int folds) {
+  std::vector<int> fold_of(classes.size());
+  std::map<int, int> seen_in_class;
+  for (std::size_t i = 0; i < classes.size(); ++i) fold_of[i] = seen_in_class[classes[i]]++ % folds;
+  return fold_of;
+}
+
+std::pair<int, int> class_sizes(const std::vector<int>& classes) {
+  std::map<int, int> count;
+  for (const int c : classes) ++count[c];
+  std::pair<int, int> range{0, 0};
+  for (const auto& [c, n] : count) {
+    range.first = range.first == 0 ? n : std::min(range.first, n);
+    range.second = std::max(range.second, n);
+  }
+  return range;
+}
+
+void check_fold_count(const std::vector<int>& classes, int folds) {
+  const int largest = class_sizes(classes).second;
+  if (folds < 2 || folds > largest)
+    throw std::invalid_argument(
+        fmt::format("cross-validation with {} folds: needs 2 to {} folds (the largest class has {} "
+                    "recordings; more folds would be empty)",
+                    folds, std::max(2, largest), largest));
+}
+
+CrossValidation pool_folds(const std::vector<ClassifierTest>& folds) {
+  CrossValidation cv;
+  const double k = static_cast<double>(folds.size());
+  for (const auto& r : folds) {
+    cv.fold_accuracy.push_back(r.accuracy());
+    cv.correct += r.correct;
+    cv.tested += r.tested;
+    cv.mean += r.accuracy() / k;
+  }
+  double ss = 0;
+  for (double a : cv.fold_accuracy) ss += (a - cv.mean) * (a - cv.mean);
+  cv.spread = folds.size() > 1 ? std::sqrt(ss / (k - 1)) : 0.0;
+  return cv;
+}
+
 CrossValidation cross_validate(const LabelledInputs& data, const SvmOptions& svm, int folds,
                                int threads) {
-  if (folds < 2 || static_cast<std::size_t>(folds) > data.rows.size())
-    throw std::invalid_argument(fmt::format(
-        "cross-validation needs 2 to {} folds (one row per fold at least)", data.rows.size()));
-  std::vector<int> fold_of(data.rows.size());
-  std::map<int, int> seen_in_class;
-  for (std::size_t i = 0; i < data.rows.size(); ++i)
-    fold_of[i] = seen_in_class[data.classes[i]]++ % folds;
+  check_fold_count(data.classes, folds);
+  const auto fold_of = stratified_folds(data.classes, folds);
   std::vector<ClassifierTest> results(static_cast<std::size_t>(folds));
   parallel_for(results.size(), worker_count(threads), [&](std::size_t k) {
     std::vector<std::size_t> train, test;
@@ -374,17 +491,7 @@ CrossValidation cross_validate(const LabelledInputs& data, const SvmOptions& svm
     const Classifier c(make_classifier_model(subset(data, train), svm));
     results[k] = test_classifier(c, data.class_names.size(), subset(data, test));
   });
-  CrossValidation cv;
-  for (const auto& r : results) {
-    cv.fold_accuracy.push_back(r.accuracy());
-    cv.correct += r.correct;
-    cv.tested += r.tested;
-  }
-  for (double a : cv.fold_accuracy) cv.mean += a / folds;
-  double ss = 0;
-  for (double a : cv.fold_accuracy) ss += (a - cv.mean) * (a - cv.mean);
-  cv.spread = std::sqrt(ss / (folds - 1));
-  return cv;
+  return pool_folds(results);
 }
 
 }  // namespace tactile::perception

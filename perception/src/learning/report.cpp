@@ -3,10 +3,12 @@
 #include "tactile/perception/report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -202,6 +204,83 @@ ChartFiles write_confusion_chart(const std::filesystem::path& path,
                      .column_names = class_names};
   for (const auto& row : confusion) chart.values.emplace_back(row.begin(), row.end());
   return write_heatmap(path, chart);
+}
+
+std::vector<std::size_t> confusion_order(const std::vector<std::vector<int>>& confusion) {
+  const std::size_t n = confusion.size();
+  const auto link = [&](std::size_t a, std::size_t b) {
+    return a == b ? 0 : confusion.at(a).at(b) + confusion.at(b).at(a);
+  };
+  std::vector<bool> placed(n, false);
+  std::vector<std::size_t> order;
+  std::deque<std::size_t> chain;
+  const auto close_chain = [&] {
+    order.insert(order.end(), chain.begin(), chain.end());
+    chain.clear();
+  };
+  while (true) {
+    // The unplaced class most confused with an end of the chain (or, with no chain, the most
+    // confused unplaced pair); the first in index order on ties.
+    int best = 0;
+    std::size_t best_k = n, best_end = n;
+    if (chain.empty()) {
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = a + 1; b < n; ++b)
+          if (!placed[a] && !placed[b] && link(a, b) > best) {
+            best = link(a, b);
+            best_k = b;
+            best_end = a;
+          }
+      if (best == 0) break;
+      chain.push_back(best_end);
+      placed[best_end] = true;
+      chain.push_back(best_k);
+      placed[best_k] = true;
+      continue;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      if (placed[k]) continue;
+      for (const std::size_t end : {chain.front(), chain.back()})
+        if (link(k, end) > best) {
+          best = link(k, end);
+          best_k = k;
+          best_end = end;
+        }
+    }
+    if (best == 0) {
+      close_chain();
+      continue;
+    }
+    if (best_end == chain.front() && best_end != chain.back())
+      chain.push_front(best_k);
+    else
+      chain.push_back(best_k);
+    placed[best_k] = true;
+  }
+  close_chain();
+  for (std::size_t k = 0; k < n; ++k)
+    if (!placed[k]) order.push_back(k);
+  return order;
+}
+
+void write_confusion_report(const std::filesystem::path& dir,
+                            const std::vector<std::string>& class_names,
+                            const std::vector<std::vector<int>>& confusion) {
+  const auto order = confusion_order(confusion);
+  std::vector<std::string> names;
+  std::vector<std::vector<int>> ordered;
+  for (const auto r : order) {
+    names.push_back(class_names.at(r));
+    auto& row = ordered.emplace_back();
+    for (const auto c : order) row.push_back(confusion.at(r).at(c));
+  }
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "confusion.csv";
+  auto out = csv::open_with_header(path, fmt::format("true\\predicted,{}", fmt::join(names, ",")));
+  for (std::size_t r = 0; r < ordered.size(); ++r)
+    out << names[r] << ',' << fmt::format("{}", fmt::join(ordered[r], ",")) << '\n';
+  csv::finish(out, path);
+  write_confusion_chart(dir / "confusion.svg", names, ordered);
 }
 
 }  // namespace tactile::perception

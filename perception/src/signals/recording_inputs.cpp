@@ -24,14 +24,24 @@ bool is_static(Procedure p) {
   return p == Procedure::static_contact;
 }
 
-void check_groups(const RecordingInputOptions& o) {
+// Groups the procedure has; with `whole`, also a set of groups a model can take: at least one,
+// none held twice over.
+void check_groups(const RecordingInputOptions& o, bool whole) {
   const auto known = recording_input_groups(o.procedure);
-  if (o.groups.empty()) throw std::invalid_argument("no input groups selected");
   for (const auto& g : o.groups)
     if (std::find(known.begin(), known.end(), g) == known.end())
       throw std::invalid_argument(fmt::format("input group '{}' does not apply to {} (has: {})",
                                               to_string(g), recording_procedure_name(o),
                                               fmt::join(names_of(known), ", ")));
+  if (!whole) return;
+  if (o.groups.empty()) throw std::invalid_argument("no input groups selected");
+  const auto has = [&](InputGroup g) {
+    return std::find(o.groups.begin(), o.groups.end(), g) != o.groups.end();
+  };
+  for (const auto g : {InputGroup::bands, InputGroup::stds})
+    if (has(InputGroup::stats) && has(g))
+      throw std::invalid_argument(
+          fmt::format("input group '{}' is part of 'stats': select one of them", to_string(g)));
 }
 
 // Mean power per band of the mean-removed vibration, log10 (plus 1 so silence gives 0).
@@ -64,18 +74,43 @@ std::vector<double> band_powers(const SensorRecording& r, std::size_t row_begin,
   return out;
 }
 
-// Standard deviation (population) of each signal over rows [begin, end): how much it varies
-// over the slide, which the window means do not see.
+// Mean and standard deviation (population) of v over [begin, end).
+std::pair<double, double> mean_and_std(const std::vector<double>& v, std::size_t begin,
+                                       std::size_t end) {
+  const double n = static_cast<double>(std::max<std::size_t>(1, end - begin));
+  double m = 0, ss = 0;
+  for (std::size_t i = begin; i < end; ++i) m += v[i];
+  m /= n;
+  for (std::size_t i = begin; i < end; ++i) ss += (v[i] - m) * (v[i] - m);
+  return {m, std::sqrt(ss / n)};
+}
+
+// Standard deviation of each signal over rows [begin, end): how much it varies over the slide,
+// which the window means do not see.
 std::vector<double> signal_stds(const SensorRecording& r, const ContactOptions& o,
                                 std::size_t begin, std::size_t end) {
   std::vector<double> out;
+  for (const auto& v : contact_signals(r, o)) out.push_back(mean_and_std(v, begin, end).second);
+  return out;
+}
+
+// Mean and standard deviation (population) of each signal over rows [begin, end), then the
+// vibration's standard deviation over the same rows.
+std::vector<double> signal_stats(const SensorRecording& r, const ContactOptions& o,
+                                 std::size_t begin, std::size_t end) {
+  std::vector<double> out;
   for (const auto& v : contact_signals(r, o)) {
-    double m = 0, ss = 0;
-    for (std::size_t i = begin; i < end; ++i) m += v[i];
-    m /= static_cast<double>(end - begin);
-    for (std::size_t i = begin; i < end; ++i) ss += (v[i] - m) * (v[i] - m);
-    out.push_back(std::sqrt(ss / static_cast<double>(end - begin)));
+    const auto [m, sd] = mean_and_std(v, begin, end);
+    out.push_back(m);
+    out.push_back(sd);
   }
+  const double per_row = r.vibration_rate_hz / r.rate_hz;
+  const auto v_end =
+      std::min(r.vibration.size(), static_cast<std::size_t>(static_cast<double>(end) * per_row));
+  const auto v_begin =
+      std::min(v_end, static_cast<std::size_t>(static_cast<double>(begin) * per_row));
+  // The vibration is AC-coupled: its mean carries nothing.
+  out.push_back(mean_and_std(r.vibration, v_begin, v_end).second);
   return out;
 }
 
@@ -120,21 +155,21 @@ RecordingInputOptions default_recording_inputs(std::string_view procedure) {
   } else if (!o.contact.feature_from_kinematics) {
     o.groups = {InputGroup::means, InputGroup::bands};
     o.contact.baseline_at = ContactOptions::BaselineAt::none;
-    o.contact.electrodes = ContactOptions::Electrodes::each;
+    o.contact.electrodes = ContactOptions::Electrodes::clusters;
     o.contact.trim_fraction = 0.1;
   }
   return o;
 }
 
 std::vector<InputGroup> recording_input_groups(Procedure p) {
-  if (is_static(p)) return {InputGroup::means};
+  if (is_static(p)) return {InputGroup::means, InputGroup::stats};
   return {kInputGroups.begin(), kInputGroups.end()};
 }
 
 namespace {
 
-// Columns [first, second) of procedure_inputs that a group takes (bands and stds take none:
-// they are computed apart).
+// Columns [first, second) of procedure_inputs that a group takes (bands, stds and stats take
+// none: they are computed apart).
 std::pair<std::size_t, std::size_t> group_columns(const RecordingInputOptions& o,
                                                   InputGroup group) {
   const std::size_t n = contact_signal_names(o.contact).size();
@@ -147,18 +182,10 @@ std::pair<std::size_t, std::size_t> group_columns(const RecordingInputOptions& o
       return {3 * n, 3 * n + 2};
     case InputGroup::bands:
     case InputGroup::stds:
+    case InputGroup::stats:
       break;
   }
   return {0, 0};
-}
-
-// The selected groups, in the fixed order of recording_input_groups.
-std::vector<InputGroup> selected_groups(const RecordingInputOptions& o) {
-  check_groups(o);
-  std::vector<InputGroup> selected;
-  for (const auto& g : recording_input_groups(o.procedure))
-    if (std::find(o.groups.begin(), o.groups.end(), g) != o.groups.end()) selected.push_back(g);
-  return selected;
 }
 
 template <typename T>
@@ -171,13 +198,28 @@ void append_group(std::vector<T>& out, const std::vector<T>& all, const Recordin
 
 }  // namespace
 
+std::vector<InputGroup> selected_groups(const RecordingInputOptions& o) {
+  check_groups(o, true);
+  std::vector<InputGroup> selected;
+  for (const auto& g : recording_input_groups(o.procedure))
+    if (std::find(o.groups.begin(), o.groups.end(), g) != o.groups.end()) selected.push_back(g);
+  return selected;
+}
+
 std::vector<std::string> recording_input_names(const RecordingInputOptions& o) {
   const auto all = procedure_input_names(o.procedure, o.contact);
   const std::string ep = procedure_short_name(o.procedure);
   std::vector<std::string> names;
   for (const auto g : selected_groups(o)) {
     append_group(names, all, o, g);
-    if (g == InputGroup::bands)
+    if (g == InputGroup::stats) {
+      for (const auto& s : contact_signal_names(o.contact)) {
+        names.push_back(ep + ".mean." + s);
+        names.push_back(ep + ".std." + s);
+      }
+      names.push_back(ep + ".std.vibration");
+    }
+    if (g == InputGroup::bands || g == InputGroup::stats)
       for (std::size_t b = 0; b + 1 < kBandEdgesHz.size(); ++b)
         names.push_back(
             fmt::format("{}.band.{:g}_{:g}hz", ep, kBandEdgesHz[b], kBandEdgesHz[b + 1]));
@@ -187,26 +229,39 @@ std::vector<std::string> recording_input_names(const RecordingInputOptions& o) {
   return names;
 }
 
-std::vector<double> recording_inputs(const SensorRecording& r, const RecordingInputOptions& o) {
-  const auto groups = selected_groups(o);
-  const auto all = procedure_inputs(r, o.procedure, o.contact);
-  std::vector<double> inputs;
-  const auto feature_contact = [&] {
-    return find_feature_contact(r, o.procedure, find_contact(r, o.contact), o.contact);
+std::vector<std::vector<double>> recording_inputs_by_group(const SensorRecording& r,
+                                                           const RecordingInputOptions& o) {
+  check_groups(o, false);
+  const auto has = [&](InputGroup g) {
+    return std::find(o.groups.begin(), o.groups.end(), g) != o.groups.end();
   };
-  for (const auto g : groups) {
+  // The procedure's inputs (the HHT among them) are the costly part: only when a group uses them.
+  std::vector<double> all;
+  if (has(InputGroup::means) || has(InputGroup::rates) || has(InputGroup::hht))
+    all = procedure_inputs(r, o.procedure, o.contact);
+  FeatureContact f;
+  std::vector<double> bands;  // once, for bands and stats
+  if (has(InputGroup::bands) || has(InputGroup::stds) || has(InputGroup::stats))
+    f = find_feature_contact(r, o.procedure, find_contact(r, o.contact), o.contact);
+  if (has(InputGroup::bands) || has(InputGroup::stats)) bands = band_powers(r, f.begin, f.end);
+  std::vector<std::vector<double>> out;
+  for (const auto g : o.groups) {
+    auto& inputs = out.emplace_back();
     append_group(inputs, all, o, g);
-    if (g == InputGroup::bands) {
-      const auto f = feature_contact();
-      const auto bands = band_powers(r, f.begin, f.end);
+    if (g == InputGroup::stats) inputs = signal_stats(r, o.contact, f.begin, f.end);
+    if (g == InputGroup::bands || g == InputGroup::stats)
       inputs.insert(inputs.end(), bands.begin(), bands.end());
-    }
-    if (g == InputGroup::stds) {
-      const auto f = feature_contact();
-      const auto stds = signal_stds(r, o.contact, f.begin, f.end);
-      inputs.insert(inputs.end(), stds.begin(), stds.end());
-    }
+    if (g == InputGroup::stds) inputs = signal_stds(r, o.contact, f.begin, f.end);
   }
+  return out;
+}
+
+std::vector<double> recording_inputs(const SensorRecording& r, const RecordingInputOptions& o) {
+  auto selected = o;
+  selected.groups = selected_groups(o);
+  std::vector<double> inputs;
+  for (const auto& group : recording_inputs_by_group(r, selected))
+    inputs.insert(inputs.end(), group.begin(), group.end());
   return inputs;
 }
 

@@ -11,7 +11,10 @@
 // does not depend on libsvm's internal model layout.
 
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "tactile/perception/recording_inputs.hpp"
@@ -19,8 +22,9 @@
 
 namespace tactile::perception {
 
-// Version 2 added contact.trim_fraction and contact.electrodes; version 1 files are still read.
-inline constexpr int kClassifierModelVersion = 2;
+// Version 2 added contact.trim_fraction and contact.electrodes, version 3 the optional
+// `selection` (what `classify train --select` compared); versions 1 and 2 are still read.
+inline constexpr int kClassifierModelVersion = 3;
 
 // One row of a labels file `file,class[,value]`.
 struct RecordingLabel {
@@ -49,15 +53,49 @@ struct LabelledInputs {
   std::vector<double> values;  // per row; empty without a value column
 };
 
-// Reads and analyses every recording the labels name, in `dir`, on `threads` workers (0: all
-// cores). With `known_classes` (testing a model), a label outside them is an error; without,
-// the classes are those of the labels. Throws naming the file: a labelled file missing from
-// `dir`, an unknown label, a recording with no contact or too short for the windows.
+// Labelled recordings as read, before analysis (model selection analyses them many ways).
+struct LabelledRecordings {
+  std::vector<std::string> class_names;  // in order of first appearance in the labels
+  std::vector<std::string> files;
+  std::vector<SensorRecording> recordings;
+  std::vector<int> classes;    // index in class_names
+  std::vector<double> values;  // per row; empty without a value column
+};
+
+// Reads every recording the labels name, in `dir`, on `threads` workers (0: all cores). With
+// `known_classes` (testing a model), a label outside them is an error; without, the classes are
+// those of the labels. Throws naming the file: a labelled file missing from `dir`, an unknown
+// label, a recording that does not read.
+LabelledRecordings read_labelled_recordings(const std::filesystem::path& dir,
+                                            const std::filesystem::path& labels_path,
+                                            const std::vector<std::string>& known_classes = {},
+                                            int threads = 0);
+
+// The inputs of read recordings. Throws naming the recording: no contact, contact too short
+// for the windows.
+LabelledInputs analyse_recordings(const LabelledRecordings& data,
+                                  const RecordingInputOptions& options, int threads = 0);
+
+// Both of the above.
 LabelledInputs load_labelled_recordings(const std::filesystem::path& dir,
                                         const std::filesystem::path& labels_path,
                                         const RecordingInputOptions& options,
                                         const std::vector<std::string>& known_classes = {},
                                         int threads = 0);
+
+// One set of options `classify train --select` compared, and how it scored: rows correct over
+// the stratified folds of the training set (model_selection.hpp).
+struct SelectionCandidate {
+  RecordingInputOptions inputs;
+  SvmOptions svm;
+  int correct = 0, tested = 0;
+  double accuracy() const { return tested ? static_cast<double>(correct) / tested : 0.0; }
+};
+struct SelectionRecord {
+  int folds = 0;
+  std::vector<SelectionCandidate> candidates;
+  std::size_t chosen = 0;  // index in candidates: the model's options
+};
 
 struct ClassifierModel {
   int version = kClassifierModelVersion;
@@ -69,10 +107,17 @@ struct ClassifierModel {
   std::vector<std::string> files;
   SvmRows rows;
   std::vector<int> classes;
-  std::vector<double> values;  // empty: no SVRs
+  std::vector<double> values;                // empty: no SVRs
+  std::optional<SelectionRecord> selection;  // set when the options were chosen from the data
 };
 
 ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptions& svm);
+
+// The SVM settings `classify train --procedure NAME` uses unless told otherwise: the paper's
+// (exponent 1, C = 1) for its scenes; for real slides ("stroke") C = 10, chosen with the inputs
+// by `--select` (default_recording_inputs). Throws std::invalid_argument as
+// set_recording_procedure.
+SvmOptions default_svm_options(std::string_view procedure);
 
 // Strict JSON; writing replaces the file only once it is complete. Reading throws
 // tactile::FormatError naming the file: not JSON, another format version, a missing or
@@ -110,7 +155,9 @@ ClassifierTest test_classifier(const Classifier& classifier, std::size_t class_c
                                const LabelledInputs& test);
 
 // Stratified K-fold cross-validation: the rows of each class, in order, go to folds 0, 1, ...,
-// K-1, 0, ...; each fold is tested on a model trained on the others.
+// K-1, 0, ...; each fold is tested on a model trained on the others. Throws
+// std::invalid_argument when K is below 2 or above the rows of the largest class (folds would
+// be empty).
 struct CrossValidation {
   std::vector<double> fold_accuracy;
   double mean = 0, spread = 0;  // spread: sample standard deviation over folds
@@ -118,6 +165,17 @@ struct CrossValidation {
 };
 CrossValidation cross_validate(const LabelledInputs& data, const SvmOptions& svm, int folds,
                                int threads = 0);
+
+// Throws std::invalid_argument (as cross_validate) for a fold count below 2 or above the rows
+// of the largest class.
+void check_fold_count(const std::vector<int>& classes, int folds);
+// Accuracy per fold, mean, spread (sample standard deviation over folds) and pooled counts.
+CrossValidation pool_folds(const std::vector<ClassifierTest>& folds);
+
+// Fold of each row as cross_validate assigns them.
+std::vector<int> stratified_folds(const std::vector<int>& classes, int folds);
+// Rows of the smallest and of the largest class (0 without rows).
+std::pair<int, int> class_sizes(const std::vector<int>& classes);
 
 // Rows `keep` of a data set (e.g. trials 1-5 of every class).
 LabelledInputs subset(const LabelledInputs& data, const std::vector<std::size_t>& keep);

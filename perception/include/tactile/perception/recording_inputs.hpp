@@ -9,8 +9,12 @@
 // instantaneous frequency of the first IMF of the vibration over the first and last 250 ms, 2).
 // Not the paper's, for comparison with the HHT: "bands" (log10 power of the vibration over the
 // whole contact in 7 octave bands, 10-1100 Hz, 7) and "stds" (standard deviation of pressure
-// and of each electrode signal over the feature contact, 7 or 20). Static contact has only
-// "means" (7). With `contact.electrodes` each, the 6 clusters become the 19 electrodes in every
+// and of each electrode signal over the feature contact, 7 or 20). "stats", the plain summary
+// statistics a reviewer would compare the paper's inputs with: mean and standard deviation of
+// pressure and of each electrode signal over the feature contact, the vibration's standard
+// deviation and the 7 band powers (14 + 1 + 7 = 22, or 40 + 1 + 7 = 48 with each electrode);
+// it holds "bands" and "stds", so it is not combined with them. Static contact has "means" (7)
+// and "stats". With `contact.electrodes` each, the 6 clusters become the 19 electrodes in every
 // group (means 40, rates 20, stds 20).
 
 #include <array>
@@ -24,13 +28,14 @@
 
 namespace tactile::perception {
 
-enum class InputGroup { means, rates, hht, bands, stds };
-inline constexpr std::array<Named<InputGroup>, 5> kInputGroupNames = {{
+enum class InputGroup { means, rates, hht, bands, stds, stats };
+inline constexpr std::array<Named<InputGroup>, 6> kInputGroupNames = {{
     {InputGroup::means, "means"},
     {InputGroup::rates, "rates"},
     {InputGroup::hht, "hht"},
     {InputGroup::bands, "bands"},
     {InputGroup::stds, "stds"},
+    {InputGroup::stats, "stats"},
 }};
 inline constexpr auto kInputGroups = values_of(kInputGroupNames);
 // The names of model files and of `classify train --inputs`. The parser throws
@@ -61,14 +66,14 @@ std::string recording_procedure_name(const RecordingInputOptions& o);
 
 // The inputs `classify train --procedure NAME` uses unless told otherwise. The paper's scenes
 // (dp, ru, roll, static): the paper's groups, clusters, no trim, baseline at the end. Real slides
-// ("stroke"): each electrode, no baseline (the files are tared by the recording software, and
-// many end still in contact, so their last 0.2 s is no baseline), 10 % trimmed at each end, and
-// groups means and bands: the set with the best 5-fold cross-validation on 200 real slides of
-// 20 materials among those measured (docs/perception-models.md; the paper's rates and HHT add
-// nothing there). Throws std::invalid_argument as set_recording_procedure.
+// ("stroke"): what `classify train --select` chooses on 200 real slides of 20 materials
+// (model_selection.hpp, docs/perception-models.md): groups means and bands, the 6 clusters, no
+// baseline (the files are tared by the recording software, and many end still in contact, so
+// their last 0.2 s is no baseline), 10 % trimmed at each end. Throws std::invalid_argument as
+// set_recording_procedure.
 RecordingInputOptions default_recording_inputs(std::string_view procedure);
 
-// The groups a procedure has (all for strokes; means for static).
+// The groups a procedure has (all for strokes; means and stats for static).
 std::vector<InputGroup> recording_input_groups(Procedure p);
 
 // Names of the selected inputs, in order (e.g. "dp.w1.pressure", "dp.vib.if_first",
@@ -78,5 +83,16 @@ std::vector<std::string> recording_input_names(const RecordingInputOptions& o);
 // The selected inputs of one recording. Throws std::runtime_error naming the recording when it
 // has no contact or its contact is too short for the windows.
 std::vector<double> recording_inputs(const SensorRecording& r, const RecordingInputOptions& o);
+
+// The inputs of each of `o.groups` apart, in the order given and without checking that the
+// groups go together, so that one analysis serves several sets of groups (model selection):
+// recording_inputs concatenates them in the fixed order. Throws as recording_inputs.
+std::vector<std::vector<double>> recording_inputs_by_group(const SensorRecording& r,
+                                                           const RecordingInputOptions& o);
+
+// Input groups in the fixed order of the model's inputs (recording_input_groups), checked: none
+// the procedure lacks, none twice over (stats with bands or stds), at least one. Throws
+// std::invalid_argument naming the group.
+std::vector<InputGroup> selected_groups(const RecordingInputOptions& o);
 
 }  // namespace tactile::perception

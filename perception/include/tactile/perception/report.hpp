@@ -51,6 +51,19 @@ ChartFiles write_confusion_chart(const std::filesystem::path& path,
                                  const std::vector<std::string>& class_names,
                                  const std::vector<std::vector<int>>& confusion);
 
+// An order of the classes of a square confusion matrix [true][predicted] that puts classes
+// confused with each other next to each other, so that errors sit near the diagonal: greedy
+// seriation on the symmetric confusion (errors either way): start from the most confused pair,
+// attach at either end of the chain the class most confused with that end, start a new chain
+// when none is; classes never confused with another come last, in their given order.
+std::vector<std::size_t> confusion_order(const std::vector<std::vector<int>>& confusion);
+
+// `dir`/confusion.csv (`true\predicted,NAME,...`, one row per true class) and
+// `dir`/confusion.svg and .png, rows and columns in confusion_order.
+void write_confusion_report(const std::filesystem::path& dir,
+                            const std::vector<std::string>& class_names,
+                            const std::vector<std::vector<int>>& confusion);
+
 // One line per row of Table 2, for the terminal.
 std::string table2_line(const TimedCascade& row);
 
