@@ -1,32 +1,308 @@
 #include "tactile/common/atomic_write.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <limits.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
-#include <fstream>
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+#include <random>
 #include <stdexcept>
+#include <streambuf>
+#include <utility>
+#include <vector>
 
 namespace tactile {
 
-void write_atomically(const std::filesystem::path& path,
-                      const std::function<void(const std::filesystem::path& partial)>& write) {
-  const std::filesystem::path partial = path.string() + ".partial";
-  try {
-    write(partial);
-    std::filesystem::rename(partial, path);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    throw;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The registry of temporary files being written, read by the SIGINT/SIGTERM handler. This is the
+// project's one piece of process-wide state: a signal handler receives nothing but the signal
+// number, so what it must clean up can only be found in static storage. Fixed slots of plain
+// characters and lock-free atomics are what a handler may touch (no allocation, no locks). A
+// write that finds every slot taken still happens; only its cleanup on a signal is lost.
+constexpr int kSlots = 64;
+enum SlotState : int { kFree = 0, kClaimed = 1, kLive = 2 };
+struct Slot {
+  std::atomic<int> state{kFree};
+  char path[PATH_MAX] = {};
+};
+Slot g_slots[kSlots];
+struct sigaction g_previous_int {};
+struct sigaction g_previous_term {};
+std::once_flag g_handler_installed;
+
+void pass_on(int sig, const struct sigaction& before, siginfo_t* info, void* context) {
+  if ((before.sa_flags & SA_SIGINFO) != 0) {
+    if (before.sa_sigaction != nullptr) before.sa_sigaction(sig, info, context);
+    return;
+  }
+  if (before.sa_handler == SIG_IGN) return;
+  if (before.sa_handler != SIG_DFL) {
+    before.sa_handler(sig);
+    return;
+  }
+  // The default action: end the process by this signal once the handler returns (the signal is
+  // blocked until then), so the parent sees it as such (a shell reports 130 or 143).
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  sigaction(sig, &dfl, nullptr);
+  raise(sig);
+}
+
+void on_signal(int sig, siginfo_t* info, void* context) {
+  const int saved_errno = errno;
+  remove_temporary_files();
+  pass_on(sig, sig == SIGINT ? g_previous_int : g_previous_term, info, context);
+  errno = saved_errno;
+}
+
+void install_handler() {
+  struct sigaction mine {};
+  mine.sa_sigaction = &on_signal;
+  mine.sa_flags = SA_SIGINFO | SA_RESTART;
+  sigemptyset(&mine.sa_mask);
+  for (auto [sig, previous] : {std::pair{SIGINT, &g_previous_int}, {SIGTERM, &g_previous_term}}) {
+    if (sigaction(sig, nullptr, previous) != 0) continue;
+    // An ignored signal (a background job's SIGINT) stays ignored.
+    if ((previous->sa_flags & SA_SIGINFO) == 0 && previous->sa_handler == SIG_IGN) continue;
+    sigaction(sig, &mine, nullptr);
   }
 }
 
-void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& partial) {
-    std::ofstream out(partial);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  });
+// Blocks SIGINT and SIGTERM in this thread while a temporary file is created and registered, so
+// that no signal can fall between the two.
+class SignalsBlocked {
+ public:
+  SignalsBlocked() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalsBlocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsBlocked(const SignalsBlocked&) = delete;
+  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+ private:
+  sigset_t old_{};
+};
+
+int claim_slot(const std::string& path) {
+  if (path.size() >= PATH_MAX) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = kFree;
+    if (g_slots[i].state.compare_exchange_strong(expected, kClaimed)) {
+      std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void release_slot(int slot) {
+  if (slot >= 0) g_slots[slot].state.store(kFree);
+}
+
+// ".NAME.<16 hex digits>.tmp": hidden, recognisable, and unpredictable so that nothing can be
+// planted at it in advance. The name part is cut so that the whole stays within NAME_MAX.
+fs::path temporary_name(const fs::path& path) {
+  static thread_local std::mt19937_64 random{std::random_device{}()};
+  std::string name = path.filename().string().substr(0, 200);
+  return path.parent_path() / fmt::format(".{}.{:016x}.tmp", name, random());
+}
+
+std::string reason(int error) {
+  return std::strerror(error);
+}
+
+}  // namespace
+
+void remove_temporary_files() noexcept {
+  for (auto& slot : g_slots) {
+    if (slot.state.load() == kLive) ::unlink(slot.path);
+  }
+}
+
+AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
+  if (path_.filename().empty()) fail("no file name", EISDIR);
+  // A device or a pipe at the destination (/dev/null, /dev/stdout) would be replaced by a
+  // regular file, not written to.
+  struct stat st {};
+  if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    if (S_ISDIR(st.st_mode)) fail("", EISDIR);
+    throw std::runtime_error(fmt::format(
+        "cannot write {}: not a regular file (a device, pipe or socket)", path_.string()));
+  }
+  std::call_once(g_handler_installed, install_handler);
+  const SignalsBlocked blocked;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    temp_ = temporary_name(path_);
+    slot_ = claim_slot(temp_.string());
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd_ >= 0) {
+      if (slot_ >= 0) g_slots[slot_].state.store(kLive);
+      return;
+    }
+    const int error = errno;
+    release_slot(slot_);
+    slot_ = -1;
+    if (error != EEXIST) {
+      temp_.clear();
+      fail("cannot create a file in its folder", error);
+    }
+  }
+  temp_.clear();
+  fail("cannot create a temporary file in its folder", EEXIST);
+}
+
+AtomicFile::~AtomicFile() {
+  discard();
+}
+
+void AtomicFile::discard() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!temp_.empty()) ::unlink(temp_.c_str());
+  temp_.clear();
+  release_slot(slot_);
+  slot_ = -1;
+}
+
+void AtomicFile::fail(const std::string& what, int error) const {
+  throw std::runtime_error(fmt::format("cannot write {}: {}{}", path_.string(),
+                                       what.empty() ? "" : what + ": ", reason(error)));
+}
+
+void AtomicFile::write(std::string_view bytes) {
+  if (fd_ < 0) throw std::logic_error("AtomicFile::write after commit or failure");
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      discard();
+      fail("", error);
+    }
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+void AtomicFile::commit() {
+  if (fd_ < 0) throw std::logic_error("AtomicFile::commit after commit or failure");
+  // A full disk or a failing device can show only at fsync or close (delayed allocation, NFS).
+  if (::fsync(fd_) != 0) {
+    const int error = errno;
+    discard();
+    fail("", error);
+  }
+  const int fd = std::exchange(fd_, -1);
+  if (::close(fd) != 0) {
+    const int error = errno;
+    discard();
+    fail("", error);
+  }
+  if (::rename(temp_.c_str(), path_.c_str()) != 0) {
+    const int error = errno;
+    discard();
+    fail("", error);
+  }
+  temp_.clear();
+  release_slot(slot_);
+  slot_ = -1;
+  // The rename is done; syncing the folder only makes it survive a power cut, so a failure here
+  // is not reported (some file systems refuse fsync on a folder).
+  const fs::path folder = path_.parent_path().empty() ? fs::path(".") : path_.parent_path();
+  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+
+void write_atomically(const fs::path& path, std::string_view bytes) {
+  AtomicFile file(path);
+  file.write(bytes);
+  file.commit();
+}
+
+void write_text_atomically(const fs::path& path, const std::string& text) {
+  write_atomically(path, text);
+}
+
+// A stream buffer that hands full buffers to an AtomicFile. A stream buffer cannot throw
+// usefully (the stream turns it into badbit), so the first error is kept for commit().
+class AtomicOstream::Buffer : public std::streambuf {
+ public:
+  explicit Buffer(fs::path path) : file_(std::move(path)), bytes_(1 << 16) {
+    setp(bytes_.data(), bytes_.data() + bytes_.size());
+  }
+
+  void commit() {
+    drain();
+    if (!error_.empty()) throw std::runtime_error(error_);
+    file_.commit();
+  }
+  const fs::path& path() const { return file_.path(); }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const std::string_view pending(pbase(), static_cast<std::size_t>(pptr() - pbase()));
+    setp(bytes_.data(), bytes_.data() + bytes_.size());
+    if (!error_.empty()) return false;
+    try {
+      file_.write(pending);
+      return true;
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      return false;
+    }
+  }
+
+  AtomicFile file_;
+  std::vector<char> bytes_;
+  std::string error_;
+};
+
+AtomicOstream::AtomicOstream(fs::path path)
+    : std::ostream(nullptr), buffer_(std::make_unique<Buffer>(std::move(path))) {
+  rdbuf(buffer_.get());
+}
+
+AtomicOstream::AtomicOstream(AtomicOstream&& other) noexcept
+    : std::ostream(std::move(other)), buffer_(std::move(other.buffer_)) {
+  set_rdbuf(buffer_.get());
+}
+
+AtomicOstream::~AtomicOstream() = default;
+
+void AtomicOstream::commit() {
+  buffer_->commit();
+}
+
+const fs::path& AtomicOstream::path() const {
+  return buffer_->path();
 }
 
 }  // namespace tactile

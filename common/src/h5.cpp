@@ -94,15 +94,29 @@ std::vector<T> read_any(const H5::Group& group, const std::string& name, std::si
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(H5::H5File&)>& fill) {
   silence_hdf5();
+  // The file is built in memory (the core driver without a backing store) and its bytes are
+  // written by write_atomically. HDF5 then never touches the disk: a full disk is our write()'s
+  // error with the OS's reason, not a failure deep inside HDF5's close, and the temporary file
+  // is created exclusively like every other output's. The cost is the file's (compressed) size
+  // in memory, twice for a moment while the image is copied out.
+  std::vector<char> image;
   try {
-    write_atomically(path, [&](const std::filesystem::path& partial) {
-      H5::H5File file(partial.string(), H5F_ACC_TRUNC);
-      fill(file);
-      file.close();
-    });
+    H5::FileAccPropList access;
+    access.setCore(std::size_t{4} << 20, false);
+    H5::H5File file(path.string(), H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access);
+    fill(file);
+    file.flush(H5F_SCOPE_GLOBAL);
+    const ssize_t size = H5Fget_file_image(file.getId(), nullptr, 0);
+    if (size < 0) throw H5::FileIException("H5Fget_file_image", "cannot get the file image");
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file.getId(), image.data(), image.size()) != size) {
+      throw H5::FileIException("H5Fget_file_image", "cannot get the file image");
+    }
+    file.close();
   } catch (const H5::Exception& e) {
     throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), describe(e)));
   }
+  write_atomically(path, std::string_view(image.data(), image.size()));
 }
 
 H5::H5File open_for_reading(const std::filesystem::path& path) {

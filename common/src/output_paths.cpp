@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 #include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <map>
 #include <system_error>
@@ -117,6 +121,56 @@ void refuse_output_over_input(const std::vector<Output>& outputs,
       }
     }
   }
+  for (const auto& output : outputs) refuse_unwritable_output(output);
+}
+
+void refuse_unwritable_output(const Output& output) {
+  const auto refuse = [&](const std::string& why) {
+    throw UnwritableOutputError(fmt::format("{} {}: {}", output.option, output.path.string(), why));
+  };
+  // A folder that will hold new files (and is searched): W_OK for the entry, X_OK to reach it.
+  const auto refuse_unless_writable_folder = [&](const fs::path& folder) {
+    std::error_code ec;
+    if (!fs::exists(folder, ec))
+      refuse(fmt::format("the folder {} does not exist", folder.string()));
+    if (!fs::is_directory(folder, ec)) refuse(fmt::format("{} is not a folder", folder.string()));
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+      refuse(
+          fmt::format("cannot write in the folder {}: {}", folder.string(), std::strerror(errno)));
+    }
+  };
+  const auto parent_of = [](const fs::path& p) {
+    const fs::path parent = spelled(p).parent_path();
+    return parent.empty() ? fs::path(".") : parent;
+  };
+  std::error_code ec;
+  const auto status = fs::status(output.path, ec);
+  if (!output.folder) {
+    if (fs::is_directory(status)) refuse("is a folder; give a file name");
+    if (fs::exists(status) && !fs::is_regular_file(status)) {
+      refuse("is not a regular file (a device, pipe or socket)");
+    }
+    refuse_unless_writable_folder(parent_of(output.path));
+    return;
+  }
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status)) refuse("is a file, not a folder");
+    refuse_unless_writable_folder(output.path);
+    for (const auto& name : output.files) {
+      if (fs::is_directory(output.path / name, ec)) {
+        throw UnwritableOutputError(fmt::format("{} {} (its {}): is a folder", output.option,
+                                                output.path.string(), name.string()));
+      }
+    }
+    return;
+  }
+  // Created with its missing parents: the nearest existing one must take a new folder.
+  fs::path existing = parent_of(output.path);
+  while (!fs::exists(existing, ec) && existing != existing.root_path() &&
+         !existing.parent_path().empty()) {
+    existing = existing.parent_path();
+  }
+  refuse_unless_writable_folder(existing);
 }
 
 }  // namespace tactile

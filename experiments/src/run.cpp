@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/h5.hpp"
@@ -183,7 +183,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
   // 3. Configuration, metrics and plots.
   {
     const fs::path path = out_dir / "experiment.json";
-    std::ofstream out(path);
+    AtomicOstream out(path);
     out << ex.text;
     csv::finish(out, path);
     report.files.push_back(path);
@@ -214,14 +214,14 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
       j["runs"].push_back(rj);
     }
     const fs::path path = out_dir / "resolved.json";
-    std::ofstream out(path);
+    AtomicOstream out(path);
     out << j.dump(2) << '\n';
     csv::finish(out, path);
     report.files.push_back(path);
   }
   {
     const fs::path path = out_dir / "metrics.csv";
-    std::ofstream out(path);
+    AtomicOstream out(path);
     out << "# made by " << made_by << '\n'
         << "run,source,layout,method,strain,normalisation,gain_um_per_strain,rate_hz,frames,"
            "compared_pairs,strain_correlation,strain_rms_error,source_strain_rms,"

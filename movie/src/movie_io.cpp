@@ -151,7 +151,7 @@ void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovi
   for (std::int32_t r = 0; r < movie.layout.rows; ++r) {
     for (std::int32_t c = 0; c < movie.layout.cols; ++c) header += fmt::format(",r{}c{}_um", r, c);
   }
-  std::ofstream out = csv::open_with_header(csv_path, header);
+  auto out = csv::open_with_header(csv_path, header);
   std::string line;
   for (std::int32_t f = 0; f < movie.frame_count; ++f) {
     line = fmt::format("{},{}", f, f / movie.rate_hz);

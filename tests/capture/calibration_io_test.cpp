@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "../common/small_disk.hpp"
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/common/error.hpp"
 #include "test_util.hpp"
@@ -19,6 +20,7 @@ using tactile::capture::Calibration;
 using tactile::capture::read_calibration_json;
 using tactile::capture::write_calibration_json;
 using tactile::capture::testing::TempDir;
+using tactile::test::SmallDisk;
 
 Calibration example() {
   Calibration c;
@@ -100,11 +102,10 @@ TEST(CalibrationIo, MalformedFilesAreRefusedNamingTheProblem) {
 }
 
 TEST(CalibrationIo, AFailedWriteKeepsTheFileThatWasThere) {
-  TempDir dir;
-  const auto path = dir.path() / "calib.json";
+  const SmallDisk disk;
+  const auto path = disk / "calib.json";
   write_calibration_json(path, example());
-  // A directory where the temporary file would go makes the write fail.
-  std::filesystem::create_directories(dir.path() / "calib.json.partial");
+  disk.fill();
   Calibration other = example();
   other.mm_per_px = 0.05;
   EXPECT_THROW(write_calibration_json(path, other), std::exception);

@@ -1,5 +1,5 @@
-// The strict JSON reader and the atomic writer every module uses: each malformed document gets
-// a FormatError that names its origin and what is wrong; a failed write leaves the old file.
+// The strict JSON reader every module uses: each malformed document gets a FormatError that
+// names its origin and what is wrong.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "../common/temp_dir.hpp"
-#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/json.hpp"
 
 namespace tactile {
@@ -74,26 +73,6 @@ TEST_F(Files, ReadJsonObjectRefusesWhatIsNotAnObject) {
   std::ofstream(dir_ / "empty.json") << "";
   EXPECT_THAT(message_of([&] { read_json_object(dir_ / "empty.json", "a calibration"); }),
               HasSubstr("empty.json: not valid JSON"));
-}
-
-TEST_F(Files, AFailedWriteLeavesTheOldFileAndNoPartial) {
-  const fs::path p = dir_ / "kept.txt";
-  write_text_atomically(p, "old\n");
-  EXPECT_THROW(write_atomically(p,
-                                [](const fs::path& partial) {
-                                  std::ofstream(partial) << "half";
-                                  throw std::runtime_error("interrupted");
-                                }),
-               std::runtime_error);
-  std::stringstream text;
-  text << std::ifstream(p).rdbuf();
-  EXPECT_EQ(text.str(), "old\n");
-  EXPECT_FALSE(fs::exists(p.string() + ".partial"));
-  write_text_atomically(p, "new\n");
-  std::stringstream again;
-  again << std::ifstream(p).rdbuf();
-  EXPECT_EQ(again.str(), "new\n");
-  EXPECT_THROW(write_text_atomically(dir_ / "no" / "such" / "dir.txt", "x"), std::runtime_error);
 }
 
 }  // namespace

@@ -139,3 +139,43 @@ TEST_F(OutputPathsTest, SameFileFollowsLinksAndSpellings) {
 }
 
 }  // namespace
+
+namespace {
+
+// The reason an output cannot be written, or "" when it can.
+std::string unwritable(const tactile::Output& output) {
+  try {
+    tactile::refuse_output_over_input({output}, {});
+    return "";
+  } catch (const tactile::UnwritableOutputError& e) {
+    return e.what();
+  }
+}
+
+TEST_F(OutputPathsTest, AnOutputThatCannotBeWrittenIsFoundBeforeTheWork) {
+  const auto missing = dir_ / "missing" / "m.h5";
+  EXPECT_THAT(unwritable(output_file("--out", missing)),
+              HasSubstr("--out " + missing.string() + ": the folder " +
+                        (dir_ / "missing").string() + " does not exist"));
+  EXPECT_THAT(unwritable(output_file("--out", dir_ / "in")),
+              HasSubstr("--out " + (dir_ / "in").string() + ": is a folder"));
+  EXPECT_THAT(unwritable(output_file("--out", dir_ / "in" / "s.h5" / "m.h5")),
+              HasSubstr("is not a folder"));
+  EXPECT_THAT(unwritable(output_file("--preview", "/dev/null")),
+              HasSubstr("--preview /dev/null: is not a regular file"));
+  EXPECT_THAT(unwritable(output_folder("--csv", dir_ / "in" / "s.h5", {"a.csv"})),
+              HasSubstr("--csv " + (dir_ / "in" / "s.h5").string() + ": is a file, not a folder"));
+  fs::create_directories(dir_ / "out" / "a.csv");
+  EXPECT_THAT(unwritable(output_folder("--csv", dir_ / "out", {"a.csv"})),
+              HasSubstr("--csv " + (dir_ / "out").string() + " (its a.csv): is a folder"));
+  // A folder created with its parents, under a file: cannot be made.
+  EXPECT_THAT(unwritable(output_folder("--csv", dir_ / "in" / "s.h5" / "x" / "y", {"a.csv"})),
+              HasSubstr("is not a folder"));
+  // Writable ones pass: new file, existing file, new folder (with new parents), existing folder.
+  EXPECT_EQ(unwritable(output_file("--out", dir_ / "new.h5")), "");
+  EXPECT_EQ(unwritable(output_file("--out", dir_ / "in" / "s.h5")), "");
+  EXPECT_EQ(unwritable(output_folder("--csv", dir_ / "n" / "e" / "w", {"a.csv"})), "");
+  EXPECT_EQ(unwritable(output_folder("--csv", dir_ / "in", {"a.csv"})), "");
+}
+
+}  // namespace

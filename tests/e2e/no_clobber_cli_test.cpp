@@ -23,6 +23,7 @@ namespace {
 const fs::path kDemo = tactile::test::demo_dir();
 const fs::path kPrints = tactile::test::test_data("polyu-hrf-pores");
 const fs::path kRecordings = tactile::test::test_data("biotac-slide");
+const fs::path kMaterials = tactile::test::test_data("biotac-materials");
 
 std::string bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -206,6 +207,39 @@ TEST_F(NoClobber, PerceiveRecordings) {
     EXPECT_THAT(r.output, HasSubstr(std::string("through a ") + how + " link")) << how;
     EXPECT_EQ(bytes(rec), before) << how;
   }
+}
+
+TEST_F(NoClobber, ClassifyTrain) {
+  const auto labels = dir_ / "labels.csv";
+  std::ofstream(labels) << "file,class\nmat1_1_bio.csv,mat1\nmat7_1_bio.csv,mat7\n";
+  const std::string train = "classify train --recordings ";
+  expect_refused(train + kMaterials.string() + " --labels " + labels.string() + " --out OUT",
+                 labels, "--out");
+  const auto rec = copy(kMaterials / "mat1_1_bio.csv", "rec/mat1_1_bio.csv");
+  copy(kMaterials / "mat7_1_bio.csv", "rec/mat7_1_bio.csv");
+  expect_refused(train + (dir_ / "rec").string() + " --labels " + labels.string() + " --out OUT",
+                 rec, "--out");
+}
+
+TEST_F(NoClobber, ClassifyTest) {
+  const auto model = dir_ / "model.json";
+  std::ofstream(model) << "{}";
+  // The labels file in the CSV folder, named like a file the command writes there.
+  const auto labels = dir_ / "csv" / "predictions.csv";
+  fs::create_directories(labels.parent_path());
+  std::ofstream(labels) << "file,class\nmat1_1_bio.csv,mat1\nmat7_1_bio.csv,mat7\n";
+  const std::string test = "classify test --model " + model.string() + " --recordings ";
+  expect_refused(test + kMaterials.string() + " --labels " + labels.string() + " --csv OUT", labels,
+                 "--csv", "predictions.csv");
+  // A recording named like one, the CSV folder being the recordings folder.
+  const auto rec = copy(kMaterials / "mat1_1_bio.csv", "rec/confusion.csv");
+  expect_refused(test + (dir_ / "rec").string() + " --labels " + labels.string() + " --csv OUT",
+                 rec, "--csv", "confusion.csv");
+  // The model itself.
+  const auto model_in_csv = copy(model, "csv2/confusion.svg");
+  expect_refused("classify test --model " + model_in_csv.string() + " --recordings " +
+                     kMaterials.string() + " --labels " + labels.string() + " --csv OUT",
+                 model_in_csv, "--csv", "confusion.svg");
 }
 
 TEST_F(NoClobber, PlayPreview) {

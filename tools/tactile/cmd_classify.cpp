@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
@@ -23,6 +24,22 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The labels file, every file in the recordings folder (the labels choose among them; any may
+// be read) and, when given, the model.
+std::vector<NamedPath> classify_inputs(const std::filesystem::path& recordings,
+                                       const std::filesystem::path& labels,
+                                       const std::filesystem::path& model = {}) {
+  std::vector<NamedPath> inputs = {{"--labels", labels}};
+  if (!model.empty()) inputs.push_back({"--model", model});
+  std::error_code ec;
+  const auto options = std::filesystem::directory_options::skip_permission_denied;
+  for (auto it = std::filesystem::recursive_directory_iterator(recordings, options, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_directory(ec)) inputs.push_back({"--recordings", it->path()});
+  }
+  return inputs;
 }
 
 struct TrainOptions {
@@ -84,6 +101,7 @@ int train_selected(const TrainOptions& o) {
 }
 
 int train(const TrainOptions& o) {
+  refuse_output_over_input({output_file("--out", o.out)}, classify_inputs(o.recordings, o.labels));
   if (o.select) return train_selected(o);
   const auto t0 = std::chrono::steady_clock::now();
   auto in = perception::default_recording_inputs(o.procedure);
@@ -137,6 +155,12 @@ int finish_training(const TrainOptions& o, const perception::ClassifierModel& mo
 
 int test(const std::filesystem::path& model_path, const std::filesystem::path& recordings,
          const std::filesystem::path& labels, const std::filesystem::path& csv_dir, int threads) {
+  if (!csv_dir.empty()) {
+    refuse_output_over_input(
+        {output_folder("--csv", csv_dir,
+                       {"confusion.csv", "confusion.svg", "confusion.png", "predictions.csv"})},
+        classify_inputs(recordings, labels, model_path));
+  }
   const auto model = perception::read_classifier_model(model_path);
   const perception::Classifier fitted(model);
   const auto data = perception::load_labelled_recordings(recordings, labels, model.options,

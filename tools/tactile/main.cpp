@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   if (!action) return 2;  // unreachable: require_subcommand(1) guarantees a command ran
   try {
     return action();
-  } catch (const tactile::OutputIsInputError& e) {
+  } catch (const tactile::OutputPathError& e) {
     // Found before any work, like a parse error, but only once a command knows its inputs.
     fmt::print(stderr, "tactile {}: error: {}\n", app.get_subcommands().front()->get_name(),
                e.what());

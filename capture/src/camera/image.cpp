@@ -11,6 +11,7 @@
 
 #include "camera/cv_image.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/image_write.hpp"
 
 namespace tactile::capture {
 
@@ -41,14 +42,7 @@ GrayImage read_image(const std::filesystem::path& path) {
 }
 
 void write_png(const std::filesystem::path& path, const GrayImage& image) {
-  const cv::Mat mat = as_mat(image);
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path.string(), mat);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(fmt::format("{}: cannot write PNG ({})", path.string(), e.what()));
-  }
-  if (!ok) throw std::runtime_error(fmt::format("{}: cannot write PNG", path.string()));
+  write_image_atomically(path, as_mat(image));
 }
 
 namespace {

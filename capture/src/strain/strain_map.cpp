@@ -11,6 +11,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tactile/common/image_write.hpp"
+
 namespace tactile::capture {
 
 namespace {
@@ -84,13 +86,7 @@ void write_strain_map_png(const std::filesystem::path& path, const StrainFrame& 
   cv::putText(image, fmt::format("strain, frames {} -> {}", frame.frame_from, frame.frame_to),
               {10, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kText, 1, cv::LINE_AA);
   draw_scale(image, options.full_scale);
-  bool written = false;
-  try {
-    written = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception&) {
-    written = false;
-  }
-  if (!written) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  write_image_atomically(path, image);
 }
 
 }  // namespace tactile::capture

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <random>
 #include <stdexcept>
 
@@ -14,6 +13,7 @@
 #include "camera/cv_image.hpp"
 #include "landmarks/fingerprint.hpp"
 #include "synthetic/scene_model.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/csv.hpp"
 
 namespace tactile::capture {
@@ -236,10 +236,7 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
                             sequence.frames.empty() ? 0 : sequence.frames.size() - 1);
   j["dot_grid"] = "calibration/dot_grid.png";
   const auto json_path = dir / "scene.json";
-  std::ofstream js(json_path);
-  js << j.dump(2) << "\n";
-  js.flush();
-  if (!js) throw std::runtime_error(fmt::format("{}: cannot write", json_path.string()));
+  write_text_atomically(json_path, j.dump(2) + "\n");
 }
 
 }  // namespace tactile::capture

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "tactile/common/image_write.hpp"
 #include "tactile/display/summary.hpp"
 #include "tactile/movie/frame_geometry.hpp"
 
@@ -158,13 +159,7 @@ void write_preview_strip(const std::filesystem::path& png, const movie::TactileM
     cv::Mat plot = img(cv::Rect(0, plot_y, width, options.plot_height_px));
     draw_plot(plot, movie, marks);
   }
-  bool ok = false;
-  try {
-    ok = cv::imwrite(png.string(), img);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(fmt::format("cannot write preview {}: {}", png.string(), e.what()));
-  }
-  if (!ok) throw std::runtime_error(fmt::format("cannot write preview {}", png.string()));
+  write_image_atomically(png, img);
 }
 
 }  // namespace tactile::display

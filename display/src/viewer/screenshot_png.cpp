@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "tactile/common/image_write.hpp"
 #include "tactile/display/viewer.hpp"
 
 namespace tactile::display {
@@ -19,13 +20,7 @@ void write_png(const std::filesystem::path& png, const RenderedImage& image) {
                     const_cast<std::uint8_t*>(image.rgb.data()));
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  bool written = false;
-  try {
-    written = cv::imwrite(png.string(), bgr);
-  } catch (const cv::Exception&) {
-    written = false;
-  }
-  if (!written) throw std::runtime_error(fmt::format("cannot write {}", png.string()));
+  write_image_atomically(png, bgr);
 }
 
 }  // namespace tactile::display

@@ -4,16 +4,16 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <stdexcept>
+
+#include "tactile/common/atomic_write.hpp"
 
 namespace tactile::perception {
 
 void write_arff(const std::filesystem::path& path, const PerceptionDataset& d,
                 const std::vector<std::size_t>& samples, const std::vector<std::size_t>& columns,
                 ArffTarget target) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  AtomicOstream out(path);
   out << "@relation perception\n\n";
   for (std::size_t c : columns) out << fmt::format("@attribute '{}' numeric\n", d.names.at(c));
   out << (target == ArffTarget::curvature ? "@attribute curvature {planar,conical,spherical}\n"
@@ -29,8 +29,7 @@ void write_arff(const std::filesystem::path& path, const PerceptionDataset& d,
     else
       out << fmt::format("{:g}\n", s.footprint_mm);
   }
-  out.flush();
-  if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
+  out.commit();
 }
 
 }  // namespace tactile::perception

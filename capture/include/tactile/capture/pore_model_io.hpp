@@ -18,7 +18,7 @@ struct PoreModelFile {
   std::vector<std::string> trained_on;  // names of the training prints
 };
 
-// Written atomically (NAME.partial, then renamed). Throws std::invalid_argument for a model of
+// Written atomically (atomic_write.hpp). Throws std::invalid_argument for a model of
 // the wrong size or with non-finite numbers, std::runtime_error when the file cannot be written.
 void write_pore_model_json(const std::filesystem::path& path, const PoreModelFile& model);
 

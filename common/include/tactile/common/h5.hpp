@@ -15,8 +15,9 @@
 
 namespace tactile::h5 {
 
-// Writes a file atomically: `fill` writes into a temporary file next to `path`, which replaces
-// `path` only when `fill` returns normally. A failed write leaves an existing file untouched.
+// Writes a file atomically: `fill` builds the file in memory, whose bytes then replace `path`
+// through write_atomically (atomic_write.hpp) only when `fill` returns normally. A failed write
+// leaves an existing file untouched; errors name `path` and the OS's or HDF5's reason.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(H5::H5File&)>& fill);
 

@@ -11,11 +11,26 @@
 
 namespace tactile {
 
-// An output path that would write over an input (or over another output). The message names
-// both options and both paths. The `tactile` program treats it as a usage error.
-class OutputIsInputError : public std::invalid_argument {
+// An output path that cannot be used, found before any work. The `tactile` program treats it
+// as a usage error.
+class OutputPathError : public std::invalid_argument {
  public:
-  explicit OutputIsInputError(const std::string& what) : std::invalid_argument(what) {}
+  explicit OutputPathError(const std::string& what) : std::invalid_argument(what) {}
+};
+
+// An output path that would write over an input (or over another output). The message names
+// both options and both paths.
+class OutputIsInputError : public OutputPathError {
+ public:
+  explicit OutputIsInputError(const std::string& what) : OutputPathError(what) {}
+};
+
+// An output that cannot be written: its folder is missing or not writable, a file output is a
+// folder (or a device), a folder output is a file. The message names the option, the path and
+// the reason.
+class UnwritableOutputError : public OutputPathError {
+ public:
+  explicit UnwritableOutputError(const std::string& what) : OutputPathError(what) {}
 };
 
 // A path as the user gave it, with the option or argument it came from ("--out", "STRAIN_H5").
@@ -51,9 +66,16 @@ Output output_folder(std::string option, std::filesystem::path path,
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
 // Throws OutputIsInputError if any file an output writes is one of `inputs` (files or folders),
-// if a folder output is an input that is not a folder, or if two outputs write the same file.
+// if a folder output is an input that is not a folder, or if two outputs write the same file;
+// then UnwritableOutputError if an output cannot be written (see refuse_unwritable_output).
 // Touches nothing on disk but reads folder listings of existing sub-folders.
 void refuse_output_over_input(const std::vector<Output>& outputs,
                               const std::vector<NamedPath>& inputs);
+
+// Throws UnwritableOutputError if `output` cannot be written: a file output that is a folder or
+// not a regular file, or whose folder is missing, not a folder or not writable; a folder output
+// that is not a folder, or (when it does not exist yet) whose nearest existing parent cannot
+// take a new folder; a file a folder output writes that is a folder.
+void refuse_unwritable_output(const Output& output);
 
 }  // namespace tactile

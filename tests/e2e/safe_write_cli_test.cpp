@@ -1,0 +1,185 @@
+// Writes that cannot destroy, as a user meets them: a full disk is a clear error (exit 1) naming
+// the file and the OS's reason, never a crash; a link planted at a guessable temporary name is
+// never written through; an output that cannot be written is a usage error (exit 2) before any
+// work; SIGTERM and SIGINT in the middle of a run end it with 143 and 130. In every case the old
+// output is as it was and no temporary file is left.
+
+#include <fcntl.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../common/small_disk.hpp"
+#include "../common/temp_dir.hpp"
+#include "run.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using tactile::test::run_tactile;
+using ::testing::HasSubstr;
+
+namespace {
+
+const fs::path kDemo = tactile::test::demo_dir();
+
+std::string bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Files under `dir` whose name is a temporary file's (".NAME.<hex>.tmp") or the old ".partial".
+std::vector<fs::path> temporary_files(const fs::path& dir) {
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.ends_with(".tmp") || name.ends_with(".partial")) found.push_back(it->path());
+  }
+  return found;
+}
+
+class SafeWrite : public ::testing::Test {
+ protected:
+  tactile::test::TempDir tmp_;
+  const fs::path dir_ = tmp_.path();
+};
+
+TEST_F(SafeWrite, MapOnAFullDiskSaysSoAndKeepsTheOldMovie) {
+  const tactile::test::SmallDisk disk(64);
+  const fs::path out = disk / "movie.h5";
+  std::ofstream(out) << "old movie";
+  disk.fill();
+  const auto r = run_tactile("map " + (kDemo / "strain.h5").string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("cannot write " + out.string() + ": No space left on device"));
+  EXPECT_EQ(bytes(out), "old movie");
+  EXPECT_THAT(temporary_files(disk.path()), ::testing::IsEmpty());
+}
+
+TEST_F(SafeWrite, CaptureOnAFullDiskSaysSoAndKeepsTheOldStrain) {
+  const tactile::test::SmallDisk disk(64);
+  const fs::path out = disk / "strain.h5";
+  std::ofstream(out) << "old strain";
+  disk.fill();
+  const auto r = run_tactile("capture " + (kDemo / "frames").string() +
+                             " --px-per-mm 62 --min-track 2 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("cannot write " + out.string() + ": No space left on device"));
+  EXPECT_EQ(bytes(out), "old strain");
+  EXPECT_THAT(temporary_files(disk.path()), ::testing::IsEmpty());
+}
+
+TEST_F(SafeWrite, ALinkAtTheOldPartialNameIsNotWrittenThrough) {
+  const fs::path victim = dir_ / "victim.h5";
+  fs::copy_file(kDemo / "strain.h5", victim);
+  const std::string before = bytes(victim);
+  fs::create_symlink(victim, dir_ / "movie.h5.partial");
+  std::ofstream(dir_ / "movie.csv.partial") << "stale half of an interrupted run";
+  const auto r = run_tactile("map " + victim.string() + " --out " + (dir_ / "movie.h5").string() +
+                             " --csv " + (dir_ / "movie.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(bytes(victim), before);
+  EXPECT_TRUE(fs::is_symlink(dir_ / "movie.h5.partial"));
+  EXPECT_EQ(bytes(dir_ / "movie.csv.partial"), "stale half of an interrupted run");
+  EXPECT_EQ(bytes(dir_ / "movie.csv").rfind("frame,", 0), 0U) << bytes(dir_ / "movie.csv");
+}
+
+TEST_F(SafeWrite, AnOutputThatCannotBeWrittenIsAUsageErrorBeforeTheWork) {
+  const std::string map = "map " + (kDemo / "strain.h5").string() + " --out ";
+  auto r = run_tactile(map + (dir_ / "missing" / "m.h5").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output,
+              HasSubstr("--out " + (dir_ / "missing" / "m.h5").string() + ": the folder " +
+                        (dir_ / "missing").string() + " does not exist"));
+  r = run_tactile(map + dir_.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--out " + dir_.string() + ": is a folder"));
+  std::ofstream(dir_ / "file") << "a file";
+  std::ofstream(dir_ / "tiny.json") << R"({"name": "tiny", "seed": 1, "sources": [{"name": "gt",
+    "ground_truth": {"scene": "bump", "frames": 8}, "grid_spacing_mm": 0.6}],
+    "layouts": ["stress"], "methods": ["integrated"], "parameters": {"rate_hz": 100}})";
+  r = run_tactile("experiment " + (dir_ / "tiny.json").string() + " --out " +
+                  (dir_ / "file").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--out " + (dir_ / "file").string() + ": is a file"));
+  EXPECT_EQ(bytes(dir_ / "file"), "a file");
+}
+
+// An experiment of many movies, long enough to be stopped in the middle.
+const char* kLong = R"({"name": "long", "seed": 1,
+  "sources": [{"name": "gt", "ground_truth": {"scene": "bump", "frames": 1500},
+               "grid_spacing_mm": 0.6}],
+  "layouts": ["stress", "latero"], "methods": ["integrated", "profile", "proportional"],
+  "parameters": {"rate_hz": 100}})";
+
+// Starts `tactile ARGS...` with its output into `log`; returns its process id.
+pid_t spawn_tactile(const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> all = {TACTILE_CLI_PATH};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+// Stops the experiment with `sig` `after` into its run, or (after < 0) as soon as one of its
+// temporary files is seen: it must end by that signal, leave no temporary file, and leave the
+// old metrics.csv (written last) as it was.
+void stop_experiment(const fs::path& dir, std::chrono::milliseconds after, int sig) {
+  const fs::path exp = dir / "long.json";
+  std::ofstream(exp) << kLong;
+  static int runs = 0;
+  const fs::path out = dir / ("out" + std::to_string(runs++));
+  fs::create_directories(out);
+  std::ofstream(out / "metrics.csv") << "old metrics";
+  const pid_t pid = spawn_tactile(
+      {"experiment", exp.string(), "--out", out.string(), "--threads", "2"}, dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  if (after.count() >= 0) {
+    std::this_thread::sleep_for(after);
+  } else {
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (temporary_files(out).empty() && std::chrono::steady_clock::now() < give_up) {
+    }
+    EXPECT_THAT(temporary_files(out), ::testing::Not(::testing::IsEmpty()))
+        << "no temporary file seen";
+  }
+  ::kill(pid, sig);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the experiment ended before the signal, or by itself, at "
+                                   << after.count() << " ms: " << bytes(dir / "log.txt");
+  EXPECT_EQ(128 + WTERMSIG(status), sig == SIGTERM ? 143 : 130);
+  EXPECT_THAT(temporary_files(out), ::testing::IsEmpty()) << after.count() << " ms";
+  EXPECT_EQ(bytes(out / "metrics.csv"), "old metrics") << after.count() << " ms";
+}
+
+TEST_F(SafeWrite, SigtermOrSigintDuringAnExperimentLeavesNoTemporaryFile) {
+  const std::pair<int, int> moments[] = {
+      {-1, SIGTERM}, {-1, SIGINT}, {100, SIGTERM}, {250, SIGINT}, {500, SIGTERM}};
+  for (const auto& [ms, sig] : moments) stop_experiment(dir_, std::chrono::milliseconds(ms), sig);
+}
+
+}  // namespace
