@@ -4,6 +4,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "camera/cv_image.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/parallel_for.hpp"
@@ -170,10 +172,7 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   return a;
 }
 
-}  // namespace
-
-RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
-                          double px_per_mm, const RefineParams& params, int threads) {
+void check_refine_params(double px_per_mm, const RefineParams& params) {
   if (!(px_per_mm > 0)) throw std::invalid_argument("refine_tracks: px_per_mm must be > 0");
   if (!(params.window_mm > 0)) throw std::invalid_argument("refine_tracks: window_mm must be > 0");
   if (!(params.min_correlation >= 0 && params.min_correlation < 1)) {
@@ -183,6 +182,19 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
   if (!(params.presmoothing_px >= 0)) {
     throw std::invalid_argument("refine_tracks: presmoothing_px must be >= 0");
   }
+}
+
+// A little smoothing takes noise out of the gradients that the alignment follows.
+void smoothed_frame(const GrayImage& frame, double presmoothing_px, cv::Mat& out) {
+  as_mat(frame).convertTo(out, CV_32F);
+  if (presmoothing_px > 0) cv::GaussianBlur(out, out, {0, 0}, presmoothing_px);
+}
+
+}  // namespace
+
+RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
+                          double px_per_mm, const RefineParams& params, int threads) {
+  check_refine_params(px_per_mm, params);
   const int n = static_cast<int>(frames.size());
   for (const auto& t : tracks) {
     if (t.first_frame < 0 || t.last_frame() >= n) {
@@ -193,13 +205,9 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
       std::max(2, static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)));
   const double max_offset_px = params.max_offset_mm * px_per_mm;
   const int room_px = 1 + static_cast<int>(std::ceil(max_offset_px));
-  // A little smoothing takes noise out of the gradients that the alignment follows.
   std::vector<cv::Mat> smooth(frames.size());
   parallel_for(frames.size(), worker_count(threads), [&](std::size_t f) {
-    as_mat(frames[f]).convertTo(smooth[f], CV_32F);
-    if (params.presmoothing_px > 0) {
-      cv::GaussianBlur(smooth[f], smooth[f], {0, 0}, params.presmoothing_px);
-    }
+    smoothed_frame(frames[f], params.presmoothing_px, smooth[f]);
   });
 
   std::vector<long> steps(tracks.size(), 0);
@@ -254,6 +262,139 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
   for (std::size_t i = 0; i < kept.size(); ++i) kept[i].id = static_cast<std::int32_t>(i);
   tracks = std::move(kept);
   return stats;
+}
+
+struct AlignmentTracker::State {
+  struct Live {
+    Track track;
+    Reference reference;
+    Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+    bool ended = false;
+  };
+  double px_per_mm = 0;
+  RefineParams params;
+  int threads = 0;
+  int half_side = 0;
+  double max_offset_px = 0;
+  int room_px = 0;
+  int frames = 0;
+  std::int32_t next_id = 0;
+  int width_px = 0, height_px = 0;
+  std::vector<Live> live;
+  std::vector<Track> ended;
+  RefineStats stats;
+  cv::Mat smooth;
+};
+
+AlignmentTracker::AlignmentTracker(double px_per_mm, const RefineParams& params, int threads)
+    : state_(std::make_unique<State>()) {
+  check_refine_params(px_per_mm, params);
+  State& s = *state_;
+  s.px_per_mm = px_per_mm;
+  s.params = params;
+  s.threads = threads;
+  s.half_side = std::max(2, static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)));
+  s.max_offset_px = params.max_offset_mm * px_per_mm;
+  s.room_px = 1 + static_cast<int>(std::ceil(s.max_offset_px));
+}
+
+AlignmentTracker::~AlignmentTracker() = default;
+
+int AlignmentTracker::frames() const {
+  return state_->frames;
+}
+
+int AlignmentTracker::live_tracks() const {
+  return static_cast<int>(state_->live.size());
+}
+
+void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Feature>& seeds) {
+  State& s = *state_;
+  if (s.frames == 0) {
+    s.width_px = image.width_px;
+    s.height_px = image.height_px;
+  } else if (image.width_px != s.width_px || image.height_px != s.height_px) {
+    throw std::invalid_argument(
+        fmt::format("AlignmentTracker: frame {} is {}x{} px, frame 0 is {}x{} px", s.frames,
+                    image.width_px, image.height_px, s.width_px, s.height_px));
+  }
+  smoothed_frame(image, s.params.presmoothing_px, s.smooth);
+  const int frame = s.frames++;
+  parallel_for(s.live.size(), worker_count(s.threads), [&](std::size_t i) {
+    State::Live& l = s.live[i];
+    Track& t = l.track;
+    const std::size_t k = t.x_px.size();
+    // Constant velocity from the last two positions (none for a track's second frame).
+    const double step_x = k >= 2 ? t.x_px[k - 1] - t.x_px[k - 2] : 0.0;
+    const double step_y = k >= 2 ? t.y_px[k - 1] - t.y_px[k - 2] : 0.0;
+    const double px = t.x_px[k - 1] + step_x, py = t.y_px[k - 1] + step_y;
+    const Aligned a = align(l.reference, s.smooth, px, py, l.linear, s.params);
+    if (!a.ok || std::hypot(a.x_px - px, a.y_px - py) > s.max_offset_px) {
+      l.ended = true;
+      return;
+    }
+    t.x_px.push_back(a.x_px);
+    t.y_px.push_back(a.y_px);
+    l.linear = a.linear;
+  });
+  s.stats.steps += static_cast<long>(s.live.size());
+  std::vector<State::Live> still;
+  still.reserve(s.live.size() + seeds.size());
+  for (auto& l : s.live) {
+    if (l.ended) {
+      ++s.stats.cut;
+      s.ended.push_back(std::move(l.track));
+    } else {
+      still.push_back(std::move(l));
+    }
+  }
+  // New tracks only where no live track is: one landmark, one track.
+  const double min_separation_px = 0.5 * s.max_offset_px;
+  const std::size_t tracked = still.size();
+  std::vector<State::Live> started(seeds.size());
+  std::vector<char> ok(seeds.size(), 0);
+  parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
+    const Feature& f = seeds[j];
+    for (std::size_t i = 0; i < tracked; ++i) {
+      const Track& t = still[i].track;
+      if (std::hypot(t.x_px.back() - f.x_px, t.y_px.back() - f.y_px) < min_separation_px) return;
+    }
+    State::Live& l = started[j];
+    if (!make_reference(s.smooth, f.x_px, f.y_px, s.half_side, s.room_px, l.reference)) return;
+    l.track.type = f.type;
+    l.track.first_frame = frame;
+    l.track.x_px = {f.x_px};
+    l.track.y_px = {f.y_px};
+    ok[j] = 1;
+  });
+  for (std::size_t j = 0; j < seeds.size(); ++j) {
+    if (!ok[j]) continue;
+    started[j].track.id = s.next_id++;
+    still.push_back(std::move(started[j]));
+  }
+  s.live = std::move(still);
+}
+
+std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
+  State& s = *state_;
+  std::vector<Track> all = std::move(s.ended);
+  for (auto& l : s.live) all.push_back(std::move(l.track));
+  s.live.clear();
+  s.ended.clear();
+  // Ended tracks were set aside as they ended: back in the order they started (their ids).
+  std::sort(all.begin(), all.end(), [](const Track& a, const Track& b) { return a.id < b.id; });
+  std::vector<Track> kept;
+  for (auto& t : all) {
+    if (static_cast<int>(t.x_px.size()) < s.params.min_frames) {
+      ++s.stats.dropped;
+      continue;
+    }
+    t.id = static_cast<std::int32_t>(kept.size());
+    kept.push_back(std::move(t));
+  }
+  if (stats) *stats = s.stats;
+  s.stats = {};
+  return kept;
 }
 
 }  // namespace tactile::capture
