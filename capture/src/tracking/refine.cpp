@@ -24,6 +24,9 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 struct Reference {
   std::vector<double> grey, dx, dy, weight;
   std::vector<Vector6> descent;
+  std::vector<Vector6> weighted_descent;  // weight x descent
+  Vector6 sum_weighted_descent = Vector6::Zero();
+  Vector6 sum_weighted_grey_descent = Vector6::Zero();
   Matrix6 hessian_inverse = Matrix6::Zero();
   double total_weight = 0;
 };
@@ -31,10 +34,12 @@ struct Reference {
 // Bilinear interpolation in double precision (OpenCV's warps round sample positions to 1/32
 // pixel, and the alignment is after hundredths of a pixel); false outside the image.
 bool sample(const cv::Mat& image, double x, double y, double& value) {
-  const double fx = std::floor(x), fy = std::floor(y);
-  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
-  if (ix < 0 || iy < 0 || ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
-  const double ax = x - fx, ay = y - fy;
+  // Truncation is the floor for the positions that pass (std::floor is a library call on the
+  // baseline x86-64 target, and sampling is most of an alignment's time).
+  if (!(x >= 0 && y >= 0)) return false;
+  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
+  if (ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
+  const double ax = x - ix, ay = y - iy;
   const float* r0 = image.ptr<float>(iy) + ix;
   const float* r1 = image.ptr<float>(iy + 1) + ix;
   value = (1 - ay) * ((1 - ax) * r0[0] + ax * r0[1]) + ay * ((1 - ax) * r1[0] + ax * r1[1]);
@@ -78,6 +83,9 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
       ref.dy.push_back(oy);
       ref.weight.push_back(w);
       ref.descent.push_back(d);
+      ref.weighted_descent.push_back(w * d);
+      ref.sum_weighted_descent += w * d;
+      ref.sum_weighted_grey_descent += w * row[u] * d;
       sw += w;
       swg += w * row[u];
       swgg += w * row[u] * row[u];
@@ -114,6 +122,9 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
     double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
+    // sum of weight x sample x descent: with the reference's own sums it gives the update in
+    // this one pass over the window when the whole window is inside the frame.
+    Vector6 swid = Vector6::Zero();
     std::size_t inside_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double x = position.x() + l(0, 0) * ref.dx[i] + l(0, 1) * ref.dy[i];
@@ -121,13 +132,14 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
       inside[i] = sample(smooth, x, y, warped[i]);
       if (!inside[i]) continue;
       ++inside_count;
-      const double w = ref.weight[i], g = ref.grey[i];
+      const double w = ref.weight[i], g = ref.grey[i], v = warped[i];
       sw += w;
-      swi += w * warped[i];
-      swii += w * warped[i] * warped[i];
+      swi += w * v;
+      swii += w * v * v;
       swt += w * g;
       swtt += w * g * g;
-      swit += w * warped[i] * g;
+      swit += w * v * g;
+      swid += v * ref.weighted_descent[i];
     }
     if (2 * sw < ref.total_weight) return a;
     const double mean = swi / sw, ref_mean = swt / sw;
@@ -135,21 +147,24 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
     const double ref_spread = std::sqrt(std::max(0.0, swtt / sw - ref_mean * ref_mean));
     if (spread < 1e-3 || ref_spread < 1e-3) return a;
     correlation = (swit / sw - mean * ref_mean) / (spread * ref_spread);
-    // Grey levels of the frame brought to the reference's mean and spread.
-    Vector6 b = Vector6::Zero();
-    Matrix6 hessian = Matrix6::Zero();
+    // Grey levels of the frame brought to the reference's mean and spread: the error at a
+    // sample is ref_mean + gain (warped - mean) - grey.
     const bool whole = inside_count == n;
     const double gain = ref_spread / spread;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!inside[i]) continue;
-      const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
-      b += ref.weight[i] * e * ref.descent[i];
-      if (!whole) hessian += ref.weight[i] * ref.descent[i] * ref.descent[i].transpose();
-    }
     Vector6 p;
     if (whole) {
+      const Vector6 b = gain * swid + (ref_mean - gain * mean) * ref.sum_weighted_descent -
+                        ref.sum_weighted_grey_descent;
       p = ref.hessian_inverse * b;
     } else {
+      Vector6 b = Vector6::Zero();
+      Matrix6 hessian = Matrix6::Zero();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!inside[i]) continue;
+        const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
+        b += e * ref.weighted_descent[i];
+        hessian += ref.weight[i] * ref.descent[i] * ref.descent[i].transpose();
+      }
       const Eigen::FullPivLU<Matrix6> lu(hessian);
       if (!lu.isInvertible()) return a;
       p = lu.solve(b);
