@@ -29,6 +29,7 @@ struct Reference {
   Vector6 sum_weighted_grey_descent = Vector6::Zero();
   Matrix6 hessian_inverse = Matrix6::Zero();
   double total_weight = 0;
+  double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
 };
 
 // Bilinear interpolation in double precision (OpenCV's warps round sample positions to 1/32
@@ -92,6 +93,8 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
     }
   }
   ref.total_weight = sw;
+  ref.sum_weighted_grey = swg;
+  ref.sum_weighted_grey_squared = swgg;
   const double mean = swg / sw;
   const double spread = std::sqrt(std::max(0.0, swgg / sw - mean * mean));
   const Eigen::FullPivLU<Matrix6> lu(hessian);
@@ -132,14 +135,27 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
       inside[i] = sample(smooth, x, y, warped[i]);
       if (!inside[i]) continue;
       ++inside_count;
-      const double w = ref.weight[i], g = ref.grey[i], v = warped[i];
-      sw += w;
-      swi += w * v;
-      swii += w * v * v;
-      swt += w * g;
-      swtt += w * g * g;
-      swit += w * v * g;
+      const double w = ref.weight[i], v = warped[i];
+      const double wv = w * v;
+      swi += wv;
+      swii += wv * v;
+      swit += wv * ref.grey[i];
       swid += v * ref.weighted_descent[i];
+    }
+    // The reference's own sums over the whole window are fixed; only a cut window needs them
+    // summed again.
+    if (inside_count == n) {
+      sw = ref.total_weight;
+      swt = ref.sum_weighted_grey;
+      swtt = ref.sum_weighted_grey_squared;
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!inside[i]) continue;
+        const double w = ref.weight[i], g = ref.grey[i];
+        sw += w;
+        swt += w * g;
+        swtt += w * g * g;
+      }
     }
     if (2 * sw < ref.total_weight) return a;
     const double mean = swi / sw, ref_mean = swt / sw;
