@@ -60,8 +60,14 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
         found.begin(), found.end(), [](const Feature& f) { return f.type == FeatureType::pore; }));
   };
   CaptureChoice choice;
-  choice.paper_pores = pores_with(PoreDetector::paper);
-  choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
+  // The two detectors side by side: the choice is made before any frame is tracked.
+  parallel_for(2, worker_count(0), [&](std::size_t k) {
+    if (k == 0) {
+      choice.paper_pores = pores_with(PoreDetector::paper);
+    } else {
+      choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
+    }
+  });
   if (choice.ridge_blob_pores > choice.paper_pores) choice.detector = PoreDetector::ridge_blob;
   choice.refine = refinement_for(choice.detector);
   choice.smoothing_half_window = smoothing_half_window_for(choice.refine);
