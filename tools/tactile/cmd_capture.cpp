@@ -360,7 +360,9 @@ void add_capture(CLI::App& app, Action& action) {
                                "given)")
                    ->check(positive())
                    ->capture_default_str();
-  sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
+  sub->add_option("--min-track", opt->min_track_frames,
+                  "Shortest track kept, in frames (tracks linked from detections, "
+                  "without\nrefinement; refined tracks are kept from 10 frames)")
       ->check(within(2, 100000))
       ->capture_default_str();
   add_pore_options(*sub, opt->pores, opt->pore_model, true);

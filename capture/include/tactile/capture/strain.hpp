@@ -26,10 +26,11 @@ struct CaptureParams {
   FeatureParams features = pores_only();
   double match_radius_mm = 0.3;
   Assignment assignment = Assignment::greedy;
+  // Shortest track linked from detections; with refinement, refinement.min_frames instead.
   int min_track_frames = 30;
   int max_gap_frames = 2;
   int smoothing_half_window = 3;
-  // Sub-pixel refinement of the tracks against the images (refine_tracks), before smoothing.
+  // Tracking by alignment against the images (AlignmentTracker), before smoothing.
   // Off by default: the paper's pore blobs have precise centres (see choose_capture_settings).
   bool refine = false;
   RefineParams refinement;
