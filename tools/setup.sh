@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build ccache clang-format pkg-config git
   # libraries
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
-  libopencv-dev
+  libopencv-dev libopencv-videoio-dev  # videoio: `capture VIDEO` over FFmpeg (libavcodec, libavformat)
   libhdf5-dev
   libusb-1.0-0-dev libhidapi-dev
   libglfw3-dev libgl-dev libimgui-dev

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -42,6 +43,7 @@ struct Row {
   double strain = 0;
   std::string method;
   double frames_per_s = 0;
+  double cpu_ms_per_frame = 0;  // every thread's CPU time: the machine may be shared
   capture::Evaluation eval;
 };
 
@@ -89,17 +91,20 @@ Row run(const Method& m, const PrintSequence& seq) {
   Row r;
   r.method = m.name;
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
   const capture::StrainMovie movie = m.run(seq);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.frames_per_s = s > 0 ? seq.frames.size() / s : 0.0;
+  r.cpu_ms_per_frame = 1e3 * static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC /
+                       static_cast<double>(seq.frames.size());
   r.eval = evaluate(movie, seq);
   return r;
 }
 
 void print_row(const Row& r, const std::string& lead) {
-  fmt::print("{} {:<20} {:>7.1f} {:>9.5f} {:>9.5f} {:>7.4f} {:>7.0f}\n", lead, r.method,
-             r.frames_per_s, r.eval.rms_error, r.eval.rms_truth, r.eval.correlation,
-             r.eval.median_tracked_points);
+  fmt::print("{} {:<20} {:>7.1f} {:>7.2f} {:>9.5f} {:>9.5f} {:>7.4f} {:>7.0f}\n", lead, r.method,
+             r.frames_per_s, r.cpu_ms_per_frame, r.eval.rms_error, r.eval.rms_truth,
+             r.eval.correlation, r.eval.median_tracked_points);
 }
 
 }  // namespace
@@ -183,9 +188,9 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         s.frame_count = opt->frames;
         return s;
       };
-      fmt::print("{:<6} {:<8} {:<9} {:>5} {:<20} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print", "group",
-                 "pattern", "strain", "method", "frames/s", "rms_err", "rms_true", "corr",
-                 "points");
+      fmt::print("{:<6} {:<8} {:<9} {:>5} {:<20} {:>7} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print",
+                 "group", "pattern", "strain", "method", "frames/s", "cpu_ms", "rms_err",
+                 "rms_true", "corr", "points");
       std::vector<Row> rows;
       for (const auto& p : prints) {
         const std::string nn = number_of(p.name);
@@ -210,22 +215,24 @@ void add_bench_prints(CLI::App& bench, Action& action) {
 
       // Summary per method and group; the rigid warp has no strain, so no correlation.
       fmt::print("\nsummary (medians over sequences; correlation over the non-rigid ones)\n");
-      fmt::print("{:<20} {:<8} {:>7} {:>9} {:>8} {:>8} {:>10}\n", "method", "group", "points",
-                 "rms_err", "corr", "min_corr", "frames/s");
+      fmt::print("{:<20} {:<8} {:>7} {:>9} {:>8} {:>8} {:>10} {:>7}\n", "method", "group", "points",
+                 "rms_err", "corr", "min_corr", "frames/s", "cpu_ms");
       for (std::size_t k = 0; k < used; ++k) {
         for (const bool h : {false, true}) {
-          std::vector<double> pts, rms, corr, fps;
+          std::vector<double> pts, rms, corr, fps, cpu;
           for (const auto& r : rows) {
             if (r.method != all[k].name || r.held_out != h) continue;
             pts.push_back(r.eval.median_tracked_points);
             rms.push_back(r.eval.rms_error);
             fps.push_back(r.frames_per_s);
+            cpu.push_back(r.cpu_ms_per_frame);
             if (r.pattern != "rigid") corr.push_back(r.eval.correlation);
           }
           if (pts.empty()) continue;
-          fmt::print("{:<20} {:<8} {:>7.0f} {:>9.5f} {:>8.4f} {:>8.4f} {:>10.1f}\n", all[k].name,
-                     h ? "held-out" : "tuning", median(pts), median(rms), median(corr),
-                     corr.empty() ? 0.0 : *std::min_element(corr.begin(), corr.end()), median(fps));
+          fmt::print("{:<20} {:<8} {:>7.0f} {:>9.5f} {:>8.4f} {:>8.4f} {:>10.1f} {:>7.2f}\n",
+                     all[k].name, h ? "held-out" : "tuning", median(pts), median(rms), median(corr),
+                     corr.empty() ? 0.0 : *std::min_element(corr.begin(), corr.end()), median(fps),
+                     median(cpu));
         }
       }
 

@@ -4,7 +4,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +22,8 @@
 #include "tactile/capture/strain.hpp"
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/capture/video.hpp"
+#include "tactile/common/error.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 
@@ -151,6 +155,78 @@ void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress
              dir.string());
 }
 
+// The frames `capture` reads: the image files of a folder in name order, or a video's frames,
+// from `start` on and `count` of them (all to the end when not given), one at a time.
+class FrameInput {
+ public:
+  FrameInput(const fs::path& source, int start, std::optional<int> count) : source_(source) {
+    if (capture::is_video_name(source) && !fs::is_directory(source)) {
+      video_.emplace(source);
+      total_ = video_->info().frame_count;
+    } else {
+      paths_ = capture::list_frames(source);
+      total_ = static_cast<int>(paths_.size());
+    }
+    start_ = start;
+    count_ = count.value_or(total_ - start);
+  }
+  bool is_video() const { return video_.has_value(); }
+  int total() const { return total_; }
+  int start() const { return start_; }
+  int count() const { return count_; }
+  double frame_rate_hz() const { return video_ ? video_->info().frame_rate_hz : 0.0; }
+
+  // --start and --frames against the input's length: a usage error (empty when they fit).
+  std::string range_error() const {
+    if (start_ >= total_) {
+      return fmt::format("--start: {} is out of range: {} has {} frames (0 to {})", start_,
+                         source_.string(), total_, total_ - 1);
+    }
+    if (count_ < 1 || start_ + count_ > total_) {
+      return fmt::format("--frames: {} is out of range: from frame {} of {} there are {} frames",
+                         count_, start_, source_.string(), total_ - start_);
+    }
+    return {};
+  }
+
+  // The next frame of the range, or false after its last.
+  bool next(capture::GrayImage& frame) {
+    if (read_ >= count_) return false;
+    const int index = start_ + read_;
+    if (video_) {
+      video_->skip_to(index);
+      if (!video_->read(frame)) return false;
+    } else {
+      const fs::path& path = paths_[static_cast<std::size_t>(index)];
+      frame = capture::read_image(path);
+      if (read_ > 0 && (frame.width_px != width_px_ || frame.height_px != height_px_)) {
+        throw FormatError(fmt::format(
+            "{}: frame is {}x{} px but {} is {}x{} px; all frames of a sequence must have the "
+            "same size",
+            path.string(), frame.width_px, frame.height_px,
+            paths_[static_cast<std::size_t>(start_)].filename().string(), width_px_, height_px_));
+      }
+    }
+    width_px_ = frame.width_px;
+    height_px_ = frame.height_px;
+    ++read_;
+    return true;
+  }
+
+ private:
+  fs::path source_;
+  std::optional<capture::VideoReader> video_;
+  std::vector<fs::path> paths_;
+  int total_ = 0, start_ = 0, count_ = 0, read_ = 0;
+  int width_px_ = 0, height_px_ = 0;
+};
+
+// CPU time of the whole process (every thread), seconds: the machine may be shared, so the wall
+// time alone says little about the pipeline's cost.
+double process_cpu_s() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
 }  // namespace
 
 void add_calibrate(CLI::App& app, Action& action) {
@@ -252,16 +328,24 @@ void add_capture(CLI::App& app, Action& action) {
     double refine_window_mm = capture::RefineParams{}.window_mm;
     std::optional<fs::path> pore_model;
     std::string assignment = "greedy";
+    int start = 0;
+    std::optional<int> frames;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "capture",
       "Measure skin strain from a sequence of fingerprint images (the image files of IMAGE_DIR\n"
-      "in name order): extract landmarks, match and track them, triangulate (Delaunay) and\n"
-      "write each edge's relative length change between frames i and i+span.");
-  sub->add_option("IMAGE_DIR", opt->image_dir, "Folder of frames")
+      "in name order, or the frames of a video .mp4 .avi .mkv .mov): extract landmarks, match\n"
+      "and track them, triangulate (Delaunay) and write each edge's relative length change\n"
+      "between frames i and i+span. Frames are read one at a time.");
+  sub->add_option("IMAGE_DIR", opt->image_dir, "Folder of frames, or a video file")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);
+  sub->add_option("--start", opt->start, "First frame to use (0 = the first)")
+      ->check(within(0, 100000000))
+      ->capture_default_str();
+  sub->add_option("--frames", opt->frames, "Number of frames to use (default: all from --start)")
+      ->check(within(1, 100000000));
   add_calibration_options(*sub, opt->calib, opt->px_per_mm);
   sub->add_option("--out", opt->out, "Strain movie to write (HDF5)")->required();
   sub->add_option("--csv", opt->csv_dir, "Also write tracks.csv and edges.csv into this folder");
@@ -271,10 +355,14 @@ void add_capture(CLI::App& app, Action& action) {
   sub->add_option("--span", opt->span, "Frames between the two ends of each strain measurement")
       ->check(within(1, 10000))
       ->capture_default_str();
-  sub->add_option("--rate-hz", opt->rate_hz, "Camera frame rate")
-      ->check(positive())
-      ->capture_default_str();
-  sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
+  auto* rate = sub->add_option("--rate-hz", opt->rate_hz,
+                               "Camera frame rate (a video's own rate from its container unless "
+                               "given)")
+                   ->check(positive())
+                   ->capture_default_str();
+  sub->add_option("--min-track", opt->min_track_frames,
+                  "Shortest track kept, in frames (tracks linked from detections, "
+                  "without\nrefinement; refined tracks are kept from 10 frames)")
       ->check(within(2, 100000))
       ->capture_default_str();
   add_pore_options(*sub, opt->pores, opt->pore_model, true);
@@ -298,10 +386,17 @@ void add_capture(CLI::App& app, Action& action) {
                   "confidence, Hungarian method)")
       ->check(CLI::IsMember({"greedy", "optimal"}))
       ->capture_default_str();
-  sub->callback([opt, &action] {
+  sub->callback([opt, rate, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
-    action = [opt] {
+    const bool rate_given = rate->count() > 0;
+    action = [opt, rate_given] {
+      FrameInput input(opt->image_dir, opt->start, opt->frames);
+      if (const std::string range = input.range_error(); !range.empty()) {
+        fmt::print(stderr, "tactile capture: error: {}\n", range);
+        return 2;
+      }
+      const double rate_hz = input.is_video() && !rate_given ? input.frame_rate_hz() : opt->rate_hz;
       const auto inputs = inputs_of("IMAGE_DIR", opt->image_dir, opt->calib, opt->pore_model);
       std::vector<Output> outputs = {output_file("--out", opt->out)};
       if (opt->csv_dir) {
@@ -310,17 +405,17 @@ void add_capture(CLI::App& app, Action& action) {
       if (opt->maps_dir) {
         // One map per strain frame, named by its first camera frame: at most one per input frame.
         std::vector<fs::path> maps;
-        const auto frame_count = static_cast<int>(capture::list_frames(opt->image_dir).size());
-        for (int i = 0; i < frame_count; ++i) maps.emplace_back(map_name(i));
+        for (int i = 0; i < input.count(); ++i) maps.emplace_back(map_name(i));
         outputs.push_back(output_folder("--maps", *opt->maps_dir, maps));
       }
       refuse_output_over_input(outputs, inputs);
       Progress progress;
       const auto from_file = calibration_file(opt->calib);
       const auto model = pore_model_file(opt->pore_model);
-      const auto frames = capture::read_frames(opt->image_dir);
+      capture::GrayImage first;
+      input.next(first);
       const capture::Calibration c =
-          calibration_for(from_file, opt->px_per_mm, frames[0].width_px, frames[0].height_px);
+          calibration_for(from_file, opt->px_per_mm, first.width_px, first.height_px);
       capture::CaptureParams params;
       params.span_frames = opt->span;
       params.min_track_frames = opt->min_track_frames;
@@ -329,7 +424,7 @@ void add_capture(CLI::App& app, Action& action) {
       if (pores == "auto" && model) pores = "ridge-blob";  // a pore model is a ridge-blob model
       if (pores == "auto") {
         const capture::CaptureChoice choice =
-            capture::choose_capture_settings(frames[0], 1.0 / c.mm_per_px);
+            capture::choose_capture_settings(first, 1.0 / c.mm_per_px);
         pores = choice.detector == capture::PoreDetector::ridge_blob ? "ridge-blob" : "paper";
         fmt::print(
             "capture: pores: {} (on the first frame the paper's rule found {} pores, the "
@@ -350,16 +445,29 @@ void add_capture(CLI::App& app, Action& action) {
       params.assignment =
           opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;
       const auto t0 = std::chrono::steady_clock::now();
+      const double cpu0 = process_cpu_s();
+      bool first_given = false;
       capture::StrainMovie movie = capture::measure_strain(
-          frames, c, opt->rate_hz, params,
-          [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
+          [&](capture::GrayImage& frame) {
+            if (first_given) return input.next(frame);
+            frame = std::move(first);
+            first_given = true;
+            return true;
+          },
+          c, rate_hz, params,
+          [&](const std::string& stage, int done, int total) { progress(stage, done, total); },
+          input.count());
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double cpu_s = process_cpu_s() - cpu0;
+      const int n = movie.camera_frame_count;
       movie.source = opt->image_dir.string();
       movie.program_version = kVersion;
       capture::write_strain_movie(opt->out, movie);
-      fmt::print("capture: {} frames in {:.2f} s ({:.0f} frames/s), {} strain frames -> {}\n",
-                 frames.size(), s, frames.size() / s, movie.frames.size(), opt->out.string());
+      fmt::print(
+          "capture: {} frames in {:.2f} s ({:.0f} frames/s; CPU {:.2f} ms per frame), {} strain "
+          "frames at {:.4g} Hz -> {}\n",
+          n, s, n / s, 1e3 * cpu_s / n, movie.frames.size(), rate_hz, opt->out.string());
       if (opt->csv_dir) {
         fs::create_directories(*opt->csv_dir);
         capture::export_strain_csv(*opt->csv_dir, movie);

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -36,8 +38,55 @@ cv::Mat flank_kernel(double angle_rad, double along_px, double across_px, double
   return k / sum;
 }
 
+// The flank kernels, one per quantised ridge direction, as rows of taps. Each row keeps only
+// the span of taps that weigh anything (the kernel is a thin band across a square), widened to
+// whole groups of four so that a row is summed four taps at a time.
+struct FlankKernels {
+  static constexpr int kLanes = 4;
+  int half = 0;
+  int stride = 0;                          // floats per kernel row, a multiple of kLanes
+  std::vector<float> taps;                 // kernel k, row r at (k * rows + r) * stride
+  std::vector<std::pair<int, int>> spans;  // [begin, end) of each row, multiples of kLanes
+};
+
+FlankKernels flank_kernels(int n, double along_px, double across_px, double gap_px) {
+  FlankKernels f;
+  const double step = std::numbers::pi / n;
+  const int rows = 2 * std::max(1, static_cast<int>(std::ceil(3.0 * along_px))) + 1;
+  f.half = rows / 2;
+  f.stride = (rows + FlankKernels::kLanes - 1) / FlankKernels::kLanes * FlankKernels::kLanes;
+  f.taps.assign(static_cast<std::size_t>(n * rows * f.stride), 0.0F);
+  for (int k = 0; k < n; ++k) {
+    const cv::Mat kernel = flank_kernel(k * step, along_px, across_px, gap_px);
+    // Taps under 1e-7 of the sum: together they move a level by far less than the float
+    // rounding of the sum itself.
+    for (int r = 0; r < rows; ++r) {
+      float* row = &f.taps[static_cast<std::size_t>((k * rows + r) * f.stride)];
+      int begin = rows, end = 0;
+      for (int c = 0; c < rows; ++c) {
+        const float w = kernel.at<float>(r, c);
+        if (w < 1e-7F) continue;
+        row[c] = w;
+        begin = std::min(begin, c);
+        end = c + 1;
+      }
+      if (begin >= end) {
+        f.spans.emplace_back(0, 0);
+        continue;
+      }
+      begin -= begin % FlankKernels::kLanes;
+      end = std::min(
+          f.stride, (end + FlankKernels::kLanes - 1) / FlankKernels::kLanes * FlankKernels::kLanes);
+      f.spans.emplace_back(begin, end);
+    }
+  }
+  return f;
+}
+
 // Grey level of the ridge (or valley) each pixel lies on, measured along the local ridge
-// direction (from the structure tensor) on both sides of the pixel.
+// direction (from the structure tensor) on both sides of the pixel. Each pixel is filtered
+// with its own direction's kernel only: filtering the whole image with every direction's kernel
+// and then picking one per pixel gave the same levels at twelve times the work.
 cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams& p) {
   cv::Mat gx, gy;
   cv::Sobel(gray, gx, CV_32F, 1, 0);
@@ -47,14 +96,15 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
   for (cv::Mat* m : {&jxx, &jyy, &jxy}) cv::GaussianBlur(*m, *m, cv::Size(0, 0), ts);
   const int n = std::max(2, p.orientations);
   const double step = std::numbers::pi / n;
-  std::vector<cv::Mat> smoothed(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const cv::Mat kernel =
-        flank_kernel(k * step, p.along_sigma_mm * px_per_mm, p.across_sigma_mm * px_per_mm,
-                     p.pore_radius_mm * px_per_mm);
-    cv::filter2D(gray, smoothed[static_cast<std::size_t>(k)], CV_32F, kernel, cv::Point(-1, -1), 0,
-                 cv::BORDER_REFLECT);
-  }
+  const FlankKernels kernels = flank_kernels(
+      n, p.along_sigma_mm * px_per_mm, p.across_sigma_mm * px_per_mm, p.pore_radius_mm * px_per_mm);
+  const int rows = 2 * kernels.half + 1;
+  // Borders reflected as filter2D's BORDER_REFLECT; the extra columns on the right meet only
+  // zero taps.
+  cv::Mat padded;
+  cv::copyMakeBorder(gray, padded, kernels.half, kernels.half, kernels.half,
+                     kernels.half + kernels.stride - rows, cv::BORDER_REFLECT);
+  using Lanes = float __attribute__((vector_size(16)));
   cv::Mat out(gray.size(), CV_32F);
   for (int y = 0; y < gray.rows; ++y) {
     const float* a = jxx.ptr<float>(y);
@@ -65,7 +115,20 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
       // The dominant gradient is across the ridges; the ridge runs at right angles to it.
       const double ridge = 0.5 * std::atan2(2.0 * d[x], a[x] - b[x]) + std::numbers::pi / 2;
       const int k = ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
-      o[x] = smoothed[static_cast<std::size_t>(k)].at<float>(y, x);
+      const float* taps = &kernels.taps[static_cast<std::size_t>(k * rows * kernels.stride)];
+      const auto* spans = &kernels.spans[static_cast<std::size_t>(k * rows)];
+      Lanes sum = {0, 0, 0, 0};
+      for (int r = 0; r < rows; ++r) {
+        const float* w = taps + r * kernels.stride;
+        const float* v = padded.ptr<float>(y + r) + x;
+        for (int c = spans[r].first; c < spans[r].second; c += FlankKernels::kLanes) {
+          Lanes wl, vl;
+          std::memcpy(&wl, w + c, sizeof wl);
+          std::memcpy(&vl, v + c, sizeof vl);
+          sum += wl * vl;
+        }
+      }
+      o[x] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
     }
   }
   return out;

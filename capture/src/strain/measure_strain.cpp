@@ -1,7 +1,4 @@
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -63,8 +60,14 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
         found.begin(), found.end(), [](const Feature& f) { return f.type == FeatureType::pore; }));
   };
   CaptureChoice choice;
-  choice.paper_pores = pores_with(PoreDetector::paper);
-  choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
+  // The two detectors side by side: the choice is made before any frame is tracked.
+  parallel_for(2, worker_count(0), [&](std::size_t k) {
+    if (k == 0) {
+      choice.paper_pores = pores_with(PoreDetector::paper);
+    } else {
+      choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
+    }
+  });
   if (choice.ridge_blob_pores > choice.paper_pores) choice.detector = PoreDetector::ridge_blob;
   choice.refine = refinement_for(choice.detector);
   choice.smoothing_half_window = smoothing_half_window_for(choice.refine);
@@ -78,68 +81,145 @@ CaptureParams with_choice(CaptureParams params, const CaptureChoice& choice) {
   return params;
 }
 
-StrainMovie measure_strain(
-    const std::vector<GrayImage>& frames, const Calibration& calibration, double frame_rate_hz,
-    const CaptureParams& params,
-    const std::function<void(const std::string& stage, int done, int total)>& progress) {
-  if (frames.empty()) throw std::invalid_argument("measure_strain: no frames");
-  if (!(calibration.mm_per_px > 0)) {
-    throw std::invalid_argument("measure_strain: calibration has no positive mm_per_px");
+namespace {
+
+// Frames must all have the size of the first, which the calibration (when it names one) fixes.
+void check_frame_size(const GrayImage& frame, int index, const GrayImage& first,
+                      const Calibration& calibration) {
+  if (index > 0 && (frame.width_px != first.width_px || frame.height_px != first.height_px)) {
+    throw std::invalid_argument(
+        fmt::format("measure_strain: frame {} is {}x{} px, frame 0 is {}x{} px", index,
+                    frame.width_px, frame.height_px, first.width_px, first.height_px));
   }
-  for (std::size_t i = 1; i < frames.size(); ++i) {
-    if (frames[i].width_px != frames[0].width_px || frames[i].height_px != frames[0].height_px) {
-      throw std::invalid_argument(fmt::format(
-          "measure_strain: frame {} is {}x{} px, frame 0 is "
-          "{}x{} px",
-          i, frames[i].width_px, frames[i].height_px, frames[0].width_px, frames[0].height_px));
-    }
-  }
-  if ((calibration.image_width_px != 0 && calibration.image_width_px != frames[0].width_px) ||
-      (calibration.image_height_px != 0 && calibration.image_height_px != frames[0].height_px)) {
+  if (index == 0 &&
+      ((calibration.image_width_px != 0 && calibration.image_width_px != frame.width_px) ||
+       (calibration.image_height_px != 0 && calibration.image_height_px != frame.height_px))) {
     throw std::invalid_argument(fmt::format(
         "measure_strain: the calibration is for {}x{} px images but the frames are {}x{} px",
-        calibration.image_width_px, calibration.image_height_px, frames[0].width_px,
-        frames[0].height_px));
+        calibration.image_width_px, calibration.image_height_px, frame.width_px, frame.height_px));
   }
-  Calibration cal = calibration;
-  if (cal.image_width_px == 0) cal.image_width_px = frames[0].width_px;
-  if (cal.image_height_px == 0) cal.image_height_px = frames[0].height_px;
+}
 
-  const int n = static_cast<int>(frames.size());
+std::vector<Feature> pores_in(const GrayImage& frame, double px_per_mm,
+                              const FeatureParams& params) {
+  return extract_features(frame, px_per_mm, params);
+}
+
+// Detection on every frame, frames in parallel (a batch of one per worker at a time), then
+// matching and linking of the detections.
+std::vector<Track> tracks_from_detections(const FrameSource& next_frame, GrayImage& first,
+                                          const Calibration& cal, const CaptureParams& params,
+                                          const CaptureProgress& progress, int expected,
+                                          int& frame_count) {
   const double px_per_mm = 1.0 / cal.mm_per_px;
-  std::vector<std::vector<Feature>> features(frames.size());
-  // Frames are independent. Progress is reported under a lock (the callback need not be
-  // thread-safe), in the order frames finish.
-  std::atomic<int> done{0};
-  std::mutex progress_mutex;
-  parallel_for(frames.size(), worker_count(params.threads), [&](std::size_t i) {
-    features[i] = extract_features(frames[i], px_per_mm, params.features);
-    const int finished = ++done;
-    if (progress) {
-      const std::lock_guard lock(progress_mutex);
-      progress("extract", finished, n);
+  const int workers = worker_count(params.threads);
+  std::vector<std::vector<Feature>> features;
+  const GrayImage size_of_first{first.width_px, first.height_px, {}};
+  std::vector<GrayImage> batch;
+  batch.push_back(std::move(first));
+  for (bool more = true;;) {
+    while (more && static_cast<int>(batch.size()) < 2 * workers) {
+      GrayImage next;
+      more = next_frame(next);
+      if (!more) break;
+      check_frame_size(next, static_cast<int>(features.size() + batch.size()), size_of_first, cal);
+      batch.push_back(std::move(next));
     }
-  });
-  if (progress) progress("extract", done.load(), n);
-
+    if (batch.empty()) break;
+    const std::size_t base = features.size();
+    features.resize(base + batch.size());
+    parallel_for(batch.size(), workers, [&](std::size_t i) {
+      features[base + i] = pores_in(batch[i], px_per_mm, params.features);
+    });
+    batch.clear();
+    if (progress) progress("extract", static_cast<int>(features.size()), expected);
+  }
+  frame_count = static_cast<int>(features.size());
   TrackParams tp;
   tp.match_radius_mm = params.match_radius_mm;
   tp.assignment = params.assignment;
   tp.min_track_frames = params.min_track_frames;
   tp.max_gap_frames = params.max_gap_frames;
-  tp.smoothing_half_window = params.refine ? 0 : params.smoothing_half_window;
+  tp.smoothing_half_window = params.smoothing_half_window;
   std::vector<Track> tracks = track_features(features, cal, tp);
   if (progress) progress("track", 1, 1);
-  if (params.refine) {
-    refine_tracks(frames, tracks, px_per_mm, params.refinement, params.threads);
-    smooth_tracks(tracks, params.smoothing_half_window);
-    if (progress) progress("refine", 1, 1);
-  }
+  return tracks;
+}
 
+// Detection on the first frame and when tracks run short; alignment in between.
+std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage& first,
+                                       const Calibration& cal, const CaptureParams& params,
+                                       const CaptureProgress& progress, int expected,
+                                       int& frame_count) {
+  const double px_per_mm = 1.0 / cal.mm_per_px;
+  AlignmentTracker tracker(px_per_mm, params.refinement, params.threads);
+  const GrayImage size_of_first{first.width_px, first.height_px, {}};
+  GrayImage frame = std::move(first);
+  int last_detection = 0, live_after_detection = 0;
+  for (int f = 0;; ++f) {
+    const bool due = f == 0 || f - last_detection >= params.redetect_every_frames;
+    // A fifth of the tracks gone: landmarks have left the view or stopped matching their
+    // first-frame neighbourhood.
+    const bool short_of_tracks = 5 * tracker.live_tracks() < 4 * live_after_detection;
+    if (due || short_of_tracks) {
+      tracker.add_frame(frame, pores_in(frame, px_per_mm, params.features));
+      last_detection = f;
+      live_after_detection = tracker.live_tracks();
+    } else {
+      tracker.add_frame(frame, {});
+    }
+    if (progress) progress("track", f + 1, expected);
+    if (!next_frame(frame)) break;
+    check_frame_size(frame, f + 1, size_of_first, cal);
+  }
+  frame_count = tracker.frames();
+  std::vector<Track> tracks = tracker.finish();
+  smooth_tracks(tracks, params.smoothing_half_window);
+  if (progress) progress("refine", 1, 1);
+  return tracks;
+}
+
+}  // namespace
+
+StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& calibration,
+                           double frame_rate_hz, const CaptureParams& params,
+                           const CaptureProgress& progress, int expected_frames) {
+  if (!(calibration.mm_per_px > 0)) {
+    throw std::invalid_argument("measure_strain: calibration has no positive mm_per_px");
+  }
+  if (params.redetect_every_frames < 1) {
+    throw std::invalid_argument("measure_strain: redetect_every_frames must be >= 1");
+  }
+  GrayImage first;
+  if (!next_frame(first)) throw std::invalid_argument("measure_strain: no frames");
+  check_frame_size(first, 0, first, calibration);
+  Calibration cal = calibration;
+  if (cal.image_width_px == 0) cal.image_width_px = first.width_px;
+  if (cal.image_height_px == 0) cal.image_height_px = first.height_px;
+
+  int n = 0;
+  const std::vector<Track> tracks =
+      params.refine
+          ? tracks_by_alignment(next_frame, first, cal, params, progress, expected_frames, n)
+          : tracks_from_detections(next_frame, first, cal, params, progress, expected_frames, n);
   StrainMovie movie =
       strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio);
   if (progress) progress("strain", 1, 1);
   return movie;
+}
+
+StrainMovie measure_strain(const std::vector<GrayImage>& frames, const Calibration& calibration,
+                           double frame_rate_hz, const CaptureParams& params,
+                           const CaptureProgress& progress) {
+  if (frames.empty()) throw std::invalid_argument("measure_strain: no frames");
+  std::size_t next = 0;
+  return measure_strain(
+      [&](GrayImage& frame) {
+        if (next == frames.size()) return false;
+        frame = frames[next++];
+        return true;
+      },
+      calibration, frame_rate_hz, params, progress, static_cast<int>(frames.size()));
 }
 
 }  // namespace tactile::capture

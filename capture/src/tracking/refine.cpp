@@ -4,6 +4,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "camera/cv_image.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/parallel_for.hpp"
@@ -22,17 +24,23 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 struct Reference {
   std::vector<double> grey, dx, dy, weight;
   std::vector<Vector6> descent;
+  std::vector<Vector6> weighted_descent;  // weight x descent
+  Vector6 sum_weighted_descent = Vector6::Zero();
+  Vector6 sum_weighted_grey_descent = Vector6::Zero();
   Matrix6 hessian_inverse = Matrix6::Zero();
   double total_weight = 0;
+  double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
 };
 
 // Bilinear interpolation in double precision (OpenCV's warps round sample positions to 1/32
 // pixel, and the alignment is after hundredths of a pixel); false outside the image.
 bool sample(const cv::Mat& image, double x, double y, double& value) {
-  const double fx = std::floor(x), fy = std::floor(y);
-  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
-  if (ix < 0 || iy < 0 || ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
-  const double ax = x - fx, ay = y - fy;
+  // Truncation is the floor for the positions that pass (std::floor is a library call on the
+  // baseline x86-64 target, and sampling is most of an alignment's time).
+  if (!(x >= 0 && y >= 0)) return false;
+  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
+  if (ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
+  const double ax = x - ix, ay = y - iy;
   const float* r0 = image.ptr<float>(iy) + ix;
   const float* r1 = image.ptr<float>(iy + 1) + ix;
   value = (1 - ay) * ((1 - ax) * r0[0] + ax * r0[1]) + ay * ((1 - ax) * r1[0] + ax * r1[1]);
@@ -76,12 +84,17 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
       ref.dy.push_back(oy);
       ref.weight.push_back(w);
       ref.descent.push_back(d);
+      ref.weighted_descent.push_back(w * d);
+      ref.sum_weighted_descent += w * d;
+      ref.sum_weighted_grey_descent += w * row[u] * d;
       sw += w;
       swg += w * row[u];
       swgg += w * row[u] * row[u];
     }
   }
   ref.total_weight = sw;
+  ref.sum_weighted_grey = swg;
+  ref.sum_weighted_grey_squared = swgg;
   const double mean = swg / sw;
   const double spread = std::sqrt(std::max(0.0, swgg / sw - mean * mean));
   const Eigen::FullPivLU<Matrix6> lu(hessian);
@@ -112,6 +125,9 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
     double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
+    // sum of weight x sample x descent: with the reference's own sums it gives the update in
+    // this one pass over the window when the whole window is inside the frame.
+    Vector6 swid = Vector6::Zero();
     std::size_t inside_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double x = position.x() + l(0, 0) * ref.dx[i] + l(0, 1) * ref.dy[i];
@@ -119,13 +135,27 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
       inside[i] = sample(smooth, x, y, warped[i]);
       if (!inside[i]) continue;
       ++inside_count;
-      const double w = ref.weight[i], g = ref.grey[i];
-      sw += w;
-      swi += w * warped[i];
-      swii += w * warped[i] * warped[i];
-      swt += w * g;
-      swtt += w * g * g;
-      swit += w * warped[i] * g;
+      const double w = ref.weight[i], v = warped[i];
+      const double wv = w * v;
+      swi += wv;
+      swii += wv * v;
+      swit += wv * ref.grey[i];
+      swid += v * ref.weighted_descent[i];
+    }
+    // The reference's own sums over the whole window are fixed; only a cut window needs them
+    // summed again.
+    if (inside_count == n) {
+      sw = ref.total_weight;
+      swt = ref.sum_weighted_grey;
+      swtt = ref.sum_weighted_grey_squared;
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!inside[i]) continue;
+        const double w = ref.weight[i], g = ref.grey[i];
+        sw += w;
+        swt += w * g;
+        swtt += w * g * g;
+      }
     }
     if (2 * sw < ref.total_weight) return a;
     const double mean = swi / sw, ref_mean = swt / sw;
@@ -133,21 +163,24 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
     const double ref_spread = std::sqrt(std::max(0.0, swtt / sw - ref_mean * ref_mean));
     if (spread < 1e-3 || ref_spread < 1e-3) return a;
     correlation = (swit / sw - mean * ref_mean) / (spread * ref_spread);
-    // Grey levels of the frame brought to the reference's mean and spread.
-    Vector6 b = Vector6::Zero();
-    Matrix6 hessian = Matrix6::Zero();
+    // Grey levels of the frame brought to the reference's mean and spread: the error at a
+    // sample is ref_mean + gain (warped - mean) - grey.
     const bool whole = inside_count == n;
     const double gain = ref_spread / spread;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!inside[i]) continue;
-      const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
-      b += ref.weight[i] * e * ref.descent[i];
-      if (!whole) hessian += ref.weight[i] * ref.descent[i] * ref.descent[i].transpose();
-    }
     Vector6 p;
     if (whole) {
+      const Vector6 b = gain * swid + (ref_mean - gain * mean) * ref.sum_weighted_descent -
+                        ref.sum_weighted_grey_descent;
       p = ref.hessian_inverse * b;
     } else {
+      Vector6 b = Vector6::Zero();
+      Matrix6 hessian = Matrix6::Zero();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!inside[i]) continue;
+        const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
+        b += e * ref.weighted_descent[i];
+        hessian += ref.weight[i] * ref.descent[i] * ref.descent[i].transpose();
+      }
       const Eigen::FullPivLU<Matrix6> lu(hessian);
       if (!lu.isInvertible()) return a;
       p = lu.solve(b);
@@ -170,10 +203,7 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
   return a;
 }
 
-}  // namespace
-
-RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
-                          double px_per_mm, const RefineParams& params, int threads) {
+void check_refine_params(double px_per_mm, const RefineParams& params) {
   if (!(px_per_mm > 0)) throw std::invalid_argument("refine_tracks: px_per_mm must be > 0");
   if (!(params.window_mm > 0)) throw std::invalid_argument("refine_tracks: window_mm must be > 0");
   if (!(params.min_correlation >= 0 && params.min_correlation < 1)) {
@@ -183,6 +213,19 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
   if (!(params.presmoothing_px >= 0)) {
     throw std::invalid_argument("refine_tracks: presmoothing_px must be >= 0");
   }
+}
+
+// A little smoothing takes noise out of the gradients that the alignment follows.
+void smoothed_frame(const GrayImage& frame, double presmoothing_px, cv::Mat& out) {
+  as_mat(frame).convertTo(out, CV_32F);
+  if (presmoothing_px > 0) cv::GaussianBlur(out, out, {0, 0}, presmoothing_px);
+}
+
+}  // namespace
+
+RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
+                          double px_per_mm, const RefineParams& params, int threads) {
+  check_refine_params(px_per_mm, params);
   const int n = static_cast<int>(frames.size());
   for (const auto& t : tracks) {
     if (t.first_frame < 0 || t.last_frame() >= n) {
@@ -193,13 +236,9 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
       std::max(2, static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)));
   const double max_offset_px = params.max_offset_mm * px_per_mm;
   const int room_px = 1 + static_cast<int>(std::ceil(max_offset_px));
-  // A little smoothing takes noise out of the gradients that the alignment follows.
   std::vector<cv::Mat> smooth(frames.size());
   parallel_for(frames.size(), worker_count(threads), [&](std::size_t f) {
-    as_mat(frames[f]).convertTo(smooth[f], CV_32F);
-    if (params.presmoothing_px > 0) {
-      cv::GaussianBlur(smooth[f], smooth[f], {0, 0}, params.presmoothing_px);
-    }
+    smoothed_frame(frames[f], params.presmoothing_px, smooth[f]);
   });
 
   std::vector<long> steps(tracks.size(), 0);
@@ -254,6 +293,139 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
   for (std::size_t i = 0; i < kept.size(); ++i) kept[i].id = static_cast<std::int32_t>(i);
   tracks = std::move(kept);
   return stats;
+}
+
+struct AlignmentTracker::State {
+  struct Live {
+    Track track;
+    Reference reference;
+    Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+    bool ended = false;
+  };
+  double px_per_mm = 0;
+  RefineParams params;
+  int threads = 0;
+  int half_side = 0;
+  double max_offset_px = 0;
+  int room_px = 0;
+  int frames = 0;
+  std::int32_t next_id = 0;
+  int width_px = 0, height_px = 0;
+  std::vector<Live> live;
+  std::vector<Track> ended;
+  RefineStats stats;
+  cv::Mat smooth;
+};
+
+AlignmentTracker::AlignmentTracker(double px_per_mm, const RefineParams& params, int threads)
+    : state_(std::make_unique<State>()) {
+  check_refine_params(px_per_mm, params);
+  State& s = *state_;
+  s.px_per_mm = px_per_mm;
+  s.params = params;
+  s.threads = threads;
+  s.half_side = std::max(2, static_cast<int>(std::lround(params.window_mm * px_per_mm / 2)));
+  s.max_offset_px = params.max_offset_mm * px_per_mm;
+  s.room_px = 1 + static_cast<int>(std::ceil(s.max_offset_px));
+}
+
+AlignmentTracker::~AlignmentTracker() = default;
+
+int AlignmentTracker::frames() const {
+  return state_->frames;
+}
+
+int AlignmentTracker::live_tracks() const {
+  return static_cast<int>(state_->live.size());
+}
+
+void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Feature>& seeds) {
+  State& s = *state_;
+  if (s.frames == 0) {
+    s.width_px = image.width_px;
+    s.height_px = image.height_px;
+  } else if (image.width_px != s.width_px || image.height_px != s.height_px) {
+    throw std::invalid_argument(
+        fmt::format("AlignmentTracker: frame {} is {}x{} px, frame 0 is {}x{} px", s.frames,
+                    image.width_px, image.height_px, s.width_px, s.height_px));
+  }
+  smoothed_frame(image, s.params.presmoothing_px, s.smooth);
+  const int frame = s.frames++;
+  parallel_for(s.live.size(), worker_count(s.threads), [&](std::size_t i) {
+    State::Live& l = s.live[i];
+    Track& t = l.track;
+    const std::size_t k = t.x_px.size();
+    // Constant velocity from the last two positions (none for a track's second frame).
+    const double step_x = k >= 2 ? t.x_px[k - 1] - t.x_px[k - 2] : 0.0;
+    const double step_y = k >= 2 ? t.y_px[k - 1] - t.y_px[k - 2] : 0.0;
+    const double px = t.x_px[k - 1] + step_x, py = t.y_px[k - 1] + step_y;
+    const Aligned a = align(l.reference, s.smooth, px, py, l.linear, s.params);
+    if (!a.ok || std::hypot(a.x_px - px, a.y_px - py) > s.max_offset_px) {
+      l.ended = true;
+      return;
+    }
+    t.x_px.push_back(a.x_px);
+    t.y_px.push_back(a.y_px);
+    l.linear = a.linear;
+  });
+  s.stats.steps += static_cast<long>(s.live.size());
+  std::vector<State::Live> still;
+  still.reserve(s.live.size() + seeds.size());
+  for (auto& l : s.live) {
+    if (l.ended) {
+      ++s.stats.cut;
+      s.ended.push_back(std::move(l.track));
+    } else {
+      still.push_back(std::move(l));
+    }
+  }
+  // New tracks only where no live track is: one landmark, one track.
+  const double min_separation_px = 0.5 * s.max_offset_px;
+  const std::size_t tracked = still.size();
+  std::vector<State::Live> started(seeds.size());
+  std::vector<char> ok(seeds.size(), 0);
+  parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
+    const Feature& f = seeds[j];
+    for (std::size_t i = 0; i < tracked; ++i) {
+      const Track& t = still[i].track;
+      if (std::hypot(t.x_px.back() - f.x_px, t.y_px.back() - f.y_px) < min_separation_px) return;
+    }
+    State::Live& l = started[j];
+    if (!make_reference(s.smooth, f.x_px, f.y_px, s.half_side, s.room_px, l.reference)) return;
+    l.track.type = f.type;
+    l.track.first_frame = frame;
+    l.track.x_px = {f.x_px};
+    l.track.y_px = {f.y_px};
+    ok[j] = 1;
+  });
+  for (std::size_t j = 0; j < seeds.size(); ++j) {
+    if (!ok[j]) continue;
+    started[j].track.id = s.next_id++;
+    still.push_back(std::move(started[j]));
+  }
+  s.live = std::move(still);
+}
+
+std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
+  State& s = *state_;
+  std::vector<Track> all = std::move(s.ended);
+  for (auto& l : s.live) all.push_back(std::move(l.track));
+  s.live.clear();
+  s.ended.clear();
+  // Ended tracks were set aside as they ended: back in the order they started (their ids).
+  std::sort(all.begin(), all.end(), [](const Track& a, const Track& b) { return a.id < b.id; });
+  std::vector<Track> kept;
+  for (auto& t : all) {
+    if (static_cast<int>(t.x_px.size()) < s.params.min_frames) {
+      ++s.stats.dropped;
+      continue;
+    }
+    t.id = static_cast<std::int32_t>(kept.size());
+    kept.push_back(std::move(t));
+  }
+  if (stats) *stats = s.stats;
+  s.stats = {};
+  return kept;
 }
 
 }  // namespace tactile::capture

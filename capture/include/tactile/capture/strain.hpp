@@ -26,10 +26,11 @@ struct CaptureParams {
   FeatureParams features = pores_only();
   double match_radius_mm = 0.3;
   Assignment assignment = Assignment::greedy;
+  // Shortest track linked from detections; with refinement, refinement.min_frames instead.
   int min_track_frames = 30;
   int max_gap_frames = 2;
   int smoothing_half_window = 3;
-  // Sub-pixel refinement of the tracks against the images (refine_tracks), before smoothing.
+  // Tracking by alignment against the images (AlignmentTracker), before smoothing.
   // Off by default: the paper's pore blobs have precise centres (see choose_capture_settings).
   bool refine = false;
   RefineParams refinement;
@@ -37,6 +38,10 @@ struct CaptureParams {
   // Edges longer than this multiple of the frame's median edge are hull slivers, not skin.
   double max_edge_ratio = 3.0;
   int threads = 0;  // feature extraction workers (frames in parallel); 0 = one per core
+  // With refinement, landmarks are detected only on the first frame and then every this many
+  // frames, or sooner when a fifth of the tracks have ended since the last detection; between
+  // detections they are followed by alignment alone (AlignmentTracker).
+  int redetect_every_frames = 30;
 };
 
 // Triangulates `from` (millimetre positions) and measures each edge at `to` (same order and
@@ -79,11 +84,20 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
 // `params` with the choice's detector, refinement and smoothing.
 CaptureParams with_choice(CaptureParams params, const CaptureChoice& choice);
 
+// Fills `frame` with the next frame and returns true, or returns false after the last one.
+using FrameSource = std::function<bool(GrayImage& frame)>;
+using CaptureProgress = std::function<void(const std::string& stage, int done, int total)>;
+
 // The whole pipeline: extract -> match and track -> strain. `progress` is called with the stage
 // name ("extract", "track", "strain") and counts.
-StrainMovie measure_strain(
-    const std::vector<GrayImage>& frames, const Calibration& calibration, double frame_rate_hz,
-    const CaptureParams& params = {},
-    const std::function<void(const std::string& stage, int done, int total)>& progress = {});
+StrainMovie measure_strain(const std::vector<GrayImage>& frames, const Calibration& calibration,
+                           double frame_rate_hz, const CaptureParams& params = {},
+                           const CaptureProgress& progress = {});
+
+// The same on frames taken one at a time: at most a few frames (one per worker) are held at
+// once, whatever the sequence's length. `expected_frames` is for progress only (0: unknown).
+StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& calibration,
+                           double frame_rate_hz, const CaptureParams& params,
+                           const CaptureProgress& progress = {}, int expected_frames = 0);
 
 }  // namespace tactile::capture

@@ -2,6 +2,7 @@
 // Frame-to-frame matching of landmarks and their trajectories.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "tactile/capture/image.hpp"
@@ -79,5 +80,34 @@ struct RefineStats {
 // Tracks are refined in parallel on `threads` workers (0 = one per core).
 RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Track>& tracks,
                           double px_per_mm, const RefineParams& params = {}, int threads = 0);
+
+// Tracking by alignment alone, one frame at a time: landmarks detected in a frame (seeds) start
+// tracks, and every later frame is aligned to each track's first-frame neighbourhood as in
+// refine_tracks, started where the track's last step predicts it (constant velocity) instead of
+// at a detection. Detection, the costly part on real prints, then runs only on the frames that
+// seed tracks. A frame is confirmed as in refine_tracks, with the prediction in place of the
+// detection (within max_offset_mm of it); a track ends at its first unconfirmed frame. Frames
+// are taken one by one, so a sequence need not be held in memory.
+class AlignmentTracker {
+ public:
+  // Tracks are aligned in parallel on `threads` workers (0 = one per core).
+  AlignmentTracker(double px_per_mm, const RefineParams& params = {}, int threads = 0);
+  ~AlignmentTracker();
+  AlignmentTracker(const AlignmentTracker&) = delete;
+  AlignmentTracker& operator=(const AlignmentTracker&) = delete;
+
+  // Aligns the live tracks to `image` (the next frame), then starts a track at every seed (pixel
+  // positions in this frame) further than half of max_offset_mm from every live track.
+  void add_frame(const GrayImage& image, const std::vector<Feature>& seeds);
+  int frames() const;
+  int live_tracks() const;
+  // The tracks of at least min_frames frames, numbered 0.. in order of first frame (then of
+  // seed); the tracker is empty afterwards.
+  std::vector<Track> finish(RefineStats* stats = nullptr);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace tactile::capture
