@@ -88,7 +88,11 @@ int play_anywhere(const movie::TactileMovie& movie, const PlayChoice& choice) {
       display::ViewerOptions viewer;
       viewer.loop = choice.loops > 1;
       viewer.play.stop_fd = choice.stop_fd;
-      display::run_viewer(movie, viewer);
+      const display::ViewerResult r = display::run_viewer(movie, viewer);
+      if (stop_requested(choice.stop_fd)) {
+        fmt::print("play: window closed by a stop request at frame {} of {} ({} drawn)\n",
+                   r.last_movie_frame + 1, r.shown_frame_count, r.frames_drawn);
+      }
       return 0;
     }
     case display::PlaybackTarget::headless:
