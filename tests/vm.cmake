@@ -28,8 +28,10 @@ add_executable(vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/vm_client.cpp
                ${PROJECT_SOURCE_DIR}/movie/src/layouts.cpp
                ${vm_display_dir}/transports/libusb_transport.cpp
                ${vm_display_dir}/transports/hidapi_transport.cpp
-               ${vm_display_dir}/transports/devices.cpp ${vm_firmware_sources})
-# common/include for its header-only names.hpp (display's mode enums); none of common's sources.
+               ${vm_display_dir}/transports/devices.cpp ${vm_firmware_sources}
+               ${PROJECT_SOURCE_DIR}/common/src/stop_signals.cpp)
+# common/include for its header-only names.hpp (display's mode enums) and, of common's sources,
+# only stop_signals.cpp (the player polls its descriptor); nothing that needs HDF5.
 target_include_directories(vm_client PRIVATE ${PROJECT_SOURCE_DIR}/display/include
                                              ${PROJECT_SOURCE_DIR}/movie/include
                                              ${PROJECT_SOURCE_DIR}/common/include

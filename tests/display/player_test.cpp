@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -347,6 +349,85 @@ TEST(ControlCodec, MalformedRepliesAreTransportErrors) {
     EXPECT_THAT(e.what(), HasSubstr("bad_length"));
   }
   EXPECT_THROW(decode_device_status(short_reply), TransportError);
+}
+
+}  // namespace
+}  // namespace tactile::display
+
+namespace tactile::display {
+namespace {
+
+// Passes frames to a device and, once `after` frames have gone, makes `stop_fd` readable, as
+// a SIGINT arriving mid-play makes a StopSignals descriptor readable.
+class StopAfterTransport final : public Transport {
+ public:
+  StopAfterTransport(EmulatedDevice& device, int after, int stop_write_fd)
+      : device_(device), after_(after), stop_write_fd_(stop_write_fd) {}
+  DeviceInfo info() override { return device_.info(); }
+  void start(double rate_hz) override { device_.start(rate_hz); }
+  void stop() override { device_.stop(); }
+  bool send_frame(std::span<const std::uint8_t> f) override {
+    const bool taken = device_.send_frame(f);
+    if (taken && ++sent_ == after_) {
+      EXPECT_EQ(::write(stop_write_fd_, "x", 1), 1);
+    }
+    return taken;
+  }
+  DeviceStatus status() override { return device_.status(); }
+  void wait(std::chrono::nanoseconds d) override { device_.wait(d); }
+
+ private:
+  EmulatedDevice& device_;
+  int sent_ = 0;
+  int after_;
+  int stop_write_fd_;
+};
+
+TEST(Player, StopRequestRampsEveryContactorToRestAtTheSlewLimit) {
+  // Every contactor held at +45 um, a slow slew limit (2 mm/s = 2.857 um per tick at 700 Hz)
+  // so that the way back to rest takes many ticks and each of them can be checked.
+  movie::TactileMovie movie = movie::testing::sine_movie(movie::stress_layout(), 700, 2000, 0);
+  std::fill(movie.deflection_um.begin(), movie.deflection_um.end(), 45.0f);
+  EmulatedDeviceOptions o = device_for(movie.layout);
+  o.max_slew_um_per_s = 2000;
+  o.record_outputs = true;
+  EmulatedDevice device(o);
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe(pipe_fds), 0);
+  StopAfterTransport link(device, 300, pipe_fds[1]);
+  PlayOptions options;
+  options.stop_fd = pipe_fds[0];
+  const PlaybackReport r = play_movie(movie, link, options);
+  ::close(pipe_fds[0]);
+  ::close(pipe_fds[1]);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_THAT(format_playback_report(r), HasSubstr("stopped     by a stop request"));
+  // Stopped at the next poll: at most a FIFO's worth more than the 300th frame was sent, and
+  // the frames still queued were dropped, not played.
+  const auto capacity = static_cast<std::int64_t>(device.info().fifo_capacity_frames);
+  EXPECT_GE(r.frames_sent, 300);
+  EXPECT_LE(r.frames_sent, 300 + capacity);
+  EXPECT_LT(r.frames_played, r.frames_sent);
+  EXPECT_EQ(device.status().fifo_fill, 0u);
+
+  const movie::TactileMovie out = device.recording();
+  ASSERT_GT(out.frame_count, 2);
+  const double per_tick_um = 2000.0 / 700.0;
+  // Where the stop found the outputs: at the movie's 45 um, not already at rest.
+  const auto played = static_cast<std::int32_t>(r.frames_played);
+  for (const float v : out.frame(played - 1)) EXPECT_NEAR(v, 45, 0.05);
+  // From there to rest: never faster than the slew limit (0.1 um quantisation), ending at 0.
+  std::int32_t ramp_ticks = 0;
+  for (std::int32_t f = played; f < out.frame_count; ++f) {
+    const auto a = out.frame(f - 1);
+    const auto b = out.frame(f);
+    if (b[0] != a[0]) ++ramp_ticks;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_LE(std::abs(b[i] - a[i]), per_tick_um + 0.1) << "tick " << f << " contactor " << i;
+    }
+  }
+  for (const float v : out.frame(out.frame_count - 1)) EXPECT_EQ(v, 0);
+  EXPECT_GE(ramp_ticks, static_cast<int>(std::floor(45 / per_tick_um)));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The Latero from the command line: `tactile emulate --latero` in the background and `tactile
 // play --latero` against it over loopback UDP (127.0.0.1 only, bounded in time), the
-// sender's and the emulator's counters compared; mapping for the latero layout; bad input.
+// sender's and the emulator's counters compared; mapping for the latero layout; bad input;
+// SIGINT and SIGTERM in the middle of a playback (on the Latero and headless).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,9 +9,15 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <signal.h>
+
+#include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <sstream>
+#include <thread>
 // GCC 12 with -O2 and the sanitizers warns falsely (-Wmaybe-uninitialized) inside <regex>'s
 // own automaton; the warning is attributed to the header's lines, so it is silenced there only.
 #pragma GCC diagnostic push
@@ -236,4 +243,100 @@ TEST(LateroCli, MapForTheLateroLayoutMakesA750HzMovie) {
                               " --layout latero --rate-hz 500 --out " + (d / "m2.h5").string());
   ASSERT_EQ(r2.exit_code, 0) << r2.output;
   EXPECT_DOUBLE_EQ(tactile::movie::read_tactile_movie(d / "m2.h5").rate_hz, 500);
+}
+
+namespace {
+
+std::string text_of(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void sleep_s(double s) {
+  std::this_thread::sleep_for(std::chrono::duration<double>(s));
+}
+
+const std::string kInterrupted = "stopped     by a stop request before the end";
+
+}  // namespace
+
+// Ctrl-C (or a service manager's SIGTERM) 1.5 s into a ten-second movie: the player stops
+// within the stop ramp, brings every blade back to OpenLatero's centre (raw 75; the movie holds
+// them at 71..80) and prints the summary of what it played before exiting 128 + the signal.
+TEST(StopCli, SignalMidPlayLeavesTheLateroBladesAtRest) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE(sig == SIGINT ? "SIGINT" : "SIGTERM");
+    const tactile::test::TempDir d_tmp("stop");
+    const fs::path& d = d_tmp.path();
+    const int port = free_udp_port();
+    const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 7500);  // 10 s
+    tactile::test::Started emulator(
+        {"emulate", "--latero", "--port", std::to_string(port), "--seconds", "60"},
+        d / "emulator.log");
+    sleep_s(0.3);
+    tactile::test::Started play(
+        {"play", movie.string(), "--latero", "127.0.0.1:" + std::to_string(port)}, d / "play.log");
+    sleep_s(1.5);
+    const auto signalled = std::chrono::steady_clock::now();
+    play.signal(sig);
+    const auto ended = play.wait(5);
+    const double stop_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    emulator.signal(SIGINT);
+    ASSERT_TRUE(emulator.wait(5).ended);
+    const std::string out = text_of(d / "play.log");
+    const std::string emulated = text_of(d / "emulator.log");
+    ASSERT_TRUE(ended.ended) << out;
+    EXPECT_EQ(ended.killed_by, 0) << out;
+    EXPECT_EQ(ended.exit_code, 128 + sig) << out;
+    // The 20 ms stop ramp and the wait for its replies, with room for a busy machine.
+    EXPECT_LT(stop_s, 1.0);
+    EXPECT_THAT(out, HasSubstr(kInterrupted));
+    EXPECT_THAT(out, HasSubstr(sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM"));
+    // Part of the movie was played before the stop (about a second of it, less on a busy
+    // machine where starting takes longer).
+    const auto frames = numbers(out, kFrames);  // sent, movie, ramp
+    EXPECT_GT(frames[0], 0);
+    EXPECT_LT(frames[0], 7500);
+    // The emulator saw every request the player counted (the stop ramp included), and the
+    // blades where the last of them left them.
+    const auto link = numbers(out, kLink);
+    EXPECT_EQ(numbers(emulated, kDatagrams)[1], link[0]) << emulated;
+    EXPECT_EQ(numbers(emulated, kBladesLeft), (std::vector<double>{75, 75})) << emulated;
+  }
+}
+
+// Headless, the emulated device's firmware plays the movie on a simulated clock; a signal
+// mid-play stops it, the firmware's own outputs (as it wrote them, tick by tick) end at rest,
+// and no preview is written, not even a temporary file.
+TEST(StopCli, SignalMidHeadlessPlayEndsTheFirmwareOutputsAtRest) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE(sig == SIGINT ? "SIGINT" : "SIGTERM");
+    const tactile::test::TempDir d_tmp("headless");
+    const fs::path& d = d_tmp.path();
+    const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 7500);
+    tactile::test::Started play({"play", movie.string(), "--headless", "--loops", "40", "--preview",
+                                 (d / "preview.png").string()},
+                                d / "play.log");
+    sleep_s(1.0);  // about 0.3 s to start, then some 75 000 frames a second of 300 000
+    play.signal(sig);
+    const auto ended = play.wait(10);
+    const std::string out = text_of(d / "play.log");
+    ASSERT_TRUE(ended.ended) << out;
+    EXPECT_EQ(ended.killed_by, 0) << out;
+    EXPECT_EQ(ended.exit_code, 128 + sig) << out;
+    EXPECT_THAT(out, HasSubstr("stopped by a stop request, every contactor ramped to rest"));
+    // Before the stop the outputs followed the 40 um sine; after it, none is off rest.
+    const auto played = numbers(out, R"((\d+) frames played at 750 Hz)");
+    EXPECT_GT(played[0], 0);
+    EXPECT_LT(played[0], 40 * 7500);
+    EXPECT_EQ(numbers(out, R"(outputs ended at most ([0-9.e+-]+) um from rest)")[0], 0) << out;
+    EXPECT_THAT(out, HasSubstr("no preview written"));
+    EXPECT_FALSE(fs::exists(d / "preview.png"));
+    for (const auto& e : fs::directory_iterator(d)) {
+      EXPECT_THAT(e.path().filename().string(), ::testing::Not(HasSubstr("preview"))) << e.path();
+    }
+  }
 }

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace tactile::test {
 
@@ -13,6 +14,28 @@ struct RunResult {
 
 // `args` is appended to the binary's path as is (the caller quotes what needs quoting).
 RunResult run_tactile(const std::string& args);
+
+// The real `tactile` binary started without a shell (a shell's background job ignores SIGINT),
+// its stdout and stderr going to `log`, so that a test can signal it mid-run.
+class Started {
+ public:
+  Started(const std::vector<std::string>& args, const std::filesystem::path& log);
+  ~Started();  // kills and reaps a process still running (a failed test)
+  Started(const Started&) = delete;
+  Started& operator=(const Started&) = delete;
+
+  void signal(int sig) const;
+  struct Ended {
+    bool ended = false;  // false: still running when the wait gave up
+    int exit_code = -1;  // when it exited
+    int killed_by = 0;   // the signal that ended it instead (not the same as exiting 128 + it)
+  };
+  // Waits at most `limit_s` for the process to end.
+  Ended wait(double limit_s);
+
+ private:
+  int pid_ = -1;
+};
 
 // The folder the e2e.demo fixture fills (`demo --headless --keep`): frames, calibration, movies.
 inline std::filesystem::path demo_dir() {

@@ -111,5 +111,21 @@ TEST_F(ViewCli, ASourceStrainMovieWithoutStrainIsLeftOutOrRefusedWhenAskedFor) {
   EXPECT_NE(r.output.find("strain.h5: strain movie has no edge"), std::string::npos) << r.output;
 }
 
+// Without a display attached, `play` opens the emulator window; SIGTERM closes it and the
+// command exits 143 after saying so. (SIGTERM: the shell that backgrounds the command leaves it
+// SIGINT ignored.)
+TEST_F(ViewCli, PlayWindowStopsOnSigterm) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  ASSERT_EQ(demo_.exit_code, 0) << demo_.output;
+  const fs::path log = dir_ / "play-window.log";
+  const CliRun r =
+      run("play " + (dir_ / "movie.h5").string() + " --loops 1000 > " + log.string() +
+          " 2>&1 & P=$!; sleep 2; kill -TERM $P; wait $P; echo rc=$?; cat " + log.string());
+  EXPECT_NE(r.output.find("opening the emulator window"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("window closed by a stop request"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("play: stopped by SIGTERM"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rc=143"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace tactile::display

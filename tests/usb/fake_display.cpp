@@ -231,6 +231,11 @@ std::vector<std::vector<std::uint8_t>> FakeDisplay::bulk_transfers() const {
   return impl_->bulk;
 }
 
+std::vector<std::int16_t> FakeDisplay::outputs() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->fw.outputs();
+}
+
 void FakeDisplay::unplug() {
   Impl& m = *impl_;
   {

@@ -23,6 +23,8 @@ class FakeDisplay {
 
   // Every bulk transfer received on EP 0x01, as the bytes that came over the wire.
   std::vector<std::vector<std::uint8_t>> bulk_transfers() const;
+  // The firmware's outputs as of the host's last touch of the device (wire units).
+  std::vector<std::int16_t> outputs() const;
   // Pulls the plug: transfers in flight end with ENODEV, new ones are refused, and the
   // testbed reports the removal.
   void unplug();

@@ -62,6 +62,11 @@ void FakeFirmware::advance() {
   if (ticks == 100) last_tick_ = now;
 }
 
+std::vector<std::int16_t> FakeFirmware::outputs() const {
+  const std::int16_t* out = tfw_device_outputs(&dev_);
+  return {out, out + tfw_device_contactor_count(&dev_)};
+}
+
 std::vector<std::uint8_t> FakeFirmware::take_hid_in() {
   std::vector<std::uint8_t> out;
   out.swap(hid_in_);

@@ -26,6 +26,9 @@ class FakeFirmware {
   // look, so a slow host sees underruns rather than a stall).
   void advance();
 
+  // The firmware's outputs as it last wrote them (wire units, 0.1 um), one per contactor.
+  std::vector<std::int16_t> outputs() const;
+
   // Whether OUT endpoint `ep` (1 bulk, 2 HID) would take a packet now, or NAK it.
   bool out_ready(std::uint8_t ep) const { return ready_[ep & 3]; }
   // The latest HID input report offered by the firmware (cleared when taken).

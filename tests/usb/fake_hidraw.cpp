@@ -204,6 +204,11 @@ std::vector<std::vector<std::uint8_t>> FakeHidraw::output_reports() const {
   return impl_->reports;
 }
 
+std::vector<std::int16_t> FakeHidraw::outputs() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->fw.outputs();
+}
+
 void FakeHidraw::unplug() {
   Impl& m = *impl_;
   {

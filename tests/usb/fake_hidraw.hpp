@@ -32,6 +32,8 @@ class FakeHidraw {
 
   // Every write() the node received, as bytes (output reports, report ID first).
   std::vector<std::vector<std::uint8_t>> output_reports() const;
+  // The firmware's outputs as of the host's last touch of the device (wire units).
+  std::vector<std::int16_t> outputs() const;
   // Pulls the plug: calls in progress and later ones fail with ENODEV, the sysfs entries go
   // (umockdev_testbed_remove_device) and the testbed reports the removal. Thread-safe.
   void unplug();

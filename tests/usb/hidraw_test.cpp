@@ -174,5 +174,13 @@ TEST(UsbHidraw, PlayerStreamsAMovieDevicePaced) {
   EXPECT_EQ(reports[reports.size() - 4][3 + 5] & 1, 1);
 }
 
+TEST(UsbHidraw, SigtermMidPlayRampsTheFirmwareOutputsToRest) {
+  StopSignals stop;
+  test::FakeHidraw fake;
+  auto t = open_usb_transport(*find_hid());
+  testing::play_and_signal(*t, stop, SIGTERM);
+  for (const std::int16_t v : fake.outputs()) EXPECT_EQ(v, 0);
+}
+
 }  // namespace
 }  // namespace tactile::display

@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
+#include <algorithm>
 #include <cstdio>
 
 #include "../movie/test_movies.hpp"
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/display/player.hpp"
 
 namespace tactile::display::testing {
@@ -19,6 +23,43 @@ inline PlaybackReport play_and_check(Transport& transport) {
   EXPECT_EQ(r.frames_played, r.frames_sent);
   EXPECT_EQ(r.frames_sent, r.movie_frames + r.ramp_frames);
   EXPECT_EQ(r.malformed, 0);
+  return r;
+}
+
+// Plays a 2 s movie of contactors held at +20 um and raises `sig` in this thread once 300
+// frames have gone (0.43 s in), while `stop` (created by the caller before the device was
+// opened) watches for it: the player must stop there, well before the end.
+inline PlaybackReport play_and_signal(Transport& transport, StopSignals& stop, int sig) {
+  class Raising final : public Transport {
+   public:
+    Raising(Transport& t, int sig) : t_(t), sig_(sig) {}
+    DeviceInfo info() override { return t_.info(); }
+    void start(double rate_hz) override { t_.start(rate_hz); }
+    void stop() override { t_.stop(); }
+    bool send_frame(std::span<const std::uint8_t> f) override {
+      const bool taken = t_.send_frame(f);
+      if (taken && ++sent_ == 300) ::raise(sig_);
+      return taken;
+    }
+    DeviceStatus status() override { return t_.status(); }
+    void wait(std::chrono::nanoseconds d) override { t_.wait(d); }
+
+   private:
+    Transport& t_;
+    int sig_;
+    int sent_ = 0;
+  };
+  movie::TactileMovie movie = movie::testing::sine_movie(movie::stress_layout(), 700, 1400, 0);
+  std::fill(movie.deflection_um.begin(), movie.deflection_um.end(), 20.0f);
+  Raising raising(transport, sig);
+  PlayOptions options;
+  options.stop_fd = stop.fd();
+  const PlaybackReport r = play_movie(movie, raising, options);
+  std::printf("%s", format_playback_report(r).c_str());
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(stop.received(), sig);
+  EXPECT_GE(r.frames_sent, 300);
+  EXPECT_LT(r.frames_sent, 400);
   return r;
 }
 

@@ -140,5 +140,14 @@ TEST(UsbLibusb, PlayerStreamsAMovieDevicePaced) {
   EXPECT_EQ(transfers.back()[5] & 1, 1);  // the last one is flagged end of stream
 }
 
+TEST(UsbLibusb, SigintMidPlayRampsTheFirmwareOutputsToRest) {
+  StopSignals stop;  // before libusb starts its threads, as `tactile play` does
+  test::FakeDisplay fake;
+  auto t = open_usb_transport(*find(Backend::libusb));
+  testing::play_and_signal(*t, stop, SIGINT);
+  // Held at +20 um (200 wire units) until the signal; at rest once the player returned.
+  for (const std::int16_t v : fake.outputs()) EXPECT_EQ(v, 0);
+}
+
 }  // namespace
 }  // namespace tactile::display

@@ -1,10 +1,6 @@
 // The Latero on the command line: play, probe, emulate and benchmark (latero_cli.hpp).
 
 #include <fmt/format.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/signalfd.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -17,6 +13,7 @@
 #include "command.hpp"
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/display/latero_emulator.hpp"
 #include "tactile/display/latero_transport.hpp"
 #include "tactile/display/player.hpp"
@@ -43,17 +40,6 @@ void check_latero_movie(const movie::TactileMovie& movie) {
   }
 }
 
-// Blocks SIGINT and SIGTERM and returns a descriptor that becomes readable when one arrives,
-// so that a server loop can stop cleanly without a signal handler and its global state.
-int stop_signal_fd() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  if (sigprocmask(SIG_BLOCK, &set, nullptr) != 0) return -1;
-  return signalfd(-1, &set, SFD_CLOEXEC);
-}
-
 // The emulator served on a thread for as long as this lives.
 class ServingThread {
  public:
@@ -78,8 +64,7 @@ void show_live(display::LateroEmulator& emulator, const display::LateroBladeMapp
                Clock::time_point until, int stop_fd) {
   const ServingThread server(emulator, until, stop_fd);
   const auto next = [&]() -> std::optional<display::LiveFrame> {
-    pollfd p{stop_fd, POLLIN, 0};
-    if (Clock::now() >= until || (stop_fd >= 0 && ::poll(&p, 1, 0) > 0)) return std::nullopt;
+    if (Clock::now() >= until || stop_requested(stop_fd)) return std::nullopt;
     display::LiveFrame f;
     for (const std::uint8_t raw : emulator.blades()) {
       f.deflection_um.push_back(static_cast<float>(display::blade_deflection_um(raw, mapping)));
@@ -141,7 +126,8 @@ void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& m
       ->capture_default_str();
 }
 
-int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& o, int loops) {
+int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& o, int loops,
+                   int stop_fd) {
   check_latero_movie(movie);
   display::LateroTransportOptions transport;
   transport.mapping = o.mapping;
@@ -154,6 +140,7 @@ int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& o,
       o.mapping.full_scale_um, o.mapping.max_raw);
   display::PlayOptions options;
   options.loops = loops;
+  options.stop_fd = stop_fd;
   const display::PlaybackReport report = display::play_movie(movie, latero, options);
   fmt::print("{}", display::format_playback_report(report));
   fmt::print("{}", display::format_latero_link(latero.stats(), movie.rate_hz));
@@ -217,7 +204,8 @@ void add_emulate(CLI::App& app, Action& action) {
         throw std::runtime_error("--window: no screen (DISPLAY is unset or cannot be opened)");
       }
       display::LateroEmulator emulator(opt->emulator);
-      const int stop_fd = stop_signal_fd();
+      StopSignals stop;  // before the serving and window threads, which inherit the block
+      const int stop_fd = stop.fd();
       fmt::print("emulate: Latero answering on {} (UDP){}\n", emulator.address(),
                  opt->seconds > 0 ? fmt::format(" for {:g} s", opt->seconds) : ", Ctrl-C stops");
       std::fflush(stdout);
@@ -231,7 +219,9 @@ void add_emulate(CLI::App& app, Action& action) {
       } else {
         emulator.serve(until, stop_fd);
       }
-      if (stop_fd >= 0) ::close(stop_fd);
+      // Taken, so that it does not end the process when the block is lifted: for the
+      // emulator, Ctrl-C is the ordinary way to stop (exit 0 after its counters).
+      stop.received();
       fmt::print("emulate: stopped\n{}", display::format_latero_counters(emulator.counters()));
       // Where the blades were left: a client that stopped cleanly leaves them all at centre.
       const auto blades = emulator.blades();

@@ -12,6 +12,7 @@
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/display/devices.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
@@ -51,10 +52,18 @@ void add_play(CLI::App& app, Action& action) {
       refuse_output_over_input({output_file("--preview", opt->choice.preview_png)},
                                {{"MOVIE_H5", opt->movie}});
       const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
-      if (!opt->latero.address.empty()) {
-        return play_on_latero(movie, opt->latero, opt->choice.loops);
+      // Before any device is opened: the threads USB libraries and the window start inherit
+      // the blocked signals, so Ctrl-C reaches the player and not the default action.
+      StopSignals stop;
+      opt->choice.stop_fd = stop.fd();
+      const int code = !opt->latero.address.empty()
+                           ? play_on_latero(movie, opt->latero, opt->choice.loops, stop.fd())
+                           : play_anywhere(movie, opt->choice);
+      if (const int signal = stop.received(); signal != 0) {
+        fmt::print("play: stopped by {}\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
+        return exit_code_for_signal(signal);
       }
-      return play_anywhere(movie, opt->choice);
+      return code;
     };
   });
 }

@@ -24,8 +24,10 @@ void add_latero_play_options(CLI::App& play, LateroPlayOptions& options);
 // Registers the blade mapping's options (--blade-centre-raw, ...) on `command`.
 void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& mapping);
 
-// Plays `movie` on the Latero at options.address and prints the link's figures.
-int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& options, int loops);
+// Plays `movie` on the Latero at options.address and prints the link's figures; stops early,
+// blades ramped to centre, when `stop_fd` becomes readable (display::PlayOptions::stop_fd).
+int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& options, int loops,
+                   int stop_fd = -1);
 
 // Probes the Latero at `address` and prints what it reports.
 int print_latero_device(const std::string& address);

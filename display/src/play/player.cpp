@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/display/frame_codec.hpp"
 
 namespace tactile::display {
@@ -57,6 +58,17 @@ class FrameSource {
   std::int64_t ramp_;
   std::vector<float> frame_;
 };
+
+// How long the device needs to bring every contactor from anywhere in its range to rest at
+// its slew limit, plus two periods for the tick in flight. Zero for a device that ramps
+// before stop() returns (no slew limit reported, like the Latero).
+std::chrono::nanoseconds ramp_to_rest(const DeviceInfo& info, double rate_hz) {
+  if (info.max_slew_um_per_s <= 0) return {};
+  const double reach_um =
+      std::max(std::abs(info.layout.deflection_min_um), std::abs(info.layout.deflection_max_um));
+  return std::chrono::nanoseconds(
+      static_cast<std::int64_t>(1e9 * (reach_um / info.max_slew_um_per_s + 2.0 / rate_hz)));
+}
 
 bool close(double a, double b) {
   return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(b));
@@ -130,6 +142,10 @@ PlaybackReport play_movie(const movie::TactileMovie& movie, Transport& transport
   std::vector<std::uint8_t> pending;  // encoded frame `next`, kept until the device takes it
   try {
     for (;;) {
+      if (stop_requested(options.stop_fd)) {
+        report.interrupted = true;
+        break;
+      }
       DeviceStatus st = transport.status();
       if (st.frames_played != last_played) {
         since_progress = {};
@@ -169,8 +185,14 @@ PlaybackReport play_movie(const movie::TactileMovie& movie, Transport& transport
     }
     throw;
   }
+  if (report.interrupted) {
+    // Queued frames are dropped; the device walks every output back to rest.
+    transport.stop();
+    const auto ramp = ramp_to_rest(info, movie.rate_hz);
+    for (std::chrono::nanoseconds waited{0}; waited < ramp; waited += poll) transport.wait(poll);
+  }
   const DeviceStatus st = transport.status();
-  transport.stop();
+  if (!report.interrupted) transport.stop();
   report.frames_sent = next;
   report.frames_played = static_cast<std::int64_t>(st.frames_played);
   report.underruns = static_cast<std::int64_t>(st.underruns);
@@ -188,6 +210,9 @@ PlaybackReport play_movie(const movie::TactileMovie& movie, Transport& transport
 
 std::string format_playback_report(const PlaybackReport& r) {
   std::string out;
+  if (r.interrupted) {
+    out += "stopped     by a stop request before the end; every contactor ramped to rest\n";
+  }
   out += fmt::format("frames      {} sent ({} movie + {} ramp), {} played at {} Hz\n",
                      r.frames_sent, r.movie_frames, r.ramp_frames, r.frames_played, r.rate_hz);
   out += fmt::format("timing      {:.3f} s on the device, {:.3f} s wall clock\n", r.duration_s,

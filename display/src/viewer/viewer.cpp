@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/movie/frame_geometry.hpp"
 
 namespace tactile::display {
@@ -318,7 +319,9 @@ ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& o
   PointerEvent pointer;
   bool was_pressed = false;
   bool scrubbing = false;
-  while (!glfwWindowShouldClose(window)) {
+  // A stop request closes the window: the emulated device's output already ends at rest (the
+  // movie was rendered through it, ramps included), and nothing physical is left to ramp.
+  while (!glfwWindowShouldClose(window) && !stop_requested(options.play.stop_fd)) {
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window, &fb_w, &fb_h);
     const ViewerPanes panes = viewer_panes(fb_w, fb_h, options.field.has_value());

@@ -24,6 +24,10 @@ struct PlayOptions {
   bool allow_out_of_range = false;
   // The stream fails with TransportError when the device plays nothing for this long.
   std::chrono::milliseconds stall_timeout{1000};
+  // Readable: stop between two frames (tactile::StopSignals::fd(), common/stop_signals.hpp).
+  // The device is then stopped, which ramps every contactor from where it is to rest at its
+  // own slew limit, and the player waits out that ramp before it returns. -1: never.
+  int stop_fd = -1;
 };
 
 struct PlaybackReport {
@@ -40,8 +44,9 @@ struct PlaybackReport {
   std::uint32_t max_fifo_fill = 0;
   std::uint32_t min_fifo_fill = 0;  // while streaming, after the FIFO first reached its target
   double rate_hz = 0;
-  double duration_s = 0;  // device time from start to the last frame played
-  double wall_s = 0;      // host wall-clock time spent in play_movie
+  double duration_s = 0;     // device time from start to the last frame played
+  double wall_s = 0;         // host wall-clock time spent in play_movie
+  bool interrupted = false;  // stopped by options.stop_fd before the movie's end
 };
 
 // Throws std::invalid_argument naming the first reason the movie cannot play on the device:
@@ -52,7 +57,9 @@ void check_movie_against_device(const movie::TactileMovie& movie, const DeviceIn
 
 // Checks, starts the device at the movie's rate, streams ramp-in, the movie (loops times) and
 // ramp-out (last frame marked end-of-stream), waits for the FIFO to drain, stops the device
-// and reports the device's counters. Throws TransportError when the link fails or stalls.
+// and reports the device's counters. Asked to stop (options.stop_fd), it stops the device,
+// waits for its ramp to rest and reports the counters so far, marked interrupted. Throws
+// TransportError when the link fails or stalls.
 PlaybackReport play_movie(const movie::TactileMovie& movie, Transport& transport,
                           const PlayOptions& options = {});
 
