@@ -125,14 +125,36 @@ StrainMovie measure_strain(
   TrackParams tp;
   tp.match_radius_mm = params.match_radius_mm;
   tp.assignment = params.assignment;
-  tp.min_track_frames = params.min_track_frames;
+  // Refined tracks are followed by the image, so a detection track need only be long enough to
+  // show that it is a landmark.
+  tp.min_track_frames = params.refine
+                            ? std::min(params.min_track_frames, params.refinement.min_seed_frames)
+                            : params.min_track_frames;
+  if (params.refine) tp.max_jump_mm = std::max(tp.max_jump_mm, params.refinement.seed_max_jump_mm);
   tp.max_gap_frames = params.max_gap_frames;
   tp.smoothing_half_window = params.refine ? 0 : params.smoothing_half_window;
   std::vector<Track> tracks = track_features(features, cal, tp);
   if (progress) progress("track", 1, 1);
   if (params.refine) {
+    const std::vector<Track> detected =
+        params.refinement.fast_window_mm > 0 ? tracks : std::vector<Track>{};
     refine_tracks(frames, tracks, px_per_mm, params.refinement, params.threads);
-    smooth_tracks(tracks, params.smoothing_half_window);
+    int half_window = smoothing_that_fits(tracks, params.smoothing_half_window,
+                                          params.refinement.max_smoothing_residual_px);
+    // Motion that a smoother over a few frames would flatten means the strain changes fast,
+    // and then across the window too: a smaller window follows that non-affine deformation
+    // (on still patterns the larger one averages more noise away).
+    if (half_window == 0 && params.smoothing_half_window > 0 &&
+        params.refinement.fast_window_mm > 0 &&
+        params.refinement.fast_window_mm < params.refinement.window_mm) {
+      RefineParams fast = params.refinement;
+      fast.window_mm = fast.fast_window_mm;
+      tracks = detected;
+      refine_tracks(frames, tracks, px_per_mm, fast, params.threads);
+      half_window = smoothing_that_fits(tracks, params.smoothing_half_window,
+                                        params.refinement.max_smoothing_residual_px);
+    }
+    smooth_tracks(tracks, half_window);
     if (progress) progress("refine", 1, 1);
   }
 
