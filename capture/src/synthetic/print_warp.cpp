@@ -333,8 +333,8 @@ void validate(const PrintWarpSpec& s) {
                      s.travel_speed_mm_per_s));
   }
   if (!(s.exposure_s >= 0 && s.exposure_s * s.frame_rate_hz <= 1)) {
-    fail(fmt::format("exposure_s {} is out of range: must be 0 to one frame ({} s)", s.exposure_s,
-                     1 / s.frame_rate_hz));
+    fail(fmt::format("exposure_s {} is out of range: must be 0 to one frame ({:.4g} s)",
+                     s.exposure_s, 1 / s.frame_rate_hz));
   }
   if (s.supersample < 1 || s.supersample > 8) {
     fail(fmt::format("supersample {} is out of range: must be 1 to 8", s.supersample));
