@@ -120,6 +120,9 @@ print_warp_cli_expect(bad_pattern 2 "warp" synth ${pw_dir}/never --from-print ${
                       --warp zigzag)
 print_warp_cli_expect(strain_out_of_range 2 "strain-pct: 50 is out of range: must be from -20 to 20"
                       synth ${pw_dir}/never --from-print ${pw_print} --strain-pct 50)
+print_warp_cli_expect(exposure_over_a_frame 1
+                      "exposure_s 0.02 is out of range: must be 0 to one frame \\(0.01667 s\\)"
+                      synth ${pw_dir}/never --from-print ${pw_print} --exposure-ms 20 --frames 3)
 print_warp_cli_expect(scene_option_with_print 2 "--scene: describes a synthetic scene" synth
                       ${pw_dir}/never --from-print ${pw_print} --scene bump)
 print_warp_cli_expect(warp_option_without_print 2 "requires --from-print|from-print" synth

@@ -126,10 +126,12 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       "prints",
       "Strain on real skin: each hand-marked print of PRINTS_DIR (image_NN + pores_NN.txt, e.g.\n"
       "the PolyU HRF prints in tests/data/polyu-hrf-pores) moved by exact warps (5 patterns at\n"
-      "4 %, the wave also at 1 and 8 %) and measured by the landmark pipeline with its default\n"
+      "4 %, the wave also at 1 and 8 %, and 8 % crossing at 25 mm/s) and measured by the landmark "
+      "pipeline with its default\n"
       "settings, Lucas-Kanade and DIS; tuning and held-out prints reported apart. Writes\n"
       "OUT/bench_prints.csv and OUT/speed_accuracy_prints.png (and .svg); --sweeps pushes noise,\n"
-      "blur, strain and speed on the first held-out print until failure (OUT/prints_sweeps.csv).");
+      "blur, strain, slide, exploration speed and camera rate on the first held-out print until\n"
+      "failure (OUT/prints_sweeps.csv, accuracy_speed_prints.png, fps_accuracy_prints.png).");
   sub->add_option("PRINTS_DIR", opt->prints, "Folder of marked prints")
       ->required()
       ->check(CLI::ExistingDirectory);
@@ -144,7 +146,8 @@ void add_bench_prints(CLI::App& bench, Action& action) {
   sub->add_option("--px-per-mm", opt->px_per_mm, "Scale of the prints")
       ->check(within(5.0, 500.0))
       ->capture_default_str();
-  sub->add_flag("--quick", opt->quick, "Only the 4 % wave, landmarks and Lucas-Kanade");
+  sub->add_flag("--quick", opt->quick,
+                "Only the 4 % wave and the fast 8 % wave, landmarks and Lucas-Kanade");
   sub->add_flag("--sweeps", opt->sweeps, "Also the stability sweeps (slow)");
   sub->add_option("--max-rms", opt->max_rms, "Sweep failure: strain RMS error above this")
       ->check(positive())
@@ -155,10 +158,13 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
-      refuse_output_over_input({output_folder("--out", opt->out,
-                                              {"bench_prints.csv", "speed_accuracy_prints.png",
-                                               "speed_accuracy_prints.svg", "prints_sweeps.csv"})},
-                               {{"PRINTS_DIR", opt->prints}});
+      refuse_output_over_input(
+          {output_folder(
+              "--out", opt->out,
+              {"bench_prints.csv", "speed_accuracy_prints.png", "speed_accuracy_prints.svg",
+               "prints_sweeps.csv", "accuracy_speed_prints.png", "accuracy_speed_prints.svg",
+               "fps_accuracy_prints.png", "fps_accuracy_prints.svg"})},
+          {{"PRINTS_DIR", opt->prints}});
       const auto prints = capture::read_pore_training_prints(opt->prints);
       fs::create_directories(opt->out);
       const std::set<std::string> held(opt->held_out.begin(), opt->held_out.end());
@@ -169,16 +175,29 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       struct Case {
         capture::WarpPattern pattern;
         double strain;
+        double travel_mm_per_s = 0;  // > 0: the fast scene (see fast_scene)
       };
-      std::vector<Case> cases{{capture::WarpPattern::wave, 0.04}};
+      std::vector<Case> cases{{capture::WarpPattern::wave, 0.04},
+                              {capture::WarpPattern::wave, 0.08, 25}};
       if (!opt->quick) {
         cases = {{capture::WarpPattern::rigid, 0.04},    {capture::WarpPattern::stretch, 0.04},
                  {capture::WarpPattern::compress, 0.04}, {capture::WarpPattern::bump, 0.04},
                  {capture::WarpPattern::wave, 0.01},     {capture::WarpPattern::wave, 0.04},
-                 {capture::WarpPattern::wave, 0.08}};
+                 {capture::WarpPattern::wave, 0.08},     {capture::WarpPattern::wave, 0.08, 25}};
       }
       const auto all = methods(true);
       const std::size_t used = opt->quick ? 2 : all.size();
+      // A strain pattern crossing at the speed of touch, filmed as a camera does: a 2 ms
+      // exposure, each pixel integrated over its area, the finger sliding at 2.5 mm/s and
+      // turning 3 degrees.
+      auto fast_scene = [](capture::PrintWarpSpec& s, double travel_mm_per_s) {
+        s.travel_speed_mm_per_s = travel_mm_per_s;
+        s.slide_x_mm = 2.5 * capture::sequence_duration_s(s);
+        s.slide_y_mm = 0;
+        s.rotation_deg = 3;
+        s.exposure_s = std::min(0.002, 1 / s.frame_rate_hz);
+        s.supersample = 2;
+      };
       auto spec_for = [&](const capture::PoreTrainingPrint& p) {
         capture::PrintWarpSpec s;
         s.source = p.name;
@@ -188,7 +207,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         s.frame_count = opt->frames;
         return s;
       };
-      fmt::print("{:<6} {:<8} {:<9} {:>5} {:<20} {:>7} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print",
+      fmt::print("{:<6} {:<8} {:<10} {:>5} {:<20} {:>7} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print",
                  "group", "pattern", "strain", "method", "frames/s", "cpu_ms", "rms_err",
                  "rms_true", "corr", "points");
       std::vector<Row> rows;
@@ -198,15 +217,17 @@ void add_bench_prints(CLI::App& bench, Action& action) {
           auto spec = spec_for(p);
           spec.pattern = c.pattern;
           spec.strain = c.strain;
+          if (c.travel_mm_per_s > 0) fast_scene(spec, c.travel_mm_per_s);
           const PrintSequence seq = capture::render_print_sequence(spec, p.image, p.pores_px);
           for (std::size_t k = 0; k < used; ++k) {
             Row r = run(all[k], seq);
             r.print = nn;
             r.held_out = held.count(nn) > 0;
-            r.pattern = std::string(capture::to_string(c.pattern));
+            r.pattern =
+                std::string(capture::to_string(c.pattern)) + (c.travel_mm_per_s > 0 ? "-fast" : "");
             r.strain = c.strain;
             print_row(r,
-                      fmt::format("{:<6} {:<8} {:<9} {:>4.0f}%", nn,
+                      fmt::format("{:<6} {:<8} {:<10} {:>4.0f}%", nn,
                                   r.held_out ? "held-out" : "tuning", r.pattern, 100 * c.strain));
             rows.push_back(r);
           }
@@ -273,6 +294,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         std::string name;
         std::vector<double> values;
         std::function<void(capture::PrintWarpSpec&, double)> apply;
+        bool every_method = false;  // the pipeline, Lucas-Kanade and DIS, each to its failure
       };
       const std::vector<Sweep> sweeps = {
           {"noise (grey levels)",
@@ -285,32 +307,85 @@ void add_bench_prints(CLI::App& bench, Action& action) {
           {"slide over the sequence (mm)",
            {0.25, 0.5, 1, 2, 3, 5},
            [](auto& s, double v) { s.slide_x_mm = v; }},
+          // The fast scene (8 % wave) at rising exploration speed, camera at 60 Hz ...
+          {"exploration speed at 60 Hz (mm/s)",
+           {5, 10, 15, 20, 25, 35, 50, 70, 100},
+           [&](auto& s, double v) {
+             s.strain = 0.08;
+             fast_scene(s, v);
+           },
+           true},
+          // ... and at 25 mm/s with a slower and slower camera.
+          {"camera rate at 25 mm/s (Hz)",
+           {240, 120, 90, 60, 45, 30, 20},
+           [&](auto& s, double v) {
+             s.strain = 0.08;
+             s.frame_rate_hz = v;
+             fast_scene(s, 25);
+           },
+           true},
       };
       const auto sweep_path = opt->out / "prints_sweeps.csv";
-      auto sw = csv::open_with_header(
-          sweep_path,
-          "condition,value,rms_error,rms_truth,correlation,median_tracked_points,passes");
+      auto sw = csv::open_with_header(sweep_path,
+                                      "condition,method,value,rms_error,rms_truth,correlation,"
+                                      "median_tracked_points,frames_per_s,"
+                                      "passes");
       fmt::print(
           "\nstability sweeps ({} wave 4 %, {} frames; failure: rms error > {} or < {} "
           "points)\n",
           print.name, opt->frames, opt->max_rms, opt->min_points);
+      // Accuracy against exploration speed, and frames/s against accuracy, for every method.
+      XYChart by_speed{.title = "Strain error at the speed of touch (8 % wave, 60 Hz)",
+                       .x = {.label = "exploration speed (mm/s)"},
+                       .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
+                       .y_targets = {{.value = opt->max_rms, .label = "failure"}},
+                       .width = 960,
+                       .height = 600};
+      XYChart fps_error{.title = "Frames per second against strain error (speed and rate sweeps)",
+                        .x = {.label = "edge strain RMS error", .scale = AxisScale::log},
+                        .y = {.label = "frames per second", .scale = AxisScale::log},
+                        .width = 960,
+                        .height = 600};
+      auto add_point = [](XYChart& chart, const std::string& label, double x, double y) {
+        auto it = std::find_if(chart.series.begin(), chart.series.end(),
+                               [&](const ChartSeries& c) { return c.label == label; });
+        if (it == chart.series.end())
+          it = chart.series.insert(chart.series.end(), {.label = label});
+        it->x.push_back(x);
+        it->y.push_back(y);
+      };
       for (const auto& s : sweeps) {
-        SweepFailures failures;
-        for (const double v : s.values) {
-          auto spec = spec_for(print);
-          s.apply(spec, v);
-          const Row r = run(all.front(), capture::render_print_sequence(spec, print.image, {}));
-          const bool accurate = r.eval.edges > 0 && r.eval.rms_error <= opt->max_rms;
-          const bool enough = r.eval.median_tracked_points >= opt->min_points;
-          print_row(r, fmt::format("{:<30} {:>6g}", s.name, v));
-          sw << fmt::format("\"{}\",{},{:.6g},{:.6g},{:.5f},{:.0f},{}\n", s.name, v,
-                            r.eval.rms_error, r.eval.rms_truth, r.eval.correlation,
-                            r.eval.median_tracked_points, accurate && enough ? 1 : 0);
-          failures.note(v, accurate, enough);
-          if (failures.both_failed()) break;
+        const std::size_t method_count = s.every_method ? all.size() : 1;
+        for (std::size_t k = 0; k < method_count; ++k) {
+          SweepFailures failures;
+          for (const double v : s.values) {
+            auto spec = spec_for(print);
+            s.apply(spec, v);
+            const Row r = run(all[k], capture::render_print_sequence(spec, print.image, {}));
+            const bool accurate = r.eval.edges > 0 && r.eval.rms_error <= opt->max_rms;
+            const bool enough = r.eval.median_tracked_points >= opt->min_points;
+            print_row(r, fmt::format("{:<34} {:>6g}", s.name, v));
+            sw << fmt::format("\"{}\",\"{}\",{},{:.6g},{:.6g},{:.5f},{:.0f},{:.2f},{}\n", s.name,
+                              r.method, v, r.eval.rms_error, r.eval.rms_truth, r.eval.correlation,
+                              r.eval.median_tracked_points, r.frames_per_s,
+                              accurate && enough ? 1 : 0);
+            if (s.every_method && r.eval.edges > 0) {
+              if (s.name.rfind("exploration", 0) == 0) {
+                add_point(by_speed, r.method, v, r.eval.rms_error);
+              }
+              add_point(fps_error, r.method, r.eval.rms_error, r.frames_per_s);
+            }
+            failures.note(v, accurate, enough);
+            if (failures.both_failed()) break;
+          }
+          fmt::print("{}", failures.summary(s.name + ", " + all[k].name, s.values.back()));
         }
-        fmt::print("{}", failures.summary(s.name, s.values.back()));
       }
+      const ChartFiles speed_plot =
+          write_line_chart(opt->out / "accuracy_speed_prints.png", by_speed);
+      const ChartFiles fps_plot =
+          write_scatter_chart(opt->out / "fps_accuracy_prints.png", fps_error);
+      fmt::print("bench prints: wrote {}, {}\n", speed_plot.png.string(), fps_plot.png.string());
       csv::finish(sw, sweep_path);
       fmt::print("bench prints: wrote {}\n", sweep_path.string());
       return 0;

@@ -68,6 +68,9 @@ void add_synth(CLI::App& app, Action& action) {
     capture::PrintWarpSpec warp;
     std::string pattern = "wave";
     double strain_pct = 4.0;
+    double exposure_ms = 0;
+    std::optional<double> slide_speed_mm_per_s;
+    std::optional<double> turn_rate_deg_per_s;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -97,7 +100,9 @@ void add_synth(CLI::App& app, Action& action) {
   needs_print(sub->add_option("--warp", opt->pattern,
                               "--from-print: strain pattern: rigid (slide and rotation only),\n"
                               "stretch (along x), compress (along y), bump (radial), wave\n"
-                              "(travelling along x)")
+                              "(travelling along x), pulse (a bump crossing along x), ridge\n"
+                              "(compression ahead of a sliding edge), stick-slip (rim loads and\n"
+                              "slips around a sticking centre), kernels (random smooth field)")
                   ->check(CLI::IsMember(capture::warp_pattern_names()))
                   ->capture_default_str());
   needs_print(sub->add_option("--strain-pct", opt->strain_pct,
@@ -128,6 +133,35 @@ void add_synth(CLI::App& app, Action& action) {
                               "--from-print: change of exposure over the sequence (0.06 = 6 %)")
                   ->check(within(-0.5, 0.5))
                   ->capture_default_str());
+  needs_print(sub->add_option("--travel-speed", opt->warp.travel_speed_mm_per_s,
+                              "--from-print: speed at which the pattern crosses the field, mm/s\n"
+                              "(0: wave, pulse and ridge take the whole sequence)")
+                  ->check(within(0.0, 1000.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--rate", opt->warp.frame_rate_hz, "--from-print: camera rate, Hz")
+                  ->check(within(1.0, 100000.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--exposure-ms", opt->exposure_ms,
+                              "--from-print: shutter time, ms (motion blur; at most one frame)")
+                  ->check(within(0.0, 1000.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--supersample", opt->warp.supersample,
+                              "--from-print: samples per pixel side over the pixel's area")
+                  ->check(within(1, 8))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--contact-loss", opt->warp.contact_loss,
+                              "--from-print: a region lifts off mid-sequence and lands again,\n"
+                              "0 (none) to 1 (fully lifted)")
+                  ->check(within(0.0, 1.0))
+                  ->capture_default_str());
+  needs_print(sub->add_option("--slide-speed", opt->slide_speed_mm_per_s,
+                              "--from-print: slide along x in mm/s (instead of --slide-x)")
+                  ->check(within(-1000.0, 1000.0))
+                  ->excludes("--slide-x"));
+  needs_print(sub->add_option("--turn-rate", opt->turn_rate_deg_per_s,
+                              "--from-print: rotation in degrees/s (instead of --turn)")
+                  ->check(within(-10000.0, 10000.0))
+                  ->excludes("--turn"));
   sub->callback([opt, &action, sub] {
     if (opt->print) {
       for (const char* scene_only :
@@ -142,6 +176,10 @@ void add_synth(CLI::App& app, Action& action) {
       if (sub->count("--seed") > 0) opt->warp.seed = opt->spec.seed;
       opt->warp.pattern = capture::parse_warp_pattern(opt->pattern);
       opt->warp.strain = opt->strain_pct / 100;
+      opt->warp.exposure_s = opt->exposure_ms / 1000;
+      const double duration_s = capture::sequence_duration_s(opt->warp);
+      if (opt->slide_speed_mm_per_s) opt->warp.slide_x_mm = *opt->slide_speed_mm_per_s * duration_s;
+      if (opt->turn_rate_deg_per_s) opt->warp.rotation_deg = *opt->turn_rate_deg_per_s * duration_s;
       action = [opt] { return synth_from_print(opt->out_dir, *opt->print, opt->marks, opt->warp); };
       return;
     }

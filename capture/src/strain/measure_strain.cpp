@@ -174,7 +174,10 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
   }
   frame_count = tracker.frames();
   std::vector<Track> tracks = tracker.finish();
-  smooth_tracks(tracks, params.smoothing_half_window);
+  // A smoother over more frames than the motion stays smooth for would flatten it: smooth only
+  // as far as the tracks allow.
+  smooth_tracks(tracks, smoothing_that_fits(tracks, params.smoothing_half_window,
+                                            params.refinement.max_smoothing_residual_px));
   if (progress) progress("refine", 1, 1);
   return tracks;
 }

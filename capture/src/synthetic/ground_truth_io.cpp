@@ -38,6 +38,14 @@ void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTr
   spec.noise_sigma = json_field<double>(s, "noise_sigma", w);
   spec.brightness_drift = json_field<double>(s, "brightness_drift", w);
   spec.seed = json_field<std::uint64_t>(s, "seed", w);
+  // Absent from files written before scenes had motion in physical units: the old behaviour.
+  auto optional_field = [&](const char* name, auto& value) {
+    if (s.contains(name)) value = json_field<std::decay_t<decltype(value)>>(s, name, w);
+  };
+  optional_field("travel_speed_mm_per_s", spec.travel_speed_mm_per_s);
+  optional_field("exposure_s", spec.exposure_s);
+  optional_field("supersample", spec.supersample);
+  optional_field("contact_loss", spec.contact_loss);
   try {
     validate(spec);
   } catch (const std::invalid_argument& e) {

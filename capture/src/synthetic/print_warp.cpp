@@ -10,6 +10,7 @@
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <random>
 #include <stdexcept>
 
 #include "camera/cv_image.hpp"
@@ -25,42 +26,203 @@ struct Names {
   WarpPattern pattern;
   const char* name;
 };
-constexpr Names kNames[] = {{WarpPattern::rigid, "rigid"},
-                            {WarpPattern::stretch, "stretch"},
-                            {WarpPattern::compress, "compress"},
-                            {WarpPattern::bump, "bump"},
-                            {WarpPattern::wave, "wave"}};
+constexpr Names kNames[] = {
+    {WarpPattern::rigid, "rigid"},       {WarpPattern::stretch, "stretch"},
+    {WarpPattern::compress, "compress"}, {WarpPattern::bump, "bump"},
+    {WarpPattern::wave, "wave"},         {WarpPattern::pulse, "pulse"},
+    {WarpPattern::ridge, "ridge"},       {WarpPattern::stick_slip, "stick-slip"},
+    {WarpPattern::kernels, "kernels"}};
 
 PointMm centre_mm(const PrintWarpSpec& s) {
   return {(s.width_px - 1) / (2 * s.px_per_mm), (s.height_px - 1) / (2 * s.px_per_mm)};
 }
 
-// Fraction of the sequence elapsed at `frame`, 0..1.
-double progress_of(const PrintWarpSpec& s, int frame) {
-  return s.frame_count > 1 ? static_cast<double>(frame) / (s.frame_count - 1) : 0.0;
+// Fraction of the sequence elapsed at `frame`, 0..1 (a little beyond within an exposure).
+double progress_of(const PrintWarpSpec& s, double frame) {
+  return s.frame_count > 1 ? frame / (s.frame_count - 1) : 0.0;
 }
 
-// The pattern's displacement u(X, f) in material millimetres; d = X - c.
-PointMm pattern_displacement(const PrintWarpSpec& s, PointMm d, int frame) {
-  const double tau = progress_of(s, frame);
-  const double a = s.strain * std::sin(kPi * tau);
-  if (s.pattern == WarpPattern::rigid || a == 0) return {0, 0};
-  if (s.pattern == WarpPattern::wave) {
-    // Strain a cos(k (x - v t)): the wave moves one wavelength over the sequence.
-    const double k = 2 * kPi / s.width_mm;
-    return {a / k * std::sin(k * (d.x_mm - s.width_mm * tau)), 0};
-  }
-  const double sigma = s.width_mm / (2 * std::sqrt(2 * std::log(2.0)));
-  const double g = std::exp(-(d.x_mm * d.x_mm + d.y_mm * d.y_mm) / (2 * sigma * sigma));
-  switch (s.pattern) {
-    case WarpPattern::stretch:
-      return {a * d.x_mm * g, 0};
-    case WarpPattern::compress:
-      return {0, -a * d.y_mm * g};
-    default:  // bump
-      return {a * d.x_mm * g, a * d.y_mm * g};
-  }
+double smoothstep01(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3 - 2 * t);
 }
+
+double sigma_of(const PrintWarpSpec& s) {
+  return s.width_mm / (2 * std::sqrt(2 * std::log(2.0)));
+}
+
+// A Gaussian displacement kernel of the random field: u = amplitude g(X - centre) direction,
+// g of width sigma, with amplitude sin(2 pi t / period + phase).
+struct Kernel {
+  PointMm centre;  // relative to the field's centre
+  double sigma_mm = 1, amplitude_mm = 0, direction_rad = 0, period_s = 1, phase_rad = 0;
+};
+
+// Everything about the warp that does not depend on the point, computed once per spec.
+class Warp {
+ public:
+  explicit Warp(const PrintWarpSpec& s) : s_(s), c_(centre_mm(s)) {
+    field_w_mm_ = s.width_px / s.px_per_mm;
+    field_h_mm_ = s.height_px / s.px_per_mm;
+    duration_s_ = sequence_duration_s(s);
+    if (s.pattern == WarpPattern::kernels) make_kernels();
+  }
+
+  PointMm to_image(PointMm material, double frame) const {
+    const PointMm d{material.x_mm - c_.x_mm, material.y_mm - c_.y_mm};
+    const PointMm u = displacement(d, frame);
+    const double th = rotation_rad(frame);
+    const double ex = d.x_mm + u.x_mm, ey = d.y_mm + u.y_mm;
+    const double tau = progress_of(s_, frame);
+    return {c_.x_mm + std::cos(th) * ex - std::sin(th) * ey + s_.slide_x_mm * tau,
+            c_.y_mm + std::sin(th) * ex + std::cos(th) * ey + s_.slide_y_mm * tau};
+  }
+
+  PointMm to_material(PointMm image, double frame) const {
+    const double th = rotation_rad(frame);
+    const double tau = progress_of(s_, frame);
+    const double qx = image.x_mm - c_.x_mm - s_.slide_x_mm * tau;
+    const double qy = image.y_mm - c_.y_mm - s_.slide_y_mm * tau;
+    // d + u(d) = R^-1 q, solved by fixed-point iteration: u's gradient is at most the strain
+    // (validate keeps it within 0.2; the random field's kernels add up to at most 2.5 times it),
+    // so each step shrinks the error at least twofold.
+    const PointMm y{std::cos(th) * qx + std::sin(th) * qy, -std::sin(th) * qx + std::cos(th) * qy};
+    PointMm d = y;
+    for (int i = 0; i < 60; ++i) {
+      const PointMm u = displacement(d, frame);
+      const PointMm next{y.x_mm - u.x_mm, y.y_mm - u.y_mm};
+      const double step = std::hypot(next.x_mm - d.x_mm, next.y_mm - d.y_mm);
+      d = next;
+      if (step < 1e-12) break;
+    }
+    return {d.x_mm + c_.x_mm, d.y_mm + c_.y_mm};
+  }
+
+  // A region fixed on the glass, a little right of and above the centre, lifts off in the middle
+  // of the sequence and comes back down.
+  double contact(PointMm image, double frame) const {
+    if (s_.contact_loss <= 0) return 1.0;
+    const double lift_s = std::sin(kPi * std::clamp(progress_of(s_, frame), 0.0, 1.0));
+    const double dx = image.x_mm - c_.x_mm - 0.2 * field_w_mm_;
+    const double dy = image.y_mm - c_.y_mm + 0.15 * field_h_mm_;
+    const double sigma = sigma_of(s_);
+    const double lifted =
+        s_.contact_loss * lift_s * lift_s * std::exp(-(dx * dx + dy * dy) / (2 * sigma * sigma));
+    return 1 - smoothstep01((lifted - 0.35) / 0.3);
+  }
+
+ private:
+  double time_s(double frame) const { return frame / s_.frame_rate_hz; }
+
+  double rotation_rad(double frame) const {
+    return s_.rotation_deg * kPi / 180 * progress_of(s_, frame);
+  }
+
+  // Where a travelling pattern is, along x from the centre: it crosses the centre in the middle
+  // of the sequence, at the travel speed or, without one, from beyond one edge to beyond the
+  // other over the sequence.
+  double travelled_mm(double frame) const {
+    if (s_.travel_speed_mm_per_s > 0) {
+      return s_.travel_speed_mm_per_s * (time_s(frame) - duration_s_ / 2);
+    }
+    return (progress_of(s_, frame) - 0.5) * (field_w_mm_ + 2 * s_.width_mm);
+  }
+
+  // Seconds a stick-slip cycle or a kernel's time course takes: the time the skin needs to
+  // travel the pattern's width, or a third of the sequence without a speed.
+  double cycle_s() const {
+    return s_.travel_speed_mm_per_s > 0 ? s_.width_mm / s_.travel_speed_mm_per_s
+                                        : std::max(duration_s_, 1e-9) / 3;
+  }
+
+  void make_kernels() {
+    std::mt19937_64 rng(s_.seed * 0x2545F4914F6CDD1DULL + 7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    constexpr int kKernels = 5;
+    for (int k = 0; k < kKernels; ++k) {
+      Kernel q;
+      q.centre = {(unit(rng) - 0.5) * 0.7 * field_w_mm_, (unit(rng) - 0.5) * 0.7 * field_h_mm_};
+      q.sigma_mm = sigma_of(s_) * (0.6 + 0.8 * unit(rng));
+      // A kernel's largest strain is amplitude / (sigma sqrt(e)): each reaches half the peak,
+      // so overlapping ones can come near it.
+      q.amplitude_mm = 0.5 * s_.strain * q.sigma_mm * std::sqrt(std::exp(1.0));
+      q.direction_rad = 2 * kPi * unit(rng);
+      q.period_s = cycle_s() * (2 + 3 * unit(rng));
+      q.phase_rad = 2 * kPi * unit(rng);
+      kernels_.push_back(q);
+    }
+  }
+
+  // The pattern's displacement u(X, f) in material millimetres; d = X - c.
+  PointMm displacement(PointMm d, double frame) const {
+    if (s_.pattern == WarpPattern::rigid || s_.strain == 0) return {0, 0};
+    const double tau = progress_of(s_, frame);
+    const double sigma = sigma_of(s_);
+    switch (s_.pattern) {
+      case WarpPattern::wave: {
+        // Strain a cos(k (x - v t)): without a speed the wave moves one wavelength over the
+        // sequence.
+        const double a = s_.strain * std::sin(kPi * tau);
+        const double k = 2 * kPi / s_.width_mm;
+        const double shift = s_.travel_speed_mm_per_s > 0 ? s_.travel_speed_mm_per_s * time_s(frame)
+                                                          : s_.width_mm * tau;
+        return {a / k * std::sin(k * (d.x_mm - shift)), 0};
+      }
+      case WarpPattern::pulse: {
+        const double x = d.x_mm - travelled_mm(frame);
+        const double g = std::exp(-(x * x + d.y_mm * d.y_mm) / (2 * sigma * sigma));
+        return {s_.strain * x * g, s_.strain * d.y_mm * g};
+      }
+      case WarpPattern::ridge: {
+        // Strain -a g(x - x0): the skin behind the ridge has been pushed forward.
+        const double z = (d.x_mm - travelled_mm(frame)) / (std::sqrt(2.0) * sigma);
+        return {s_.strain * sigma * std::sqrt(kPi / 2) * std::erfc(z), 0};
+      }
+      case WarpPattern::stick_slip: {
+        // The centre sticks while the rim is loaded, then the rim slips back within a sixth of
+        // the cycle; the peak strain of the loaded annulus is the spec's strain.
+        constexpr double q = 0.4;
+        const double semi_x = 0.42 * field_w_mm_, semi_y = 0.42 * field_h_mm_;
+        const double rho = std::hypot(d.x_mm / semi_x, d.y_mm / semi_y);
+        const double phase = time_s(frame) / cycle_s() - std::floor(time_s(frame) / cycle_s());
+        constexpr double stick = 5.0 / 6;
+        const double load =
+            phase < stick ? phase / stick : 1 - smoothstep01((phase - stick) / (1 - stick));
+        const double rim_mm = s_.strain * semi_x * (1 - q) / 1.5;
+        return {rim_mm * load * smoothstep01((rho - q) / (1 - q)), 0};
+      }
+      case WarpPattern::kernels: {
+        PointMm u{0, 0};
+        const double t = time_s(frame);
+        for (const auto& k : kernels_) {
+          const double dx = d.x_mm - k.centre.x_mm, dy = d.y_mm - k.centre.y_mm;
+          const double a = k.amplitude_mm * std::sin(2 * kPi * t / k.period_s + k.phase_rad) *
+                           std::exp(-(dx * dx + dy * dy) / (2 * k.sigma_mm * k.sigma_mm));
+          u.x_mm += a * std::cos(k.direction_rad);
+          u.y_mm += a * std::sin(k.direction_rad);
+        }
+        return u;
+      }
+      default:
+        break;
+    }
+    const double a = s_.strain * std::sin(kPi * tau);
+    const double g = std::exp(-(d.x_mm * d.x_mm + d.y_mm * d.y_mm) / (2 * sigma * sigma));
+    switch (s_.pattern) {
+      case WarpPattern::stretch:
+        return {a * d.x_mm * g, 0};
+      case WarpPattern::compress:
+        return {0, -a * d.y_mm * g};
+      default:  // bump
+        return {a * d.x_mm * g, a * d.y_mm * g};
+    }
+  }
+
+  const PrintWarpSpec& s_;
+  PointMm c_;
+  double field_w_mm_ = 0, field_h_mm_ = 0, duration_s_ = 0;
+  std::vector<Kernel> kernels_;
+};
 
 // Lanczos (a = 4) weights for the 8 taps around a sample at fraction t of a pixel, normalised.
 // The frames must move by exactly the warp. Cubic convolution (OpenCV's INTER_CUBIC) shifts a
@@ -69,14 +231,26 @@ PointMm pattern_displacement(const PrintWarpSpec& s, PointMm d, int frame) {
 // (the tracker's own floor) with Lanczos-4 in double precision. The kernel, not remap's rounding
 // of positions to 1/32 px, was the cause: an exact cubic gave the same error as remap.
 std::array<double, 8> lanczos_weights(double t) {
+  // sin(pi (k - t)) = -(-1)^k sin(pi t), and sin(pi (k - t) / 4) by the angle sum: four
+  // trigonometric calls per axis instead of sixteen (a sample is taken many times per pixel).
+  const double s1 = std::sin(kPi * t), s4 = std::sin(kPi * t / 4), c4 = std::cos(kPi * t / 4);
+  constexpr double h = 0.70710678118654752440;  // sqrt(2) / 2
+  // sin and cos of pi k / 4 for k = -3 .. 4.
+  constexpr std::array<double, 8> sin_k{-h, -1, -h, 0, h, 1, h, 0};
+  constexpr std::array<double, 8> cos_k{-h, 0, h, 1, h, 0, -h, -1};
   std::array<double, 8> w{};
   double sum = 0;
   for (int i = 0; i < 8; ++i) {
-    const double d = (i - 3) - t;
-    const double v = std::abs(d) < 1e-12
-                         ? 1.0
-                         : std::sin(kPi * d) * std::sin(kPi * d / 4) / (kPi * kPi * d * d / 4);
-    w[static_cast<std::size_t>(i)] = v;
+    const int k = i - 3;
+    const auto u = static_cast<std::size_t>(i);
+    const double d = k - t;
+    double v = 1.0;
+    if (std::abs(d) >= 1e-12) {
+      const double sin_pd = (k % 2 == 0 ? -1.0 : 1.0) * s1;
+      const double sin_pd4 = sin_k[u] * c4 - cos_k[u] * s4;
+      v = sin_pd * sin_pd4 / (kPi * kPi * d * d / 4);
+    }
+    w[u] = v;
     sum += v;
   }
   for (auto& v : w) v /= sum;
@@ -100,10 +274,6 @@ float sample_lanczos(const cv::Mat& source, double x, double y, float outside) {
     sum += wy[static_cast<std::size_t>(j)] * row;
   }
   return static_cast<float>(sum);
-}
-
-double rotation_rad(const PrintWarpSpec& s, int frame) {
-  return s.rotation_deg * kPi / 180 * progress_of(s, frame);
 }
 
 }  // namespace
@@ -158,43 +328,43 @@ void validate(const PrintWarpSpec& s) {
   if (!(s.blur_sigma_px >= 0 && s.blur_sigma_px <= 10)) fail("blur_sigma_px must be 0 to 10");
   if (!(s.noise_sigma >= 0 && s.noise_sigma <= 100)) fail("noise_sigma must be 0 to 100");
   if (!(std::abs(s.brightness_drift) <= 0.5)) fail("brightness_drift must be within +-0.5");
-}
-
-PointMm warp_to_image(const PrintWarpSpec& s, PointMm material, int frame) {
-  const PointMm c = centre_mm(s);
-  const PointMm d{material.x_mm - c.x_mm, material.y_mm - c.y_mm};
-  const PointMm u = pattern_displacement(s, d, frame);
-  const double th = rotation_rad(s, frame);
-  const double ex = d.x_mm + u.x_mm, ey = d.y_mm + u.y_mm;
-  const double tau = progress_of(s, frame);
-  return {c.x_mm + std::cos(th) * ex - std::sin(th) * ey + s.slide_x_mm * tau,
-          c.y_mm + std::sin(th) * ex + std::cos(th) * ey + s.slide_y_mm * tau};
-}
-
-PointMm warp_to_material(const PrintWarpSpec& s, PointMm image, int frame) {
-  const PointMm c = centre_mm(s);
-  const double th = rotation_rad(s, frame);
-  const double tau = progress_of(s, frame);
-  const double qx = image.x_mm - c.x_mm - s.slide_x_mm * tau;
-  const double qy = image.y_mm - c.y_mm - s.slide_y_mm * tau;
-  // d + u(d) = R^-1 q, solved by fixed-point iteration: u's gradient is at most the strain
-  // (validate keeps it within 0.2), so each step shrinks the error at least fivefold.
-  const PointMm y{std::cos(th) * qx + std::sin(th) * qy, -std::sin(th) * qx + std::cos(th) * qy};
-  PointMm d = y;
-  for (int i = 0; i < 30; ++i) {
-    const PointMm u = pattern_displacement(s, d, frame);
-    const PointMm next{y.x_mm - u.x_mm, y.y_mm - u.y_mm};
-    const double step = std::hypot(next.x_mm - d.x_mm, next.y_mm - d.y_mm);
-    d = next;
-    if (step < 1e-12) break;
+  if (!(s.travel_speed_mm_per_s >= 0 && s.travel_speed_mm_per_s <= 1000)) {
+    fail(fmt::format("travel_speed_mm_per_s {} is out of range: must be 0 to 1000",
+                     s.travel_speed_mm_per_s));
   }
-  return {d.x_mm + c.x_mm, d.y_mm + c.y_mm};
+  if (!(s.exposure_s >= 0 && s.exposure_s * s.frame_rate_hz <= 1)) {
+    fail(fmt::format("exposure_s {} is out of range: must be 0 to one frame ({:.4g} s)",
+                     s.exposure_s, 1 / s.frame_rate_hz));
+  }
+  if (s.supersample < 1 || s.supersample > 8) {
+    fail(fmt::format("supersample {} is out of range: must be 1 to 8", s.supersample));
+  }
+  if (!(s.contact_loss >= 0 && s.contact_loss <= 1)) {
+    fail(fmt::format("contact_loss {} is out of range: must be 0 to 1", s.contact_loss));
+  }
+}
+
+double sequence_duration_s(const PrintWarpSpec& s) {
+  return (s.frame_count - 1) / s.frame_rate_hz;
+}
+
+PointMm warp_to_image(const PrintWarpSpec& s, PointMm material, double frame) {
+  return Warp(s).to_image(material, frame);
+}
+
+PointMm warp_to_material(const PrintWarpSpec& s, PointMm image, double frame) {
+  return Warp(s).to_material(image, frame);
+}
+
+double warp_contact(const PrintWarpSpec& s, PointMm image, double frame) {
+  return Warp(s).contact(image, frame);
 }
 
 double warp_rel_change(const PrintWarpSpec& s, PointMm a_from, PointMm b_from, int frame_from,
                        int frame_to) {
-  const PointMm a = warp_to_image(s, warp_to_material(s, a_from, frame_from), frame_to);
-  const PointMm b = warp_to_image(s, warp_to_material(s, b_from, frame_from), frame_to);
+  const Warp warp(s);
+  const PointMm a = warp.to_image(warp.to_material(a_from, frame_from), frame_to);
+  const PointMm b = warp.to_image(warp.to_material(b_from, frame_from), frame_to);
   const double before = std::hypot(b_from.x_mm - a_from.x_mm, b_from.y_mm - a_from.y_mm);
   const double after = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
   return before > 0 ? (after - before) / before : 0.0;
@@ -224,15 +394,41 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   const float background = values[values.size() * 9 / 10];
 
   const int w = spec.width_px, h = spec.height_px;
+  const Warp warp(spec);
+  // Each pixel averages the moving image over its area and the shutter time: n x n points on
+  // the pixel, each at its own instant of the exposure (stratified, so that n^2 samples cover
+  // both), which is what a sensor integrates.
+  struct Offset {
+    double dx_px, dy_px, dframe;
+  };
+  std::vector<Offset> offsets;
+  const int n = spec.supersample;
+  const double exposure_frames = spec.exposure_s * spec.frame_rate_hz;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      // A Latin-square order of instants: neighbouring points of the pixel get distant ones.
+      const int slot = (i * n + (j + i) % n) % (n * n);
+      offsets.push_back({(i + 0.5) / n - 0.5, (j + 0.5) / n - 0.5,
+                         exposure_frames * ((slot + 0.5) / (n * n) - 0.5)});
+    }
+  }
   seq.frames.resize(static_cast<std::size_t>(spec.frame_count));
   cv::parallel_for_(cv::Range(0, spec.frame_count), [&](const cv::Range& range) {
     for (int f = range.start; f < range.end; ++f) {
       cv::Mat frame(h, w, CV_32F);
       for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-          const PointMm m = warp_to_material(spec, {x / spec.px_per_mm, y / spec.px_per_mm}, f);
-          frame.at<float>(y, x) =
-              sample_lanczos(source, m.x_mm * spec.px_per_mm, m.y_mm * spec.px_per_mm, background);
+          double sum = 0;
+          for (const auto& o : offsets) {
+            const PointMm at{(x + o.dx_px) / spec.px_per_mm, (y + o.dy_px) / spec.px_per_mm};
+            const double instant = f + o.dframe;
+            const PointMm m = warp.to_material(at, instant);
+            const double grey = sample_lanczos(source, m.x_mm * spec.px_per_mm,
+                                               m.y_mm * spec.px_per_mm, background);
+            const double touch = warp.contact(at, instant);
+            sum += touch * grey + (1 - touch) * background;
+          }
+          frame.at<float>(y, x) = static_cast<float>(sum / static_cast<double>(offsets.size()));
         }
       }
       const double tau = progress_of(spec, f);
@@ -257,10 +453,11 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
 
   for (int f = 0; f < spec.frame_count; ++f) {
     for (std::size_t i = 0; i < marks_px.size(); ++i) {
-      const PointMm x = warp_to_image(
-          spec, {marks_px[i][0] / spec.px_per_mm, marks_px[i][1] / spec.px_per_mm}, f);
+      const PointMm x =
+          warp.to_image({marks_px[i][0] / spec.px_per_mm, marks_px[i][1] / spec.px_per_mm}, f);
       const double x_px = x.x_mm * spec.px_per_mm, y_px = x.y_mm * spec.px_per_mm;
       if (x_px < 0 || y_px < 0 || x_px > w - 1 || y_px > h - 1) continue;
+      if (warp.contact(x, f) < 0.5) continue;
       seq.landmarks.push_back(
           {static_cast<std::int32_t>(i), FeatureType::pore, f, x_px, y_px, x.x_mm, x.y_mm, 0.0});
     }
@@ -290,6 +487,10 @@ void write_print_sequence(const std::filesystem::path& dir, const PrintSequence&
                {"blur_sigma_px", s.blur_sigma_px},
                {"noise_sigma", s.noise_sigma},
                {"brightness_drift", s.brightness_drift},
+               {"travel_speed_mm_per_s", s.travel_speed_mm_per_s},
+               {"exposure_s", s.exposure_s},
+               {"supersample", s.supersample},
+               {"contact_loss", s.contact_loss},
                {"seed", s.seed}};
   j["marks"] = seq.marks_px.size();
   j["frames"] = fmt::format("frame_000.png .. frame_{:03d}.png",

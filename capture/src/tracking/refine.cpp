@@ -1,5 +1,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -241,43 +242,78 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
     smoothed_frame(frames[f], params.presmoothing_px, smooth[f]);
   });
 
-  std::vector<long> steps(tracks.size(), 0);
+  std::vector<long> steps(tracks.size(), 0), anchors(tracks.size(), 0);
   std::vector<char> cut(tracks.size(), 0);
   parallel_for(tracks.size(), worker_count(threads), [&](std::size_t i) {
     const Track detected = tracks[i];
     Track& t = tracks[i];
-    const auto frame_of = [&](std::size_t k) -> const cv::Mat& {
-      return smooth[static_cast<std::size_t>(detected.first_frame) + k];
+    const auto frame_at = [&](int f) -> const cv::Mat& {
+      return smooth[static_cast<std::size_t>(f)];
     };
+    const std::size_t seen = detected.x_px.size();
+    const std::size_t reach =
+        params.follow_past_detections ? static_cast<std::size_t>(n - detected.first_frame) : seen;
+    t.x_px.assign(1, detected.x_px[0]);
+    t.y_px.assign(1, detected.y_px[0]);
     Reference ref;
-    std::size_t confirmed = 0;  // positions [0, confirmed) are measured against the reference
-    if (make_reference(frame_of(0), t.x_px[0], t.y_px[0], half_side, room_px, ref)) {
-      confirmed = 1;
-      Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
-      for (std::size_t k = 1; k < detected.x_px.size(); ++k) {
-        ++steps[i];
-        // Started where the detections say the landmark moved.
-        const Aligned a =
-            align(ref, frame_of(k), t.x_px[k - 1] + detected.x_px[k] - detected.x_px[k - 1],
-                  t.y_px[k - 1] + detected.y_px[k] - detected.y_px[k - 1], linear, params);
-        if (!a.ok ||
-            std::hypot(a.x_px - detected.x_px[k], a.y_px - detected.y_px[k]) > max_offset_px) {
-          break;
-        }
-        t.x_px[k] = a.x_px;
-        t.y_px[k] = a.y_px;
-        linear = a.linear;
-        confirmed = k + 1;
-      }
+    int ref_frame = detected.first_frame;
+    if (!make_reference(frame_at(ref_frame), t.x_px[0], t.y_px[0], half_side, room_px, ref)) {
+      t.x_px.clear();
+      t.y_px.clear();
     }
-    cut[i] = confirmed < detected.x_px.size();
-    t.x_px.resize(confirmed);
-    t.y_px.resize(confirmed);
+    Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+    for (std::size_t k = 1; k < reach && !t.x_px.empty(); ++k) {
+      const int f = detected.first_frame + static_cast<int>(k);
+      ++steps[i];
+      // Started where the detections say the landmark moved; past them, where its own last
+      // step would take it.
+      const bool has_detection = k < seen;
+      // The track's own last step carried on.
+      double ox = t.x_px[k - 1], oy = t.y_px[k - 1];
+      if (k >= 2) {
+        ox += t.x_px[k - 1] - t.x_px[k - 2];
+        oy += t.y_px[k - 1] - t.y_px[k - 2];
+      }
+      double sx = ox, sy = oy;
+      if (has_detection) {
+        sx = t.x_px[k - 1] + detected.x_px[k] - detected.x_px[k - 1];
+        sy = t.y_px[k - 1] + detected.y_px[k] - detected.y_px[k - 1];
+      }
+      const auto accepted = [&](const Aligned& a) {
+        return a.ok && (!has_detection || std::hypot(a.x_px - detected.x_px[k],
+                                                     a.y_px - detected.y_px[k]) <= max_offset_px);
+      };
+      Aligned a = align(ref, frame_at(f), sx, sy, linear, params);
+      // Only where the image, not the detection, disagreed: a detection that jumped to another
+      // landmark must end the track, not lead a new reference onto that landmark.
+      if (!a.ok && params.reanchor && ref_frame != f - 1) {
+        // The skin has deformed away from the reference: the last confirmed frame becomes the
+        // reference. Each new anchor adds the error of one position (a few hundredths of a
+        // pixel) to the track, instead of ending it.
+        Reference next;
+        if (make_reference(frame_at(f - 1), t.x_px[k - 1], t.y_px[k - 1], half_side, room_px,
+                           next)) {
+          const Aligned b = align(next, frame_at(f), ox, oy, Eigen::Matrix2d::Identity(), params);
+          if (accepted(b)) {
+            ref = std::move(next);
+            ref_frame = f - 1;
+            a = b;
+            ++anchors[i];
+          }
+        }
+      }
+      if (!accepted(a)) break;
+      t.x_px.push_back(a.x_px);
+      t.y_px.push_back(a.y_px);
+      linear = a.linear;
+    }
+    cut[i] = t.x_px.size() < seen;
   });
   RefineStats stats;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     stats.steps += steps[i];
     stats.cut += cut[i];
+    stats.anchors += anchors[i];
   }
   // A track ends at the first frame the image does not confirm: from there on its positions
   // could only be the detections, whose noise (about 0.5 px on real prints) would dominate the
@@ -290,6 +326,38 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
     }
     kept.push_back(std::move(t));
   }
+  // Followed past its detections, a track can run onto the landmark of another track (the same
+  // pore detected again after a gap, which the detection tracker started anew). Two tracks on
+  // one landmark make a zero-length edge; the one that started later gives way from there.
+  std::stable_sort(kept.begin(), kept.end(),
+                   [](const Track& a, const Track& b) { return a.first_frame < b.first_frame; });
+  const double same_px = params.same_landmark_mm * px_per_mm;
+  std::vector<std::vector<std::array<double, 2>>> taken(static_cast<std::size_t>(n));
+  std::vector<Track> unique;
+  for (auto& t : kept) {
+    std::size_t keep = t.x_px.size();
+    for (std::size_t k = 0; k < t.x_px.size(); ++k) {
+      const auto& here = taken[static_cast<std::size_t>(t.first_frame) + k];
+      const bool clash = std::any_of(here.begin(), here.end(), [&](const auto& p) {
+        return std::hypot(p[0] - t.x_px[k], p[1] - t.y_px[k]) < same_px;
+      });
+      if (clash) {
+        keep = k;
+        break;
+      }
+    }
+    if (static_cast<int>(keep) < params.min_frames) {
+      ++stats.dropped;
+      continue;
+    }
+    t.x_px.resize(keep);
+    t.y_px.resize(keep);
+    for (std::size_t k = 0; k < keep; ++k) {
+      taken[static_cast<std::size_t>(t.first_frame) + k].push_back({t.x_px[k], t.y_px[k]});
+    }
+    unique.push_back(std::move(t));
+  }
+  kept = std::move(unique);
   for (std::size_t i = 0; i < kept.size(); ++i) kept[i].id = static_cast<std::int32_t>(i);
   tracks = std::move(kept);
   return stats;

@@ -126,6 +126,26 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window) {
   }
 }
 
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px) {
+  if (half_window <= 0) return half_window;
+  // The smoother's residual is the trackers' noise where the skin moves smoothly over the
+  // window, and the motion itself where it does not (a strain wave crossing in a few frames).
+  std::vector<double> residuals;
+  for (const auto& t : tracks) {
+    if (static_cast<int>(t.x_px.size()) < 2 * half_window + 1) continue;
+    const auto sx = smooth(t.x_px, half_window), sy = smooth(t.y_px, half_window);
+    double sum = 0;
+    for (std::size_t k = 0; k < sx.size(); ++k) {
+      sum += std::pow(sx[k] - t.x_px[k], 2) + std::pow(sy[k] - t.y_px[k], 2);
+    }
+    residuals.push_back(std::sqrt(sum / static_cast<double>(sx.size())));
+  }
+  if (residuals.empty()) return half_window;
+  auto mid = residuals.begin() + static_cast<long>(residuals.size() / 2);
+  std::nth_element(residuals.begin(), mid, residuals.end());
+  return *mid <= max_residual_px ? half_window : 0;
+}
+
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
                                   const Calibration& calibration, const TrackParams& params) {
   if (!(params.match_radius_mm > 0)) throw std::invalid_argument("match_radius_mm must be > 0");

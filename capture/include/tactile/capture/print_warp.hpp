@@ -26,11 +26,15 @@
 namespace tactile::capture {
 
 enum class WarpPattern {
-  rigid,     // slide and rotation only: every true strain is zero
-  stretch,   // local uniaxial stretch along x (Gaussian envelope)
-  compress,  // local uniaxial compression along y (Gaussian envelope)
-  bump,      // radial stretch at the centre, compression around it (as a bump pushes skin)
-  wave,      // a strain wave along x travelling one wavelength over the sequence
+  rigid,       // slide and rotation only: every true strain is zero
+  stretch,     // local uniaxial stretch along x (Gaussian envelope)
+  compress,    // local uniaxial compression along y (Gaussian envelope)
+  bump,        // radial stretch at the centre, compression around it (as a bump pushes skin)
+  wave,        // a strain wave along x travelling one wavelength over the sequence
+  pulse,       // a bump of radial strain crossing the field along x
+  ridge,       // a ridge of compression along x, ahead of a sliding edge, crossing the field
+  stick_slip,  // a slipping rim around a sticking centre: slow loading, sudden partial slip
+  kernels,     // a random smooth field: several Gaussian displacement kernels, own time courses
 };
 
 WarpPattern parse_warp_pattern(std::string_view name);  // throws std::invalid_argument
@@ -50,6 +54,17 @@ struct PrintWarpSpec {
   double rotation_deg = 1.5;  // rigid rotation over the whole sequence
   int frame_count = 30;
   double frame_rate_hz = 60.0;
+  // Motion in physical units: with travel_speed_mm_per_s > 0 the travelling patterns (wave,
+  // pulse, ridge) cross the field at that speed and the stick-slip and kernel patterns change on
+  // the time the skin takes to travel the pattern's width; with 0 each takes the whole sequence.
+  double travel_speed_mm_per_s = 0;
+  double exposure_s = 0;  // shutter open time, centred on each frame's instant (motion blur)
+  // Samples per pixel side: each pixel integrates the moving image over its area (and, with an
+  // exposure, over the shutter time), as a sensor does.
+  int supersample = 1;
+  // Peak strength of a region that loses contact (shown as bright skin, its pores not in the
+  // truth) in the middle of the sequence and regains it; 0 = none, 1 = fully lifted.
+  double contact_loss = 0;
   double blur_sigma_px = 0.7;
   double noise_sigma = 2.0;        // grey levels, new in every frame
   double brightness_drift = 0.06;  // relative change of exposure from first to last frame
@@ -60,9 +75,16 @@ struct PrintWarpSpec {
 // Gaussian patterns; the fixed-point inversion of the warp needs its gradient below 1).
 void validate(const PrintWarpSpec& spec);
 
-// Image millimetres at `frame` of a material point, and its inverse.
-PointMm warp_to_image(const PrintWarpSpec& spec, PointMm material, int frame);
-PointMm warp_to_material(const PrintWarpSpec& spec, PointMm image, int frame);
+// Seconds from the first frame to the last.
+double sequence_duration_s(const PrintWarpSpec& spec);
+
+// Image millimetres at `frame` of a material point, and its inverse. `frame` may be fractional
+// (an instant within the exposure).
+PointMm warp_to_image(const PrintWarpSpec& spec, PointMm material, double frame);
+PointMm warp_to_material(const PrintWarpSpec& spec, PointMm image, double frame);
+
+// How much of the skin seen at image point `image` touches the glass at `frame`, 0..1.
+double warp_contact(const PrintWarpSpec& spec, PointMm image, double frame);
 
 // True relative length change of the segment seen at a_from, b_from (image millimetres) in
 // frame_from, when seen again in frame_to.

@@ -50,6 +50,10 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
 // Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none).
 void smooth_tracks(std::vector<Track>& tracks, int half_window);
 
+// half_window if smoothing by it moves the median track by at most max_residual_px (RMS), else 0:
+// a smoother over several frames must not flatten motion that changes within them.
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px);
+
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
 // the image around it gives a precise displacement. Each track's neighbourhood in its first
@@ -69,12 +73,23 @@ struct RefineParams {
   double stop_step_px = 1e-3;    // the alignment has converged when a step moves less
   double presmoothing_px = 0.6;  // Gaussian sigma applied to the frames before aligning
   int min_frames = 10;           // shortest refined track kept
+  // Follow a track by the image alone past the frames where it was detected (to the end of the
+  // sequence or until the image stops confirming it).
+  bool follow_past_detections = true;
+  // Where the image stops confirming a frame against the reference, try the last confirmed
+  // frame as the new reference before ending the track.
+  bool reanchor = true;
+  double same_landmark_mm = 0.06;  // two tracks this close in a frame follow one landmark
+  // Trajectories are smoothed only where the smoother moves the median track by at most this
+  // (RMS): about twice the refined positions' noise.
+  double max_smoothing_residual_px = 0.06;
 };
 
 struct RefineStats {
   long steps = 0;    // frame-to-frame alignments tried
   long cut = 0;      // tracks ended early, where the image did not confirm a frame
   long dropped = 0;  // of which left shorter than min_frames, and removed
+  long anchors = 0;  // references renewed on a later frame
 };
 
 // Tracks are refined in parallel on `threads` workers (0 = one per core).
