@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/value_checks.hpp"
 
 namespace tactile::h5 {
 namespace {
@@ -79,8 +80,9 @@ std::vector<T> read_any(const H5::Group& group, const std::string& name, std::si
     }
     dims.assign(rank, 0);
     if (rank > 0) space.getSimpleExtentDims(dims.data());
-    hsize_t count = 1;
-    for (hsize_t d : dims) count *= d;
+    // Before allocating: a damaged or hostile shape must fail here, not in the allocator.
+    const auto count = checks::value_count(std::vector<std::uint64_t>(dims.begin(), dims.end()),
+                                           sizeof(T), where, name);
     std::vector<T> out(count);
     if (count > 0) ds.read(out.data(), native_type<T>());
     return out;
@@ -144,7 +146,11 @@ void write_attr(H5::H5Object& obj, const std::string& name, const std::string& v
 }
 
 bool has_attr(const H5::H5Object& obj, const std::string& name) {
-  return obj.attrExists(name);
+  try {
+    return obj.attrExists(name);
+  } catch (const H5::Exception&) {
+    return false;
+  }
 }
 
 namespace {

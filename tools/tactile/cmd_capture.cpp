@@ -47,7 +47,7 @@ void add_calibration_options(CLI::App& sub, std::optional<fs::path>& calib_file,
                 ->check(CLI::ExistingFile);
   auto* p = sub.add_option("--px-per-mm", px_per_mm,
                            "Uniform scale instead of a calibration file (pixels per millimetre)")
-                ->check(positive());
+                ->check(within(2.0, 5000.0));
   c->excludes(p);
 }
 
@@ -272,7 +272,7 @@ void add_capture(CLI::App& app, Action& action) {
       ->check(within(1, 10000))
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->rate_hz, "Camera frame rate")
-      ->check(positive())
+      ->check(within(1.0, 100000.0))
       ->capture_default_str();
   sub->add_option("--min-track", opt->min_track_frames, "Shortest track kept, in frames")
       ->check(within(2, 100000))
@@ -355,6 +355,14 @@ void add_capture(CLI::App& app, Action& action) {
           [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      // An empty strain movie maps to a still display: report the reason instead of writing it.
+      if (movie.frames.empty()) {
+        throw std::runtime_error(fmt::format(
+            "capture: {}: no strain measured in {} frames (tracks of at least --min-track {} "
+            "frames over --span {}: {} tracked points); nothing written to {}",
+            opt->image_dir.string(), frames.size(), opt->min_track_frames, opt->span,
+            movie.tracks.size(), opt->out.string()));
+      }
       movie.source = opt->image_dir.string();
       movie.program_version = kVersion;
       capture::write_strain_movie(opt->out, movie);

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/perception/classifier_model.hpp"
@@ -54,6 +55,13 @@ int train(const TrainOptions& o) {
       data.rows.size(), data.class_names.size(), data.input_names.size(),
       fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
       to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
+  // A model of one class answers that class whatever it is given: not a classifier.
+  if (data.class_names.size() < 2) {
+    throw std::runtime_error(
+        fmt::format("classify train: {}: {} class(es) ({}); a classifier "
+                    "needs recordings of at least 2 classes",
+                    o.labels.string(), data.class_names.size(), fmt::join(data.class_names, ", ")));
+  }
   perception::SvmOptions svm;
   svm.degree = o.degree;
   svm.c = o.c;
@@ -222,7 +230,7 @@ void add_classify(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({1, 2}))
       ->capture_default_str();
   tr->add_option("--c", t->c, "SVM complexity constant C")
-      ->check(CLI::PositiveNumber)
+      ->check(within(0.001, 100000.0))
       ->capture_default_str();
   tr->add_option("--cv", t->cv, "Also report stratified K-fold cross-validation accuracy")
       ->check(CLI::Range(2, 1000));

@@ -204,6 +204,7 @@ void add_emulate(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--drop-every", opt->emulator.drop_every_nth_reply,
                   "Leave out every N-th reply (0: none), to test a client's loss accounting")
+      ->check(within<std::uint32_t>(0, 1000000))
       ->capture_default_str();
   sub->add_flag("--no-io-board", opt->no_io_board,
                 "Report no IO board (status 0), as a Latero with its IO board unplugged");
@@ -260,6 +261,7 @@ void add_bench_latero(CLI::App& bench, Action& action) {
       ->check(within(1.0, 750.0))
       ->capture_default_str();
   sub->add_option("--drop-every", opt->drop_every, "Emulator leaves out every N-th reply")
+      ->check(within<std::uint32_t>(0, 1000000))
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {

@@ -81,13 +81,13 @@ void add_train_pores(CLI::App& app, Action& action) {
   sub->add_option("--px-per-mm", opt->px_per_mm,
                   "Scale of the prints, pixels per millimetre (PolyU HRF: 47)")
       ->required()
-      ->check(positive());
+      ->check(within(2.0, 5000.0));
   sub->add_option("--out", opt->out, "Model file to write (JSON)")
       ->type_name("MODEL.json")
       ->required();
   sub->add_option("--label-radius-mm", opt->label_radius_mm,
                   "A candidate this close to a marked pore counts as a pore")
-      ->check(positive())
+      ->check(positive_up_to(5.0))
       ->capture_default_str();
   sub->add_option("--l2", opt->l2, "L2 penalty on every coefficient but the intercept")
       ->check(non_negative())
