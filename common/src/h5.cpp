@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <fstream>
@@ -154,6 +155,9 @@ bool has_attr(const H5::H5Object& obj, const std::string& name) {
 }
 
 namespace {
+// Attribute strings are names, versions and provenance: a megabyte is far beyond any of them.
+constexpr std::size_t kMaxAttributeStringBytes = 1 << 20;
+
 H5::Attribute open_attr(const H5::H5Object& obj, const std::string& name,
                         const std::string& where) {
   if (!obj.attrExists(name)) {
@@ -210,8 +214,29 @@ std::string read_attr_string(const H5::H5Object& obj, const std::string& name,
       throw FormatError(fmt::format("{}: attribute '{}' must be a string", where, name));
     }
     require_scalar(a, name, where);
-    std::string v;
-    a.read(a.getStrType(), v);
+    // Through the C API: the C++ wrapper calls strlen on whatever a damaged file yields,
+    // including a null pointer.
+    const H5::StrType type = a.getStrType();
+    if (type.isVariableStr()) {
+      char* text = nullptr;
+      if (H5Aread(a.getId(), type.getId(), &text) < 0 || text == nullptr) {
+        if (text != nullptr) H5free_memory(text);
+        throw FormatError(fmt::format("{}: attribute '{}' holds no readable string", where, name));
+      }
+      std::string v(text);
+      H5free_memory(text);
+      return v;
+    }
+    const std::size_t size = type.getSize();
+    if (size > kMaxAttributeStringBytes) {
+      throw FormatError(fmt::format("{}: attribute '{}' declares a string of {} bytes (limit {})",
+                                    where, name, size, kMaxAttributeStringBytes));
+    }
+    std::string v(size, '\0');
+    if (size > 0 && H5Aread(a.getId(), type.getId(), v.data()) < 0) {
+      throw FormatError(fmt::format("{}: attribute '{}' cannot be read", where, name));
+    }
+    v.resize(std::min(v.size(), v.find('\0')));
     return v;
   } catch (const H5::Exception& e) {
     throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));

@@ -27,9 +27,9 @@ double number(const json& v, const std::string& what, const std::string& where) 
   return json_number(JsonOrigin{where}, v, what);
 }
 
-// A size in mm: positive and at most a metre, beyond which it is a unit mix-up or damage.
+// A size in mm: from a micrometre to a metre; beyond either it is a unit mix-up or damage.
 double size_mm(const json& v, const std::string& what, const std::string& where) {
-  return checks::positive_up_to(number(v, what, where), 1000, where, what);
+  return checks::in_range(number(v, what, where), kMinLayoutSizeMm, kMaxLayoutSizeMm, where, what);
 }
 
 std::int32_t count(const json& v, const char* what, const std::string& where) {

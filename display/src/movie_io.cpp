@@ -47,7 +47,8 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
   l.cols = static_cast<std::int32_t>(cols);
   // Sizes and ranges no display could have are damage: say which, rather than play them.
   const auto size_mm = [&](const char* name) {
-    return checks::positive_up_to(h5::read_attr_double(file, name, where), 1000, where, name);
+    return checks::in_range(h5::read_attr_double(file, name, where), kMinLayoutSizeMm,
+                            kMaxLayoutSizeMm, where, name);
   };
   l.pitch_x_mm = size_mm("layout_pitch_x_mm");
   l.pitch_y_mm = size_mm("layout_pitch_y_mm");
