@@ -38,7 +38,7 @@ TEST(RangeErrors, ReadLikeAPersonWroteThem) {
   expect_readable_range_error("train-pores --prints " +
                                   tactile::test::test_data("polyu-hrf-pores").string() +
                                   " --px-per-mm 47 --out x.json --l2 -1",
-                              "--l2: -1 is out of range: must be >= 0");
+                              "--l2: -1 is out of range: must be from 0 to 1000000");
   expect_readable_range_error("view " + (demo_dir() / "movie.h5").string() + " --at -0.5",
                               "--at: -0.5 is out of range: must be >= 0");
   expect_readable_range_error("synth x --speed 1000",

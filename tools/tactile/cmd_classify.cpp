@@ -208,9 +208,12 @@ void add_classify(CLI::App& app, Action& action) {
             double fraction = 0;
             try {
               fraction = std::stod(text);
+            } catch (const std::out_of_range&) {
+              return text + " is not a finite number";
             } catch (const std::exception&) {
               return std::string();  // not a number: the conversion reports it
             }
+            if (!std::isfinite(fraction)) return text + " is not a finite number";
             try {
               perception::check_trim_fraction(fraction);
             } catch (const std::invalid_argument& e) {

@@ -200,7 +200,7 @@ void add_emulate(CLI::App& app, Action& action) {
   sub->add_option("--bind", opt->emulator.bind_address, "Local address to answer on")
       ->capture_default_str();
   sub->add_option("--seconds", opt->seconds, "Stop after this long (0: until Ctrl-C)")
-      ->check(non_negative())
+      ->check(within(0.0, 604800.0))
       ->capture_default_str();
   sub->add_option("--drop-every", opt->emulator.drop_every_nth_reply,
                   "Leave out every N-th reply (0: none), to test a client's loss accounting")

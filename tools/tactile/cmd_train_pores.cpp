@@ -87,10 +87,10 @@ void add_train_pores(CLI::App& app, Action& action) {
       ->required();
   sub->add_option("--label-radius-mm", opt->label_radius_mm,
                   "A candidate this close to a marked pore counts as a pore")
-      ->check(positive_up_to(5.0))
+      ->check(within(0.01, 1.0))
       ->capture_default_str();
   sub->add_option("--l2", opt->l2, "L2 penalty on every coefficient but the intercept")
-      ->check(non_negative())
+      ->check(within(0.0, 1000000.0))
       ->capture_default_str();
   sub->add_flag("--held-out", opt->held_out,
                 "Also score each print with a model trained on the others (leave one print out)");

@@ -47,13 +47,6 @@ inline CLI::Validator non_negative() {
   return detail::number_check<double>([](double v) { return v >= 0; }, ">= 0", ">= 0");
 }
 
-// A number > 0 and <= `max`: a scale or rate with no natural upper end but a largest
-// value the command can honour.
-inline CLI::Validator positive_up_to(double max) {
-  const std::string rule = fmt::format("> 0 and <= {}", max);
-  return detail::number_check<double>([max](double v) { return v > 0 && v <= max; }, rule, rule);
-}
-
 // A number from `min` to `max`, both included; T is the option's type (int or double).
 template <typename T>
 CLI::Validator within(T min, T max) {
