@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <fstream>
 #include <system_error>
 
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/value_checks.hpp"
 
 namespace tactile::h5 {
 namespace {
@@ -79,8 +81,9 @@ std::vector<T> read_any(const H5::Group& group, const std::string& name, std::si
     }
     dims.assign(rank, 0);
     if (rank > 0) space.getSimpleExtentDims(dims.data());
-    hsize_t count = 1;
-    for (hsize_t d : dims) count *= d;
+    // Before allocating: a damaged or hostile shape must fail here, not in the allocator.
+    const auto count = checks::value_count(std::vector<std::uint64_t>(dims.begin(), dims.end()),
+                                           sizeof(T), where, name);
     std::vector<T> out(count);
     if (count > 0) ds.read(out.data(), native_type<T>());
     return out;
@@ -158,10 +161,17 @@ void write_attr(H5::H5Object& obj, const std::string& name, const std::string& v
 }
 
 bool has_attr(const H5::H5Object& obj, const std::string& name) {
-  return obj.attrExists(name);
+  try {
+    return obj.attrExists(name);
+  } catch (const H5::Exception&) {
+    return false;
+  }
 }
 
 namespace {
+// Attribute strings are names, versions and provenance: a megabyte is far beyond any of them.
+constexpr std::size_t kMaxAttributeStringBytes = 1 << 20;
+
 H5::Attribute open_attr(const H5::H5Object& obj, const std::string& name,
                         const std::string& where) {
   if (!obj.attrExists(name)) {
@@ -218,8 +228,29 @@ std::string read_attr_string(const H5::H5Object& obj, const std::string& name,
       throw FormatError(fmt::format("{}: attribute '{}' must be a string", where, name));
     }
     require_scalar(a, name, where);
-    std::string v;
-    a.read(a.getStrType(), v);
+    // Through the C API: the C++ wrapper calls strlen on whatever a damaged file yields,
+    // including a null pointer.
+    const H5::StrType type = a.getStrType();
+    if (type.isVariableStr()) {
+      char* text = nullptr;
+      if (H5Aread(a.getId(), type.getId(), &text) < 0 || text == nullptr) {
+        if (text != nullptr) H5free_memory(text);
+        throw FormatError(fmt::format("{}: attribute '{}' holds no readable string", where, name));
+      }
+      std::string v(text);
+      H5free_memory(text);
+      return v;
+    }
+    const std::size_t size = type.getSize();
+    if (size > kMaxAttributeStringBytes) {
+      throw FormatError(fmt::format("{}: attribute '{}' declares a string of {} bytes (limit {})",
+                                    where, name, size, kMaxAttributeStringBytes));
+    }
+    std::string v(size, '\0');
+    if (size > 0 && H5Aread(a.getId(), type.getId(), v.data()) < 0) {
+      throw FormatError(fmt::format("{}: attribute '{}' cannot be read", where, name));
+    }
+    v.resize(std::min(v.size(), v.find('\0')));
     return v;
   } catch (const H5::Exception& e) {
     throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));

@@ -11,6 +11,8 @@
 
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
+#include "tactile/common/value_checks.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace tactile::movie {
 namespace {
@@ -25,10 +27,9 @@ double number(const json& v, const std::string& what, const std::string& where) 
   return json_number(JsonOrigin{where}, v, what);
 }
 
-double positive(const json& v, const std::string& what, const std::string& where) {
-  const double x = number(v, what, where);
-  if (!(x > 0)) throw FormatError(fmt::format("{}: '{}' must be positive, got {}", where, what, x));
-  return x;
+// A size in mm: from a micrometre to a metre; beyond either it is a unit mix-up or damage.
+double size_mm(const json& v, const std::string& what, const std::string& where) {
+  return checks::in_range(number(v, what, where), kMinLayoutSizeMm, kMaxLayoutSizeMm, where, what);
 }
 
 std::int32_t count(const json& v, const char* what, const std::string& where) {
@@ -81,12 +82,12 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
   l.cols = count(field(j, "cols", where), "cols", where);
   const auto pitch = field(j, "pitch_mm", where);
   pair_of(pitch, "pitch_mm", where);
-  l.pitch_x_mm = positive(pitch[0], "pitch_mm[0] (x)", where);
-  l.pitch_y_mm = positive(pitch[1], "pitch_mm[1] (y)", where);
+  l.pitch_x_mm = size_mm(pitch[0], "pitch_mm[0] (x)", where);
+  l.pitch_y_mm = size_mm(pitch[1], "pitch_mm[1] (y)", where);
   const auto size = field(j, "contactor_size_mm", where);
   pair_of(size, "contactor_size_mm", where);
-  l.contactor_width_mm = positive(size[0], "contactor_size_mm[0] (width)", where);
-  l.contactor_height_mm = positive(size[1], "contactor_size_mm[1] (height)", where);
+  l.contactor_width_mm = size_mm(size[0], "contactor_size_mm[0] (width)", where);
+  l.contactor_height_mm = size_mm(size[1], "contactor_size_mm[1] (height)", where);
   // Contactors wider than their pitch would overlap their neighbours: a unit mix-up (um for mm).
   if (l.contactor_width_mm > l.pitch_x_mm || l.contactor_height_mm > l.pitch_y_mm) {
     throw FormatError(fmt::format(
@@ -105,6 +106,8 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
   }
   const auto [lo, hi] =
       pair_of(field(j, "deflection_range_um", where), "deflection_range_um", where);
+  checks::in_range(lo, -1e6, 1e6, where, "deflection_range_um[0]");
+  checks::in_range(hi, -1e6, 1e6, where, "deflection_range_um[1]");
   if (!(lo < hi)) {
     throw FormatError(fmt::format(
         "{}: 'deflection_range_um' [{}, {}] is empty (min must be below max)", where, lo, hi));
@@ -117,7 +120,8 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
   }
   l.deflection_min_um = lo;
   l.deflection_max_um = hi;
-  l.max_rate_hz = positive(field(j, "max_rate_hz", where), "max_rate_hz", where);
+  l.max_rate_hz = checks::in_range(number(field(j, "max_rate_hz", where), "max_rate_hz", where), 1,
+                                   kMaxMovieRateHz, where, "max_rate_hz");
   return l;
 }
 

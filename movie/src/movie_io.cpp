@@ -4,12 +4,14 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "tactile/common/csv.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/value_checks.hpp"
 
 namespace tactile::movie {
 namespace {
@@ -43,18 +45,33 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
   }
   l.rows = static_cast<std::int32_t>(rows);
   l.cols = static_cast<std::int32_t>(cols);
-  l.pitch_x_mm = h5::read_attr_double(file, "layout_pitch_x_mm", where);
-  l.pitch_y_mm = h5::read_attr_double(file, "layout_pitch_y_mm", where);
-  l.contactor_width_mm = h5::read_attr_double(file, "layout_contactor_width_mm", where);
-  l.contactor_height_mm = h5::read_attr_double(file, "layout_contactor_height_mm", where);
+  // Sizes and ranges no display could have are damage: say which, rather than play them.
+  const auto size_mm = [&](const char* name) {
+    return checks::in_range(h5::read_attr_double(file, name, where), kMinLayoutSizeMm,
+                            kMaxLayoutSizeMm, where, name);
+  };
+  l.pitch_x_mm = size_mm("layout_pitch_x_mm");
+  l.pitch_y_mm = size_mm("layout_pitch_y_mm");
+  l.contactor_width_mm = size_mm("layout_contactor_width_mm");
+  l.contactor_height_mm = size_mm("layout_contactor_height_mm");
   const std::string axis = h5::read_attr_string(file, "layout_axis", where);
   if (axis != "x" && axis != "y") {
     throw FormatError(fmt::format("{}: layout_axis is '{}', expected 'x' or 'y'", where, axis));
   }
   l.axis = axis == "x" ? DeflectionAxis::x : DeflectionAxis::y;
-  l.deflection_min_um = h5::read_attr_double(file, "layout_deflection_min_um", where);
-  l.deflection_max_um = h5::read_attr_double(file, "layout_deflection_max_um", where);
-  l.max_rate_hz = h5::read_attr_double(file, "layout_max_rate_hz", where);
+  l.deflection_min_um =
+      checks::in_range(h5::read_attr_double(file, "layout_deflection_min_um", where), -1e6, 1e6,
+                       where, "layout_deflection_min_um");
+  l.deflection_max_um =
+      checks::in_range(h5::read_attr_double(file, "layout_deflection_max_um", where), -1e6, 1e6,
+                       where, "layout_deflection_max_um");
+  if (!(l.deflection_min_um < l.deflection_max_um)) {
+    throw FormatError(
+        fmt::format("{}: layout_deflection_min_um {} must be below layout_deflection_max_um {}",
+                    where, l.deflection_min_um, l.deflection_max_um));
+  }
+  l.max_rate_hz = checks::in_range(h5::read_attr_double(file, "layout_max_rate_hz", where), 1,
+                                   kMaxMovieRateHz, where, "layout_max_rate_hz");
   return l;
 }
 
@@ -89,7 +106,9 @@ void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& 
   });
 }
 
-TactileMovie read_tactile_movie(const std::filesystem::path& path) {
+namespace {
+
+TactileMovie read_checked(const std::filesystem::path& path) {
   H5::H5File file = h5::open_for_reading(path);
   const std::string where = path.string();
   if (!h5::has_attr(file, "format")) {
@@ -111,12 +130,13 @@ TactileMovie read_tactile_movie(const std::filesystem::path& path) {
   }
 
   TactileMovie movie;
-  movie.rate_hz = h5::read_attr_double(file, "rate_hz", where);
-  if (!std::isfinite(movie.rate_hz) || movie.rate_hz <= 0) {
-    throw FormatError(fmt::format("{}: rate_hz {} must be positive", where, movie.rate_hz));
-  }
+  movie.rate_hz = checks::in_range(h5::read_attr_double(file, "rate_hz", where), 1, kMaxMovieRateHz,
+                                   where, "rate_hz");
   movie.layout = read_layout(file, where);
-  const auto frames = h5::read_attr_int(file, "frame_count", where);
+  // Checked before the dataset is read, whose shape is then checked against memory.
+  const auto frames =
+      checks::int_in_range(h5::read_attr_int(file, "frame_count", where), 0,
+                           std::numeric_limits<std::int32_t>::max(), where, "frame_count");
 
   std::vector<hsize_t> dims;
   movie.deflection_um = h5::read_floats(file, kDataset, 3, dims, where);
@@ -143,6 +163,18 @@ TactileMovie read_tactile_movie(const std::filesystem::path& path) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
   return movie;
+}
+
+}  // namespace
+
+TactileMovie read_tactile_movie(const std::filesystem::path& path) {
+  // HDF5's own exceptions are not std::exceptions: none may leave this reader raw.
+  try {
+    return read_checked(path);
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: cannot read as a tactile movie (damaged file?): {}",
+                                  path.string(), e.getDetailMsg()));
+  }
 }
 
 void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovie& movie) {

@@ -1,8 +1,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 
+#include "../common/bad_input.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/h5.hpp"
@@ -217,6 +219,138 @@ TEST_F(Tampered, BadOffsetsAreNamed) {
 TEST_F(Tampered, TriangleOutsideItsFrameIsNamed) {
   replace<std::int32_t>("/frames", "triangle_points", {0, 1, 2, 0, 1, 3, 0, 1, 2}, {3, 3});
   EXPECT_THAT(read_error(path()), HasSubstr("triangle 1 uses point 3"));
+}
+
+// Every numeric attribute, every hostile value: refused, naming the file and the attribute.
+TEST_F(Tampered, HostileNumbersInEveryAttributeAreNamed) {
+  const std::vector<std::pair<std::string, std::string>> doubles = {{"/", "frame_rate_hz"},
+                                                                    {"/", "field_width_mm"},
+                                                                    {"/", "field_height_mm"},
+                                                                    {"/calibration", "mm_per_px"}};
+  const auto original = tactile::testing::file_bytes(path());
+  for (const auto& [group, name] : doubles) {
+    for (double v : tactile::testing::hostile_doubles()) {
+      tactile::testing::write_bytes(path(), original);
+      {
+        H5::H5File f(path().string(), H5F_ACC_RDWR);
+        H5::Group g = f.openGroup(group);
+        tactile::testing::set_attr(g, name, v);
+      }
+      const std::string e = read_error(path());
+      EXPECT_THAT(e, HasSubstr("m.h5")) << name << " = " << v;
+      EXPECT_THAT(e, HasSubstr(name)) << name << " = " << v;
+    }
+  }
+  const std::vector<std::pair<std::string, std::string>> ints = {
+      {"/", "span_frames"},
+      {"/", "camera_frame_count"},
+      {"/calibration", "image_width_px"},
+      {"/calibration", "image_height_px"}};
+  for (const auto& [group, name] : ints) {
+    for (std::int64_t v : tactile::testing::hostile_ints()) {
+      tactile::testing::write_bytes(path(), original);
+      {
+        H5::H5File f(path().string(), H5F_ACC_RDWR);
+        H5::Group g = f.openGroup(group);
+        tactile::testing::set_attr(g, name, v);
+      }
+      EXPECT_THAT(read_error(path()), HasSubstr(name)) << name << " = " << v;
+    }
+  }
+}
+
+TEST_F(Tampered, MissingOrMistypedAttributesAreNamed) {
+  const auto original = tactile::testing::file_bytes(path());
+  for (const char* name : {"frame_rate_hz", "span_frames", "camera_frame_count", "field_width_mm",
+                           "field_height_mm", "source"}) {
+    tactile::testing::write_bytes(path(), original);
+    {
+      H5::H5File f(path().string(), H5F_ACC_RDWR);
+      H5::Group root = f.openGroup("/");
+      root.removeAttr(name);
+    }
+    EXPECT_THAT(read_error(path()), HasSubstr(std::string("'") + name + "' is missing"));
+    if (std::string(name) == "source") continue;
+    tactile::testing::write_bytes(path(), original);
+    {
+      H5::H5File f(path().string(), H5F_ACC_RDWR);
+      H5::Group root = f.openGroup("/");
+      tactile::testing::set_attr(root, name, std::string("60"));
+    }
+    EXPECT_THAT(read_error(path()), HasSubstr(name));
+  }
+}
+
+// A NaN or infinity anywhere in any floating-point dataset, and a zero or NaN calibration.
+TEST_F(Tampered, NonFiniteValuesInEveryDatasetAreNamed) {
+  const auto original = tactile::testing::file_bytes(path());
+  for (const char* name :
+       {"/tracks/position_px", "/tracks/position_mm", "/frames/t_s", "/frames/point_position_px",
+        "/frames/point_position_mm", "/frames/point_to_position_px", "/frames/point_to_position_mm",
+        "/frames/edge_length_mm", "/frames/edge_rel_change", "/calibration/px_to_mm"}) {
+    for (double v : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+      tactile::testing::write_bytes(path(), original);
+      {
+        H5::H5File f(path().string(), H5F_ACC_RDWR);
+        H5::DataSet ds = f.openDataSet(name);
+        std::vector<double> data(static_cast<std::size_t>(ds.getSpace().getSimpleExtentNpoints()));
+        ds.read(data.data(), H5::PredType::NATIVE_DOUBLE);
+        data[data.size() / 2] = v;
+        ds.write(data.data(), H5::PredType::NATIVE_DOUBLE);
+      }
+      const std::string leaf = std::string(name).substr(std::string(name).rfind('/') + 1);
+      EXPECT_THAT(read_error(path()), HasSubstr(leaf)) << name << " = " << v;
+    }
+  }
+  tactile::testing::write_bytes(path(), original);
+  replace<double>("/calibration", "px_to_mm", std::vector<double>(9, 0.0), {3, 3});
+  EXPECT_THAT(read_error(path()), HasSubstr("px_to_mm"));
+}
+
+// Declared sizes beyond memory fail at once with the limit, never in the allocator.
+TEST_F(Tampered, HugeDeclaredSizesNameTheLimitQuickly) {
+  const auto original = tactile::testing::file_bytes(path());
+  for (const char* name : {"frame_from", "edge_rel_change", "point_track_id"}) {
+    tactile::testing::write_bytes(path(), original);
+    {
+      H5::H5File f(path().string(), H5F_ACC_RDWR);
+      H5::Group g = f.openGroup("/frames");
+      const bool ints = std::string(name) != "edge_rel_change";
+      tactile::testing::set_huge_dataset(
+          g, name, {hsize_t{2000000000000}},
+          ints ? H5::PredType::NATIVE_INT32 : H5::PredType::NATIVE_DOUBLE);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string e = read_error(path());
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(2)) << name;
+    EXPECT_THAT(e, HasSubstr(name));
+    EXPECT_THAT(e, HasSubstr("more than the limit of"));
+  }
+}
+
+// Cut at every eighth, filled with random bytes, or with bytes scrambled: a FormatError naming
+// the file, or (a scramble that left the data readable) a movie; never a crash.
+TEST(StrainMovieIo, CutRandomAndScrambledFilesAreFormatErrors) {
+  TempDir dir;
+  write_strain_movie(dir.path() / "full.h5", sample_movie());
+  const auto full = tactile::testing::file_bytes(dir.path() / "full.h5");
+  const auto bad = dir.path() / "bad.h5";
+  for (std::size_t eighth = 1; eighth < 8; ++eighth) {
+    tactile::testing::write_bytes(
+        bad, std::vector<char>(full.begin(),
+                               full.begin() + static_cast<long>(full.size() * eighth / 8)));
+    EXPECT_THAT(read_error(bad), HasSubstr("bad.h5")) << eighth << "/8";
+  }
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    tactile::testing::write_bytes(bad, tactile::testing::random_bytes(seed, 64 * seed));
+    EXPECT_THAT(read_error(bad), HasSubstr("bad.h5")) << "random seed " << seed;
+    tactile::testing::write_bytes(bad, tactile::testing::scrambled(full, seed, 4));
+    try {
+      read_strain_movie(bad);
+    } catch (const FormatError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("bad.h5")) << "scramble seed " << seed;
+    }
+  }
 }
 
 }  // namespace

@@ -31,14 +31,14 @@ void expect_readable_range_error(const std::string& args, const std::string& mes
 TEST(RangeErrors, ReadLikeAPersonWroteThem) {
   const std::string image = (tactile::test::test_data("polyu-hrf-pores") / "image_01.jpg").string();
   expect_readable_range_error("features " + image + " --px-per-mm 0",
-                              "--px-per-mm: 0 is out of range: must be > 0");
+                              "--px-per-mm: 0 is out of range: must be from 2 to 5000");
   expect_readable_range_error(
       "map " + (demo_dir() / "strain.h5").string() + " --out x.h5 --rate-hz -5",
-      "--rate-hz: -5 is out of range: must be > 0");
+      "--rate-hz: -5 is out of range: must be from 1 to 100000");
   expect_readable_range_error("train-pores --prints " +
                                   tactile::test::test_data("polyu-hrf-pores").string() +
                                   " --px-per-mm 47 --out x.json --l2 -1",
-                              "--l2: -1 is out of range: must be >= 0");
+                              "--l2: -1 is out of range: must be from 0 to 1000000");
   expect_readable_range_error("view " + (demo_dir() / "movie.h5").string() + " --at -0.5",
                               "--at: -0.5 is out of range: must be >= 0");
   expect_readable_range_error("synth x --speed 1000",
@@ -55,7 +55,7 @@ TEST(RangeErrors, ReadLikeAPersonWroteThem) {
 TEST(RangeErrors, HelpShowsReadableBounds) {
   const auto r = run_tactile("capture --help");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_THAT(r.output, HasSubstr("--px-per-mm FLOAT:> 0"));
+  EXPECT_THAT(r.output, HasSubstr("--px-per-mm FLOAT:2 to 5000"));
   EXPECT_THAT(r.output, HasSubstr("--span INT:1 to 10000"));
   for (const char* command : {"synth", "calibrate", "features", "capture", "train-pores", "map",
                               "perceive", "play", "view", "bench stream", "bench map"}) {

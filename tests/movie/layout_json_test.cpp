@@ -87,6 +87,28 @@ void refused(const std::string& text, const std::string& message) {
   }
 }
 
+// Every number of a layout, every hostile value (JSON has no NaN: huge and tiny instead).
+TEST(LayoutJson, RefusesHostileNumbersInEveryField) {
+  for (const char* field : {"\"pitch_mm\": [", "\"contactor_size_mm\": [",
+                            "\"deflection_range_um\": [", "\"max_rate_hz\": "}) {
+    for (const char* v : {"1e308", "-1e308", "1e-300", "-1e-300"}) {
+      const std::string text = kValid;
+      const auto at = text.find(field);
+      ASSERT_NE(at, std::string::npos) << field;
+      std::string bad = text;
+      const auto start = at + std::string(field).size();
+      const auto end = bad.find_first_of(",]}\n", start);
+      bad.replace(start, end - start, v);
+      // A tiny lower deflection limit is a fine range ([-1e-300, 400] holds 0).
+      if (std::string(field).find("deflection") != std::string::npos && std::string(v) != "1e308" &&
+          std::string(v) != "-1e308") {
+        continue;
+      }
+      refused(bad, "out of range");
+    }
+  }
+}
+
 TEST(LayoutJson, RefusesMalformedFilesByName) {
   refused("", "not valid JSON");
   refused("{\"name\": ", "not valid JSON");
@@ -97,8 +119,10 @@ TEST(LayoutJson, RefusesMalformedFilesByName) {
   refused(edit("\"rows\": 6", "\"rows\": 0"), "'rows' = 0");
   refused(edit("\"cols\": 5", "\"cols\": -3"), "'cols' = -3");
   refused(edit("\"rows\": 6", "\"rows\": 6.5"), "'rows' must be an integer");
-  refused(edit("[1.0, 1.25]", "[0, 1.25]"), "pitch_mm[0] (x)' must be positive");
-  refused(edit("[1.0, 1.25]", "[1.0, -1]"), "pitch_mm[1] (y)' must be positive");
+  refused(edit("[1.0, 1.25]", "[0, 1.25]"),
+          "pitch_mm[0] (x) 0 is out of range: must be from 0.001 to 1000");
+  refused(edit("[1.0, 1.25]", "[1.0, -1]"),
+          "pitch_mm[1] (y) -1 is out of range: must be from 0.001 to 1000");
   refused(edit("[1.0, 1.25]", "[1.0]"), "'pitch_mm' must be an array of two numbers");
   refused(edit("[1.0, 1.25]", "\"1mm\""), "'pitch_mm' must be an array of two numbers");
   refused(edit("[0.5, 0.8]", "[0.5, \"wide\"]"), "must be a number");
@@ -107,7 +131,8 @@ TEST(LayoutJson, RefusesMalformedFilesByName) {
   refused(edit("[-80, 60]", "[10, 60]"), "does not contain 0");
   refused(edit("[-80, 60]", "[60, -80]"), "is empty");
   refused(edit("[-80, 60]", "[-80, -80]"), "is empty");
-  refused(edit("\"max_rate_hz\": 900", "\"max_rate_hz\": 0"), "'max_rate_hz' must be positive");
+  refused(edit("\"max_rate_hz\": 900", "\"max_rate_hz\": 0"),
+          "max_rate_hz 0 is out of range: must be from 1 to 100000");
   refused(edit("\"max_rate_hz\": 900", "\"max_rate_hz\": null"), "'max_rate_hz' must be a number");
 }
 

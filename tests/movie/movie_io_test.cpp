@@ -4,12 +4,14 @@
 
 #include <H5Cpp.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
 #include <sstream>
 
+#include "../common/bad_input.hpp"
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/h5.hpp"
@@ -233,6 +235,74 @@ TEST_F(MovieIo, CsvHasOneRowPerFrame) {
     ++rows;
   }
   EXPECT_EQ(rows, 4);
+}
+
+// Every numeric attribute, every hostile value: refused, naming the file and the attribute
+// (rate_hz 1e308 and 1e-300 once crashed `info`).
+TEST_F(MovieIo, HostileNumbersInEveryAttributeAreNamed) {
+  for (const char* name :
+       {"rate_hz", "layout_pitch_x_mm", "layout_pitch_y_mm", "layout_contactor_width_mm",
+        "layout_contactor_height_mm", "layout_deflection_min_um", "layout_deflection_max_um",
+        "layout_max_rate_hz"}) {
+    for (double v : tactile::testing::hostile_doubles()) {
+      // The deflection range may hold tiny numbers; only the non-finite and huge are nonsense.
+      const bool range = std::string(name).find("deflection") != std::string::npos;
+      if (range && std::isfinite(v) && std::abs(v) < 1) continue;
+      const auto p = edited("m.h5", [&](H5::H5File& f) { tactile::testing::set_attr(f, name, v); });
+      expect_format_error(p, name);
+    }
+  }
+  for (const char* name : {"frame_count", "layout_rows", "layout_cols"}) {
+    for (std::int64_t v : tactile::testing::hostile_ints()) {
+      const auto p = edited("m.h5", [&](H5::H5File& f) { tactile::testing::set_attr(f, name, v); });
+      expect_format_error(p, name);
+    }
+  }
+}
+
+TEST_F(MovieIo, HugeDeclaredFrameCountNamesTheLimitQuickly) {
+  for (const hsize_t frames : {hsize_t{2000000000}, hsize_t{1} << 40}) {
+    const auto p = edited("huge.h5", [&](H5::H5File& f) {
+      H5::Group root = f.openGroup("/");
+      tactile::testing::set_huge_dataset(root, "deflection_um", {frames, 10, 10},
+                                         H5::PredType::NATIVE_FLOAT);
+      tactile::testing::set_attr(f, "frame_count", static_cast<std::int64_t>(frames));
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      read_tactile_movie(p);
+      ADD_FAILURE() << frames << " frames accepted";
+    } catch (const FormatError& e) {
+      EXPECT_THAT(e.what(),
+                  ::testing::AnyOf(HasSubstr("more than the limit of"), HasSubstr("frame_count")));
+      EXPECT_THAT(e.what(), HasSubstr("huge.h5"));
+    }
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(2));
+  }
+}
+
+// Cut at every eighth, random bytes, scrambled bytes: a FormatError naming the file, or (a
+// scramble that left it readable) a movie; never a crash or another exception.
+TEST_F(MovieIo, CutRandomAndScrambledFilesAreFormatErrors) {
+  const auto good = edited("good.h5", [](H5::H5File&) {});
+  const auto full = tactile::testing::file_bytes(good);
+  const fs::path bad = dir_ / "bad.h5";
+  for (std::size_t eighth = 1; eighth < 8; ++eighth) {
+    tactile::testing::write_bytes(
+        bad, std::vector<char>(full.begin(),
+                               full.begin() + static_cast<long>(full.size() * eighth / 8)));
+    expect_format_error(bad, "bad.h5");
+  }
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    tactile::testing::write_bytes(bad, tactile::testing::random_bytes(seed, 64 * seed));
+    expect_format_error(bad, "bad.h5");
+    tactile::testing::write_bytes(bad, tactile::testing::scrambled(full, seed, 4));
+    try {
+      read_tactile_movie(bad);
+    } catch (const FormatError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("bad.h5")) << "scramble seed " << seed;
+    }
+  }
 }
 
 }  // namespace

@@ -203,9 +203,11 @@ void add_bench_capture(CLI::App& bench, Action& action) {
   sub->add_flag("--sweeps", opt->sweeps, "Also run the stability sweeps (slow)");
   sub->add_flag("--quick", opt->quick, "Only the default pipeline and the two baselines");
   sub->add_option("--max-rms", opt->max_rms, "Sweep failure: strain RMS error above this")
+      ->check(positive())
       ->capture_default_str();
   sub->add_option("--min-points", opt->min_points,
                   "Sweep failure: median tracked landmarks per frame below this")
+      ->check(non_negative())
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {

@@ -51,7 +51,7 @@ void add_calibration_options(CLI::App& sub, std::optional<fs::path>& calib_file,
                 ->check(CLI::ExistingFile);
   auto* p = sub.add_option("--px-per-mm", px_per_mm,
                            "Uniform scale instead of a calibration file (pixels per millimetre)")
-                ->check(positive());
+                ->check(within(2.0, 5000.0));
   c->excludes(p);
 }
 
@@ -358,7 +358,7 @@ void add_capture(CLI::App& app, Action& action) {
   auto* rate = sub->add_option("--rate-hz", opt->rate_hz,
                                "Camera frame rate (a video's own rate from its container unless "
                                "given)")
-                   ->check(positive())
+                   ->check(within(1.0, 100000.0))
                    ->capture_default_str();
   sub->add_option("--min-track", opt->min_track_frames,
                   "Shortest track kept, in frames (tracks linked from detections, "
@@ -459,6 +459,14 @@ void add_capture(CLI::App& app, Action& action) {
           input.count());
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      // An empty strain movie maps to a still display: report the reason instead of writing it.
+      if (movie.frames.empty()) {
+        throw std::runtime_error(fmt::format(
+            "capture: {}: no strain measured in {} frames (tracks of at least --min-track {} "
+            "frames over --span {}: {} tracked points); nothing written to {}",
+            opt->image_dir.string(), movie.camera_frame_count, opt->min_track_frames, opt->span,
+            movie.tracks.size(), opt->out.string()));
+      }
       const double cpu_s = process_cpu_s() - cpu0;
       const int n = movie.camera_frame_count;
       movie.source = opt->image_dir.string();

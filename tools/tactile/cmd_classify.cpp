@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "number_checks.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
@@ -119,6 +120,13 @@ int train(const TrainOptions& o) {
       data.rows.size(), data.class_names.size(), data.input_names.size(),
       fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
       to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
+  // A model of one class answers that class whatever it is given: not a classifier.
+  if (data.class_names.size() < 2) {
+    throw std::runtime_error(
+        fmt::format("classify train: {}: {} class(es) ({}); a classifier "
+                    "needs recordings of at least 2 classes",
+                    o.labels.string(), data.class_names.size(), fmt::join(data.class_names, ", ")));
+  }
   auto svm = perception::default_svm_options(o.procedure);
   svm.degree = o.degree.value_or(svm.degree);
   svm.c = o.c.value_or(svm.c);
@@ -275,9 +283,12 @@ void add_classify(CLI::App& app, Action& action) {
             double fraction = 0;
             try {
               fraction = std::stod(text);
+            } catch (const std::out_of_range&) {
+              return text + " is not a finite number";
             } catch (const std::exception&) {
               return std::string();  // not a number: the conversion reports it
             }
+            if (!std::isfinite(fraction)) return text + " is not a finite number";
             try {
               perception::check_trim_fraction(fraction);
             } catch (const std::invalid_argument& e) {
@@ -300,7 +311,7 @@ void add_classify(CLI::App& app, Action& action) {
   tr->add_option(
         "--c", t->c,
         "SVM complexity constant C; default: 10 for stroke, 1 otherwise (searched with --select)")
-      ->check(CLI::PositiveNumber);
+      ->check(within(0.001, 100000.0));
   tr->add_option("--cv", t->cv,
                  "Also report stratified K-fold cross-validation accuracy (with --select: nested, "
                  "the choice made again inside each fold)")

@@ -187,10 +187,11 @@ void add_emulate(CLI::App& app, Action& action) {
   sub->add_option("--bind", opt->emulator.bind_address, "Local address to answer on")
       ->capture_default_str();
   sub->add_option("--seconds", opt->seconds, "Stop after this long (0: until Ctrl-C)")
-      ->check(non_negative())
+      ->check(within(0.0, 604800.0))
       ->capture_default_str();
   sub->add_option("--drop-every", opt->emulator.drop_every_nth_reply,
                   "Leave out every N-th reply (0: none), to test a client's loss accounting")
+      ->check(within<std::uint32_t>(0, 1000000))
       ->capture_default_str();
   sub->add_flag("--no-io-board", opt->no_io_board,
                 "Report no IO board (status 0), as a Latero with its IO board unplugged");
@@ -250,6 +251,7 @@ void add_bench_latero(CLI::App& bench, Action& action) {
       ->check(within(1.0, 750.0))
       ->capture_default_str();
   sub->add_option("--drop-every", opt->drop_every, "Emulator leaves out every N-th reply")
+      ->check(within<std::uint32_t>(0, 1000000))
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {

@@ -47,6 +47,7 @@ void add_map(CLI::App& app, Action& action) {
                   "Mapping method");
   sub->add_option("--gain", opt->params.gain_um_per_strain,
                   "Micrometres of deflection per unit strain")
+      ->check(within(-1000000.0, 1000000.0))
       ->capture_default_str();
   add_mode_option(*sub, "--normalise", opt->params.normalisation, mapping::kNormalisationNames,
                   "none: gain as given; peak: scale so the largest deflection fills the range;\n"
@@ -56,12 +57,13 @@ void add_map(CLI::App& app, Action& action) {
                   "the reference frame along the tracks (contactors follow the skin)");
   sub->add_option("--reference-frame", opt->params.accumulate.reference_frame,
                   "Camera frame the accumulated strain starts from (-1: the first)")
+      ->check(within(-1, 100000000))
       ->capture_default_str();
   CLI::Option* rate =
       sub->add_option("--rate-hz", opt->params.rate_hz,
                       "Display frame rate (default: the layout's own rate, e.g. stress 700 Hz,\n"
                       "latero 750 Hz)")
-          ->check(positive());
+          ->check(within(1.0, 100000.0));
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
   sub->callback([opt, rate, &action] {
     const bool rate_given = rate->count() > 0;
@@ -75,6 +77,10 @@ void add_map(CLI::App& app, Action& action) {
       if (!rate_given) opt->params.rate_hz = layout.max_rate_hz;
       mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
       const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);
+      if (strain.frames.empty()) {
+        throw std::runtime_error(
+            fmt::format("map: {}: the strain movie has no strain frames", opt->strain.string()));
+      }
       const auto t0 = std::chrono::steady_clock::now();
       opt->params.program_version = kVersion;
       movie::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt->params);

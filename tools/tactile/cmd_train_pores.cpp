@@ -81,16 +81,16 @@ void add_train_pores(CLI::App& app, Action& action) {
   sub->add_option("--px-per-mm", opt->px_per_mm,
                   "Scale of the prints, pixels per millimetre (PolyU HRF: 47)")
       ->required()
-      ->check(positive());
+      ->check(within(2.0, 5000.0));
   sub->add_option("--out", opt->out, "Model file to write (JSON)")
       ->type_name("MODEL.json")
       ->required();
   sub->add_option("--label-radius-mm", opt->label_radius_mm,
                   "A candidate this close to a marked pore counts as a pore")
-      ->check(positive())
+      ->check(within(0.01, 1.0))
       ->capture_default_str();
   sub->add_option("--l2", opt->l2, "L2 penalty on every coefficient but the intercept")
-      ->check(non_negative())
+      ->check(within(0.0, 1000000.0))
       ->capture_default_str();
   sub->add_flag("--held-out", opt->held_out,
                 "Also score each print with a model trained on the others (leave one print out)");

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -15,7 +16,8 @@ namespace tactile::cli {
 namespace detail {
 
 // A validator accepting the numbers for which `ok` holds; `rule` completes "must be ...".
-// Written as `ok(v)` rather than its negation so that NaN fails every rule.
+// Written as `ok(v)` rather than its negation so that NaN fails every rule; "inf" and numbers
+// beyond a double are refused before the rule, as no command can honour them.
 template <typename T, typename Ok>
 CLI::Validator number_check(Ok ok, const std::string& rule, std::string description) {
   return CLI::Validator(
@@ -24,6 +26,9 @@ CLI::Validator number_check(Ok ok, const std::string& rule, std::string descript
         if (!CLI::detail::lexical_cast(value, v)) {
           return fmt::format("{} is not {}", value,
                              std::is_integral_v<T> ? "a whole number" : "a number");
+        }
+        if constexpr (std::is_floating_point_v<T>) {
+          if (!std::isfinite(v)) return fmt::format("{} is not a finite number", value);
         }
         return ok(v) ? std::string() : fmt::format("{} is out of range: must be {}", value, rule);
       },

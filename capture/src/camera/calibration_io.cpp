@@ -10,6 +10,7 @@
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
+#include "tactile/common/value_checks.hpp"
 
 namespace tactile::capture {
 
@@ -42,7 +43,12 @@ Calibration read_calibration_json(const std::filesystem::path& path) {
   c.image_width_px = json_field<int>(j, "image_width_px", where);
   c.image_height_px = json_field<int>(j, "image_height_px", where);
   c.method = j.value("method", std::string("unknown"));
+  check_calibration(c, where);
+  return c;
+}
 
+void check_calibration(const Calibration& c, const std::string& where) {
+  const auto& h = c.px_to_mm;
   for (double v : h) {
     if (!std::isfinite(v)) throw FormatError(fmt::format("{}: 'px_to_mm' is not finite", where));
   }
@@ -59,7 +65,8 @@ Calibration read_calibration_json(const std::filesystem::path& path) {
   if (c.image_width_px <= 0 || c.image_height_px <= 0) {
     throw FormatError(fmt::format("{}: image size must be positive", where));
   }
-  return c;
+  checks::int_in_range(c.image_width_px, 1, kMaxImageSidePx, where, "image_width_px");
+  checks::int_in_range(c.image_height_px, 1, kMaxImageSidePx, where, "image_height_px");
 }
 
 }  // namespace tactile::capture

@@ -1,15 +1,18 @@
 #include "tactile/capture/strain_movie_io.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <type_traits>
 #include <unordered_set>
 
 #include <fmt/format.h>
 
+#include "tactile/capture/calibration_io.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/value_checks.hpp"
 
 namespace tactile::capture {
 
@@ -179,7 +182,58 @@ std::vector<std::int32_t> checked_offsets(Reader& r, const H5::Group& g, const s
 
 }  // namespace
 
+namespace {
+
+// Positions, lengths and times far beyond any fingertip image are damage, not measurements.
+constexpr double kMaxAbsPositionPx = 1e6;
+constexpr double kMaxAbsPositionMm = 1e4;
+
+void check_positions(const std::vector<double>& xy, double max_abs, const Reader& r,
+                     const std::string& obj) {
+  checks::all_finite(xy, r.where(obj), "position");
+  for (std::size_t i = 0; i < xy.size(); ++i) {
+    if (std::abs(xy[i]) > max_abs) {
+      r.fail(obj, fmt::format("entry {} is {}, beyond +-{}", i / 2, xy[i], max_abs));
+    }
+  }
+}
+
+// The field is the image seen through the calibration: a field that disagrees with it by more
+// than a perspective could explain means one of the two is damaged (a movie with no tracks
+// has no field to compare).
+void check_field(const StrainMovie& m, const Reader& r) {
+  if (m.tracks.empty()) return;
+  const Calibration& c = m.calibration;
+  const std::pair<const char*, double> sides[] = {
+      {"field_width_mm", m.field_width_mm / (c.image_width_px * c.mm_per_px)},
+      {"field_height_mm", m.field_height_mm / (c.image_height_px * c.mm_per_px)}};
+  for (const auto& [name, ratio] : sides) {
+    if (!(ratio > 0.5 && ratio < 2)) {
+      r.fail("/", fmt::format("{} {} does not match the calibrated image ({} x {} px at {} mm "
+                              "per px)",
+                              name, name == sides[0].first ? m.field_width_mm : m.field_height_mm,
+                              c.image_width_px, c.image_height_px, c.mm_per_px));
+    }
+  }
+}
+
+StrainMovie read_strain_movie_checked(const std::filesystem::path& path);
+
+}  // namespace
+
 StrainMovie read_strain_movie(const std::filesystem::path& path) {
+  // HDF5's own exceptions are not std::exceptions: none may leave this reader raw.
+  try {
+    return read_strain_movie_checked(path);
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: cannot read as a strain movie (damaged file?): {}",
+                                  path.string(), e.getDetailMsg()));
+  }
+}
+
+namespace {
+
+StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
   Reader r(path);
   H5::H5File file = h5::open_for_reading(path);
   H5::Group root = h5::open_group(file, "/", r.where("/"));
@@ -193,18 +247,19 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
                             kStrainMovieFormatVersion));
   }
   StrainMovie m;
-  m.frame_rate_hz = h5::read_attr_double(root, "frame_rate_hz", r.where("/"));
-  if (!(m.frame_rate_hz > 0)) r.fail("/", "frame_rate_hz must be > 0");
-  const auto span = h5::read_attr_int(root, "span_frames", r.where("/"));
-  if (span < 1 || span > 1000000) r.fail("/", fmt::format("span_frames {} out of range", span));
-  m.span_frames = static_cast<std::int32_t>(span);
-  const auto count = h5::read_attr_int(root, "camera_frame_count", r.where("/"));
-  if (count < 0 || count > 100000000) {
-    r.fail("/", fmt::format("camera_frame_count {} out of range", count));
-  }
-  m.camera_frame_count = static_cast<std::int32_t>(count);
-  m.field_width_mm = h5::read_attr_double(root, "field_width_mm", r.where("/"));
-  m.field_height_mm = h5::read_attr_double(root, "field_height_mm", r.where("/"));
+  // The same camera rates `capture --rate-hz` takes.
+  m.frame_rate_hz = checks::in_range(h5::read_attr_double(root, "frame_rate_hz", r.where("/")), 1,
+                                     100000, r.where("/"), "frame_rate_hz");
+  m.span_frames = static_cast<std::int32_t>(
+      checks::int_in_range(h5::read_attr_int(root, "span_frames", r.where("/")), 1, 1000000,
+                           r.where("/"), "span_frames"));
+  m.camera_frame_count = static_cast<std::int32_t>(
+      checks::int_in_range(h5::read_attr_int(root, "camera_frame_count", r.where("/")), 0,
+                           100000000, r.where("/"), "camera_frame_count"));
+  m.field_width_mm = checks::in_range(h5::read_attr_double(root, "field_width_mm", r.where("/")), 0,
+                                      kMaxAbsPositionMm, r.where("/"), "field_width_mm");
+  m.field_height_mm = checks::in_range(h5::read_attr_double(root, "field_height_mm", r.where("/")),
+                                       0, kMaxAbsPositionMm, r.where("/"), "field_height_mm");
   m.source = h5::read_attr_string(root, "source", r.where("/"));
   m.program_version = h5::read_attr_string(root, "program_version", r.where("/"));
 
@@ -217,6 +272,12 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
   m.calibration.image_height_px =
       static_cast<int>(h5::read_attr_int(cal, "image_height_px", r.where("/calibration")));
   m.calibration.method = h5::read_attr_string(cal, "method", r.where("/calibration"));
+  // Cast above from 64 bits: range-checked on the values as read, before any narrowing hides it.
+  checks::int_in_range(h5::read_attr_int(cal, "image_width_px", r.where("/calibration")), 1,
+                       kMaxImageSidePx, r.where("/calibration"), "image_width_px");
+  checks::int_in_range(h5::read_attr_int(cal, "image_height_px", r.where("/calibration")), 1,
+                       kMaxImageSidePx, r.where("/calibration"), "image_height_px");
+  check_calibration(m.calibration, r.where("/calibration"));
 
   H5::Group tg = h5::open_group(root, "tracks", r.where("/tracks"));
   const auto ids = r.read<std::int32_t>(tg, "/tracks", "track_id", -1, 0);
@@ -225,6 +286,8 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
   const auto ttypes = r.read<std::int32_t>(tg, "/tracks", "type", n, 0);
   const auto tpx = r.read<double>(tg, "/tracks", "position_px", n, 2);
   const auto tmm = r.read<double>(tg, "/tracks", "position_mm", n, 2);
+  check_positions(tpx, kMaxAbsPositionPx, r, "/tracks/position_px");
+  check_positions(tmm, kMaxAbsPositionMm, r, "/tracks/position_mm");
   std::unordered_set<std::int32_t> known_tracks;
   for (std::size_t i = 0; i < ids.size(); ++i) {
     if (tframes[i] < 0 || tframes[i] >= m.camera_frame_count) {
@@ -235,6 +298,8 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
                         tpx[2 * i + 1], tmm[2 * i], tmm[2 * i + 1]});
     known_tracks.insert(ids[i]);
   }
+
+  check_field(m, r);
 
   H5::Group fg = h5::open_group(root, "frames", r.where("/frames"));
   const auto from = r.read<std::int32_t>(fg, "/frames", "frame_from", -1, 0);
@@ -253,6 +318,16 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
   const auto etracks = r.read<std::int32_t>(fg, "/frames", "edge_tracks", ne, 2);
   const auto elen = r.read<double>(fg, "/frames", "edge_length_mm", ne, 2);
   const auto tri = r.read<std::int32_t>(fg, "/frames", "triangle_points", -1, 3);
+  check_positions(pfpx, kMaxAbsPositionPx, r, "/frames/point_position_px");
+  check_positions(pfmm, kMaxAbsPositionMm, r, "/frames/point_position_mm");
+  check_positions(ptpx, kMaxAbsPositionPx, r, "/frames/point_to_position_px");
+  check_positions(ptmm, kMaxAbsPositionMm, r, "/frames/point_to_position_mm");
+  check_positions(elen, kMaxAbsPositionMm, r, "/frames/edge_length_mm");
+  for (std::size_t i = 0; i < elen.size(); ++i) {
+    if (elen[i] < 0) r.fail("/frames/edge_length_mm", fmt::format("entry {} is negative", i / 2));
+  }
+  checks::all_finite(erel, r.where("/frames/edge_rel_change"), "edge_rel_change");
+  checks::all_finite(t_s, r.where("/frames/t_s"), "t_s");
   const auto poff = checked_offsets(r, fg, "point_offset", from.size(), pid.size());
   const auto eoff = checked_offsets(r, fg, "edge_offset", from.size(), erel.size());
   const auto toff = checked_offsets(r, fg, "triangle_offset", from.size(), tri.size() / 3);
@@ -262,6 +337,10 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
     sf.frame_from = from[f];
     sf.frame_to = to[f];
     sf.t_s = t_s[f];
+    if (sf.frame_from < 0 || sf.frame_to < 0 || sf.frame_to >= m.camera_frame_count) {
+      r.fail("/frames", fmt::format("strain frame {} goes from frame {} to {}, outside 0..{}", f,
+                                    sf.frame_from, sf.frame_to, m.camera_frame_count - 1));
+    }
     if (sf.frame_to - sf.frame_from != m.span_frames) {
       r.fail("/frames", fmt::format("strain frame {} goes from frame {} to {}, but span_frames is "
                                     "{}",
@@ -316,6 +395,8 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
   }
   return m;
 }
+
+}  // namespace
 
 void export_strain_csv(const std::filesystem::path& dir, const StrainMovie& movie) {
   std::filesystem::create_directories(dir);

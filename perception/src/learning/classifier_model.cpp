@@ -20,6 +20,7 @@
 #include "tactile/common/json.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tactile/common/value_checks.hpp"
 #include "tactile/perception/recording_csv.hpp"
 
 namespace tactile::perception {
@@ -288,9 +289,14 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: contact: {}", where, e.what()));
   }
-  m.options.contact.baseline_s = number(contact, "baseline_s");
-  m.options.contact.threshold_fraction = number(contact, "threshold_fraction");
-  m.options.contact.min_threshold = number(contact, "min_threshold");
+  // Ranges a trained model can have (`classify train` takes C from 0.001 to 100000): anything
+  // else is a damaged or hand-edited file, refused here rather than mis-classifying later.
+  const auto in_range = [&](const nlohmann::json& o, const char* key, double min, double max) {
+    return checks::in_range(number(o, key), min, max, where, key);
+  };
+  m.options.contact.baseline_s = in_range(contact, "baseline_s", 0, 3600);
+  m.options.contact.threshold_fraction = in_range(contact, "threshold_fraction", 0, 1);
+  m.options.contact.min_threshold = in_range(contact, "min_threshold", 0, 1e9);
   m.input_names = array_of<std::string>(j, "input_names", where);
   std::vector<std::string> expected;
   try {
@@ -307,10 +313,12 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         fmt::join(expected, ",")));
   m.class_names = array_of<std::string>(j, "class_names", where);
   const auto& svm = field(j, "svm", where, &nlohmann::json::is_object, "an object");
-  m.svm.degree = integer(svm, "degree");
-  m.svm.c = number(svm, "c");
-  m.svm.tolerance = number(svm, "tolerance");
-  m.svm.epsilon = number(svm, "epsilon");
+  m.svm.degree =
+      field(svm, "degree", where, &nlohmann::json::is_number_integer, "an integer").get<int>();
+  checks::int_in_range(m.svm.degree, 1, 2, where, "degree");
+  m.svm.c = in_range(svm, "c", 0.001, 100000);
+  m.svm.tolerance = in_range(svm, "tolerance", 1e-12, 1);
+  m.svm.epsilon = in_range(svm, "epsilon", 0, 1e6);
   const auto& scaler = field(j, "scaler", where, &nlohmann::json::is_object, "an object");
   m.scaler.min = array_of<double>(scaler, "min", where);
   m.scaler.max = array_of<double>(scaler, "max", where);

@@ -3,6 +3,7 @@
 // `tactile capture --calib` (schema in docs/formats.md).
 
 #include <filesystem>
+#include <string>
 
 #include "tactile/capture/strain_movie.hpp"
 
@@ -12,5 +13,12 @@ void write_calibration_json(const std::filesystem::path& path, const Calibration
 // Throws tactile::FormatError naming the file and the problem (bad JSON, missing or mistyped
 // field, homography that is singular or maps pixels to nonsense scales).
 Calibration read_calibration_json(const std::filesystem::path& path);
+
+// The largest image side a calibration (or a strain movie) may declare, in pixels.
+inline constexpr int kMaxImageSidePx = 100000;
+
+// Throws tactile::FormatError "<where>: ..." unless `calibration` is one a camera could have:
+// a finite, non-singular homography, a plausible mm_per_px and a positive image size.
+void check_calibration(const Calibration& calibration, const std::string& where);
 
 }  // namespace tactile::capture

@@ -10,6 +10,13 @@ namespace tactile::movie {
 // Version of the HDF5 schema written by write_tactile_movie (root attribute format_version).
 inline constexpr int kTactileMovieFormatVersion = 1;
 
+// The highest frame rate a movie (or a layout) may declare: far above any display, far
+// below rates whose frame time rounds to nothing.
+inline constexpr double kMaxMovieRateHz = 100000;
+// Pitches and contactor sizes a layout (in a movie or a layout file) may declare, mm.
+inline constexpr double kMinLayoutSizeMm = 0.001;
+inline constexpr double kMaxLayoutSizeMm = 1000;
+
 // Writes `movie` as HDF5, atomically (an existing file is replaced only on success).
 // Throws std::invalid_argument if the movie is inconsistent (see validate()), and
 // std::runtime_error if the file cannot be written.

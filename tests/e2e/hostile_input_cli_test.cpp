@@ -1,0 +1,96 @@
+// Hostile numbers on every numeric option that takes a real number, and runs that would produce
+// nothing useful: a usage error (exit 2) naming the option, or a failed run (exit 1) saying why,
+// never a success, a crash or a library's raw message.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "../common/temp_dir.hpp"
+#include "run.hpp"
+
+using tactile::test::demo_dir;
+using tactile::test::run_tactile;
+using tactile::test::test_data;
+using ::testing::AnyOf;
+using ::testing::HasSubstr;
+
+namespace {
+
+struct NumericOption {
+  std::string command;  // with every other required argument; the option is appended
+  std::string option;
+  bool positive_minimum;  // a tiny positive number is out of range too
+};
+
+TEST(HostileInput, NonFiniteAndAbsurdNumbersAreUsageErrorsNamingTheOption) {
+  const std::string strain = (demo_dir() / "strain.h5").string();
+  const std::string frames = demo_dir().string();
+  const std::string prints = test_data("polyu-hrf-pores").string();
+  const std::string recordings = test_data("biotac-materials").string();
+  const std::string labels = (test_data("biotac-materials") / "labels.csv").string();
+  const std::vector<NumericOption> options = {
+      {"capture " + frames + " --out x.h5", "--px-per-mm", true},
+      {"capture " + frames + " --px-per-mm 62 --out x.h5", "--rate-hz", true},
+      {"capture " + frames + " --px-per-mm 62 --out x.h5", "--refine-window", true},
+      {"map " + strain + " --out x.h5", "--rate-hz", true},
+      {"map " + strain + " --out x.h5", "--gain", false},
+      {"train-pores --prints " + prints + " --px-per-mm 47 --out x.json", "--label-radius-mm",
+       true},
+      {"train-pores --prints " + prints + " --out x.json", "--px-per-mm", true},
+      {"train-pores --prints " + prints + " --px-per-mm 47 --out x.json", "--l2", false},
+      {"classify train --recordings " + recordings + " --labels " + labels + " --out x.json", "--c",
+       true},
+      {"classify train --recordings " + recordings + " --labels " + labels + " --out x.json",
+       "--trim", false},
+      {"synth x", "--speed", false},
+      {"bench latero", "--rate-hz", true},
+      {"bench latero", "--seconds", true},
+      {"perceive --out x", "--position-variation", false},
+      {"emulate --latero", "--seconds", false},
+  };
+  for (const auto& o : options) {
+    std::vector<std::string> values = {"nan", "inf", "-inf", "1e308", "-1e308", "1e999"};
+    if (o.positive_minimum) values.push_back("1e-300");
+    for (const auto& v : values) {
+      const std::string args = o.command + " " + o.option + " " + v;
+      const auto r = run_tactile(args);
+      EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+      EXPECT_THAT(r.output, HasSubstr(o.option)) << args;
+      EXPECT_THAT(r.output, AnyOf(HasSubstr("not a finite number"), HasSubstr("out of range"),
+                                  HasSubstr("not a number"), HasSubstr("[0, 0.5)")))
+          << args << ": " << r.output;
+    }
+  }
+}
+
+TEST(HostileInput, CaptureThatKeepsNoTrackFailsAndWritesNothing) {
+  const tactile::test::TempDir dir("short");
+  const auto out = dir.path() / "strain.h5";
+  const auto r = run_tactile("capture " + demo_dir().string() +
+                             " --px-per-mm 62 --min-track 100000 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("no strain measured"));
+  EXPECT_THAT(r.output, HasSubstr("--min-track 100000"));
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(HostileInput, ClassifierOfOneClassFailsAndWritesNothing) {
+  const tactile::test::TempDir dir("one-class");
+  const auto labels = dir.path() / "labels.csv";
+  std::ofstream(labels) << "file,class\nmat1_1_bio.csv,mat1\nmat1_2_bio.csv,mat1\n";
+  const auto out = dir.path() / "model.json";
+  const auto r =
+      run_tactile("classify train --recordings " + test_data("biotac-materials").string() +
+                  " --labels " + labels.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("at least 2 classes"));
+  EXPECT_THAT(r.output, HasSubstr("labels.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
