@@ -249,7 +249,10 @@ TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
       params.method = method;
       const auto out = map_strain_movie(movie, layout, params);
       EXPECT_EQ(out.layout.name, name);
-      EXPECT_EQ(out.frame_count, kBumpDisplayFrames);
+      EXPECT_EQ(out.rate_hz, layout.max_rate_hz);  // each layout at its own rate
+      // 34/35 s of strain frames at the layout's rate, both ends included.
+      EXPECT_EQ(out.frame_count,
+                static_cast<std::int32_t>(34.0 / 35.0 * layout.max_rate_hz + 1e-9) + 1);
       EXPECT_NO_THROW(movie::validate(out)) << name << " " << to_string(method);
       float peak = 0;
       for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
@@ -335,6 +338,9 @@ TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
   p.rate_hz = 0;
   fails_with(p, movie, "rate_hz must be positive");
   p = {};
+  p.rate_hz = 500.5;  // below the maximum, but a device plays whole hertz only
+  fails_with(p, movie, "rate 500.5 Hz is not playable: devices play a whole number of hertz");
+  p = {};
   p.gain_um_per_strain = -5;
   fails_with(p, movie, "gain_um_per_strain must be positive");
   p = {};
@@ -355,6 +361,18 @@ TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
   fails_with(MappingParams{}, backwards, "does not follow");
   layout.rows = 0;
   fails_with(MappingParams{}, movie, "0 x 4 contactors");
+}
+
+TEST(MapStrainMovie, UnsetRateIsTheLayoutsOwnRate) {
+  const auto movie = uniform_movie(10);
+  auto layout = grid_layout(4, 4, 1.0, 1.0);
+  layout.max_rate_hz = 750;
+  const MappingParams params;  // rate_hz unset
+  EXPECT_DOUBLE_EQ(resolve_mapping_params(params, layout).rate_hz.value(), 750.0);
+  EXPECT_EQ(map_strain_movie(movie, layout, params).rate_hz, 750.0);
+  MappingParams given;
+  given.rate_hz = 500;
+  EXPECT_EQ(map_strain_movie(movie, layout, given).rate_hz, 500.0);
 }
 
 }  // namespace

@@ -13,16 +13,13 @@
 #include "command.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/report.hpp"
 
 namespace tactile::cli {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 struct TrainOptions {
   std::filesystem::path recordings, labels, out;

@@ -63,9 +63,8 @@ class StageTimer {
 
 int run_demo(DemoOptions& opt) {
   const movie::Layout layout = movie::layout_by_name(opt.layout);
-  opt.mapping.rate_hz = layout.max_rate_hz;  // each layout at its own rate, as `tactile map`
   capture::validate(opt.scene);
-  mapping::validate(opt.mapping, layout);
+  mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
   fs::create_directories(opt.out);
   Progress progress;
   StageTimer timer;

@@ -57,23 +57,21 @@ void add_map(CLI::App& app, Action& action) {
   sub->add_option("--reference-frame", opt->params.accumulate.reference_frame,
                   "Camera frame the accumulated strain starts from (-1: the first)")
       ->capture_default_str();
-  CLI::Option* rate =
-      sub->add_option("--rate-hz", opt->params.rate_hz,
-                      "Display frame rate (default: the layout's own rate, e.g. stress 700 Hz,\n"
-                      "latero 750 Hz)")
-          ->check(positive());
+  sub->add_option("--rate-hz", opt->params.rate_hz,
+                  "Display frame rate, a whole number of hertz (default: the layout's own rate,\n"
+                  "e.g. stress 700 Hz, latero 750 Hz)")
+      ->check(playable_rate());
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
-  sub->callback([opt, rate, &action] {
-    const bool rate_given = rate->count() > 0;
-    action = [opt, rate_given] {
+  sub->callback([opt, &action] {
+    action = [opt] {
       std::vector<NamedPath> inputs = {{"STRAIN_H5", opt->strain}};
       if (fs::path(opt->layout).extension() == ".json") inputs.push_back({"--layout", opt->layout});
       std::vector<Output> outputs = {output_file("--out", opt->out)};
       if (opt->csv) outputs.push_back(output_file("--csv", *opt->csv));
       refuse_output_over_input(outputs, inputs);
       const movie::Layout layout = movie::resolve_layout(opt->layout);
-      if (!rate_given) opt->params.rate_hz = layout.max_rate_hz;
-      mapping::validate(opt->params, layout);  // before reading: fail fast on bad parameters
+      // Before reading: fail fast on bad parameters.
+      mapping::resolve_mapping_params(opt->params, layout);
       const capture::StrainMovie strain = capture::read_strain_movie(opt->strain);
       const auto t0 = std::chrono::steady_clock::now();
       opt->params.program_version = kVersion;
