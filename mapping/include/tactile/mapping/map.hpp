@@ -70,7 +70,11 @@ Normalisation parse_normalisation(std::string_view name);
 StrainMode parse_strain_mode(std::string_view name);
 
 struct MappingParams {
-  MappingMethod method = MappingMethod::proportional;
+  // "integrated" by default: its neighbouring contactors impose the measured strain on the finger
+  // (correlation 1.000 with the source strain on the ground-truth scenes of
+  // tools/experiments/methods.json), while "proportional" deflects each contactor by the local
+  // strain and imposes something else (correlation 0.02 to 0.05 there); docs/architecture.md.
+  MappingMethod method = MappingMethod::integrated;
   std::optional<SurfaceProfile> profile;
   // Micrometres of deflection per unit strain (for "integrated": per millimetre of pitch, so 1000
   // reproduces the skin's extension). 1000 um per unit strain = 1 um per 0.1 % strain.
