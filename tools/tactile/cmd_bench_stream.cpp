@@ -157,7 +157,7 @@ void add_bench_stream(CLI::App& bench, Action& action) {
   sub->add_option("--seconds", opt->seconds, "Length of the real-time paced stream")
       ->check(within(0.1, 600.0))
       ->capture_default_str();
-  sub->add_option("--rate", opt->rate_hz, "Rate of the real-time paced stream (Hz)")
+  sub->add_option("--rate-hz", opt->rate_hz, "Rate of the real-time paced stream (Hz)")
       ->check(within(1.0, 10000.0))
       ->capture_default_str();
   sub->callback([opt, &action] {
