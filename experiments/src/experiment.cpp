@@ -314,7 +314,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             p.profile = profile_of_scene(source.scene);
           }
           try {
-            validate(p, layout);
+            p = resolve_mapping_params(p, layout);
           } catch (const std::invalid_argument& e) {
             cx.fail(fmt::format("run {}: {}", run.id, e.what()));
           }

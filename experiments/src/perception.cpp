@@ -59,7 +59,7 @@ std::vector<Mapping> distinct_mappings(const Experiment& ex) {
                strain,
                to_string(run.params.normalisation),
                run.params.gain_um_per_strain,
-               run.params.rate_hz,
+               run.params.rate_hz.value(),
                {}};
     mappings.push_back(std::move(m));
   }

@@ -236,7 +236,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
           "{},{},{},{},{},{},{:g},{:g},{},{},{:.6f},{:.6g},{:.6g},{:.6f},{:.6f},{:.6g},"
           "{:.6g},{:.2f}\n",
           run.id, ex.sources[run.source].name, ex.layouts[run.layout].name, to_string(p.method),
-          to_string(p.strain), to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz,
+          to_string(p.strain), to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz.value(),
           r.frames, m.compared_pairs, m.strain_correlation, m.strain_rms_error, m.source_strain_rms,
           m.saturated_fraction, m.slew_limited_fraction, m.rms_acceleration_um_per_s2,
           m.rms_deflection_um, r.map_ms);
@@ -291,7 +291,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
     for (const auto& [key, members] : groups) {
       const auto& first = ex.runs[members.front()];
       // Runs of one group may differ in rate; the time axis uses the first run's period.
-      const double dt_s = 1.0 / first.params.rate_hz;
+      const double dt_s = 1.0 / first.params.rate_hz.value();
       XYChart chart{.title = fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
                                          ex.sources[key.first].name, ex.layouts[key.second].name),
                     .x = {.label = "t (s)"},
@@ -304,7 +304,7 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
         ChartSeries& s = chart.series.emplace_back();
         s.label =
             fmt::format("{} {} {} gain {:g} ({:g} Hz)", to_string(p.method), to_string(p.strain),
-                        to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz);
+                        to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz.value());
         s.y = report.results[i].activity_um;
         for (std::size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k) * dt_s);
       }

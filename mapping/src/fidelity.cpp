@@ -1,6 +1,7 @@
 // Fidelity metrics of a mapped movie against its source strain.
 
 #include "tactile/mapping/fidelity.hpp"
+#include "tactile/common/stats.hpp"
 
 #include <fmt/format.h>
 
@@ -11,26 +12,7 @@
 #include "tactile/mapping/methods.hpp"
 
 namespace tactile::mapping {
-namespace {
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const auto n = static_cast<double>(a.size());
-  if (a.size() < 2) return 0;
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
-  ma /= n;
-  mb /= n;
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  if (!(saa > 0) || !(sbb > 0)) return 0;
-  return sab / std::sqrt(saa * sbb);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::StrainMovie& source,
                          const Placement& placement, double um_per_strain,

@@ -1,6 +1,7 @@
 // The whole mapping: strain fields -> method -> normalisation -> time resampling -> limits.
 
 #include "tactile/mapping/map.hpp"
+#include "tactile/common/stats.hpp"
 
 #include <fmt/format.h>
 #include <algorithm>
@@ -55,10 +56,7 @@ double p99_magnitude_um(const std::vector<double>& values) {
   for (const double v : values) {
     if (v != 0) magnitude.push_back(std::abs(v));
   }
-  if (magnitude.empty()) return 0;
-  const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(magnitude.size() - 1));
-  std::nth_element(magnitude.begin(), magnitude.begin() + k, magnitude.end());
-  return magnitude[static_cast<std::size_t>(k)];
+  return quantile(std::move(magnitude), 0.99);
 }
 
 }  // namespace
@@ -70,8 +68,8 @@ capture::StrainMovie strain_source(const capture::StrainMovie& movie, const Mapp
 }
 
 MappingResult map_strain_frames(const capture::StrainMovie& movie, const movie::Layout& layout,
-                                const MappingParams& params) {
-  validate(params, layout);
+                                const MappingParams& requested) {
+  const MappingParams params = resolve_mapping_params(requested, layout);
   if (movie.frames.empty()) {
     throw std::invalid_argument(
         fmt::format("mapping: strain movie '{}' has no strain frames", movie.source));
@@ -118,11 +116,11 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const movie::
     for (double& v : camera.values) v *= factor;
   }
 
-  const auto display_frames = resample_linear(camera, params.rate_hz);
+  const auto display_frames = resample_linear(camera, *params.rate_hz);
 
   movie::TactileMovie out;
   out.layout = layout;
-  out.rate_hz = params.rate_hz;
+  out.rate_hz = *params.rate_hz;
   out.frame_count = static_cast<std::int32_t>(display_frames.t_s.size());
   out.deflection_um.assign(display_frames.values.begin(), display_frames.values.end());
   out.provenance.program_version =
@@ -139,8 +137,8 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const movie::
 }
 
 movie::TactileMovie map_strain_movie(const capture::StrainMovie& movie, const movie::Layout& layout,
-                                     const MappingParams& params) {
-  validate(params, layout);
+                                     const MappingParams& requested) {
+  const MappingParams params = resolve_mapping_params(requested, layout);
   if (params.strain == StrainMode::accumulated) {
     return map_strain_frames(accumulate_along_tracks(movie, params.accumulate), layout, params)
         .movie;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "tactile/mapping/map.hpp"
+#include "tactile/movie/limits.hpp"
 
 namespace tactile::mapping {
 namespace {
@@ -40,7 +41,10 @@ StrainMode parse_strain_mode(std::string_view name) {
   return parse_name("strain", name, kStrainModeNames);
 }
 
-void validate(const MappingParams& params, const movie::Layout& layout) {
+MappingParams resolve_mapping_params(const MappingParams& requested, const movie::Layout& layout) {
+  MappingParams params = requested;
+  if (!params.rate_hz) params.rate_hz = layout.max_rate_hz;
+  const double rate_hz = *params.rate_hz;
   if (params.method == MappingMethod::profile) {
     if (!params.profile) {
       throw std::invalid_argument(
@@ -52,7 +56,7 @@ void validate(const MappingParams& params, const movie::Layout& layout) {
   }
   require_positive(params.accumulate.max_edge_ratio, "accumulate max_edge_ratio");
   require_positive(params.gain_um_per_strain, "gain_um_per_strain");
-  require_positive(params.rate_hz, "rate_hz");
+  require_positive(rate_hz, "rate_hz");
   require_positive(params.slew_limit_um_per_s, "slew_limit_um_per_s");
   if (!(params.peak_fraction > 0 && params.peak_fraction <= 1)) {
     throw std::invalid_argument(
@@ -82,11 +86,13 @@ void validate(const MappingParams& params, const movie::Layout& layout) {
         fmt::format("mapping: layout '{}' deflection range [{}, {}] um is empty", layout.name,
                     layout.deflection_min_um, layout.deflection_max_um));
   }
-  if (params.rate_hz > layout.max_rate_hz) {
+  if (rate_hz > layout.max_rate_hz) {
     throw std::invalid_argument(
-        fmt::format("mapping: rate {} Hz is above layout '{}' maximum rate {} Hz", params.rate_hz,
+        fmt::format("mapping: rate {} Hz is above layout '{}' maximum rate {} Hz", rate_hz,
                     layout.name, layout.max_rate_hz));
   }
+  movie::require_playable_rate(rate_hz, "mapping: rate");
+  return params;
 }
 
 std::string parameters_json(const MappingParams& params, const Placement& placement_used,
@@ -97,7 +103,7 @@ std::string parameters_json(const MappingParams& params, const Placement& placem
   j["normalisation"] = to_string(params.normalisation);
   j["peak_fraction"] = params.peak_fraction;
   j["normalisation_factor"] = normalisation_factor;
-  j["rate_hz"] = params.rate_hz;
+  j["rate_hz"] = params.rate_hz.value_or(0.0);  // set once resolved
   j["strain"] = to_string(params.strain);
   if (params.strain == StrainMode::accumulated) {
     j["reference_frame"] = params.accumulate.reference_frame;

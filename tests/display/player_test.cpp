@@ -154,7 +154,7 @@ TEST(Player, RefusesMoviesTheDeviceCannotPlay) {
   expect_refused(movie::testing::sine_movie(movie::stress_layout(), 1000, 10, 10), stress,
                  "rate 1000 Hz exceeds the device maximum 700 Hz");
   expect_refused(movie::testing::sine_movie(movie::stress_layout(), 699.5, 10, 10), stress,
-                 "not a whole number of hertz");
+                 "movie rate 699.5 Hz is not playable: devices play a whole number of hertz");
   expect_refused(movie::testing::sine_movie(movie::stress_layout(), 700, 10, 60), stress,
                  "outside the device range [-50, 50] um");
 }

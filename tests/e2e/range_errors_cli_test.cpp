@@ -34,7 +34,11 @@ TEST(RangeErrors, ReadLikeAPersonWroteThem) {
                               "--px-per-mm: 0 is out of range: must be from 2 to 5000");
   expect_readable_range_error(
       "map " + (demo_dir() / "strain.h5").string() + " --out x.h5 --rate-hz -5",
-      "--rate-hz: -5 is out of range: must be from 1 to 100000");
+      "--rate-hz: -5 is out of range: must be a whole number of hertz from 1 to 65535");
+  // Refused when the movie is made, not later by `play`: no device plays half hertz.
+  expect_readable_range_error(
+      "map " + (demo_dir() / "strain.h5").string() + " --out x.h5 --rate-hz 500.5",
+      "--rate-hz: 500.5 is out of range: must be a whole number of hertz from 1 to 65535");
   expect_readable_range_error("train-pores --prints " +
                                   tactile::test::test_data("polyu-hrf-pores").string() +
                                   " --px-per-mm 47 --out x.json --l2 -1",

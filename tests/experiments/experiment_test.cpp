@@ -54,9 +54,37 @@ TEST(Experiment, ParsesTheGridInAFixedOrder) {
   EXPECT_EQ(ex.runs[0].id, "000-bump-stress-proportional-per-frame");
   EXPECT_EQ(ex.runs[1].id, "001-bump-stress-proportional-accumulated");
   EXPECT_EQ(ex.runs[7].id, "007-bump-latero-integrated-accumulated");
-  EXPECT_DOUBLE_EQ(ex.runs[5].params.rate_hz, 200);
+  EXPECT_DOUBLE_EQ(ex.runs[5].params.rate_hz.value(), 200);
   EXPECT_EQ(ex.sources[0].scene.seed, 3u);  // experiment seed + source index
   EXPECT_EQ(ex.sources[0].scene.frame_count, 12);
+}
+
+TEST(Experiment, WithoutARateEachLayoutMapsAtItsOwnRateAsTactileMap) {
+  // The rate `tactile map --layout X` uses when --rate-hz is not given: the layout's own.
+  const auto ex = parse_experiment(R"({
+    "name": "rates", "seed": 1,
+    "sources": [{"name": "bump", "ground_truth": {"scene": "bump", "frames": 12}}],
+    "layouts": ["stress", "latero"],
+    "methods": ["proportional"]
+  })",
+                                   "rates.json", ".");
+  ASSERT_EQ(ex.runs.size(), 2u);
+  EXPECT_EQ(ex.runs[1].id, "001-bump-latero-proportional-per-frame");
+  EXPECT_DOUBLE_EQ(ex.runs[0].params.rate_hz.value(), 700);
+  EXPECT_DOUBLE_EQ(ex.runs[1].params.rate_hz.value(), 750);
+}
+
+TEST(Experiment, RefusesARateNoDeviceCanPlayBeforeAnyWork) {
+  try {
+    (void)parse_experiment(R"({
+      "name": "half", "seed": 1, "sources": [{"name": "bump", "ground_truth": {"scene": "bump"}}],
+      "layouts": ["stress"], "methods": ["proportional"], "parameters": {"rate_hz": 500.5}
+    })",
+                           "half.json", ".");
+    ADD_FAILURE() << "a 500.5 Hz experiment was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_THAT(e.what(), HasSubstr("500.5 Hz is not playable: devices play a whole number"));
+  }
 }
 
 TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {

@@ -90,6 +90,7 @@ TEST(GroundTruthBump, ProportionalFollowsTheLocalSourceStrain) {
   layout.rows = 10;
   layout.cols = 10;
   MappingParams params;
+  params.method = MappingMethod::proportional;
   params.rate_hz = 60;
   const auto out = map_strain_movie(movie, layout, params);
   const auto placement = default_placement(movie);

@@ -16,6 +16,7 @@ namespace {
 
 using capture::PointMm;
 using testing::grid_layout;
+using testing::proportional_params;
 using testing::GridSpec;
 using ::testing::HasSubstr;
 
@@ -87,11 +88,11 @@ TEST(MapStrainMovie, ShapeRateDurationAndProvenance) {
   EXPECT_NEAR(out.duration_s(), 106.0 / 700.0, 1e-12);
   EXPECT_EQ(out.layout.rows, 8);
   EXPECT_EQ(out.layout.name, "test");
-  EXPECT_EQ(out.provenance.mapping_method, "proportional");
+  EXPECT_EQ(out.provenance.mapping_method, "integrated");  // the default method
   EXPECT_EQ(out.provenance.source, "synthetic test grid");
   EXPECT_EQ(out.provenance.program_version, "9.9.9-test");
   const auto& json = out.provenance.mapping_parameters_json;
-  EXPECT_THAT(json, HasSubstr("\"method\":\"proportional\""));
+  EXPECT_THAT(json, HasSubstr("\"method\":\"integrated\""));
   EXPECT_THAT(json, HasSubstr("\"gain_um_per_strain\":1000.0"));
   EXPECT_THAT(json, HasSubstr("\"centre_x_mm\":5.0"));
   EXPECT_THAT(json, HasSubstr("\"auto\":true"));
@@ -102,8 +103,8 @@ TEST(MapStrainMovie, ShapeRateDurationAndProvenance) {
 
 TEST(MapStrainMovie, ProportionalFollowsTheStrainAlongTheDeflectionAxis) {
   const auto movie = uniform_movie(6);
-  MappingParams params;                      // gain 1000 um per unit strain
-  const double tol_um = 1000 * 2 * kB * kB;  // small-strain linearisation error
+  MappingParams params = proportional_params();  // gain 1000 um per unit strain
+  const double tol_um = 1000 * 2 * kB * kB;      // small-strain linearisation error
   auto out = map_strain_movie(movie, grid_layout(8, 8, 1.0, 1.0), params);
   for (const float d : out.deflection_um) ASSERT_NEAR(d, 1000 * kA, tol_um);
 
@@ -119,7 +120,7 @@ TEST(MapStrainMovie, ProportionalFollowsTheStrainAlongTheDeflectionAxis) {
 
 TEST(MapStrainMovie, ContactorsOutsideTheMeasuredRegionStayNeutral) {
   const auto movie = uniform_movie(3);
-  MappingParams params;
+  MappingParams params = proportional_params();
   params.placement = Placement{.centre_x_mm = 0.0, .centre_y_mm = 5.0};  // on the left edge
   const auto layout = grid_layout(4, 4, 1.0, 1.0);  // columns at x = -1.5, -0.5, 0.5, 1.5
   const auto out = map_strain_movie(movie, layout, params);
@@ -134,7 +135,7 @@ TEST(MapStrainMovie, ProportionalTracksAMovingStrainBump) {
   const MovingBump bump;
   const auto movie = bump_movie(bump);
   const auto layout = grid_layout(8, 8, 1.0, 1.0);
-  const auto out = map_strain_movie(movie, layout, MappingParams{});
+  const auto out = map_strain_movie(movie, layout, proportional_params());
   ASSERT_EQ(out.frame_count, kBumpDisplayFrames);
 
   std::vector<double> mapped, expected;
@@ -249,7 +250,10 @@ TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
       params.method = method;
       const auto out = map_strain_movie(movie, layout, params);
       EXPECT_EQ(out.layout.name, name);
-      EXPECT_EQ(out.frame_count, kBumpDisplayFrames);
+      EXPECT_EQ(out.rate_hz, layout.max_rate_hz);  // each layout at its own rate
+      // 34/35 s of strain frames at the layout's rate, both ends included.
+      EXPECT_EQ(out.frame_count,
+                static_cast<std::int32_t>(34.0 / 35.0 * layout.max_rate_hz + 1e-9) + 1);
       EXPECT_NO_THROW(movie::validate(out)) << name << " " << to_string(method);
       float peak = 0;
       for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
@@ -262,7 +266,7 @@ TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
 TEST(MapStrainMovie, ClampAndSlewLimitHold) {
   const auto movie = uniform_movie(5);
   const auto layout = grid_layout(4, 4, 1.0, 1.0);
-  MappingParams params;
+  MappingParams params = proportional_params();
   params.gain_um_per_strain = 20000;  // 200 um wanted, 50 allowed
   auto out = map_strain_movie(movie, layout, params);
   for (const float d : out.deflection_um) {
@@ -303,7 +307,7 @@ TEST(MapStrainMovie, P99NormalisationIgnoresRareOutliers) {
       },
       movie.frames[60].t_s, 60, 61);
   const auto layout = grid_layout(4, 4, 1.0, 1.0);
-  MappingParams params;
+  MappingParams params = proportional_params();
   params.normalisation = Normalisation::p99;
   params.peak_fraction = 0.5;  // target 25 um
   auto out = map_strain_movie(movie, layout, params);
@@ -335,6 +339,9 @@ TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
   p.rate_hz = 0;
   fails_with(p, movie, "rate_hz must be positive");
   p = {};
+  p.rate_hz = 500.5;  // below the maximum, but a device plays whole hertz only
+  fails_with(p, movie, "rate 500.5 Hz is not playable: devices play a whole number of hertz");
+  p = {};
   p.gain_um_per_strain = -5;
   fails_with(p, movie, "gain_um_per_strain must be positive");
   p = {};
@@ -355,6 +362,18 @@ TEST(MapStrainMovie, RejectsBadParametersAndInputWithClearMessages) {
   fails_with(MappingParams{}, backwards, "does not follow");
   layout.rows = 0;
   fails_with(MappingParams{}, movie, "0 x 4 contactors");
+}
+
+TEST(MapStrainMovie, UnsetRateIsTheLayoutsOwnRate) {
+  const auto movie = uniform_movie(10);
+  auto layout = grid_layout(4, 4, 1.0, 1.0);
+  layout.max_rate_hz = 750;
+  const MappingParams params;  // rate_hz unset
+  EXPECT_DOUBLE_EQ(resolve_mapping_params(params, layout).rate_hz.value(), 750.0);
+  EXPECT_EQ(map_strain_movie(movie, layout, params).rate_hz, 750.0);
+  MappingParams given;
+  given.rate_hz = 500;
+  EXPECT_EQ(map_strain_movie(movie, layout, given).rate_hz, 500.0);
 }
 
 }  // namespace

@@ -87,7 +87,7 @@ movie::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_m
   layout.axis = axis;
   layout.deflection_min_um = -50;
   layout.deflection_max_um = 50;
-  layout.max_rate_hz = 1000;
+  layout.max_rate_hz = 700;  // the rate mappings use when none is given, as for STReSS
   return layout;
 }
 

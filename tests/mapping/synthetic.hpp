@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/mapping/map.hpp"
 #include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::mapping::testing {
@@ -39,5 +40,12 @@ void add_tracks(capture::StrainMovie& movie);
 // A layout built by hand, so these tests do not depend on display's built-in layouts.
 movie::Layout grid_layout(std::int32_t rows, std::int32_t cols, double pitch_x_mm,
                           double pitch_y_mm, movie::DeflectionAxis axis = movie::DeflectionAxis::x);
+
+// Default parameters with method "proportional", for the tests of that method.
+inline MappingParams proportional_params() {
+  MappingParams p;
+  p.method = MappingMethod::proportional;
+  return p;
+}
 
 }  // namespace tactile::mapping::testing

@@ -27,6 +27,7 @@
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/stopwatch.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
@@ -77,14 +78,6 @@ std::vector<NamedMethod> methods(bool quick) {
                  return from_tracks(capture::track_dis_flow(f, c), f, c, rate);
                }});
   return m;
-}
-
-// CPU seconds of the whole process (every thread): with other jobs on the machine, wall-clock
-// frames/s measure the load as much as the method, CPU time per frame does not.
-double process_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 std::string load_average() {

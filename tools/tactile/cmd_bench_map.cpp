@@ -13,6 +13,8 @@
 #include "number_checks.hpp"
 #include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain.hpp"
+#include "tactile/common/stats.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/mapping/profile.hpp"
 #include "tactile/movie/tactile_movie.hpp"
@@ -73,21 +75,18 @@ void add_bench_map(CLI::App& bench, Action& action) {
           std::vector<double> ms, cpu_ms;
           std::int32_t frames = 0;
           for (int r = 0; r < opt->repeats; ++r) {
-            const auto t0 = std::chrono::steady_clock::now();
-            const std::clock_t c0 = std::clock();
+            const Stopwatch clock;
             frames = mapping::map_strain_frames(source, layout, params).movie.frame_count;
             // CPU time of the whole process (all worker threads): what the mapping costs when
             // other programs share the cores and wall time says more about them than about us.
-            cpu_ms.push_back(1e3 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-            ms.push_back(
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                    .count());
+            cpu_ms.push_back(1e3 * clock.cpu_s());
+            ms.push_back(1e3 * clock.wall_s());
           }
           std::sort(ms.begin(), ms.end());
           std::sort(cpu_ms.begin(), cpu_ms.end());
           fmt::print("{:<14} {:<12} {:>8} {:>10.1f} {:>10.1f} {:>10.1f} {:>12.1f}\n",
-                     to_string(method), to_string(strain), frames, ms[ms.size() / 2], ms.front(),
-                     ms.back(), cpu_ms[cpu_ms.size() / 2]);
+                     to_string(method), to_string(strain), frames, median(ms), ms.front(),
+                     ms.back(), median(cpu_ms));
         }
       }
       fmt::print(

@@ -15,15 +15,12 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/perception/arff.hpp"
 #include "tactile/perception/report.hpp"
 
 namespace tactile::cli {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Runs one WEKA classifier; returns its reported "Time taken to build model" (s).
 double run_weka(const std::string& java, const std::string& jar, const std::string& classifier,

@@ -26,8 +26,8 @@
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
-#include "tactile/common/median.hpp"
 #include "tactile/common/output_paths.hpp"
+#include "tactile/common/stats.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;

@@ -12,6 +12,8 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "tactile/common/stats.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/usb_budget.hpp"
@@ -19,12 +21,6 @@
 namespace tactile::cli {
 
 namespace {
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -69,12 +65,12 @@ struct Throughput {
 Throughput throughput(const movie::Layout& layout, int frames) {
   Throughput out;
   const Patterns pattern(layout.contactor_count());
-  double t0 = cpu_seconds();
+  double t0 = process_cpu_s();
   for (int f = 0; f < frames; ++f) {
     const auto bytes = display::encode_frame(pattern(static_cast<std::uint32_t>(f)), f + 1);
     if (bytes.empty()) return out;
   }
-  out.encode_cpu_us = 1e6 * (cpu_seconds() - t0) / frames;
+  out.encode_cpu_us = 1e6 * (process_cpu_s() - t0) / frames;
 
   display::EmulatedDeviceOptions options;
   options.layout = layout;
@@ -82,7 +78,7 @@ Throughput throughput(const movie::Layout& layout, int frames) {
   display::EmulatedDevice device(options);
   device.start(layout.max_rate_hz);
   const auto tick = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / layout.max_rate_hz));
-  t0 = cpu_seconds();
+  t0 = process_cpu_s();
   const double w0 = wall_seconds();
   for (int f = 0; f < frames;) {
     const auto bytes = display::encode_frame(pattern(static_cast<std::uint32_t>(f)), f + 1);
@@ -90,7 +86,7 @@ Throughput throughput(const movie::Layout& layout, int frames) {
     ++f;
   }
   const double wall = wall_seconds() - w0;
-  out.total_cpu_us = 1e6 * (cpu_seconds() - t0) / frames;
+  out.total_cpu_us = 1e6 * (process_cpu_s() - t0) / frames;
   out.frames_per_s = frames / wall;
   out.malformed = device.status().malformed;
   return out;
@@ -115,7 +111,7 @@ Pacing paced(const movie::Layout& layout, double rate_hz, double seconds) {
   const Patterns pattern(layout.contactor_count());
   const auto total = static_cast<std::uint32_t>(rate_hz * seconds);
   device.start(rate_hz);
-  const double c0 = cpu_seconds();
+  const double c0 = process_cpu_s();
   std::uint32_t seq = 1;
   while (seq <= total) {
     const auto s = device.status();
@@ -137,16 +133,9 @@ Pacing paced(const movie::Layout& layout, double rate_hz, double seconds) {
   const auto s = device.status();
   out.underruns = s.underruns;
   out.played = s.frames_played;
-  out.cpu_per_frame_us = 1e6 * (cpu_seconds() - c0) / total;
+  out.cpu_per_frame_us = 1e6 * (process_cpu_s() - c0) / total;
   device.stop();
   return out;
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(std::min<double>(v.size() - 1, p / 100.0 * v.size()));
-  return v[i];
 }
 
 }  // namespace
@@ -168,7 +157,7 @@ void add_bench_stream(CLI::App& bench, Action& action) {
   sub->add_option("--seconds", opt->seconds, "Length of the real-time paced stream")
       ->check(within(0.1, 600.0))
       ->capture_default_str();
-  sub->add_option("--rate", opt->rate_hz, "Rate of the real-time paced stream (Hz)")
+  sub->add_option("--rate-hz", opt->rate_hz, "Rate of the real-time paced stream (Hz)")
       ->check(within(1.0, 10000.0))
       ->capture_default_str();
   sub->callback([opt, &action] {
@@ -208,8 +197,8 @@ void add_bench_stream(CLI::App& bench, Action& action) {
       fmt::print(
           "frame submission time (us): p50 {:.2f}  p90 {:.2f}  p99 {:.2f}  p99.9 {:.2f}  max "
           "{:.2f}\n",
-          percentile(p.submit_us, 50), percentile(p.submit_us, 90), percentile(p.submit_us, 99),
-          percentile(p.submit_us, 99.9), percentile(p.submit_us, 100));
+          quantile(p.submit_us, 0.50), quantile(p.submit_us, 0.90), quantile(p.submit_us, 0.99),
+          quantile(p.submit_us, 0.999), quantile(p.submit_us, 1.0));
       return 0;
     };
   });

@@ -15,6 +15,7 @@
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
@@ -22,10 +23,6 @@
 
 namespace tactile::cli {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The labels file, every file in the recordings folder (the labels choose among them; any may
 // be read) and, when given, the model.

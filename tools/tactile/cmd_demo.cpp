@@ -18,6 +18,7 @@
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/version.hpp"
+#include "tactile/mapping/fidelity.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/movie/movie_io.hpp"
 
@@ -63,9 +64,8 @@ class StageTimer {
 
 int run_demo(DemoOptions& opt) {
   const movie::Layout layout = movie::layout_by_name(opt.layout);
-  opt.mapping.rate_hz = layout.max_rate_hz;  // each layout at its own rate, as `tactile map`
   capture::validate(opt.scene);
-  mapping::validate(opt.mapping, layout);
+  mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
   fs::create_directories(opt.out);
   Progress progress;
   StageTimer timer;
@@ -114,13 +114,24 @@ int run_demo(DemoOptions& opt) {
   }
 
   opt.mapping.program_version = kVersion;
-  movie::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt.mapping);
+  const capture::StrainMovie source = mapping::strain_source(strain, opt.mapping);
+  mapping::MappingResult mapped = mapping::map_strain_frames(source, layout, opt.mapping);
+  movie::TactileMovie& movie = mapped.movie;
   movie.provenance.source = strain_path.string();
   movie.provenance.created_utc = h5::utc_now_iso8601();
   timer.report(
       4, "map",
-      fmt::format("{} frames of {} x {} ({}) at {:g} Hz, {}", movie.frame_count, layout.rows,
+      fmt::format("{} frames of {} x {} ({}) at {:g} Hz, method {}", movie.frame_count, layout.rows,
                   layout.cols, layout.name, movie.rate_hz, to_string(opt.mapping.method)));
+  // What the user will feel against what was measured: the strain the movie imposes between
+  // neighbouring contactors, compared with the measured strain (mapping/fidelity.hpp).
+  const mapping::FidelityMetrics fit =
+      mapping::fidelity(movie, source, mapped.placement, mapped.um_per_strain,
+                        opt.mapping.slew_limit_um_per_s, opt.mapping.field);
+  fmt::print(
+      "    fidelity to the measured strain: correlation {:.3f}, RMS error {:.3g} against RMS "
+      "{:.3g} ({} samples)\n",
+      fit.strain_correlation, fit.strain_rms_error, fit.source_strain_rms, fit.compared_pairs);
   const fs::path movie_path = opt.out / "movie.h5";
   movie::write_tactile_movie(movie_path, movie);
   if (opt.keep) movie::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);
@@ -158,7 +169,8 @@ void add_demo(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"stress", "stress2", "latero"}))
       ->capture_default_str();
   add_mode_option(*sub, "--method", opt->mapping.method, mapping::kMappingMethodNames,
-                  "Mapping method");
+                  "Mapping method (see tactile map --help); the demo prints how well the movie\n"
+                  "reproduces the measured strain");
   add_scene_options(*sub, opt->scene);
   sub->callback([opt, &action] { action = [opt] { return run_demo(*opt); }; });
 }

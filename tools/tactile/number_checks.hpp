@@ -11,6 +11,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "tactile/movie/limits.hpp"
+
 namespace tactile::cli {
 
 namespace detail {
@@ -45,6 +47,13 @@ inline CLI::Validator positive() {
 // A number >= 0.
 inline CLI::Validator non_negative() {
   return detail::number_check<double>([](double v) { return v >= 0; }, ">= 0", ">= 0");
+}
+
+// A rate a device can play (movie::kPlayableRateRule), checked where the option is read so the
+// error names the option; mapping checks the same rule for every other caller.
+inline CLI::Validator playable_rate() {
+  return detail::number_check<double>([](double v) { return movie::is_playable_rate(v); },
+                                      std::string(movie::kPlayableRateRule), "whole Hz");
 }
 
 // A number from `min` to `max`, both included; T is the option's type (int or double).

@@ -1,4 +1,5 @@
 #include "tactile/capture/calibrate.hpp"
+#include "tactile/common/stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,10 +33,7 @@ std::vector<Dot> find_dots(const cv::Mat& gray) {
   std::vector<int> areas;
   for (int i = 1; i < n; ++i) areas.push_back(stats.at<int>(i, cv::CC_STAT_AREA));
   if (areas.empty()) return {};
-  std::vector<int> sorted = areas;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2),
-                   sorted.end());
-  const double median_area = sorted[sorted.size() / 2];
+  const double median_area = median(areas);
   // Grey-level centroids: weight by how much darker than the local mean each pixel is.
   std::vector<cv::Point3d> sums(static_cast<std::size_t>(n), cv::Point3d(0, 0, 0));
   for (int y = 0; y < labels.rows; ++y) {
@@ -97,10 +95,7 @@ Calibration calibrate_dot_grid(const GrayImage& image, double spacing_mm) {
       }
     }
   }
-  std::vector<double> sorted = nearest;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2),
-                   sorted.end());
-  const double pitch = sorted[sorted.size() / 2];
+  const double pitch = median(nearest);
 
   // Seed at the dot closest to the image centre; lattice vectors from its neighbours.
   const cv::Point2d centre(image.width_px / 2.0, image.height_px / 2.0);

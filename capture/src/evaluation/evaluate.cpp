@@ -8,7 +8,7 @@
 #include <unordered_map>
 
 #include "tactile/common/csv.hpp"
-#include "tactile/common/median.hpp"
+#include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
 
@@ -43,7 +43,7 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   auto true_mm = [&](const TrackedPoint& p) { return to_mm(truth.calibration, p.x_px, p.y_px); };
 
   double se_all = 0, st_all = 0;
-  double sm = 0, smm = 0, stt = 0, smt = 0;  // sums for the correlation (st_all sums t^2)
+  std::vector<double> measured_all, truth_all;  // every compared edge, for the correlation
   std::vector<double> tracked, yields;
   for (const auto& f : movie.frames) {
     FrameEvaluation fe;
@@ -64,10 +64,8 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
             truth_rel_change(truth, true_mm(f.points_from[a->second]),
                              true_mm(f.points_from[b->second]), f.frame_from, f.frame_to);
         se += (e.rel_change - t) * (e.rel_change - t);
-        sm += e.rel_change;
-        smm += e.rel_change * e.rel_change;
-        stt += t;
-        smt += e.rel_change * t;
+        measured_all.push_back(e.rel_change);
+        truth_all.push_back(t);
         st += t * t;
         ++fe.edges;
       }
@@ -86,11 +84,8 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   if (ev.edges > 0) {
     ev.rms_error = std::sqrt(se_all / static_cast<double>(ev.edges));
     ev.rms_truth = std::sqrt(st_all / static_cast<double>(ev.edges));
-    const double n = static_cast<double>(ev.edges);
-    const double cov = smt / n - (sm / n) * (stt / n);
-    const double var_m = smm / n - (sm / n) * (sm / n);
-    const double var_t = st_all / n - (stt / n) * (stt / n);
-    if (var_m > 0 && var_t > 1e-18) ev.correlation = cov / std::sqrt(var_m * var_t);
+    // A truth without strain (rigid motion) varies by rounding only: no correlation to report.
+    ev.correlation = pearson(measured_all, truth_all, 1e-18);
   }
   ev.median_tracked_points = median(tracked);
   ev.median_yield = median(yields);

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "pores/pore_model.hpp"
+#include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
 
@@ -168,20 +169,12 @@ double robust_spread(const cv::Mat& response, const cv::Mat& mask, cv::Rect roi,
     }
   }
   if (v.size() < std::max<std::size_t>(min_count, 1)) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  const float median = *mid;
-  for (float& a : v) a = std::abs(a - median);
-  std::nth_element(v.begin(), mid, v.end());
-  return 1.4826 * *mid;
+  return 1.4826 * mad(std::move(v));
 }
 
-// Value at `fraction` of the sorted values (0 = smallest); `fallback` when there are none.
-double quantile(std::vector<double> v, double fraction, double fallback) {
-  if (v.empty()) return fallback;
-  const auto k = static_cast<std::ptrdiff_t>(fraction * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[static_cast<std::size_t>(k)];
+// quantile() of the values; `fallback` when there are none.
+double quantile_or(const std::vector<double>& v, double fraction, double fallback) {
+  return v.empty() ? fallback : quantile(v, fraction);
 }
 
 }  // namespace
@@ -267,8 +260,8 @@ std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::M
   for (const auto& c : found) {
     if (c.measures[2] >= p.noise_ridge_depth) deep_responses.push_back(c.measures[0] * print_noise);
   }
-  const double typical = std::max(kMinNoise, quantile(deep_responses, 0.5, print_noise));
-  const double clear = std::max(kMinNoise, quantile(deep_responses, 0.9, print_noise));
+  const double typical = std::max(kMinNoise, quantile_or(deep_responses, 0.5, print_noise));
+  const double clear = std::max(kMinNoise, quantile_or(deep_responses, 0.9, print_noise));
   for (auto& c : found) {
     auto& m = c.measures;
     const double v = m[0] * print_noise;

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "tactile/capture/strain.hpp"
+#include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
 
@@ -54,9 +55,7 @@ void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector
   if (raw.empty()) return;  // all points collinear or coincident
   std::vector<double> lengths;
   for (const auto& r : raw) lengths.push_back(r.length_from);
-  std::nth_element(lengths.begin(), lengths.begin() + static_cast<long>(lengths.size() / 2),
-                   lengths.end());
-  const double bound = max_edge_ratio * lengths[lengths.size() / 2];
+  const double bound = max_edge_ratio * median(std::move(lengths));
 
   // Whether an edge is kept depends only on its length, so faces test their edges directly.
   auto edge_kept = [&](std::int32_t a, std::int32_t b) {

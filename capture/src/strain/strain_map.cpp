@@ -1,4 +1,5 @@
 #include "tactile/capture/strain_map.hpp"
+#include "tactile/common/stats.hpp"
 
 #include <fmt/format.h>
 
@@ -50,11 +51,7 @@ double strain_map_full_scale(const StrainMovie& movie) {
       if (std::isfinite(e.rel_change)) magnitudes.push_back(std::abs(e.rel_change));
     }
   }
-  if (magnitudes.empty()) return 0;
-  const auto k = static_cast<std::size_t>(0.99 * static_cast<double>(magnitudes.size() - 1));
-  std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(k),
-                   magnitudes.end());
-  return magnitudes[k];
+  return quantile(std::move(magnitudes), 0.99);
 }
 
 void write_strain_map_png(const std::filesystem::path& path, const StrainFrame& frame,

@@ -1,4 +1,5 @@
 #include "tactile/capture/track.hpp"
+#include "tactile/common/stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -272,9 +273,7 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
       vy.push_back(act.velocity_mm.y_mm);
     }
     if (!vx.empty()) {
-      std::nth_element(vx.begin(), vx.begin() + static_cast<long>(vx.size() / 2), vx.end());
-      std::nth_element(vy.begin(), vy.begin() + static_cast<long>(vy.size() / 2), vy.end());
-      global_velocity = {vx[vx.size() / 2], vy[vy.size() / 2]};
+      global_velocity = {median(vx), median(vy)};
     }
     // Retire tracks missed for too long, then start tracks for unmatched features.
     std::vector<Active> kept;

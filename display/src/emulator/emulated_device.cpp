@@ -12,6 +12,7 @@
 
 #include "tactile/display/control_codec.hpp"
 #include "tactile/display/frame_codec.hpp"
+#include "tactile/movie/limits.hpp"
 #include "tactile_fw/control.h"
 #include "tactile_fw/device.h"
 
@@ -20,13 +21,8 @@ namespace tactile::display {
 namespace {
 
 std::uint16_t integer_rate(double rate_hz, const char* what) {
-  const double rounded = std::round(rate_hz);
-  if (!std::isfinite(rate_hz) || rate_hz < 1 || rate_hz > 65535 ||
-      std::abs(rate_hz - rounded) > 1e-9) {
-    throw std::invalid_argument(
-        fmt::format("{} {} Hz: the device plays whole rates from 1 to 65535 Hz", what, rate_hz));
-  }
-  return static_cast<std::uint16_t>(rounded);
+  movie::require_playable_rate(rate_hz, what);
+  return static_cast<std::uint16_t>(std::round(rate_hz));
 }
 
 tfw_config make_config(const EmulatedDeviceOptions& o) {

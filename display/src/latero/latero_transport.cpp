@@ -1,5 +1,6 @@
 // A Latero over UDP, paced by the host clock; see latero_transport.hpp.
 #include "tactile/display/latero_transport.hpp"
+#include "tactile/common/stats.hpp"
 
 #include <fmt/format.h>
 #include <poll.h>
@@ -361,27 +362,14 @@ void LateroTransport::wait(std::chrono::nanoseconds duration) {
   check_link();
 }
 
-namespace {
-
-// Nearest-rank percentile (p in 0..100) of values already sorted.
-double sorted_percentile(const std::vector<double>& sorted, double p) {
-  if (sorted.empty()) return 0;
-  const double rank = std::ceil(p / 100.0 * static_cast<double>(sorted.size()));
-  const auto i =
-      static_cast<std::size_t>(std::clamp(rank, 1.0, static_cast<double>(sorted.size())));
-  return sorted[i - 1];
-}
-
-}  // namespace
-
 LateroTiming summarize_timing(const LateroLinkStats& stats, double rate_hz) {
   LateroTiming t;
   t.frames = stats.send_time_s.size();
   std::vector<double> offsets_us;
   for (const double s : stats.send_offset_s) offsets_us.push_back(1e6 * s);
   std::sort(offsets_us.begin(), offsets_us.end());
-  t.offset_p50_us = sorted_percentile(offsets_us, 50);
-  t.offset_p99_us = sorted_percentile(offsets_us, 99);
+  t.offset_p50_us = quantile(offsets_us, 0.50);
+  t.offset_p99_us = quantile(offsets_us, 0.99);
   t.offset_max_us = offsets_us.empty() ? 0 : offsets_us.back();
   const auto& times = stats.send_time_s;
   if (times.size() >= 2) {
@@ -391,8 +379,8 @@ LateroTiming summarize_timing(const LateroLinkStats& stats, double rate_hz) {
       jitter_us.push_back(1e6 * std::abs(times[i] - times[i - 1] - 1.0 / rate_hz));
     }
     std::sort(jitter_us.begin(), jitter_us.end());
-    t.interval_jitter_p50_us = sorted_percentile(jitter_us, 50);
-    t.interval_jitter_p99_us = sorted_percentile(jitter_us, 99);
+    t.interval_jitter_p50_us = quantile(jitter_us, 0.50);
+    t.interval_jitter_p99_us = quantile(jitter_us, 0.99);
   }
   return t;
 }

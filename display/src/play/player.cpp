@@ -11,6 +11,7 @@
 
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/frame_codec.hpp"
+#include "tactile/movie/limits.hpp"
 
 namespace tactile::display {
 
@@ -95,11 +96,7 @@ void check_movie_against_device(const movie::TactileMovie& movie, const DeviceIn
     throw std::invalid_argument(fmt::format("movie rate {} Hz exceeds the device maximum {} Hz",
                                             movie.rate_hz, d.max_rate_hz));
   }
-  if (std::abs(movie.rate_hz - std::round(movie.rate_hz)) > 1e-9) {
-    throw std::invalid_argument(
-        fmt::format("movie rate {} Hz is not a whole number of hertz, which the device cannot play",
-                    movie.rate_hz));
-  }
+  movie::require_playable_rate(movie.rate_hz, "movie rate");
   if (!options.allow_out_of_range) {
     const auto n = static_cast<std::size_t>(m.contactor_count());
     for (std::size_t i = 0; i < movie.deflection_um.size(); ++i) {

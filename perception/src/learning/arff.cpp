@@ -1,4 +1,4 @@
-// ARFF export (see perception_arff.hpp).
+// ARFF export (see arff.hpp).
 
 #include "tactile/perception/arff.hpp"
 

@@ -1,4 +1,4 @@
-// Data set, split and SVC/SVR cascade of paper 2 (see perception_eval.hpp).
+// Data set, split and SVC/SVR cascade of paper 2 (see eval.hpp).
 
 #include "tactile/perception/eval.hpp"
 

@@ -1,4 +1,4 @@
-// Table 2 over several seeds (see perception_seeds.hpp).
+// Table 2 over several seeds (see seeds.hpp).
 
 #include "tactile/perception/seeds.hpp"
 

@@ -1,4 +1,4 @@
-// Contact segmentation, windows and Table 1 inputs (see perception_features.hpp).
+// Contact segmentation, windows and Table 1 inputs (see features.hpp).
 
 #include "tactile/perception/features.hpp"
 

@@ -1,4 +1,4 @@
-// Reading and writing BioTac-style CSV sensor recordings (see sensor_csv.hpp).
+// Reading and writing BioTac-style CSV sensor recordings (see recording_csv.hpp).
 
 #include "tactile/perception/recording_csv.hpp"
 

@@ -70,14 +70,20 @@ Normalisation parse_normalisation(std::string_view name);
 StrainMode parse_strain_mode(std::string_view name);
 
 struct MappingParams {
-  MappingMethod method = MappingMethod::proportional;
+  // "integrated" by default: its neighbouring contactors impose the measured strain on the finger
+  // (correlation 1.000 with the source strain on the ground-truth scenes of
+  // tools/experiments/methods.json), while "proportional" deflects each contactor by the local
+  // strain and imposes something else (correlation 0.02 to 0.05 there); docs/architecture.md.
+  MappingMethod method = MappingMethod::integrated;
   std::optional<SurfaceProfile> profile;
   // Micrometres of deflection per unit strain (for "integrated": per millimetre of pitch, so 1000
   // reproduces the skin's extension). 1000 um per unit strain = 1 um per 0.1 % strain.
   double gain_um_per_strain = 1000.0;
   Normalisation normalisation = Normalisation::none;
   double peak_fraction = 1.0;
-  double rate_hz = 700.0;
+  // Display frame rate; unset = the layout's own rate (layout.max_rate_hz), so every caller
+  // (map, demo, experiments) maps a layout at the same rate unless told otherwise.
+  std::optional<double> rate_hz;
   StrainMode strain = StrainMode::per_frame;
   AccumulateOptions accumulate;
   // Where the contactor grid sits on the field; unset = default_placement(movie).
@@ -88,10 +94,13 @@ struct MappingParams {
   std::string program_version;
 };
 
-// Checks the parameters against the layout before any work: non-positive or non-finite gain, rate,
-// slew limit or scale, peak_fraction outside (0, 1], rate above layout.max_rate_hz, a layout
-// without contactors. Throws std::invalid_argument naming the problem.
-void validate(const MappingParams& params, const movie::Layout& layout);
+// The parameters a mapping onto `layout` uses: the rules every caller shares, in one place.
+// Fills the defaults that depend on the layout (rate_hz unset -> layout.max_rate_hz) and checks
+// everything before any work: non-positive or non-finite gain, slew limit or scale,
+// peak_fraction outside (0, 1], a rate above layout.max_rate_hz or not playable
+// (movie::kPlayableRateRule: a movie a device cannot play is refused when it is made), a layout
+// without contactors. Throws std::invalid_argument naming the problem. The result has rate_hz set.
+MappingParams resolve_mapping_params(const MappingParams& params, const movie::Layout& layout);
 
 // The parameters as a JSON object (stored in Provenance::mapping_parameters_json). The placement
 // written is the one actually used; normalisation_factor is the factor "peak" or "p99" applied
@@ -118,9 +127,9 @@ MappingResult map_strain_frames(const capture::StrainMovie& source, const movie:
                                 const MappingParams& params);
 
 // Maps the strain movie onto the layout: map_strain_frames(strain_source(movie, params), ...).
-// Throws std::invalid_argument for bad parameters (see validate), an empty strain movie, or strain
-// frame times that do not increase. Provenance gets method, parameters, source and program version;
-// created_utc is left to the caller.
+// Throws std::invalid_argument for bad parameters (see resolve_mapping_params), an empty strain
+// movie, or strain frame times that do not increase. Provenance gets method, parameters, source and
+// program version; created_utc is left to the caller.
 movie::TactileMovie map_strain_movie(const capture::StrainMovie& movie, const movie::Layout& layout,
                                      const MappingParams& params);
 
