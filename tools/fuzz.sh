@@ -39,7 +39,7 @@ for target in "${targets[@]}"; do
   leaks=1
   [[ $target == *movie ]] && leaks=0
   status=0
-  ASAN_OPTIONS=detect_leaks=$leaks TACTILE_FUZZ_READER=$target "$fuzzer" -max_total_time="$each" -timeout=10 -rss_limit_mb=2048 \
+  ASAN_OPTIONS=detect_leaks=$leaks:allocator_may_return_null=1 TACTILE_FUZZ_READER=$target "$fuzzer" -max_total_time="$each" -timeout=10 -rss_limit_mb=2048 \
     -detect_leaks=$leaks \
     -print_final_stats=1 -artifact_prefix="$dir/" "$dir/corpus" "$dir/seeds" >"$dir/log" 2>&1 ||
     status=$?

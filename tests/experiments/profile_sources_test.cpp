@@ -28,6 +28,11 @@ TEST(Profile, ExperimentsRefuseItOnFileSources) {
       },
       5, 60.0);
   testing::add_tracks(movie);
+  // A camera of 50 px/mm that sees exactly the grid, as the strain movie's reader requires.
+  movie.calibration.mm_per_px = 0.02;
+  movie.calibration.px_to_mm = {0.02, 0, 0, 0, 0.02, 0, 0, 0, 1};
+  movie.calibration.image_width_px = 200;
+  movie.calibration.image_height_px = 200;
   capture::write_strain_movie(dir / "rec.h5", movie);
   try {
     parse_experiment(R"({"name": "p", "seed": 1, "sources": [{"name": "rec", "file": "rec.h5"}],
