@@ -89,10 +89,12 @@ TEST_F(ViewCli, MalformedCommandLinesAreClearErrors) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   r = run("view " + movie + " --strain " + (dir_ / "missing.h5").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  // A screenshot that cannot be written: a failure naming the file.
+  // A screenshot into a folder that does not exist: found before any drawing, a usage error
+  // naming the file and the missing folder.
   r = run("view " + movie + " --screenshot " + (dir_ / "no-such-dir" / "x.png").string());
-  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("x.png"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
 }
 
 TEST_F(ViewCli, ASourceStrainMovieWithoutStrainIsLeftOutOrRefusedWhenAskedFor) {
