@@ -16,9 +16,9 @@ namespace {
 
 using capture::PointMm;
 using testing::grid_layout;
-using testing::proportional_params;
 using testing::GridSpec;
 using ::testing::HasSubstr;
+using testing::proportional_params;
 
 constexpr double kA = 0.01;   // uniform stretch along x
 constexpr double kB = -0.02;  // uniform stretch along y
