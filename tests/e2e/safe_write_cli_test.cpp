@@ -8,8 +8,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -28,6 +26,7 @@ extern char** environ;
 
 namespace fs = std::filesystem;
 using tactile::test::run_tactile;
+using tactile::test::Started;
 using ::testing::HasSubstr;
 
 namespace {
@@ -120,29 +119,14 @@ TEST_F(SafeWrite, AnOutputThatCannotBeWrittenIsAUsageErrorBeforeTheWork) {
   EXPECT_EQ(bytes(dir_ / "file"), "a file");
 }
 
-// An experiment of many movies, long enough to be stopped in the middle.
+// An experiment of many movies, long enough to be stopped in the middle: about 4 s on two idle
+// cores, so that every moment below falls inside it (with 1500 frames it took 0.6 s, and the
+// 500 ms moment sometimes came after its end).
 const char* kLong = R"({"name": "long", "seed": 1,
-  "sources": [{"name": "gt", "ground_truth": {"scene": "bump", "frames": 1500},
+  "sources": [{"name": "gt", "ground_truth": {"scene": "bump", "frames": 6000},
                "grid_spacing_mm": 0.6}],
   "layouts": ["stress", "latero"], "methods": ["integrated", "profile", "proportional"],
   "parameters": {"rate_hz": 100}})";
-
-// Starts `tactile ARGS...` with its output into `log`; returns its process id.
-pid_t spawn_tactile(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all = {TACTILE_CLI_PATH};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
-}
 
 // Stops the experiment with `sig` `after` into its run, or (after < 0) as soon as one of its
 // temporary files is seen: it must end by that signal, leave no temporary file, and leave the
@@ -154,9 +138,8 @@ void stop_experiment(const fs::path& dir, std::chrono::milliseconds after, int s
   const fs::path out = dir / ("out" + std::to_string(runs++));
   fs::create_directories(out);
   std::ofstream(out / "metrics.csv") << "old metrics";
-  const pid_t pid = spawn_tactile(
-      {"experiment", exp.string(), "--out", out.string(), "--threads", "2"}, dir / "log.txt");
-  ASSERT_GT(pid, 0);
+  Started experiment({"experiment", exp.string(), "--out", out.string(), "--threads", "2"},
+                     dir / "log.txt");
   if (after.count() >= 0) {
     std::this_thread::sleep_for(after);
   } else {
@@ -166,12 +149,12 @@ void stop_experiment(const fs::path& dir, std::chrono::milliseconds after, int s
     EXPECT_THAT(temporary_files(out), ::testing::Not(::testing::IsEmpty()))
         << "no temporary file seen";
   }
-  ::kill(pid, sig);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "the experiment ended before the signal, or by itself, at "
-                                   << after.count() << " ms: " << bytes(dir / "log.txt");
-  EXPECT_EQ(128 + WTERMSIG(status), sig == SIGTERM ? 143 : 130);
+  experiment.signal(sig);
+  const Started::Ended end = experiment.wait(60);
+  ASSERT_TRUE(end.ended) << "still running 60 s after the signal";
+  ASSERT_NE(end.killed_by, 0) << "the experiment ended before the signal, or by itself, at "
+                              << after.count() << " ms: " << bytes(dir / "log.txt");
+  EXPECT_EQ(128 + end.killed_by, sig == SIGTERM ? 143 : 130);
   EXPECT_THAT(temporary_files(out), ::testing::IsEmpty()) << after.count() << " ms";
   EXPECT_EQ(bytes(out / "metrics.csv"), "old metrics") << after.count() << " ms";
 }
