@@ -26,6 +26,10 @@ packages=(
   qemu-system-x86 linux-image-amd64 busybox-static cpio libusbredirparser-dev
   # golden check of the classifiers against WEKA itself
   weka default-jre-headless
+  # the Python module (`import tactile`) and its tests; matplotlib for the README's example
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+  # a single-node Slurm cluster for the `cluster` tests (daemons started by the tests' helper)
+  slurmctld slurmd slurm-client munge
 )
 
 missing=()
