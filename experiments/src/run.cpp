@@ -9,7 +9,9 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 
+#include "run_steps.hpp"
 #include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain.hpp"
 #include "tactile/common/atomic_write.hpp"
@@ -19,6 +21,7 @@
 #include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/common/version.hpp"
+#include "tactile/experiments/cells.hpp"
 #include "tactile/experiments/experiment.hpp"
 #include "tactile/movie/layout_json.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -39,9 +42,7 @@ std::string to_string(SourceKind kind) {
   return name_in(kSourceKindNames, kind);
 }
 
-namespace {
-
-capture::StrainMovie prepare(const ExperimentSource& s) {
+capture::StrainMovie prepare_source(const ExperimentSource& s) {
   if (s.kind == SourceKind::file) return *s.loaded;
   if (s.kind == SourceKind::ground_truth)
     return capture::ground_truth_strain_movie(s.scene, s.grid_spacing_mm);
@@ -51,6 +52,22 @@ capture::StrainMovie prepare(const ExperimentSource& s) {
   movie.source = fmt::format("synthetic {} scene, {} mm/s, seed {}, measured by tactile capture",
                              s.scene.scene, s.scene.speed_mm_per_s, s.scene.seed);
   return movie;
+}
+
+capture::StrainMovie run_strain(const capture::StrainMovie& base, const ExperimentSource& source,
+                                const MappingParams& p) {
+  if (p.strain != StrainMode::accumulated) return base;
+  auto strain = accumulate_along_tracks(base, p.accumulate);
+  if (strain.frames.empty()) {
+    throw std::runtime_error(fmt::format(
+        "source '{}': no frame shares three tracks with the reference frame", source.name));
+  }
+  return strain;
+}
+
+std::string made_by(const Experiment& ex, const std::string& created_utc) {
+  return fmt::format("tactile {} experiment '{}' ({}), seed {}, {}", kVersion, ex.name, ex.origin,
+                     ex.seed, created_utc);
 }
 
 nlohmann::json source_json(const ExperimentSource& s) {
@@ -73,6 +90,8 @@ nlohmann::json source_json(const ExperimentSource& s) {
   return j;
 }
 
+namespace {
+
 std::string strain_key(std::size_t source, const MappingParams& p) {
   return p.strain == StrainMode::accumulated
              ? fmt::format("{}:acc:{}:{}", source, p.accumulate.reference_frame,
@@ -85,10 +104,175 @@ std::string strain_key(std::size_t source, const MappingParams& p) {
 // The names run_experiment below and run_perception write: keep the three lists alike.
 Output experiment_output(std::string option, const fs::path& out_dir) {
   return output_folder(std::move(option), out_dir,
-                       {"experiment.json", "resolved.json", "metrics.csv"},
-                       {"movies", "plots", "perception"});
+                       {"experiment.json", "resolved.json", "metrics.csv", "manifest.tsv"},
+                       {"movies", "plots", "perception", "cells", "slurm"});
 }
 
+MappedRun map_run(const Experiment& ex, std::size_t index, const capture::StrainMovie& base,
+                  const capture::StrainMovie& source, const fs::path& out_dir,
+                  const std::string& created, std::mutex* hdf5) {
+  const auto& run = ex.runs[index];
+  const auto& layout = ex.layouts[run.layout];
+  MappingParams params = run.params;
+  params.program_version = kVersion;
+  MappedRun out;
+  const auto start = std::chrono::steady_clock::now();
+  auto mapped = map_strain_frames(source, layout, params);
+  auto& r = out.result;
+  r.map_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  r.frames = mapped.movie.frame_count;
+  r.um_per_strain = mapped.um_per_strain;
+  r.metrics = mapped.um_per_strain > 0
+                  ? fidelity(mapped.movie, source, mapped.placement, mapped.um_per_strain,
+                             params.slew_limit_um_per_s, params.field)
+                  : FidelityMetrics{};
+  const auto n = static_cast<std::size_t>(layout.contactor_count());
+  r.activity_um.resize(static_cast<std::size_t>(r.frames));
+  for (std::size_t f = 0; f < r.activity_um.size(); ++f) {
+    double sum = 0;
+    for (std::size_t j = 0; j < n; ++j) sum += std::abs(mapped.movie.deflection_um[f * n + j]);
+    r.activity_um[f] = sum / static_cast<double>(n);
+  }
+  std::string movie_file;
+  if (ex.write_movies) {
+    auto& movie = mapped.movie;
+    movie.provenance.source =
+        fmt::format("experiment '{}' ({}), run {}, source '{}': {}", ex.name, ex.origin, run.id,
+                    ex.sources[run.source].name, source.source);
+    movie.provenance.created_utc = created;
+    const fs::path file = out_dir / "movies" / (run.id + ".h5");
+    fs::create_directories(file.parent_path());
+    std::unique_lock<std::mutex> lock;
+    if (hdf5) lock = std::unique_lock(*hdf5);
+    movie::write_tactile_movie(file, movie);
+    movie_file = file.string();
+  }
+  out.resolved["id"] = run.id;
+  out.resolved["source"] = ex.sources[run.source].name;
+  out.resolved["layout"] = layout.name;
+  out.resolved["movie"] = movie_file;
+  // The placement is the default one unless given; parameters_json records the one used.
+  out.resolved["parameters"] = nlohmann::json::parse(
+      parameters_json(run.params, run.params.placement.value_or(default_placement(base)),
+                      r.um_per_strain / run.params.gain_um_per_strain));
+  const auto& p = run.params;
+  const auto& m = r.metrics;
+  out.metrics_row = fmt::format(
+      "{},{},{},{},{},{},{:g},{:g},{},{},{:.6f},{:.6g},{:.6g},{:.6f},{:.6f},{:.6g},{:.6g},{:.2f}",
+      run.id, ex.sources[run.source].name, layout.name, to_string(p.method), to_string(p.strain),
+      to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz.value(), r.frames,
+      m.compared_pairs, m.strain_correlation, m.strain_rms_error, m.source_strain_rms,
+      m.saturated_fraction, m.slew_limited_fraction, m.rms_acceleration_um_per_s2,
+      m.rms_deflection_um, r.map_ms);
+  return out;
+}
+
+fs::path write_experiment_copy(const Experiment& ex, const fs::path& out_dir) {
+  const fs::path path = out_dir / "experiment.json";
+  write_text_atomically(path, ex.text);
+  return path;
+}
+
+void write_merged(const Experiment& ex, const std::vector<MappedRun>& runs, const fs::path& out_dir,
+                  const std::string& made_by_text, int threads, std::vector<fs::path>& files) {
+  {
+    nlohmann::json j;
+    j["made_by"] = made_by_text;
+    j["program_version"] = kVersion;
+    j["created_utc"] = made_by_text.substr(made_by_text.rfind(", ") + 2);
+    j["experiment"] = ex.name;
+    j["origin"] = ex.origin;
+    j["seed"] = ex.seed;
+    j["threads"] = threads;
+    for (const auto& s : ex.sources) j["sources"].push_back(source_json(s));
+    for (const auto& l : ex.layouts)
+      j["layouts"].push_back(nlohmann::json::parse(movie::layout_to_json(l)));
+    for (const auto& run : runs) j["runs"].push_back(run.resolved);
+    const fs::path path = out_dir / "resolved.json";
+    AtomicOstream out(path);
+    out << j.dump(2) << '\n';
+    csv::finish(out, path);
+    files.push_back(path);
+  }
+  {
+    const fs::path path = out_dir / "metrics.csv";
+    AtomicOstream out(path);
+    out << "# made by " << made_by_text << '\n'
+        << "run,source,layout,method,strain,normalisation,gain_um_per_strain,rate_hz,frames,"
+           "compared_pairs,strain_correlation,strain_rms_error,source_strain_rms,"
+           "saturated_fraction,slew_limited_fraction,rms_acceleration_um_per_s2,"
+           "rms_deflection_um,map_ms\n";
+    for (const auto& run : runs) out << run.metrics_row << '\n';
+    csv::finish(out, path);
+    files.push_back(path);
+  }
+  std::vector<std::string> labels, legend = names_of(kMappingMethods);
+  std::vector<double> correlation, saturation;
+  std::vector<int> colours;
+  for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+    const auto& run = ex.runs[i];
+    labels.push_back(fmt::format(
+        "{} {} {} {}{}", ex.sources[run.source].name, ex.layouts[run.layout].name,
+        to_string(run.params.strain), to_string(run.params.normalisation),
+        run.params.gain_um_per_strain != 1000 ? fmt::format(" g{:g}", run.params.gain_um_per_strain)
+                                              : ""));
+    correlation.push_back(runs[i].result.metrics.strain_correlation);
+    saturation.push_back(runs[i].result.metrics.saturated_fraction);
+    const auto m = std::find(kMappingMethods.begin(), kMappingMethods.end(), run.params.method);
+    colours.push_back(static_cast<int>(m - kMappingMethods.begin()));
+  }
+  const std::string footer = "made by " + made_by_text;
+  const fs::path plots = out_dir / "plots";
+  fs::create_directories(plots);
+  const auto keep = [&](const ChartFiles& f) { files.insert(files.end(), {f.png, f.svg}); };
+  // The two bar charts show the same runs in the same colours; only the metric differs.
+  BarChart bars{.labels = labels, .colours = colours, .legend = legend, .footer = footer};
+  bars.title = fmt::format("{}: imposed vs source strain between neighbours", ex.name);
+  bars.value_label = "correlation";
+  bars.values = correlation;
+  bars.min = -0.5;
+  bars.max = 1.0;
+  keep(write_bar_chart(plots / "correlation.png", bars));
+  bars.title = fmt::format("{}: fraction of contactor-frames at the range limits", ex.name);
+  bars.value_label = "saturated fraction";
+  bars.values = saturation;
+  bars.min = 0.0;
+  keep(write_bar_chart(plots / "saturation.png", bars));
+  // Activity: one plot per source and layout, one line per method and parameter set, so
+  // the lines compared share the same skin and the same contactors.
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+    groups[{ex.runs[i].source, ex.runs[i].layout}].push_back(i);
+  }
+  for (const auto& [key, members] : groups) {
+    const auto& first = ex.runs[members.front()];
+    // Runs of one group may differ in rate; the time axis uses the first run's period.
+    const double dt_s = 1.0 / first.params.rate_hz.value();
+    XYChart chart{.title = fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
+                                       ex.sources[key.first].name, ex.layouts[key.second].name),
+                  .x = {.label = "t (s)"},
+                  .y = {.label = "mean |deflection| (um)", .min = 0},
+                  .footer = footer,
+                  .width = 1000,
+                  .height = 500};
+    for (const auto i : members) {
+      const auto& p = ex.runs[i].params;
+      ChartSeries& s = chart.series.emplace_back();
+      s.label =
+          fmt::format("{} {} {} gain {:g} ({:g} Hz)", to_string(p.method), to_string(p.strain),
+                      to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz.value());
+      s.y = runs[i].result.activity_um;
+      for (std::size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k) * dt_s);
+    }
+    keep(write_line_chart(plots / fmt::format("activity-{}-{}.png", ex.sources[key.first].name,
+                                              ex.layouts[key.second].name),
+                          chart));
+  }
+}
+
+// The one-machine run is the cells' plan, every cell run here on a pool of threads, and their
+// merge: the same files a cluster's run gives.
 ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int threads,
                                 const std::function<void(const std::string&)>& progress) {
   ExperimentReport report;
@@ -96,22 +280,33 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
   const auto say = [&](const std::string& s) {
     if (progress) progress(s);
   };
-  const std::string created = h5::utc_now_iso8601();
-  const std::string made_by = fmt::format("tactile {} experiment '{}' ({}), seed {}, {}", kVersion,
-                                          ex.name, ex.origin, ex.seed, created);
-  fs::create_directories(out_dir);
+  const Plan plan = plan_experiment(ex);
+  write_manifest(ex, plan, out_dir);
+  std::vector<std::size_t> pending_runs;
+  std::optional<std::size_t> perception_cell;
+  for (const auto& cell : plan.cells) {
+    if (cell_status(cell, out_dir).state == CellState::done) continue;
+    if (cell.kind == CellKind::run) pending_runs.push_back(cell.index);
+    if (cell.kind == CellKind::perception) perception_cell = cell.index;
+  }
 
-  // 1. Sources, then the strain each distinct (source, strain) pair needs.
+  // 1. Sources the pending runs need, then the strain each distinct (source, strain) pair needs.
   auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::size_t> needed;
+  for (const auto c : pending_runs) needed.push_back(ex.runs[plan.cells[c].run].source);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   std::vector<capture::StrainMovie> base(ex.sources.size());
-  parallel_for(ex.sources.size(), report.threads, [&](std::size_t i) {
-    base[i] = prepare(ex.sources[i]);
+  parallel_for(needed.size(), report.threads, [&](std::size_t k) {
+    const std::size_t i = needed[k];
+    base[i] = prepare_source(ex.sources[i]);
     say(fmt::format("source {} ready ({} strain frames)", ex.sources[i].name,
                     base[i].frames.size()));
   });
   std::map<std::string, std::size_t> key_index;
   std::vector<std::pair<std::size_t, MappingParams>> strain_jobs;
-  for (const auto& run : ex.runs) {
+  for (const auto c : pending_runs) {
+    const auto& run = ex.runs[plan.cells[c].run];
     if (key_index.emplace(strain_key(run.source, run.params), strain_jobs.size()).second) {
       strain_jobs.emplace_back(run.source, run.params);
     }
@@ -119,207 +314,44 @@ ExperimentReport run_experiment(Experiment ex, const fs::path& out_dir, int thre
   std::vector<capture::StrainMovie> strain(strain_jobs.size());
   parallel_for(strain_jobs.size(), report.threads, [&](std::size_t i) {
     const auto& [s, p] = strain_jobs[i];
-    if (p.strain == StrainMode::accumulated) {
-      strain[i] = accumulate_along_tracks(base[s], p.accumulate);
-      if (strain[i].frames.empty()) {
-        throw std::runtime_error(
-            fmt::format("source '{}': no frame shares three tracks with the "
-                        "reference frame",
-                        ex.sources[s].name));
-      }
-    } else {
-      strain[i] = base[s];
-    }
+    strain[i] = run_strain(base[s], ex.sources[s], p);
   });
   report.prepare_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  // 2. Runs.
+  // 2. Run cells, then the merge.
   t0 = std::chrono::steady_clock::now();
-  if (ex.write_movies) fs::create_directories(out_dir / "movies");
-  report.results.resize(ex.runs.size());
-  std::vector<std::string> movie_files(ex.runs.size());
   std::mutex hdf5_mutex;  // the HDF5 library is not thread-safe as Debian builds it
-  parallel_for(ex.runs.size(), report.threads, [&](std::size_t i) {
-    const auto& run = ex.runs[i];
-    const auto& source = strain[key_index.at(strain_key(run.source, run.params))];
-    const auto& layout = ex.layouts[run.layout];
-    MappingParams params = run.params;
-    params.program_version = kVersion;
-    const auto start = std::chrono::steady_clock::now();
-    auto mapped = map_strain_frames(source, layout, params);
-    auto& r = report.results[i];
-    r.map_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    r.frames = mapped.movie.frame_count;
-    r.um_per_strain = mapped.um_per_strain;
-    r.metrics = mapped.um_per_strain > 0
-                    ? fidelity(mapped.movie, source, mapped.placement, mapped.um_per_strain,
-                               params.slew_limit_um_per_s, params.field)
-                    : FidelityMetrics{};
-    const auto n = static_cast<std::size_t>(layout.contactor_count());
-    r.activity_um.resize(static_cast<std::size_t>(r.frames));
-    for (std::size_t f = 0; f < r.activity_um.size(); ++f) {
-      double sum = 0;
-      for (std::size_t j = 0; j < n; ++j) sum += std::abs(mapped.movie.deflection_um[f * n + j]);
-      r.activity_um[f] = sum / static_cast<double>(n);
-    }
-    if (ex.write_movies) {
-      auto& movie = mapped.movie;
-      movie.provenance.source =
-          fmt::format("experiment '{}' ({}), run {}, source '{}': {}", ex.name, ex.origin, run.id,
-                      ex.sources[run.source].name, source.source);
-      movie.provenance.created_utc = created;
-      const fs::path file = out_dir / "movies" / (run.id + ".h5");
-      const std::lock_guard lock(hdf5_mutex);
-      movie::write_tactile_movie(file, movie);
-      movie_files[i] = file.string();
-    }
-    say(fmt::format("run {} done: correlation {:.3f}", run.id, r.metrics.strain_correlation));
+  parallel_for(pending_runs.size(), report.threads, [&](std::size_t k) {
+    const Cell& cell = plan.cells[pending_runs[k]];
+    const auto& run = ex.runs[cell.run];
+    CellContext context{.threads = 1,
+                        .runner = "local",
+                        .own_process = false,
+                        .base = &base[run.source],
+                        .strain = &strain[key_index.at(strain_key(run.source, run.params))],
+                        .hdf5 = &hdf5_mutex,
+                        .progress = progress};
+    run_cell(ex, plan, cell.index, out_dir, context);
   });
-  for (const auto& f : movie_files) {
-    if (!f.empty()) report.files.emplace_back(f);
-  }
-
-  // 3. Configuration, metrics and plots.
-  {
-    const fs::path path = out_dir / "experiment.json";
-    AtomicOstream out(path);
-    out << ex.text;
-    csv::finish(out, path);
-    report.files.push_back(path);
-  }
-  {
-    nlohmann::json j;
-    j["made_by"] = made_by;
-    j["program_version"] = kVersion;
-    j["created_utc"] = created;
-    j["experiment"] = ex.name;
-    j["origin"] = ex.origin;
-    j["seed"] = ex.seed;
-    j["threads"] = report.threads;
-    for (const auto& s : ex.sources) j["sources"].push_back(source_json(s));
-    for (const auto& l : ex.layouts)
-      j["layouts"].push_back(nlohmann::json::parse(movie::layout_to_json(l)));
-    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
-      const auto& run = ex.runs[i];
-      nlohmann::json rj;
-      rj["id"] = run.id;
-      rj["source"] = ex.sources[run.source].name;
-      rj["layout"] = ex.layouts[run.layout].name;
-      rj["movie"] = movie_files[i];
-      // The placement is the default one unless given; parameters_json records the one used.
-      rj["parameters"] = nlohmann::json::parse(parameters_json(
-          run.params, run.params.placement.value_or(default_placement(base[run.source])),
-          report.results[i].um_per_strain / run.params.gain_um_per_strain));
-      j["runs"].push_back(rj);
-    }
-    const fs::path path = out_dir / "resolved.json";
-    AtomicOstream out(path);
-    out << j.dump(2) << '\n';
-    csv::finish(out, path);
-    report.files.push_back(path);
-  }
-  {
-    const fs::path path = out_dir / "metrics.csv";
-    AtomicOstream out(path);
-    out << "# made by " << made_by << '\n'
-        << "run,source,layout,method,strain,normalisation,gain_um_per_strain,rate_hz,frames,"
-           "compared_pairs,strain_correlation,strain_rms_error,source_strain_rms,"
-           "saturated_fraction,slew_limited_fraction,rms_acceleration_um_per_s2,"
-           "rms_deflection_um,map_ms\n";
-    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
-      const auto& run = ex.runs[i];
-      const auto& p = run.params;
-      const auto& r = report.results[i];
-      const auto& m = r.metrics;
-      out << fmt::format(
-          "{},{},{},{},{},{},{:g},{:g},{},{},{:.6f},{:.6g},{:.6g},{:.6f},{:.6f},{:.6g},"
-          "{:.6g},{:.2f}\n",
-          run.id, ex.sources[run.source].name, ex.layouts[run.layout].name, to_string(p.method),
-          to_string(p.strain), to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz.value(),
-          r.frames, m.compared_pairs, m.strain_correlation, m.strain_rms_error, m.source_strain_rms,
-          m.saturated_fraction, m.slew_limited_fraction, m.rms_acceleration_um_per_s2,
-          m.rms_deflection_um, r.map_ms);
-    }
-    csv::finish(out, path);
-    report.files.push_back(path);
-  }
-  {
-    std::vector<std::string> labels, legend = names_of(kMappingMethods);
-    std::vector<double> correlation, saturation;
-    std::vector<int> colours;
-    std::vector<std::vector<double>> activity;
-    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
-      const auto& run = ex.runs[i];
-      labels.push_back(fmt::format("{} {} {} {}{}", ex.sources[run.source].name,
-                                   ex.layouts[run.layout].name, to_string(run.params.strain),
-                                   to_string(run.params.normalisation),
-                                   run.params.gain_um_per_strain != 1000
-                                       ? fmt::format(" g{:g}", run.params.gain_um_per_strain)
-                                       : ""));
-      correlation.push_back(report.results[i].metrics.strain_correlation);
-      saturation.push_back(report.results[i].metrics.saturated_fraction);
-      const auto m = std::find(kMappingMethods.begin(), kMappingMethods.end(), run.params.method);
-      colours.push_back(static_cast<int>(m - kMappingMethods.begin()));
-      activity.push_back(report.results[i].activity_um);
-    }
-    const std::string footer = "made by " + made_by;
-    const fs::path plots = out_dir / "plots";
-    fs::create_directories(plots);
-    const auto keep = [&](const ChartFiles& f) {
-      report.files.insert(report.files.end(), {f.png, f.svg});
-    };
-    // The two bar charts show the same runs in the same colours; only the metric differs.
-    BarChart bars{.labels = labels, .colours = colours, .legend = legend, .footer = footer};
-    bars.title = fmt::format("{}: imposed vs source strain between neighbours", ex.name);
-    bars.value_label = "correlation";
-    bars.values = correlation;
-    bars.min = -0.5;
-    bars.max = 1.0;
-    keep(write_bar_chart(plots / "correlation.png", bars));
-    bars.title = fmt::format("{}: fraction of contactor-frames at the range limits", ex.name);
-    bars.value_label = "saturated fraction";
-    bars.values = saturation;
-    bars.min = 0.0;
-    keep(write_bar_chart(plots / "saturation.png", bars));
-    // Activity: one plot per source and layout, one line per method and parameter set, so
-    // the lines compared share the same skin and the same contactors.
-    std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> groups;
-    for (std::size_t i = 0; i < ex.runs.size(); ++i) {
-      groups[{ex.runs[i].source, ex.runs[i].layout}].push_back(i);
-    }
-    for (const auto& [key, members] : groups) {
-      const auto& first = ex.runs[members.front()];
-      // Runs of one group may differ in rate; the time axis uses the first run's period.
-      const double dt_s = 1.0 / first.params.rate_hz.value();
-      XYChart chart{.title = fmt::format("{}: mean |deflection|, source {} on {}", ex.name,
-                                         ex.sources[key.first].name, ex.layouts[key.second].name),
-                    .x = {.label = "t (s)"},
-                    .y = {.label = "mean |deflection| (um)", .min = 0},
-                    .footer = footer,
-                    .width = 1000,
-                    .height = 500};
-      for (const auto i : members) {
-        const auto& p = ex.runs[i].params;
-        ChartSeries& s = chart.series.emplace_back();
-        s.label =
-            fmt::format("{} {} {} gain {:g} ({:g} Hz)", to_string(p.method), to_string(p.strain),
-                        to_string(p.normalisation), p.gain_um_per_strain, p.rate_hz.value());
-        s.y = report.results[i].activity_um;
-        for (std::size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k) * dt_s);
-      }
-      keep(write_line_chart(plots / fmt::format("activity-{}-{}.png", ex.sources[key.first].name,
-                                                ex.layouts[key.second].name),
-                            chart));
-    }
-  }
-  report.run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (ex.perception) {
-    t0 = std::chrono::steady_clock::now();
-    report.perception = run_perception(ex, out_dir, report.threads, made_by, report.files, say);
+  if (perception_cell) {
+    const auto p0 = std::chrono::steady_clock::now();
+    const auto outcome =
+        run_cell(ex, plan, *perception_cell, out_dir,
+                 {.threads = report.threads, .runner = "local", .progress = progress});
+    report.perception = outcome.perception;
     report.perception_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
   }
+  auto merged = merge_experiment(ex, plan, out_dir, report.threads);
+  if (!merged.incomplete.empty()) {
+    throw std::runtime_error(
+        fmt::format("experiment '{}': cell {} did not finish", ex.name, merged.incomplete.front()));
+  }
+  report.results = std::move(merged.results);
+  report.lines = std::move(merged.perception);
+  report.files = std::move(merged.files);
+  report.run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                 report.perception_s;
   return report;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -11,10 +12,64 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "tactile/experiments/cells.hpp"
 #include "tactile/experiments/experiment.hpp"
+#include "tactile/experiments/slurm.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
+
+namespace {
+
+// Where this process runs, for the cell's status file: the Slurm task when under Slurm.
+std::string runner_name() {
+  const char* job = std::getenv("SLURM_ARRAY_JOB_ID");
+  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
+  if (job && task) return fmt::format("slurm job {}_{}", job, task);
+  if (const char* plain = std::getenv("SLURM_JOB_ID")) return fmt::format("slurm job {}", plain);
+  return "command line";
+}
+
+void print_results(const experiments::Experiment& ex,
+                   const std::vector<experiments::RunResult>& results,
+                   const std::vector<experiments::PerceptionLine>& perception) {
+  fmt::print("{:<44} {:>6} {:>9} {:>6} {:>8}\n", "run", "corr", "rms err", "sat", "map ms");
+  for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+    const auto& r = results[i];
+    fmt::print("{:<44} {:>6.3f} {:>9.4f} {:>6.3f} {:>8.1f}\n", ex.runs[i].id,
+               r.metrics.strain_correlation, r.metrics.strain_rms_error,
+               r.metrics.saturated_fraction, r.map_ms);
+  }
+  if (perception.empty()) return;
+  fmt::print(
+      "perception (Table 2 from movies; accuracy with all 76 inputs, mean R^2, cascade RMS):\n");
+  for (const auto& l : perception)
+    fmt::print("  {:<40} exp {} {:>3}/{:<3} R^2 {:.3f} cascade RMS {:.2f} mm\n", l.table, l.degree,
+               l.correct, l.tested, l.mean_r2, l.cascade_rms_mm);
+}
+
+int print_status(const experiments::Plan& plan, const fs::path& out) {
+  const auto status = experiments::experiment_status(plan, out);
+  std::size_t done = 0, running = 0, failed = 0, missing = 0;
+  for (const auto& k : status.kinds) {
+    done += k.done;
+    running += k.running;
+    failed += k.failed;
+    missing += k.missing;
+  }
+  fmt::print("experiment '{}' in {}: {} cells: {} done, {} running, {} failed, {} missing\n",
+             plan.experiment, out.string(), plan.cells.size(), done, running, failed, missing);
+  fmt::print("{:<11} {:>6} {:>6} {:>8} {:>7} {:>8} {:>12} {:>14}\n", "kind", "cells", "done",
+             "running", "failed", "missing", "CPU s (done)", "CPU s per cell");
+  for (const auto& k : status.kinds)
+    fmt::print("{:<11} {:>6} {:>6} {:>8} {:>7} {:>8} {:>12.2f} {:>14.3f}\n", to_string(k.kind),
+               k.cells, k.done, k.running, k.failed, k.missing, k.cpu_s,
+               k.done ? k.cpu_s / static_cast<double>(k.done) : 0.0);
+  for (const auto& note : status.notes) fmt::print("  {}\n", note);
+  return 0;
+}
+
+}  // namespace
 
 void add_experiment(CLI::App& app, Action& action) {
   struct Options {
@@ -22,6 +77,9 @@ void add_experiment(CLI::App& app, Action& action) {
     std::optional<fs::path> out;
     int threads = 0;
     bool quiet = false;
+    bool plan = false, merge = false, status = false, slurm = false, submit = false;
+    std::optional<std::string> cell;
+    experiments::SlurmOptions slurm_options;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -31,7 +89,10 @@ void add_experiment(CLI::App& app, Action& action) {
       "The whole file is checked before any work starts. Schema: docs/formats.md;\n"
       "example: tools/experiments/methods.json. With a \"perception\" section, also Table 2\n"
       "of paper 2 computed from each mapping's movies of the simulated fingertip's skin\n"
-      "(tools/experiments/perception.json).");
+      "(tools/experiments/perception.json).\n"
+      "The grid is a list of independent cells (manifest.tsv): --plan writes it, --cell runs\n"
+      "one cell, --merge gathers them; --slurm writes a Slurm job array for them\n"
+      "(docs/experiments.md). Without these, all three happen here.");
   sub->add_option("EXP_JSON", opt->file, "Experiment file (JSON)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -40,6 +101,50 @@ void add_experiment(CLI::App& app, Action& action) {
       ->check(within(0, 256))
       ->capture_default_str();
   sub->add_flag("--quiet", opt->quiet, "Print only the summary");
+  auto* plan = sub->add_flag("--plan", opt->plan,
+                             "Only write the manifest of cells (manifest.tsv) and experiment.json");
+  auto* cell = sub->add_option("--cell", opt->cell,
+                               "Run one cell, by its id or its index in the manifest (skipped "
+                               "when already done)");
+  auto* merge = sub->add_flag("--merge", opt->merge,
+                              "Gather every cell's results into metrics.csv, resolved.json and "
+                              "the plots; exit 1 naming the cells not done");
+  auto* status = sub->add_flag("--status", opt->status,
+                               "With --merge: print done / running / failed / missing cells and "
+                               "CPU time per cell kind, and merge nothing");
+  auto* slurm = sub->add_flag("--slurm", opt->slurm,
+                              "Write a Slurm job array running the cells not done and a merge "
+                              "job after it (into OUT/slurm); print the sbatch commands");
+  auto* partition =
+      sub->add_option("--partition", opt->slurm_options.partition, "With --slurm: partition");
+  auto* max_parallel =
+      sub->add_option("--max-parallel", opt->slurm_options.max_parallel,
+                      "With --slurm: array tasks running at once (0: as many as Slurm allows)")
+          ->check(within(0, 100000));
+  auto* per_task = sub->add_option("--cells-per-task", opt->slurm_options.cells_per_task,
+                                   "With --slurm: cells each array task runs in turn")
+                       ->check(within(1, 1000000))
+                       ->capture_default_str();
+  auto* time_limit =
+      sub->add_option("--time", opt->slurm_options.time_limit,
+                      "With --slurm: time limit of each task and of the merge (sbatch --time)")
+          ->check(CLI::Validator(
+              [](std::string& v) -> std::string {
+                try {
+                  experiments::check_time_limit(v);
+                  return {};
+                } catch (const std::invalid_argument& e) {
+                  return e.what();
+                }
+              },
+              "TIME"));
+  auto* submit = sub->add_flag("--submit", opt->submit,
+                               "With --slurm: submit both jobs with sbatch and print their ids");
+  plan->excludes(cell, merge, slurm);
+  cell->excludes(merge, slurm);
+  merge->excludes(slurm);
+  status->needs(merge);
+  for (auto* o : {partition, max_parallel, per_task, time_limit, submit}) o->needs(slurm);
   sub->callback([opt, &action] {
     action = [opt] {
       const auto t0 = std::chrono::steady_clock::now();
@@ -50,8 +155,87 @@ void add_experiment(CLI::App& app, Action& action) {
         if (!s.path.empty()) inputs.push_back({"source '" + s.name + "'", s.path});
       for (const auto& layout : ex.layout_files) inputs.push_back({"layout", layout});
       refuse_output_over_input({experiments::experiment_output("--out", out)}, inputs);
-      fmt::print("experiment '{}': {} sources x {} layouts -> {} runs, checked; writing {}\n",
-                 ex.name, ex.sources.size(), ex.layouts.size(), ex.runs.size(), out.string());
+      const experiments::Plan plan = experiments::plan_experiment(ex);
+      if (opt->plan) {
+        const fs::path manifest = experiments::write_manifest(ex, plan, out);
+        fmt::print("experiment '{}': {} cells planned into {}\n", ex.name, plan.cells.size(),
+                   manifest.string());
+        return 0;
+      }
+      if (opt->cell || opt->merge || opt->slurm) {
+        if (opt->slurm && !fs::exists(out / "manifest.tsv")) {
+          experiments::write_manifest(ex, plan, out);
+        }
+        experiments::check_manifest(plan, out);
+      }
+      if (opt->cell) {
+        std::size_t index = 0;
+        try {
+          index = experiments::find_cell(plan, *opt->cell);
+        } catch (const std::invalid_argument& e) {
+          fmt::print(stderr, "tactile experiment: {}\n", e.what());
+          return 2;
+        }
+        const auto& c = plan.cells[index];
+        const auto outcome = experiments::run_cell(ex, plan, index, out,
+                                                   {.threads = opt->threads,
+                                                    .runner = runner_name(),
+                                                    .progress = [&](const std::string& m) {
+                                                      if (!opt->quiet) fmt::print("  {}\n", m);
+                                                    }});
+        if (outcome.skipped)
+          fmt::print("cell {} {} ({}): already done, skipped\n", index, c.id, c.name);
+        else
+          fmt::print("cell {} {} ({}): done in {:.2f} s wall, {:.2f} s CPU\n", index, c.id, c.name,
+                     outcome.wall_s, outcome.cpu_s);
+        return 0;
+      }
+      if (opt->merge && opt->status) return print_status(plan, out);
+      if (opt->merge) {
+        const auto merged = experiments::merge_experiment(ex, plan, out, opt->threads);
+        if (!merged.incomplete.empty()) {
+          fmt::print(stderr, "tactile experiment: {} of {} cells are not done; nothing merged:\n",
+                     merged.incomplete.size(), plan.cells.size());
+          for (const auto& c : merged.incomplete) fmt::print(stderr, "  {}\n", c);
+          return 1;
+        }
+        print_results(ex, merged.results, merged.perception);
+        fmt::print("experiment: {} cells merged; {} files in {}\n", plan.cells.size(),
+                   merged.files.size(), out.string());
+        return 0;
+      }
+      if (opt->slurm) {
+        experiments::SlurmJobs jobs;
+        try {
+          jobs = experiments::write_slurm_jobs(plan, fs::absolute(out),
+                                               fs::read_symlink("/proc/self/exe"),
+                                               fs::absolute(opt->file), opt->slurm_options);
+        } catch (const std::invalid_argument& e) {
+          fmt::print(stderr, "tactile experiment: {}\n", e.what());
+          return 2;
+        }
+        fmt::print("experiment '{}': {} of {} cells to run in {} array tasks; scripts in {}\n",
+                   ex.name, jobs.cells, plan.cells.size(), jobs.tasks,
+                   (fs::absolute(out) / "slurm").string());
+        if (!opt->submit) {
+          fmt::print("submit with:\n{}", experiments::slurm_commands_text(jobs));
+          return 0;
+        }
+        std::string array_job;
+        if (jobs.tasks > 0) {
+          array_job = experiments::submit_batch(jobs.cells_command);
+          fmt::print("cells job {}\n", array_job);
+        }
+        const std::string merge_job =
+            experiments::submit_batch(experiments::with_array_job(jobs.merge_command, array_job));
+        fmt::print("merge job {}\n", merge_job);
+        return 0;
+      }
+      fmt::print(
+          "experiment '{}': {} sources x {} layouts -> {} runs ({} cells), checked; "
+          "writing {}\n",
+          ex.name, ex.sources.size(), ex.layouts.size(), ex.runs.size(), plan.cells.size(),
+          out.string());
       std::mutex print_mutex;
       const auto report =
           experiments::run_experiment(ex, out, opt->threads, [&](const std::string& message) {
@@ -61,26 +245,7 @@ void add_experiment(CLI::App& app, Action& action) {
           });
       const double total_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fmt::print("{:<44} {:>6} {:>9} {:>6} {:>8}\n", "run", "corr", "rms err", "sat", "map ms");
-      for (std::size_t i = 0; i < ex.runs.size(); ++i) {
-        const auto& r = report.results[i];
-        fmt::print("{:<44} {:>6.3f} {:>9.4f} {:>6.3f} {:>8.1f}\n", ex.runs[i].id,
-                   r.metrics.strain_correlation, r.metrics.strain_rms_error,
-                   r.metrics.saturated_fraction, r.map_ms);
-      }
-      if (!report.perception.empty()) {
-        fmt::print(
-            "perception (Table 2 from movies; accuracy with all 76 inputs, mean R^2, "
-            "cascade RMS):\n");
-        for (const auto& t : report.perception)
-          for (const auto& row : t.rows)
-            if (row.result.inputs == "all") {
-              const auto& r = row.result;
-              fmt::print("  {:<40} exp {} {:>3}/{:<3} R^2 {:.3f} cascade RMS {:.2f} mm\n", t.id,
-                         r.degree, r.correct, r.tested, (r.r2[0] + r.r2[1] + r.r2[2]) / 3,
-                         r.cascade_rms_mm);
-            }
-      }
+      print_results(ex, report.results, report.lines);
       fmt::print(
           "experiment: {} runs on {} threads: sources {:.2f} s, runs {:.2f} s, perception "
           "{:.2f} s, total {:.2f} s; {} files in {}\n",

@@ -104,9 +104,17 @@ struct PerceptionTable {
   std::vector<perception::TimedCascade> rows;  // as run_table2
 };
 
+// A line of the perception summary a command prints (Table 2 with all 76 inputs).
+struct PerceptionLine {
+  std::string table;
+  int degree = 1, correct = 0, tested = 0;
+  double mean_r2 = 0, cascade_rms_mm = 0;
+};
+
 struct ExperimentReport {
   std::vector<RunResult> results;            // in the order of Experiment::runs
   std::vector<PerceptionTable> perception;   // the sensor's first, when asked for
+  std::vector<PerceptionLine> lines;         // of `perception`, as the merge reads them
   std::vector<std::filesystem::path> files;  // everything written
   double prepare_s = 0;                      // sources made or read
   double run_s = 0;                          // all mappings, metrics and movie files
@@ -114,8 +122,9 @@ struct ExperimentReport {
   int threads = 1;
 };
 
-// Prepares the sources and runs every mapping on `threads` workers (0 = all cores), then writes
-// into out_dir (created): experiment.json (the input as given), resolved.json (every run's
+// The experiment's cells (cells.hpp) run on `threads` workers (0 = all cores), skipping those
+// already done, then merged: writes into out_dir (created) manifest.tsv and cells/ (see
+// cells.hpp), experiment.json (the input as given), resolved.json (every run's
 // resolved parameters, layouts and provenance), metrics.csv, movies/<run id>.h5 (if
 // write_movies), plots/correlation.png, plots/saturation.png and
 // plots/activity-<source>-<layout>.png; with a perception section also
