@@ -132,8 +132,10 @@ std::string slurm_commands_text(const SlurmJobs& jobs) {
     return s;
   };
   if (jobs.tasks == 0) return line(jobs.merge_command) + "\n";
-  return fmt::format("array_job=$({})\n{}\n", line(jobs.cells_command),
-                     line(with_array_job(jobs.merge_command, "${array_job%%;*}")));
+  // The array's id goes in unquoted by line() and is then replaced by a shell expansion.
+  std::string merge = line(jobs.merge_command);
+  merge.replace(merge.find("ARRAY_JOB"), 9, "\"${array_job%%;*}\"");
+  return fmt::format("array_job=$({})\n{}\n", line(jobs.cells_command), merge);
 }
 
 std::vector<std::string> with_array_job(std::vector<std::string> command,
