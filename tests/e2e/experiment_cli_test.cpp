@@ -93,3 +93,47 @@ TEST(ExperimentCli, BenchMapPrintsItsFigures) {
   EXPECT_THAT(r.output, HasSubstr("median ms"));
   EXPECT_THAT(r.output, HasSubstr("integrated"));
 }
+
+TEST(ExperimentCli, CellsRefuseBadChoicesDamagedManifestsAndBadSlurmNumbers) {
+  const tactile::test::TempDir d_tmp("cells");
+  const std::filesystem::path& d = d_tmp.path();
+  std::ofstream(d / "tiny.json") << kTiny;
+  const std::string exp =
+      "experiment " + (d / "tiny.json").string() + " --out " + (d / "out").string();
+  auto r = run_tactile(exp + " --cell 0");
+  EXPECT_EQ(r.exit_code, 1);  // nothing planned yet
+  EXPECT_THAT(r.output, HasSubstr("manifest.tsv: no manifest (plan the cells first"));
+  r = run_tactile(exp + " --plan");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("2 cells planned"));
+  r = run_tactile(exp + " --cell 2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--cell 2: out of range: the manifest has 2 cells, 0 to 1"));
+  r = run_tactile(exp + " --cell run-123");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--cell run-123: no cell has this id"));
+  r = run_tactile(exp + " --merge");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("2 of 2 cells are not done; nothing merged"));
+  r = run_tactile(exp + " --cell 1 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_tactile(exp + " --merge --status");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("2 cells: 1 done, 0 running, 0 failed, 1 missing"));
+  for (const char* bad :
+       {"--max-parallel -1", "--cells-per-task 0", "--time 1:2:3:4", "--cells-per-task x"}) {
+    r = run_tactile(exp + " --slurm " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.output, HasSubstr(std::string(bad).substr(0, std::string(bad).find(' ')))) << bad;
+  }
+  r = run_tactile(exp + " --cells-per-task 2");  // a Slurm option without --slurm
+  EXPECT_EQ(r.exit_code, 2);
+  // A manifest cut short is damaged work: exit 1 naming the file and line.
+  std::filesystem::resize_file(d / "out" / "manifest.tsv",
+                               std::filesystem::file_size(d / "out" / "manifest.tsv") - 10);
+  r = run_tactile(exp + " --cell 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("manifest.tsv line 5: damaged"));
+  r = run_tactile(exp + " --slurm");
+  EXPECT_EQ(r.exit_code, 1);
+}
