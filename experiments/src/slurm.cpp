@@ -94,11 +94,12 @@ SlurmJobs write_slurm_jobs(const Plan& plan, const fs::path& out_dir, const fs::
         "cells=({}\n)\n"
         "per_task={}\n"
         "first=$((SLURM_ARRAY_TASK_ID * per_task))\n"
-        "status=0\n"
+        "args=()\n"
         "for ((i = first; i < first + per_task && i < ${{#cells[@]}}; ++i)); do\n"
-        "  {} --cell \"${{cells[i]}}\" --threads 1 --quiet || status=1\n"
+        "  args+=(--cell \"${{cells[i]}}\")\n"
         "done\n"
-        "exit $status\n",
+        "# One process for the task's cells: it runs each even when one fails, then exits 1.\n"
+        "exec {} \"${{args[@]}}\" --threads 1 --quiet\n",
         (out_dir / "manifest.tsv").string(), per_task, per_task, per_task - 1, list, per_task,
         run_cell);
     jobs.cells_script = dir / "cells.sh";

@@ -207,7 +207,8 @@ TEST(Slurm, ScriptsRunTheCellsNotDoneInThrottledTasks) {
   EXPECT_THAT(cells, HasSubstr("#SBATCH --time=0:30:00\n"));
   EXPECT_THAT(cells, HasSubstr("cells=(\n  1 2 3\n)"));
   EXPECT_THAT(cells, HasSubstr("'/opt/t/tactile' experiment '/data/exp.json' --out '" +
-                               out.string() + "' --cell \"${cells[i]}\""));
+                               out.string() + "' \"${args[@]}\""));
+  EXPECT_THAT(cells, HasSubstr("args+=(--cell \"${cells[i]}\")"));
   EXPECT_THAT(slurp(jobs.merge_script), HasSubstr("--merge\n"));
   EXPECT_EQ(with_array_job(jobs.merge_command, "77")[2], "--dependency=afterok:77");
   EXPECT_THAT(slurm_commands_text(jobs),

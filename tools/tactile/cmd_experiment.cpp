@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -78,7 +79,7 @@ void add_experiment(CLI::App& app, Action& action) {
     int threads = 0;
     bool quiet = false;
     bool plan = false, merge = false, status = false, slurm = false, submit = false;
-    std::optional<std::string> cell;
+    std::vector<std::string> cells;
     experiments::SlurmOptions slurm_options;
   };
   auto opt = std::make_shared<Options>();
@@ -103,9 +104,9 @@ void add_experiment(CLI::App& app, Action& action) {
   sub->add_flag("--quiet", opt->quiet, "Print only the summary");
   auto* plan = sub->add_flag("--plan", opt->plan,
                              "Only write the manifest of cells (manifest.tsv) and experiment.json");
-  auto* cell = sub->add_option("--cell", opt->cell,
-                               "Run one cell, by its id or its index in the manifest (skipped "
-                               "when already done)");
+  auto* cell = sub->add_option("--cell", opt->cells,
+                               "Run cells, each by its id or its index in the manifest, one after "
+                               "the other (repeat the option; a cell already done is skipped)");
   auto* merge = sub->add_flag("--merge", opt->merge,
                               "Gather every cell's results into metrics.csv, resolved.json and "
                               "the plots; exit 1 naming the cells not done");
@@ -162,33 +163,47 @@ void add_experiment(CLI::App& app, Action& action) {
                    manifest.string());
         return 0;
       }
-      if (opt->cell || opt->merge || opt->slurm) {
+      if (!opt->cells.empty() || opt->merge || opt->slurm) {
         if (opt->slurm && !fs::exists(out / "manifest.tsv")) {
           experiments::write_manifest(ex, plan, out);
         }
         experiments::check_manifest(plan, out);
       }
-      if (opt->cell) {
-        std::size_t index = 0;
-        try {
-          index = experiments::find_cell(plan, *opt->cell);
-        } catch (const std::invalid_argument& e) {
-          fmt::print(stderr, "tactile experiment: {}\n", e.what());
-          return 2;
+      if (!opt->cells.empty()) {
+        // Every choice checked before any cell runs.
+        std::vector<std::size_t> chosen;
+        for (const auto& choice : opt->cells) {
+          try {
+            chosen.push_back(experiments::find_cell(plan, choice));
+          } catch (const std::invalid_argument& e) {
+            fmt::print(stderr, "tactile experiment: {}\n", e.what());
+            return 2;
+          }
         }
-        const auto& c = plan.cells[index];
-        const auto outcome = experiments::run_cell(ex, plan, index, out,
-                                                   {.threads = opt->threads,
-                                                    .runner = runner_name(),
-                                                    .progress = [&](const std::string& m) {
-                                                      if (!opt->quiet) fmt::print("  {}\n", m);
-                                                    }});
-        if (outcome.skipped)
-          fmt::print("cell {} {} ({}): already done, skipped\n", index, c.id, c.name);
-        else
-          fmt::print("cell {} {} ({}): done in {:.2f} s wall, {:.2f} s CPU\n", index, c.id, c.name,
-                     outcome.wall_s, outcome.cpu_s);
-        return 0;
+        // A failed cell does not stop the others: each is independent.
+        std::size_t failed = 0;
+        for (const std::size_t index : chosen) {
+          const auto& c = plan.cells[index];
+          try {
+            const auto outcome = experiments::run_cell(ex, plan, index, out,
+                                                       {.threads = opt->threads,
+                                                        .runner = runner_name(),
+                                                        .progress = [&](const std::string& m) {
+                                                          if (!opt->quiet) fmt::print("  {}\n", m);
+                                                        }});
+            if (outcome.skipped)
+              fmt::print("cell {} {} ({}): already done, skipped\n", index, c.id, c.name);
+            else
+              fmt::print("cell {} {} ({}): done in {:.2f} s wall, {:.2f} s CPU\n", index, c.id,
+                         c.name, outcome.wall_s, outcome.cpu_s);
+          } catch (const std::exception& e) {
+            ++failed;
+            fmt::print(stderr, "tactile experiment: cell {} {} ({}) failed: {}\n", index, c.id,
+                       c.name, e.what());
+          }
+          std::fflush(stdout);
+        }
+        return failed ? 1 : 0;
       }
       if (opt->merge && opt->status) return print_status(plan, out);
       if (opt->merge) {
