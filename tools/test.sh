@@ -11,6 +11,9 @@ jobs=$(nproc)
 # reuses what an earlier build in another folder compiled.
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 
+# Every label runs, `cluster` included: each of its tests starts a single-node Slurm cluster
+# (tests/cluster/cluster.sh) and, when the cluster cannot start, fails saying why; CTest then
+# lists it among the failed tests and this script exits non-zero.
 echo "== release build and tests"
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$jobs"
