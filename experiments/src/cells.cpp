@@ -47,7 +47,8 @@ std::string hash_hex(const std::string& text) {
 }
 
 std::string source_input(const ExperimentSource& s) {
-  if (s.kind == SourceKind::file) return fmt::format("source {}: {}", s.name, s.path.string());
+  if (s.kind == SourceKind::file)
+    return fmt::format("source {}: {}", s.name, fs::weakly_canonical(s.path).string());
   return fmt::format("source {}: {} {} scene, seed {}", s.name, to_string(s.kind), s.scene.scene,
                      s.scene.seed);
 }
@@ -143,10 +144,13 @@ Plan plan_experiment(const Experiment& ex) {
     const auto& run = ex.runs[r];
     const auto& source = ex.sources[run.source];
     const auto& layout = ex.layouts[run.layout];
-    // Everything the cell's files depend on: its name (in file names and provenance), the
-    // source, the layout, the parameters, and whether it writes its movie.
+    // Everything the cell's results depend on: its name (in file names), the source, the
+    // layout, the parameters, and whether it writes its movie. Not how the experiment file or a
+    // source file was named (relative or absolute): a cluster's task names them absolutely.
+    json source_key = source_json(source);
+    if (source.kind == SourceKind::file) source_key["file"] = fs::weakly_canonical(source.path);
     const std::string key = fmt::format(
-        "run\n{}\n{}\n{}\n{}\n{}\n{}\n{}", ex.name, ex.origin, run.id, source_json(source).dump(),
+        "run\n{}\n{}\n{}\n{}\n{}\n{}", ex.name, run.id, source_key.dump(),
         movie::layout_to_json(layout),
         mapping::parameters_json(run.params, run.params.placement.value_or(mapping::Placement{})),
         ex.write_movies);
@@ -164,7 +168,7 @@ Plan plan_experiment(const Experiment& ex) {
     Cell cell;
     cell.index = plan.cells.size();
     cell.kind = CellKind::perception;
-    cell.id = "perception-" + hash_hex("perception\n" + ex.origin + "\n" + ex.text);
+    cell.id = "perception-" + hash_hex("perception\n" + ex.text);
     cell.name = "perception";
     cell.inputs = {fmt::format("simulated fingertip, {} trials per feature and procedure",
                                ex.perception->trials)};

@@ -137,3 +137,22 @@ TEST(ExperimentCli, CellsRefuseBadChoicesDamagedManifestsAndBadSlurmNumbers) {
   r = run_tactile(exp + " --slurm");
   EXPECT_EQ(r.exit_code, 1);
 }
+
+TEST(ExperimentCli, CellsPlannedUnderOneNameOfTheFilesRunUnderAnother) {
+  const tactile::test::TempDir d_tmp("names");
+  const std::filesystem::path& d = d_tmp.path();
+  fs::create_directories(d / "sub");
+  fs::copy_file(tactile::test::demo_dir() / "strain.h5", d / "strain.h5");
+  std::ofstream(d / "exp.json") << R"({"name": "rec", "seed": 1,
+    "sources": [{"name": "rec", "file": "strain.h5"}], "layouts": ["stress"],
+    "methods": ["proportional", "integrated"]})";
+  const std::string out = " --out " + (d / "out").string();
+  // Planned through a detour, run and merged as a cluster's task names the files: absolutely.
+  auto r = run_tactile("experiment " + (d / "sub" / ".." / "exp.json").string() + out + " --plan");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_tactile("experiment " + (d / "exp.json").string() + out + " --cell 0 --cell 1 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_tactile("experiment " + (d / "exp.json").string() + out + " --merge");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("2 cells merged"));
+}

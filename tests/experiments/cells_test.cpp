@@ -65,6 +65,9 @@ TEST(Cells, IdsComeFromTheParametersAndStayTheSame) {
     ids.insert(a.cells[i].id);
   }
   EXPECT_EQ(ids.size(), 4u);
+  // The same file named another way (as a cluster's task names it, absolutely) plans the same.
+  const Plan absolute = plan_experiment(parse_experiment(kGrid, "/some/where/cells.json", "/x"));
+  for (std::size_t i = 0; i < a.cells.size(); ++i) EXPECT_EQ(absolute.cells[i].id, a.cells[i].id);
   // Another gain changes the ids of the cells that use it, and only theirs.
   std::string other = kGrid;
   other.replace(other.find("[500, 1000]"), 11, "[500, 2000]");
