@@ -87,6 +87,7 @@ SlurmJobs write_slurm_jobs(const Plan& plan, const fs::path& out_dir, const fs::
     script += fmt::format("#SBATCH --array=0-{}{}\n", jobs.tasks - 1,
                           o.max_parallel > 0 ? fmt::format("%{}", o.max_parallel) : "");
     script += fmt::format("#SBATCH --output={}\n", (dir / "logs" / "cells-%A_%a.log").string());
+    // A cell's threads follow the task's CPUs, which `sbatch --cpus-per-task=C` raises.
     script += "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
     script += fmt::format(
         "# Cells of {} not done when this was written; task T runs cells[T*{} .. T*{}+{}].\n"
@@ -99,7 +100,7 @@ SlurmJobs write_slurm_jobs(const Plan& plan, const fs::path& out_dir, const fs::
         "  args+=(--cell \"${{cells[i]}}\")\n"
         "done\n"
         "# One process for the task's cells: it runs each even when one fails, then exits 1.\n"
-        "exec {} \"${{args[@]}}\" --threads 1 --quiet\n",
+        "exec {} \"${{args[@]}}\" --threads \"${{SLURM_CPUS_PER_TASK:-1}}\" --quiet\n",
         (out_dir / "manifest.tsv").string(), per_task, per_task, per_task - 1, list, per_task,
         run_cell);
     jobs.cells_script = dir / "cells.sh";

@@ -85,7 +85,18 @@ grid)
     fail "--merge --status failed"
   grep -q "12 cells: 12 done, 0 running, 0 failed, 0 missing" "$work/status.log" ||
     fail "status: $(cat "$work/status.log")"
-  echo "PASS: 12 cells through Slurm merged to the one-machine rows"
+  # The merge killed (here: its files removed) is made again by a resubmission with nothing
+  # left to run: the printed command, as a person pastes it, submits the merge alone.
+  rm "$work/s/metrics.csv"
+  "$tactile" experiment "$work/exp.json" --out "$work/s" --slurm >"$work/again.log" 2>&1 ||
+    fail "--slurm with every cell done failed: $(cat "$work/again.log")"
+  grep -q "0 of 12 cells to run in 0 array tasks" "$work/again.log" || fail "$(cat "$work/again.log")"
+  command=$(grep '^sbatch ' "$work/again.log")
+  [[ $command == "sbatch --parsable $work/s/slurm/merge.sh" ]] || fail "printed '$command'"
+  state=$(final_state "$(eval "$command")")
+  [[ $state == COMPLETED && -s $work/s/metrics.csv ]] || fail "merge alone ended $state"
+  diff <(rows "$work/local") <(rows "$work/s") || fail "merged rows differ after the merge alone"
+  echo "PASS: 12 cells through Slurm merged to the one-machine rows; the merge alone resubmitted"
   ;;
 resubmit)
   out=$work/r
