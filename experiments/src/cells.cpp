@@ -22,6 +22,7 @@
 #include "tactile/common/error.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/json.hpp"
+#include "tactile/common/parallel_for.hpp"
 #include "tactile/common/stopwatch.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/mapping/map.hpp"
@@ -432,7 +433,8 @@ MergeReport merge_experiment(const Experiment& ex, const Plan& plan, const fs::p
   }
   report.files.push_back(out_dir / "manifest.tsv");
   report.files.push_back(out_dir / "experiment.json");
-  write_merged(ex, runs, out_dir, made_by(ex, h5::utc_now_iso8601()), threads, report.files);
+  write_merged(ex, runs, out_dir, made_by(ex, h5::utc_now_iso8601()), worker_count(threads),
+               report.files);
   for (auto& m : runs) report.results.push_back(std::move(m.result));
   return report;
 }

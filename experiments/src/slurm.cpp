@@ -10,7 +10,6 @@
 
 #include <cerrno>
 #include <cstring>
-#include <regex>
 #include <stdexcept>
 
 #include "tactile/common/atomic_write.hpp"
@@ -48,8 +47,22 @@ std::string job_name(const std::string& experiment, const char* suffix) {
 }  // namespace
 
 void check_time_limit(const std::string& limit) {
-  static const std::regex formats(R"(\d+|\d+:\d+|\d+:\d+:\d+|\d+-\d+|\d+-\d+:\d+|\d+-\d+:\d+:\d+)");
-  if (!std::regex_match(limit, formats))
+  const auto digits = [](const std::string& part) {
+    return !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+  };
+  // [D-]A[:B[:C]], all whole numbers; at most one '-'.
+  const auto dash = limit.find('-');
+  bool ok = dash == std::string::npos ||
+            (digits(limit.substr(0, dash)) && limit.find('-', dash + 1) == std::string::npos);
+  const std::string clock = dash == std::string::npos ? limit : limit.substr(dash + 1);
+  int parts = 0;
+  for (std::size_t from = 0; ok; ++parts) {
+    const auto colon = clock.find(':', from);
+    ok = digits(clock.substr(from, colon - from));
+    if (colon == std::string::npos) break;
+    from = colon + 1;
+  }
+  if (!ok || parts > 2)
     throw std::invalid_argument(fmt::format(
         "--time {}: not a Slurm time limit (minutes, M:S, H:M:S, D-H, D-H:M or D-H:M:S)", limit));
 }

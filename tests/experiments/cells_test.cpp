@@ -219,6 +219,10 @@ TEST(Slurm, ScriptsRunTheCellsNotDoneInThrottledTasks) {
   EXPECT_THROW(check_time_limit("5x"), std::invalid_argument);
   EXPECT_THROW(check_time_limit("1:2:3:4"), std::invalid_argument);
   EXPECT_NO_THROW(check_time_limit("2-12:00"));
+  for (const char* good : {"30", "30:00", "1:30:00", "2-12", "2-12:00:00"})
+    EXPECT_NO_THROW(check_time_limit(good)) << good;
+  for (const char* bad : {"", "-1", "1-", "1-2-3", "1::2", ":5", "1:2:", "1.5", "1h"})
+    EXPECT_THROW(check_time_limit(bad), std::invalid_argument) << bad;
   try {
     std::vector<Cell> many(2003, plan.cells[1]);
     Plan big = plan;
