@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <optional>
 
 #include "bindings.hpp"
@@ -24,6 +27,47 @@ const char* target_name(display::PlaybackTarget t) {
   return "headless";
 }
 
+// Ctrl-C while playing: Python's own SIGINT handler writes the signal's number to the wakeup
+// descriptor (signal.set_wakeup_fd), which the player watches as its stop_fd, so a stop ramps
+// every contactor to rest between two frames as `tactile play` does; KeyboardInterrupt is raised
+// once the player has returned. Only the main thread may set the wakeup descriptor; elsewhere
+// play() runs without it.
+class StopPipe {
+ public:
+  StopPipe() {
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC | O_NONBLOCK) != 0) return;
+    read_ = fds[0];
+    write_ = fds[1];
+    try {
+      old_ = py::module_::import("signal").attr("set_wakeup_fd")(write_);
+    } catch (py::error_already_set&) {  // not the main thread
+      close_all();
+    }
+  }
+  ~StopPipe() {
+    if (old_) {
+      try {
+        py::module_::import("signal").attr("set_wakeup_fd")(old_);
+      } catch (py::error_already_set&) {
+      }
+    }
+    close_all();
+  }
+  StopPipe(const StopPipe&) = delete;
+  StopPipe& operator=(const StopPipe&) = delete;
+  int fd() const { return read_; }
+
+ private:
+  void close_all() {
+    if (read_ >= 0) close(read_);
+    if (write_ >= 0) close(write_);
+    read_ = write_ = -1;
+  }
+  int read_ = -1, write_ = -1;
+  py::object old_;
+};
+
 py::dict play(const movie::TactileMovie& movie, const std::string& backend,
               std::optional<std::filesystem::path> preview, int loops) {
   if (backend != "auto" && backend != "headless") {
@@ -42,12 +86,16 @@ py::dict play(const movie::TactileMovie& movie, const std::string& backend,
   request.loops = loops;
   display::PlayResult r;
   {
+    const StopPipe stop;
+    request.stop_fd = stop.fd();
     py::gil_scoped_release unlocked;
     r = display::play_anywhere(movie, request, [](const std::string& text) {
       py::gil_scoped_acquire locked;
       py::module_::import("sys").attr("stdout").attr("write")(text);
     });
   }
+  // A Ctrl-C that stopped the player is Python's KeyboardInterrupt now.
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   py::dict out;
   out["target"] = target_name(r.target);
   out["stopped"] = r.stopped;

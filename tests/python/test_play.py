@@ -1,8 +1,10 @@
 """play(): the device selection and playing of `tactile play`."""
 
 import os
+import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -54,3 +56,28 @@ def test_play_bad_arguments():
         tactile.play(movie, backend="headless", loops=0)
     with pytest.raises(TypeError):
         tactile.play(np.zeros((3, 10, 10)), backend="headless")
+
+
+def test_ctrl_c_stops_between_frames_ramps_to_rest_and_raises(tmp_path):
+    # Long enough (1000 loops of 2 s) that only the signal can end it in time.
+    script = (
+        "import sys, numpy as np, tactile\n"
+        "d = np.zeros((1400, 10, 10), dtype=np.float32)\n"
+        "d[:] = (20 * np.sin(np.arange(1400) / 20.0))[:, None, None]\n"
+        "movie = tactile.Movie(d, 'stress')\n"
+        "print('ready', flush=True)\n"
+        "tactile.play(movie, backend='headless', loops=1000, preview=%r)\n"
+        % str(tmp_path / "p.png"))
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=os.environ)
+    try:
+        assert child.stdout.readline().strip() == "ready"
+        time.sleep(0.5)
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=60)
+    finally:
+        child.kill()
+    assert child.returncode != 0 and "KeyboardInterrupt" in err
+    assert "stopped by a stop request, every contactor ramped to rest" in out
+    assert "outputs ended at most 0 um from rest" in out
+    assert "no preview written" in out and not (tmp_path / "p.png").exists()
