@@ -362,6 +362,37 @@ TEST(RecordingInputs, DefaultsByProcedure) {
   EXPECT_THROW(perception::default_recording_inputs("tap"), std::invalid_argument);
 }
 
+// A training's options: unset ones are the procedure's defaults, set ones replace them, and a
+// trim outside [0, 0.5) is refused before any recording is read.
+TEST(ClassifierTraining, SetOptionsReplaceTheProceduresDefaults) {
+  using perception::ContactOptions;
+  perception::ClassifierTraining defaults;
+  defaults.procedure = "dp";
+  const auto in = perception::recording_inputs_for(defaults);
+  EXPECT_EQ(tactile::names_of(in.groups), (std::vector<std::string>{"means", "rates", "hht"}));
+  EXPECT_EQ(in.contact.baseline_at, ContactOptions::BaselineAt::end);
+  EXPECT_EQ(perception::svm_options_for(defaults).c, 1.0);
+  perception::ClassifierTraining set;
+  set.baseline_at = ContactOptions::BaselineAt::start;
+  set.electrodes = ContactOptions::Electrodes::each;
+  set.trim = 0.25;
+  set.inputs = {perception::InputGroup::stds};
+  set.kernel_degree = 2;
+  set.c = 3.5;
+  const auto custom = perception::recording_inputs_for(set);
+  EXPECT_EQ(tactile::names_of(custom.groups), (std::vector<std::string>{"stds"}));
+  EXPECT_EQ(custom.contact.baseline_at, ContactOptions::BaselineAt::start);
+  EXPECT_EQ(custom.contact.electrodes, ContactOptions::Electrodes::each);
+  EXPECT_EQ(custom.contact.trim_fraction, 0.25);
+  EXPECT_EQ(perception::svm_options_for(set).degree, 2);
+  EXPECT_EQ(perception::svm_options_for(set).c, 3.5);
+  set.trim = 0.5;
+  EXPECT_THROW(perception::recording_inputs_for(set), std::invalid_argument);
+  set.trim.reset();
+  set.procedure = "tap";
+  EXPECT_THROW(perception::recording_inputs_for(set), std::invalid_argument);
+}
+
 // Model files of version 1 (before trim and electrodes) read as clusters without trim; the new
 // fields, when present, are checked.
 TEST(ClassifierModel, ReadsVersionOneAndChecksTheNewFields) {

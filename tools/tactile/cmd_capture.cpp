@@ -16,6 +16,7 @@
 #include "progress.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
+#include "tactile/capture/capture_run.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/pore_model_io.hpp"
@@ -103,19 +104,10 @@ std::optional<capture::PoreModelFile> pore_model_file(const std::optional<fs::pa
 // The chosen pore detector (and model) in `fp`; px_per_mm is the image's scale.
 void use_pore_detector(const std::string& pores, const std::optional<capture::PoreModelFile>& model,
                        double px_per_mm, const char* command, capture::FeatureParams& fp) {
-  fp.pore_detector =
-      pores == "ridge-blob" ? capture::PoreDetector::ridge_blob : capture::PoreDetector::paper;
-  if (!model) return;
-  fp.ridge_blob.model = model->coefficients;
-  fp.ridge_blob.min_log_odds = model->min_log_odds;
-  // The model's measures are in pixels at its training scale (sizes, Laplacian scales), so
-  // far from that scale its probabilities mean little.
-  if (std::abs(px_per_mm / model->px_per_mm - 1.0) > 0.1) {
-    fmt::print(stderr,
-               "{}: warning: the pore model was trained at {:.1f} px/mm but the image is at "
-               "{:.1f} px/mm; its measures are in pixels at the training scale\n",
-               command, model->px_per_mm, px_per_mm);
-  }
+  const std::string warning = capture::use_pore_detector(
+      pores == "ridge-blob" ? capture::PoreDetector::ridge_blob : capture::PoreDetector::paper,
+      model, px_per_mm, fp);
+  if (!warning.empty()) fmt::print(stderr, "{}: warning: {}\n", command, warning);
 }
 
 // The image (or the folder and its frames), and the calibration and pore model files when given:
@@ -154,72 +146,6 @@ void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress
   fmt::print("capture: wrote {} strain maps (full scale {:.2f} %) in {}\n", total, 100 * full_scale,
              dir.string());
 }
-
-// The frames `capture` reads: the image files of a folder in name order, or a video's frames,
-// from `start` on and `count` of them (all to the end when not given), one at a time.
-class FrameInput {
- public:
-  FrameInput(const fs::path& source, int start, std::optional<int> count) : source_(source) {
-    if (capture::is_video_name(source) && !fs::is_directory(source)) {
-      video_.emplace(source);
-      total_ = video_->info().frame_count;
-    } else {
-      paths_ = capture::list_frames(source);
-      total_ = static_cast<int>(paths_.size());
-    }
-    start_ = start;
-    count_ = count.value_or(total_ - start);
-  }
-  bool is_video() const { return video_.has_value(); }
-  int total() const { return total_; }
-  int start() const { return start_; }
-  int count() const { return count_; }
-  double frame_rate_hz() const { return video_ ? video_->info().frame_rate_hz : 0.0; }
-
-  // --start and --frames against the input's length: a usage error (empty when they fit).
-  std::string range_error() const {
-    if (start_ >= total_) {
-      return fmt::format("--start: {} is out of range: {} has {} frames (0 to {})", start_,
-                         source_.string(), total_, total_ - 1);
-    }
-    if (count_ < 1 || start_ + count_ > total_) {
-      return fmt::format("--frames: {} is out of range: from frame {} of {} there are {} frames",
-                         count_, start_, source_.string(), total_ - start_);
-    }
-    return {};
-  }
-
-  // The next frame of the range, or false after its last.
-  bool next(capture::GrayImage& frame) {
-    if (read_ >= count_) return false;
-    const int index = start_ + read_;
-    if (video_) {
-      video_->skip_to(index);
-      if (!video_->read(frame)) return false;
-    } else {
-      const fs::path& path = paths_[static_cast<std::size_t>(index)];
-      frame = capture::read_image(path);
-      if (read_ > 0 && (frame.width_px != width_px_ || frame.height_px != height_px_)) {
-        throw FormatError(fmt::format(
-            "{}: frame is {}x{} px but {} is {}x{} px; all frames of a sequence must have the "
-            "same size",
-            path.string(), frame.width_px, frame.height_px,
-            paths_[static_cast<std::size_t>(start_)].filename().string(), width_px_, height_px_));
-      }
-    }
-    width_px_ = frame.width_px;
-    height_px_ = frame.height_px;
-    ++read_;
-    return true;
-  }
-
- private:
-  fs::path source_;
-  std::optional<capture::VideoReader> video_;
-  std::vector<fs::path> paths_;
-  int total_ = 0, start_ = 0, count_ = 0, read_ = 0;
-  int width_px_ = 0, height_px_ = 0;
-};
 
 // CPU time of the whole process (every thread), seconds: the machine may be shared, so the wall
 // time alone says little about the pipeline's cost.
@@ -391,7 +317,7 @@ void add_capture(CLI::App& app, Action& action) {
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
     const bool rate_given = rate->count() > 0;
     action = [opt, rate_given] {
-      FrameInput input(opt->image_dir, opt->start, opt->frames);
+      capture::FrameRange input(opt->image_dir, opt->start, opt->frames);
       if (const std::string range = input.range_error(); !range.empty()) {
         fmt::print(stderr, "tactile capture: error: {}\n", range);
         return 2;
@@ -411,61 +337,31 @@ void add_capture(CLI::App& app, Action& action) {
       refuse_output_over_input(outputs, inputs);
       Progress progress;
       const auto from_file = calibration_file(opt->calib);
-      const auto model = pore_model_file(opt->pore_model);
-      capture::GrayImage first;
-      input.next(first);
-      const capture::Calibration c =
-          calibration_for(from_file, opt->px_per_mm, first.width_px, first.height_px);
-      capture::CaptureParams params;
-      params.span_frames = opt->span;
-      params.min_track_frames = opt->min_track_frames;
-      std::string pores = opt->pores;
-      bool refine = opt->refine == "on";
-      if (pores == "auto" && model) pores = "ridge-blob";  // a pore model is a ridge-blob model
-      if (pores == "auto") {
-        const capture::CaptureChoice choice =
-            capture::choose_capture_settings(first, 1.0 / c.mm_per_px);
-        pores = choice.detector == capture::PoreDetector::ridge_blob ? "ridge-blob" : "paper";
-        fmt::print(
-            "capture: pores: {} (on the first frame the paper's rule found {} pores, the "
-            "ridge-blob detector {}; --pores overrides)\n",
-            pores, choice.paper_pores, choice.ridge_blob_pores);
-      }
-      if (opt->refine == "auto") {
-        refine = capture::refinement_for(pores == "ridge-blob" ? capture::PoreDetector::ridge_blob
-                                                               : capture::PoreDetector::paper);
-        fmt::print("capture: refinement against the images: {} (--refine overrides)\n",
-                   refine ? "on" : "off");
-      }
-      params.refine = refine;
-      params.refinement.window_mm = opt->refine_window_mm;
-      params.smoothing_half_window =
-          opt->smoothing.value_or(capture::smoothing_half_window_for(refine));
-      use_pore_detector(pores, model, 1.0 / c.mm_per_px, "capture", params.features);
-      params.assignment =
-          opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;
+      capture::CaptureSettings settings;
+      settings.pores = parse_name("--pores", opt->pores, capture::kPoreSettingNames);
+      settings.refine = parse_name("--refine", opt->refine, capture::kRefineSettingNames);
+      settings.smoothing_half_window = opt->smoothing;
+      settings.refine_window_mm = opt->refine_window_mm;
+      settings.span_frames = opt->span;
+      settings.min_track_frames = opt->min_track_frames;
+      settings.assignment = parse_name("--assignment", opt->assignment, capture::kAssignmentNames);
+      settings.pore_model = pore_model_file(opt->pore_model);
+      const capture::CaptureMessages messages{
+          .note = [](const std::string& text) { fmt::print("capture: {}\n", text); },
+          .warning =
+              [](const std::string& text) { fmt::print(stderr, "capture: warning: {}\n", text); }};
       const auto t0 = std::chrono::steady_clock::now();
       const double cpu0 = process_cpu_s();
-      bool first_given = false;
-      capture::StrainMovie movie = capture::measure_strain(
-          [&](capture::GrayImage& frame) {
-            if (first_given) return input.next(frame);
-            frame = std::move(first);
-            first_given = true;
-            return true;
-          },
-          c, rate_hz, params,
-          [&](const std::string& stage, int done, int total) { progress(stage, done, total); },
-          input.count());
+      capture::StrainMovie movie = capture::capture_strain(
+          input, from_file, opt->px_per_mm, rate_hz, settings, messages,
+          [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       // An empty strain movie maps to a still display: report the reason instead of writing it.
       if (movie.frames.empty()) {
         throw std::runtime_error(fmt::format(
-            "capture: {}: no strain measured in {} frames (tracks of at least --min-track {} "
-            "frames over --span {}: {} tracked points); nothing written to {}",
-            opt->image_dir.string(), movie.camera_frame_count, opt->min_track_frames, opt->span,
-            movie.tracks.size(), opt->out.string()));
+            "{}; nothing written to {}", capture::no_strain_reason(movie, settings, opt->image_dir),
+            opt->out.string()));
       }
       const double cpu_s = process_cpu_s() - cpu0;
       const int n = movie.camera_frame_count;

@@ -102,14 +102,15 @@ int train(const TrainOptions& o) {
   refuse_output_over_input({output_file("--out", o.out)}, classify_inputs(o.recordings, o.labels));
   if (o.select) return train_selected(o);
   const auto t0 = std::chrono::steady_clock::now();
-  auto in = perception::default_recording_inputs(o.procedure);
-  if (o.baseline_at) in.contact.baseline_at = perception::parse_baseline_at(*o.baseline_at);
-  if (o.electrodes) in.contact.electrodes = perception::parse_electrodes(*o.electrodes);
-  if (o.trim) in.contact.trim_fraction = *o.trim;
-  if (!o.inputs.empty()) {
-    in.groups.clear();
-    for (const auto& name : o.inputs) in.groups.push_back(perception::parse_input_group(name));
-  }
+  perception::ClassifierTraining training;
+  training.procedure = o.procedure;
+  training.trim = o.trim;
+  training.kernel_degree = o.degree;
+  training.c = o.c;
+  if (o.baseline_at) training.baseline_at = perception::parse_baseline_at(*o.baseline_at);
+  if (o.electrodes) training.electrodes = perception::parse_electrodes(*o.electrodes);
+  for (const auto& name : o.inputs) training.inputs.push_back(perception::parse_input_group(name));
+  const auto in = perception::recording_inputs_for(training);
   const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
   fmt::print(
       "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, electrodes "
@@ -117,16 +118,8 @@ int train(const TrainOptions& o) {
       data.rows.size(), data.class_names.size(), data.input_names.size(),
       fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
       to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
-  // A model of one class answers that class whatever it is given: not a classifier.
-  if (data.class_names.size() < 2) {
-    throw std::runtime_error(
-        fmt::format("classify train: {}: {} class(es) ({}); a classifier "
-                    "needs recordings of at least 2 classes",
-                    o.labels.string(), data.class_names.size(), fmt::join(data.class_names, ", ")));
-  }
-  auto svm = perception::default_svm_options(o.procedure);
-  svm.degree = o.degree.value_or(svm.degree);
-  svm.c = o.c.value_or(svm.c);
+  perception::require_two_classes(data, o.labels);
+  const auto svm = perception::svm_options_for(training);
   if (o.cv > 0) {
     const auto cv = perception::cross_validate(data, svm, o.cv, o.threads);
     fmt::print(

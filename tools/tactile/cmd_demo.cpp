@@ -8,7 +8,6 @@
 
 #include "command.hpp"
 #include "mode_option.hpp"
-#include "playback.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
 #include "tactile/capture/calibrate.hpp"
@@ -18,6 +17,7 @@
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/version.hpp"
+#include "tactile/display/play_anywhere.hpp"
 #include "tactile/mapping/fidelity.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -137,16 +137,16 @@ int run_demo(DemoOptions& opt) {
   if (opt.keep) movie::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);
 
   fmt::print("  5 play\n");
-  PlayChoice choice;
+  display::PlayRequest choice;
   choice.headless = opt.headless;
   choice.preview_png = opt.out / "preview.png";
-  const int rc = play_anywhere(movie, choice);
+  display::play_anywhere(movie, choice, [](const std::string& text) { fmt::print("{}", text); });
   fmt::print("demo: done in {:.1f} s; files in {}/ ({}strain.h5, movie.h5{})\n",
              std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count(),
              opt.out.string(),
              opt.keep ? "frames/, csv/, calibration.json, " : "calibration.json, ",
              fs::exists(choice.preview_png) ? ", preview.png" : "");
-  return rc;
+  return 0;
 }
 
 }  // namespace

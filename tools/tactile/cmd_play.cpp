@@ -8,12 +8,12 @@
 #include "command.hpp"
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
-#include "playback.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/devices.hpp"
+#include "tactile/display/play_anywhere.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
 #include "tactile/display/viewer.hpp"
@@ -26,7 +26,11 @@ namespace fs = std::filesystem;
 void add_play(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
-    PlayChoice choice;
+    display::PlayRequest choice = [] {
+      display::PlayRequest r;
+      r.preview_png = "preview.png";
+      return r;
+    }();
     LateroPlayOptions latero;
   };
   auto opt = std::make_shared<Options>();
@@ -56,9 +60,14 @@ void add_play(CLI::App& app, Action& action) {
       // the blocked signals, so Ctrl-C reaches the player and not the default action.
       StopSignals stop;
       opt->choice.stop_fd = stop.fd();
-      const int code = !opt->latero.address.empty()
-                           ? play_on_latero(movie, opt->latero, opt->choice.loops, stop.fd())
-                           : play_anywhere(movie, opt->choice);
+      int code = 0;
+      if (!opt->latero.address.empty()) {
+        code = play_on_latero(movie, opt->latero, opt->choice.loops, stop.fd());
+      } else {
+        // A stopped playback returns too, after its summary; the signal decides the exit code.
+        display::play_anywhere(movie, opt->choice,
+                               [](const std::string& text) { fmt::print("{}", text); });
+      }
       if (const int signal = stop.received(); signal != 0) {
         fmt::print("play: stopped by {}\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
         return exit_code_for_signal(signal);

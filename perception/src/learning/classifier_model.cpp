@@ -188,6 +188,34 @@ SvmOptions default_svm_options(std::string_view procedure) {
   return svm;
 }
 
+RecordingInputOptions recording_inputs_for(const ClassifierTraining& t) {
+  auto in = default_recording_inputs(t.procedure);
+  if (t.baseline_at) in.contact.baseline_at = *t.baseline_at;
+  if (t.electrodes) in.contact.electrodes = *t.electrodes;
+  if (t.trim) {
+    check_trim_fraction(*t.trim);
+    in.contact.trim_fraction = *t.trim;
+  }
+  if (!t.inputs.empty()) in.groups = t.inputs;
+  return in;
+}
+
+SvmOptions svm_options_for(const ClassifierTraining& t) {
+  auto svm = default_svm_options(t.procedure);
+  svm.degree = t.kernel_degree.value_or(svm.degree);
+  svm.c = t.c.value_or(svm.c);
+  return svm;
+}
+
+void require_two_classes(const LabelledInputs& data, const std::filesystem::path& labels) {
+  if (data.class_names.size() < 2) {
+    throw std::runtime_error(
+        fmt::format("classify train: {}: {} class(es) ({}); a classifier "
+                    "needs recordings of at least 2 classes",
+                    labels.string(), data.class_names.size(), fmt::join(data.class_names, ", ")));
+  }
+}
+
 void write_classifier_model(const std::filesystem::path& path, const ClassifierModel& m) {
   nlohmann::json j;
   j["format"] = "tactile classifier model";

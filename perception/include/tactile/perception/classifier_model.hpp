@@ -119,6 +119,24 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
 // set_recording_procedure.
 SvmOptions default_svm_options(std::string_view procedure);
 
+// What `classify train` (without --select) and the Python module's train() take: every option
+// left unset is the procedure's default (default_recording_inputs, default_svm_options).
+struct ClassifierTraining {
+  std::string procedure = "stroke";
+  std::optional<ContactOptions::BaselineAt> baseline_at;
+  std::optional<ContactOptions::Electrodes> electrodes;
+  std::optional<double> trim;      // checked by check_trim_fraction
+  std::vector<InputGroup> inputs;  // empty: the procedure's groups
+  std::optional<int> kernel_degree;
+  std::optional<double> c;
+};
+// Throw std::invalid_argument as default_recording_inputs and check_trim_fraction.
+RecordingInputOptions recording_inputs_for(const ClassifierTraining& training);
+SvmOptions svm_options_for(const ClassifierTraining& training);
+// A model of one class answers that class whatever it is given: not a classifier. Throws
+// std::runtime_error naming the labels file and its classes when `data` has fewer than 2.
+void require_two_classes(const LabelledInputs& data, const std::filesystem::path& labels);
+
 // Strict JSON; writing replaces the file only once it is complete. Reading throws
 // tactile::FormatError naming the file: not JSON, another format version, a missing or
 // mistyped field, inputs that differ from what this program computes for the stored procedure

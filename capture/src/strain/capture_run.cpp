@@ -1,0 +1,152 @@
+// A capture run from a folder or a video; see capture_run.hpp.
+
+#include "tactile/capture/capture_run.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "tactile/common/error.hpp"
+
+namespace tactile::capture {
+
+namespace fs = std::filesystem;
+
+FrameRange::FrameRange(const fs::path& source, int start, std::optional<int> count)
+    : source_(source) {
+  if (is_video_name(source) && !fs::is_directory(source)) {
+    video_.emplace(source);
+    total_ = video_->info().frame_count;
+  } else {
+    paths_ = list_frames(source);
+    total_ = static_cast<int>(paths_.size());
+  }
+  start_ = start;
+  count_ = count.value_or(total_ - start);
+}
+
+std::string FrameRange::range_error() const {
+  if (start_ < 0 || start_ >= total_) {
+    return fmt::format("--start: {} is out of range: {} has {} frames (0 to {})", start_,
+                       source_.string(), total_, total_ - 1);
+  }
+  if (count_ < 1 || start_ + count_ > total_) {
+    return fmt::format("--frames: {} is out of range: from frame {} of {} there are {} frames",
+                       count_, start_, source_.string(), total_ - start_);
+  }
+  return {};
+}
+
+bool FrameRange::next(GrayImage& frame) {
+  if (read_ >= count_) return false;
+  const int index = start_ + read_;
+  if (video_) {
+    video_->skip_to(index);
+    if (!video_->read(frame)) return false;
+  } else {
+    const fs::path& path = paths_[static_cast<std::size_t>(index)];
+    frame = read_image(path);
+    if (read_ > 0 && (frame.width_px != width_px_ || frame.height_px != height_px_)) {
+      throw FormatError(fmt::format(
+          "{}: frame is {}x{} px but {} is {}x{} px; all frames of a sequence must have the "
+          "same size",
+          path.string(), frame.width_px, frame.height_px,
+          paths_[static_cast<std::size_t>(start_)].filename().string(), width_px_, height_px_));
+    }
+  }
+  width_px_ = frame.width_px;
+  height_px_ = frame.height_px;
+  ++read_;
+  return true;
+}
+
+std::string to_string(PoreSetting setting) {
+  return name_in(kPoreSettingNames, setting);
+}
+std::string to_string(RefineSetting setting) {
+  return name_in(kRefineSettingNames, setting);
+}
+std::string to_string(Assignment assignment) {
+  return name_in(kAssignmentNames, assignment);
+}
+
+std::string use_pore_detector(PoreDetector detector, const std::optional<PoreModelFile>& model,
+                              double px_per_mm, FeatureParams& features) {
+  features.pore_detector = detector;
+  if (!model) return {};
+  features.ridge_blob.model = model->coefficients;
+  features.ridge_blob.min_log_odds = model->min_log_odds;
+  // The model's measures are in pixels at its training scale (sizes, Laplacian scales), so
+  // far from that scale its probabilities mean little.
+  if (std::abs(px_per_mm / model->px_per_mm - 1.0) > 0.1) {
+    return fmt::format(
+        "the pore model was trained at {:.1f} px/mm but the image is at {:.1f} px/mm; its "
+        "measures are in pixels at the training scale",
+        model->px_per_mm, px_per_mm);
+  }
+  return {};
+}
+
+StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>& calibration,
+                           std::optional<double> px_per_mm, double frame_rate_hz,
+                           const CaptureSettings& settings, const CaptureMessages& messages,
+                           const CaptureProgress& progress) {
+  GrayImage first;
+  frames.next(first);
+  const Calibration c =
+      calibration ? *calibration
+                  : uniform_calibration(px_per_mm.value(), first.width_px, first.height_px);
+  CaptureParams params;
+  params.span_frames = settings.span_frames;
+  params.min_track_frames = settings.min_track_frames;
+  PoreDetector detector =
+      settings.pores == PoreSetting::ridge_blob ? PoreDetector::ridge_blob : PoreDetector::paper;
+  // A pore model is a ridge-blob model: with one, auto means ridge-blob.
+  if (settings.pores == PoreSetting::automatic && settings.pore_model) {
+    detector = PoreDetector::ridge_blob;
+  } else if (settings.pores == PoreSetting::automatic) {
+    const CaptureChoice choice = choose_capture_settings(first, 1.0 / c.mm_per_px);
+    detector = choice.detector;
+    messages.note(fmt::format(
+        "pores: {} (on the first frame the paper's rule found {} pores, the ridge-blob detector "
+        "{}; --pores overrides)",
+        detector == PoreDetector::ridge_blob ? "ridge-blob" : "paper", choice.paper_pores,
+        choice.ridge_blob_pores));
+  }
+  bool refine = settings.refine == RefineSetting::on;
+  if (settings.refine == RefineSetting::automatic) {
+    refine = refinement_for(detector);
+    messages.note(fmt::format("refinement against the images: {} (--refine overrides)",
+                              refine ? "on" : "off"));
+  }
+  params.refine = refine;
+  params.refinement.window_mm = settings.refine_window_mm;
+  params.smoothing_half_window =
+      settings.smoothing_half_window.value_or(smoothing_half_window_for(refine));
+  if (const std::string warning =
+          use_pore_detector(detector, settings.pore_model, 1.0 / c.mm_per_px, params.features);
+      !warning.empty()) {
+    messages.warning(warning);
+  }
+  params.assignment = settings.assignment;
+  bool first_given = false;
+  return measure_strain(
+      [&](GrayImage& frame) {
+        if (first_given) return frames.next(frame);
+        frame = std::move(first);
+        first_given = true;
+        return true;
+      },
+      c, frame_rate_hz, params, progress, frames.count());
+}
+
+std::string no_strain_reason(const StrainMovie& movie, const CaptureSettings& settings,
+                             const fs::path& source) {
+  return fmt::format(
+      "capture: {}: no strain measured in {} frames (tracks of at least --min-track {} frames "
+      "over --span {}: {} tracked points)",
+      source.string(), movie.camera_frame_count, settings.min_track_frames, settings.span_frames,
+      movie.tracks.size());
+}
+
+}  // namespace tactile::capture

@@ -1,0 +1,116 @@
+// Where a movie plays, and playing it there; see play_anywhere.hpp.
+
+#include "tactile/display/play_anywhere.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tactile/common/stop_signals.hpp"
+#include "tactile/display/devices.hpp"
+#include "tactile/display/emulated_device.hpp"
+#include "tactile/display/preview.hpp"
+#include "tactile/display/summary.hpp"
+#include "tactile/display/usb_transports.hpp"
+#include "tactile/display/viewer.hpp"
+
+namespace tactile::display {
+
+namespace {
+
+using Say = std::function<void(const std::string&)>;
+
+void play_headless(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
+                   PlayResult& result) {
+  EmulatedDeviceOptions device;
+  device.layout = movie.layout;
+  PlayOptions options;
+  options.loops = request.loops;
+  options.stop_fd = request.stop_fd;
+  PlaybackReport report;
+  const movie::TactileMovie output = render_through_device(movie, device, options, &report);
+  result.report = report;
+  say("play: " + playback_summary_line(report));
+  // Where the firmware left its outputs, measured on them: at rest (0) after any stop.
+  float farthest_um = 0;
+  if (output.frame_count > 0) {
+    for (const float v : output.frame(output.frame_count - 1)) {
+      farthest_um = std::max(farthest_um, std::abs(v));
+    }
+  }
+  result.final_max_um = farthest_um;
+  say(fmt::format("play: the emulated device's outputs ended at most {:g} um from rest\n",
+                  farthest_um));
+  if (report.interrupted || stop_requested(request.stop_fd)) {
+    // A stopped run writes nothing: a preview of part of the movie would pass for all of it.
+    result.stopped = true;
+    say("play: stopped; no preview written\n");
+    return;
+  }
+  say(format_summary(summarize(output)));
+  if (request.preview_png.empty()) return;
+  write_preview_strip(request.preview_png, output, PreviewOptions{});
+  result.preview_png = request.preview_png;
+  say(fmt::format("play: preview of what the emulated device output -> {}\n",
+                  request.preview_png.string()));
+}
+
+void play_on_device(const movie::TactileMovie& movie, const PlayRequest& request,
+                    const DeviceDescription& device, const Say& say, PlayResult& result) {
+  say(fmt::format("play: streaming to {} {} ({} {})\n",
+                  device.product.empty() ? "display" : device.product, device.serial,
+                  to_string(device.backend), device.path));
+  auto transport = open_usb_transport(device);
+  PlayOptions options;
+  options.loops = request.loops;
+  options.stop_fd = request.stop_fd;
+  // TransportError (unplugged, refused) propagates: the caller fails with its message.
+  result.report = play_movie(movie, *transport, options);
+  result.stopped = result.report->interrupted;
+  say("play: " + playback_summary_line(*result.report));
+}
+
+}  // namespace
+
+PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& request,
+                         const Say& say) {
+  const auto devices = request.headless ? std::vector<DeviceDescription>{} : list_usb_devices();
+  const PlaybackPlan plan = plan_playback(request.headless, devices, screen_available);
+  PlayResult result;
+  result.target = plan.target;
+  result.device = plan.device;
+  if (plan.unopenable) {
+    say(
+        fmt::format("play: found a display at {} but cannot open it (permissions: install "
+                    "display/udev/70-tactile-display.rules, see README); using the emulator\n",
+                    plan.unopenable->path));
+  }
+  switch (plan.target) {
+    case PlaybackTarget::device:
+      play_on_device(movie, request, *plan.device, say, result);
+      return result;
+    case PlaybackTarget::window: {
+      say("play: no display attached; opening the emulator window\n");
+      ViewerOptions viewer;
+      viewer.loop = request.loops > 1;
+      viewer.play.stop_fd = request.stop_fd;
+      const ViewerResult r = run_viewer(movie, viewer);
+      if (stop_requested(request.stop_fd)) {
+        result.stopped = true;
+        say(fmt::format("play: window closed by a stop request at frame {} of {} ({} drawn)\n",
+                        r.last_movie_frame + 1, r.shown_frame_count, r.frames_drawn));
+      }
+      return result;
+    }
+    case PlaybackTarget::headless:
+      break;
+  }
+  say(fmt::format("play: {}\n", request.headless ? "headless (emulated device)"
+                                                 : "no display attached and no screen; playing "
+                                                   "headless into the emulated device"));
+  play_headless(movie, request, say, result);
+  return result;
+}
+
+}  // namespace tactile::display

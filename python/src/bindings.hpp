@@ -1,0 +1,51 @@
+#pragma once
+// What the binding files of the Python module share: each adds its part of `tactile` to the
+// module, and every call that reads files goes through with_inputs so that a missing file is a
+// FileNotFoundError carrying the program's own message.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+
+namespace tactile::python {
+
+namespace py = pybind11;
+
+// An input file that does not exist; raised in Python as FileNotFoundError with the message
+// the library gave (the one the `tactile` program prints).
+class MissingFile : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Runs `work`; when it fails and one of `inputs` does not exist, the failure is that file's
+// absence, whatever the reader called it.
+template <typename Work>
+auto with_inputs(std::initializer_list<std::filesystem::path> inputs, Work&& work) {
+  try {
+    return work();
+  } catch (const std::exception& e) {
+    for (const auto& path : inputs) {
+      std::error_code ec;
+      if (!path.empty() && !std::filesystem::exists(path, ec)) throw MissingFile(e.what());
+    }
+    throw;
+  }
+}
+
+void bind_errors(py::module_& m);
+void bind_movies(py::module_& m);
+void bind_strain_movies(py::module_& m);
+void bind_mapping(py::module_& m);
+void bind_play(py::module_& m);
+void bind_capture(py::module_& m);
+void bind_classifier(py::module_& m);
+void bind_exchange(py::module_& m);
+
+}  // namespace tactile::python

@@ -1,0 +1,162 @@
+// The classifier of labelled recordings: train, test, predict, as `tactile classify` (the same
+// defaults per procedure, perception::ClassifierTraining), the model a Python object that can be
+// written to and read from the model file.
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <optional>
+#include <variant>
+
+#include "bindings.hpp"
+#include "tactile/perception/classifier_model.hpp"
+#include "tactile/perception/recording_csv.hpp"
+
+namespace tactile::python {
+
+namespace {
+
+namespace fs = std::filesystem;
+using perception::ClassifierModel;
+using ModelArgument = std::variant<std::shared_ptr<ClassifierModel>, fs::path>;
+
+std::shared_ptr<ClassifierModel> model_argument(const ModelArgument& model) {
+  if (const auto* m = std::get_if<std::shared_ptr<ClassifierModel>>(&model)) return *m;
+  const fs::path& path = std::get<fs::path>(model);
+  return std::make_shared<ClassifierModel>(
+      with_inputs({path}, [&] { return perception::read_classifier_model(path); }));
+}
+
+void check_threads(int threads) {
+  if (threads < 0 || threads > 256) {
+    throw std::invalid_argument(
+        fmt::format("threads: {} is out of range: must be in [0, 256] (0: all cores)", threads));
+  }
+}
+
+std::shared_ptr<ClassifierModel> train(const fs::path& recordings, const fs::path& labels,
+                                       std::optional<fs::path> out, const std::string& procedure,
+                                       std::optional<std::string> baseline_at,
+                                       std::optional<std::string> electrodes,
+                                       std::optional<double> trim,
+                                       std::optional<std::vector<std::string>> inputs,
+                                       std::optional<int> kernel_degree, std::optional<double> c,
+                                       int threads) {
+  check_threads(threads);
+  perception::ClassifierTraining training;
+  training.procedure = procedure;
+  training.trim = trim;
+  training.kernel_degree = kernel_degree;
+  training.c = c;
+  if (baseline_at) training.baseline_at = perception::parse_baseline_at(*baseline_at);
+  if (electrodes) training.electrodes = perception::parse_electrodes(*electrodes);
+  for (const auto& name : inputs.value_or(std::vector<std::string>{}))
+    training.inputs.push_back(perception::parse_input_group(name));
+  if (kernel_degree && *kernel_degree != 1 && *kernel_degree != 2) {
+    throw std::invalid_argument(fmt::format("kernel_degree: {} is not 1 or 2", *kernel_degree));
+  }
+  if (c && !(*c >= 0.001 && *c <= 100000)) {
+    throw std::invalid_argument(
+        fmt::format("c: {:g} is out of range: must be in [0.001, 100000]", *c));
+  }
+  const auto in = perception::recording_inputs_for(training);
+  const auto svm = perception::svm_options_for(training);
+  py::gil_scoped_release unlocked;
+  const auto data = with_inputs({recordings, labels}, [&] {
+    return perception::load_labelled_recordings(recordings, labels, in, {}, threads);
+  });
+  perception::require_two_classes(data, labels);
+  auto model = std::make_shared<ClassifierModel>(perception::make_classifier_model(data, svm));
+  const perception::Classifier fitted(*model);  // checks that it trains before writing a file
+  if (out) perception::write_classifier_model(*out, *model);
+  return model;
+}
+
+py::dict test(const ModelArgument& model_arg, const fs::path& recordings, const fs::path& labels,
+              int threads) {
+  check_threads(threads);
+  const auto model = model_argument(model_arg);
+  perception::ClassifierTest t;
+  perception::LabelledInputs data;
+  {
+    py::gil_scoped_release unlocked;
+    const perception::Classifier fitted(*model);
+    data = with_inputs({recordings, labels}, [&] {
+      return perception::load_labelled_recordings(recordings, labels, model->options,
+                                                  model->class_names, threads);
+    });
+    t = perception::test_classifier(fitted, model->class_names.size(), data);
+  }
+  const auto n = static_cast<py::ssize_t>(model->class_names.size());
+  py::array_t<int> confusion({n, n});
+  auto cm = confusion.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i)
+    for (py::ssize_t j = 0; j < n; ++j)
+      cm(i, j) = t.confusion[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  py::list predicted;
+  for (const auto& p : t.predictions) {
+    predicted.append(model->class_names.at(static_cast<std::size_t>(p.class_index)));
+  }
+  py::dict out;
+  out["accuracy"] = t.accuracy();
+  out["correct"] = t.correct;
+  out["tested"] = t.tested;
+  out["class_names"] = model->class_names;
+  out["confusion"] = confusion;  // [true][predicted]
+  out["files"] = data.files;
+  out["predicted"] = predicted;
+  return out;
+}
+
+py::list predict(const ModelArgument& model_arg, const std::vector<fs::path>& files) {
+  const auto model = model_argument(model_arg);
+  const perception::Classifier fitted(*model);
+  py::list out;
+  for (const auto& f : files) {
+    const auto p = with_inputs({f}, [&] {
+      return fitted.predict(
+          perception::recording_inputs(perception::read_sensor_csv(f), model->options));
+    });
+    const auto& name = model->class_names.at(static_cast<std::size_t>(p.class_index));
+    out.append(fitted.has_values() ? py::make_tuple(name, p.value)
+                                   : py::make_tuple(name, py::none()));
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_classifier(py::module_& m) {
+  py::class_<ClassifierModel, std::shared_ptr<ClassifierModel>>(
+      m, "ClassifierModel", "A trained classifier of labelled recordings (its model file).")
+      .def_readonly("class_names", &ClassifierModel::class_names)
+      .def_readonly("input_names", &ClassifierModel::input_names)
+      .def_readonly("files", &ClassifierModel::files)
+      .def_property_readonly("kernel_degree", [](const ClassifierModel& c) { return c.svm.degree; })
+      .def_property_readonly("c", [](const ClassifierModel& c) { return c.svm.c; })
+      .def(
+          "write",
+          [](const ClassifierModel& c, const fs::path& path) {
+            perception::write_classifier_model(path, c);
+          },
+          py::arg("path"));
+  m.def(
+      "read_classifier_model", [](const fs::path& path) { return model_argument(path); },
+      py::arg("path"));
+  m.def("train", &train, py::arg("recordings"), py::arg("labels"), py::kw_only(),
+        py::arg("out") = py::none(), py::arg("procedure") = "stroke",
+        py::arg("baseline_at") = py::none(), py::arg("electrodes") = py::none(),
+        py::arg("trim") = py::none(), py::arg("inputs") = py::none(),
+        py::arg("kernel_degree") = py::none(), py::arg("c") = py::none(), py::arg("threads") = 0,
+        "Trains a classifier of the labelled recordings (labels CSV file,class[,value]) as\n"
+        "`tactile classify train`: options left unset are the procedure's defaults (stroke,\n"
+        "static, dp, ru, roll); writes the model file when `out` is given.");
+  m.def("test", &test, py::arg("model"), py::arg("recordings"), py::arg("labels"), py::kw_only(),
+        py::arg("threads") = 0,
+        "Accuracy of a model (a ClassifierModel or its file) on labelled recordings: accuracy,\n"
+        "correct, tested, class_names, confusion [true][predicted], files, predicted.");
+  m.def("predict", &predict, py::arg("model"), py::arg("files"),
+        "(class, value or None) of each recording (BioTac-style CSV).");
+}
+
+}  // namespace tactile::python
