@@ -278,7 +278,8 @@ TEST(StopCli, SignalMidPlayLeavesTheLateroBladesAtRest) {
     sleep_s(0.3);
     tactile::test::Started play(
         {"play", movie.string(), "--latero", "127.0.0.1:" + std::to_string(port)}, d / "play.log");
-    sleep_s(1.5);
+    ASSERT_TRUE(play.wait_until_blocking(sig, 30)) << text_of(d / "play.log");
+    sleep_s(1.0);
     const auto signalled = std::chrono::steady_clock::now();
     play.signal(sig);
     const auto ended = play.wait(5);
@@ -320,7 +321,8 @@ TEST(StopCli, SignalMidHeadlessPlayEndsTheFirmwareOutputsAtRest) {
     tactile::test::Started play({"play", movie.string(), "--headless", "--loops", "40", "--preview",
                                  (d / "preview.png").string()},
                                 d / "play.log");
-    sleep_s(1.0);  // about 0.3 s to start, then some 75 000 frames a second of 300 000
+    ASSERT_TRUE(play.wait_until_blocking(sig, 30)) << text_of(d / "play.log");
+    sleep_s(1.0);  // some 75 000 frames a second of 300 000
     play.signal(sig);
     const auto ended = play.wait(10);
     const std::string out = text_of(d / "play.log");

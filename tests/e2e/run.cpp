@@ -10,7 +10,9 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace tactile::test {
 
@@ -51,6 +53,22 @@ Started::~Started() {
 
 void Started::signal(int sig) const {
   ::kill(pid_, sig);
+}
+
+bool Started::wait_until_blocking(int sig, double limit_s) const {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
+  const std::string status_file = "/proc/" + std::to_string(pid_) + "/status";
+  for (;;) {
+    std::ifstream in(status_file);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("SigBlk:", 0) != 0) continue;
+      const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
+      if ((mask >> (sig - 1)) & 1ULL) return true;
+    }
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
 }
 
 Started::Ended Started::wait(double limit_s) {

@@ -25,6 +25,10 @@ class Started {
   Started& operator=(const Started&) = delete;
 
   void signal(int sig) const;
+  // Waits at most `limit_s` until the process blocks `sig` (its main thread's mask in
+  // /proc/PID/status), i.e. until it has set up its own stop handling: a signal sent before
+  // that ends it by the default action, which is not what a stop test means to try.
+  bool wait_until_blocking(int sig, double limit_s) const;
   struct Ended {
     bool ended = false;  // false: still running when the wait gave up
     int exit_code = -1;  // when it exited
