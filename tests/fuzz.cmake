@@ -42,13 +42,14 @@ set(rf_sources
     common/src/value_checks.cpp capture/src/strain/strain_movie_io.cpp
     capture/src/camera/calibration_io.cpp capture/src/pores/pore_model_io.cpp
     capture/src/pores/pore_training_io.cpp movie/src/movie_io.cpp movie/src/layout_json.cpp
-    perception/src/signals/recording_csv.cpp perception/src/learning/classifier_model.cpp)
+    perception/src/signals/recording_csv.cpp perception/src/learning/classifier_model.cpp
+    experiments/src/experiment.cpp)
 set(rf_flags -std=c++20 -g -O1 -fsanitize=fuzzer-no-link,address,undefined
              -fno-sanitize-recover=all -DTACTILE_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-foreach(module common capture movie display perception mapping)
+foreach(module common capture movie display perception mapping experiments)
   list(APPEND rf_flags -I${PROJECT_SOURCE_DIR}/${module}/include -I${PROJECT_SOURCE_DIR}/${module}/src)
 endforeach()
-list(APPEND rf_flags -I${PROJECT_BINARY_DIR}/generated)
+list(APPEND rf_flags -I${PROJECT_BINARY_DIR}/generated -I${PROJECT_SOURCE_DIR}/common/chart/include)
 foreach(dir ${HDF5_INCLUDE_DIRS} ${OpenCV_INCLUDE_DIRS})
   list(APPEND rf_flags -isystem ${dir})
 endforeach()
@@ -66,7 +67,7 @@ foreach(source ${rf_sources})
     VERBATIM)
   list(APPEND rf_objects ${object})
 endforeach()
-set(rf_libraries tactile_perception tactile_capture tactile_movie tactile_common tactile_chart tactile_mapping)
+set(rf_libraries tactile_experiments tactile_perception tactile_capture tactile_movie tactile_common tactile_chart tactile_mapping)
 set(rf_library_files)
 foreach(lib ${rf_libraries})
   list(APPEND rf_library_files $<TARGET_FILE:${lib}>)
@@ -87,7 +88,7 @@ add_custom_target(reader_fuzz ALL DEPENDS ${rf_target})
 # movie readers contain that by reading in a child process first, so such a file is a
 # FormatError here like any other.
 set(TACTILE_FUZZ_READERS strain-movie tactile-movie layout-json calibration-json pore-model-json
-                         classifier-model-json recording-csv pore-marks)
+                         classifier-model-json recording-csv pore-marks labels-csv experiment-json)
 # HDF5 1.10 leaks a few bytes on some damaged files: leak checks only where the library is ours.
 # HDF5 asks malloc for whatever size a damaged file declares; outside the sanitizer malloc answers
 # NULL and HDF5 reports an error that the reader turns into a FormatError, so the fuzzer lets
