@@ -8,8 +8,22 @@
 #include <fstream>
 #include <system_error>
 
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/value_checks.hpp"
+
+// Set by a sanitizer runtime when one is linked in (weak: absent otherwise). Its death callback
+// is how a fuzzer records a crash; in the reading child a crash is a finding about the file.
+extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
 
 namespace tactile::h5 {
 namespace {
@@ -122,6 +136,78 @@ void write_file_atomically(const std::filesystem::path& path,
   write_atomically(path, std::string_view(image.data(), image.size()));
 }
 
+void read_in_child_first(const std::filesystem::path& path, const std::string& what,
+                         const std::function<void()>& read) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  // Generous for any disk: a child still reading after this is stuck in a damaged structure.
+  const int limit_s = 10 + static_cast<int>((ec ? 0 : size) / (4 << 20));
+  int pipe_fds[2];
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return;  // no protection, but still a reader
+  const pid_t parent = ::getpid();
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+    return;
+  }
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(0);  // the parent ended before PDEATHSIG was set
+    // A crash is the child's verdict on the file: it ends the child by its signal, reported by
+    // the parent, not by whatever handler the process installed.
+    for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
+    // Ctrl-C is the parent's to handle (its handler removes the parent's temporary files); the
+    // child ends with the parent through PDEATHSIG.
+    std::signal(SIGINT, SIG_IGN);
+    std::signal(SIGTERM, SIG_IGN);
+    if (&__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
+    try {
+      read();
+    } catch (...) {
+    }
+    ::_exit(0);  // no atexit handlers, no flushing of the parent's buffers
+  }
+  ::close(pipe_fds[1]);
+  // The pipe's write end closes when the child ends, however it ends.
+  pollfd pfd{pipe_fds[0], POLLIN, 0};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limit_s);
+  bool timed_out = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    const int n = ::poll(&pfd, 1, static_cast<int>(left.count()));
+    if (n > 0 || (n < 0 && errno != EINTR)) break;
+  }
+  ::close(pipe_fds[0]);
+  if (timed_out) ::kill(child, SIGKILL);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out) {
+    throw FormatError(fmt::format("{}: damaged file: reading it as {} did not finish within {} s",
+                                  path.string(), what, limit_s));
+  }
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    throw FormatError(
+        fmt::format("{}: damaged file: reading it as {} crashed the HDF5 library "
+                    "(signal {}, {})",
+                    path.string(), what, sig, ::strsignal(sig)));
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    throw FormatError(
+        fmt::format("{}: damaged file: reading it as {} crashed the HDF5 library "
+                    "(exit status {})",
+                    path.string(), what, WEXITSTATUS(status)));
+  }
+}
+
 H5::H5File open_for_reading(const std::filesystem::path& path) {
   silence_hdf5();
   std::error_code ec;
@@ -153,11 +239,16 @@ void write_attr(H5::H5Object& obj, const std::string& name, std::int64_t value) 
 }
 
 void write_attr(H5::H5Object& obj, const std::string& name, const std::string& value) {
-  // Variable-length UTF-8 strings read as plain strings in h5py and MATLAB.
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  // Fixed-length, null-padded UTF-8 (h5py reads bytes, MATLAB a char array): reading a
+  // variable-length string goes through HDF5's global heap, whose code crashes or hangs on
+  // damaged files. An empty string still needs one byte of storage.
+  H5::StrType type(H5::PredType::C_S1, std::max<std::size_t>(value.size(), 1));
   type.setCset(H5T_CSET_UTF8);
+  type.setStrpad(H5T_STR_NULLPAD);
   H5::Attribute a = obj.createAttribute(name, type, H5::DataSpace());
-  a.write(type, value);
+  std::string stored = value;
+  stored.resize(type.getSize(), '\0');
+  a.write(type, stored.data());
 }
 
 bool has_attr(const H5::H5Object& obj, const std::string& name) {

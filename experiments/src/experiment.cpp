@@ -17,8 +17,11 @@
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
 #include "tactile/common/names.hpp"
+#include "tactile/common/value_checks.hpp"
 #include "tactile/mapping/profile.hpp"
 #include "tactile/movie/layout_json.hpp"
+#include "tactile/movie/limits.hpp"
+#include "tactile/movie/movie_io.hpp"
 #include "tactile/perception/recording.hpp"
 #include "tactile/perception/sensor_scene.hpp"
 
@@ -65,18 +68,20 @@ capture::SceneSpec scene_spec(const Context& cx, const json& j, const std::strin
     if (n < 2 || n > 100000) cx.fail(fmt::format("{}.frames = {} is not in 2..100000", where, n));
     s.frame_count = static_cast<int>(n);
   }
-  if (j.contains("frame_rate_hz"))
-    s.frame_rate_hz = json_number(cx, j["frame_rate_hz"], where + ".frame_rate_hz");
-  if (j.contains("speed_mm_per_s"))
-    s.speed_mm_per_s = json_number(cx, j["speed_mm_per_s"], where + ".speed_mm_per_s");
-  if (j.contains("height_mm"))
-    s.feature_height_mm = json_number(cx, j["height_mm"], where + ".height_mm");
-  if (j.contains("width_mm"))
-    s.feature_width_mm = json_number(cx, j["width_mm"], where + ".width_mm");
-  if (j.contains("contact_semi_x_mm")) {
-    s.contact_semi_x_mm = json_number(cx, j["contact_semi_x_mm"], where + ".contact_semi_x_mm");
-  }
-  if (j.contains("noise")) s.noise_sigma = json_number(cx, j["noise"], where + ".noise");
+  // The ranges of `tactile synth`'s options, so a scene means the same wherever it is given; a
+  // camera rate as a movie's.
+  const auto number = [&](const char* key, double min, double max, double& out) {
+    if (j.contains(key)) {
+      const std::string what = where + "." + key;
+      out = checks::in_range(json_number(cx, j[key], what), min, max, cx.origin, what);
+    }
+  };
+  number("frame_rate_hz", 1, movie::kMaxMovieRateHz, s.frame_rate_hz);
+  number("speed_mm_per_s", 0, 100, s.speed_mm_per_s);
+  number("height_mm", 0, 5, s.feature_height_mm);
+  number("width_mm", 0.1, 50, s.feature_width_mm);
+  number("contact_semi_x_mm", 0.5, 20, s.contact_semi_x_mm);
+  number("noise", 0, 128, s.noise_sigma);
   if (j.contains("seed")) {
     const auto seed = json_integer(cx, j["seed"], where + ".seed");
     if (seed < 0) cx.fail(fmt::format("{}.seed must not be negative", where));
@@ -160,15 +165,21 @@ std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
     std::vector<MappingParams> next;
     for (const auto& v : list(cx, value, what)) {
       for (MappingParams p : grid) {
-        if (key == "gain_um_per_strain") p.gain_um_per_strain = json_number(cx, v, what);
-        if (key == "peak_fraction") p.peak_fraction = json_number(cx, v, what);
-        if (key == "rate_hz") p.rate_hz = json_number(cx, v, what);
-        if (key == "slew_limit_um_per_s") p.slew_limit_um_per_s = json_number(cx, v, what);
-        if (key == "min_triangle_quality") p.field.min_triangle_quality = json_number(cx, v, what);
+        // Ranges as `tactile map`'s options; the mapping checks the finer rules (a playable
+        // rate, a positive gain) for the run.
+        const auto number = [&](double min, double max) {
+          return checks::in_range(json_number(cx, v, what), min, max, cx.origin, what);
+        };
+        if (key == "gain_um_per_strain") p.gain_um_per_strain = number(-1e6, 1e6);
+        if (key == "peak_fraction") p.peak_fraction = number(0, 1);
+        if (key == "rate_hz") p.rate_hz = number(1, movie::kMaxPlayableRateHz);
+        if (key == "slew_limit_um_per_s") p.slew_limit_um_per_s = number(0, 1e9);
+        if (key == "min_triangle_quality") p.field.min_triangle_quality = number(0, 1);
         if (key == "normalisation") p.normalisation = json_mode(cx, v, what, parse_normalisation);
         if (key == "strain") p.strain = json_mode(cx, v, what, parse_strain_mode);
         if (key == "reference_frame") {
-          p.accumulate.reference_frame = static_cast<std::int32_t>(json_integer(cx, v, what));
+          p.accumulate.reference_frame = static_cast<std::int32_t>(
+              checks::int_in_range(json_integer(cx, v, what), -1, 100000000, cx.origin, what));
         }
         next.push_back(p);
       }

@@ -167,7 +167,9 @@ TactileMovie read_checked(const std::filesystem::path& path) {
 
 }  // namespace
 
-TactileMovie read_tactile_movie(const std::filesystem::path& path) {
+namespace {
+
+TactileMovie read_in_process(const std::filesystem::path& path) {
   // HDF5's own exceptions are not std::exceptions: none may leave this reader raw.
   try {
     return read_checked(path);
@@ -175,6 +177,13 @@ TactileMovie read_tactile_movie(const std::filesystem::path& path) {
     throw FormatError(fmt::format("{}: cannot read as a tactile movie (damaged file?): {}",
                                   path.string(), e.getDetailMsg()));
   }
+}
+
+}  // namespace
+
+TactileMovie read_tactile_movie(const std::filesystem::path& path) {
+  h5::read_in_child_first(path, "a tactile movie", [&] { read_in_process(path); });
+  return read_in_process(path);
 }
 
 void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovie& movie) {

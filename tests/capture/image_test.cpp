@@ -1,7 +1,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
+#include <opencv2/core.hpp>
+#include <stdexcept>
 
 #include "tactile/capture/image.hpp"
 #include "tactile/common/error.hpp"
@@ -64,6 +67,45 @@ TEST(Image, TruncatedPngIsAFormatError) {
   std::ofstream(dir.path() / "cut.png", std::ios::binary) << bytes.substr(0, 40);
   EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "cut.png"); }),
               HasSubstr("cut.png: not a readable image"));
+}
+
+// The PNG chunk checksum (CRC-32 of ISO 3309, as the PNG specification gives it).
+std::uint32_t png_crc(const std::string& bytes) {
+  std::uint32_t c = 0xFFFFFFFFU;
+  for (const char b : bytes) {
+    c ^= static_cast<std::uint8_t>(b);
+    for (int k = 0; k < 8; ++k) c = (c & 1U) ? 0xEDB88320U ^ (c >> 1) : c >> 1;
+  }
+  return c ^ 0xFFFFFFFFU;
+}
+
+// A valid PNG whose header declares 60000 x 60000 px (its checksum corrected): OpenCV refuses
+// it with an assertion; the reader says so in words, naming the file, without OpenCV's text.
+TEST(Image, PngDeclaringTooManyPixelsIsRefusedInWords) {
+  TempDir dir;
+  write_png(dir.path() / "small.png", gradient(64, 64));
+  std::ifstream in(dir.path() / "small.png", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+  for (const int at : {16, 20}) {  // width, height: big-endian 60000
+    bytes[at] = 0;
+    bytes[at + 1] = 0;
+    bytes[at + 2] = static_cast<char>(60000 >> 8);
+    bytes[at + 3] = static_cast<char>(60000 & 0xFF);
+  }
+  const std::uint32_t crc = png_crc(bytes.substr(12, 17));
+  for (int i = 0; i < 4; ++i) bytes[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+  std::ofstream(dir.path() / "huge.png", std::ios::binary) << bytes;
+  const std::string e = format_error_of([&] { read_image(dir.path() / "huge.png"); });
+  EXPECT_THAT(e, HasSubstr("huge.png: not a readable image (the image has more pixels than "
+                           "OpenCV decodes (2^30))"));
+  EXPECT_THAT(e, ::testing::Not(HasSubstr("OpenCV(")));
+}
+
+TEST(Image, OpencvErrorsAreSaidInWords) {
+  const cv::Exception e(cv::Error::StsBadArg, "ssize.area() > 0", "resize", "resize.cpp", 4052);
+  EXPECT_EQ(opencv_error_text(e), "image processing failed in OpenCV's resize: ssize.area() > 0");
+  EXPECT_EQ(opencv_error_text(std::runtime_error("not OpenCV's")), std::nullopt);
 }
 
 TEST(Image, ListFramesSortsByNameAndSkipsOtherFiles) {

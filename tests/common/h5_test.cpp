@@ -4,6 +4,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -126,4 +130,53 @@ TEST_F(H5Test, LargeDatasetsAreCompressedAndExact) {
   H5::H5File f = tactile::h5::open_for_reading(p);
   std::vector<hsize_t> dims;
   EXPECT_EQ(tactile::h5::read_floats(f, "d", 3, dims, "big"), big);
+}
+
+// Strings are stored fixed-length: reading them never goes through HDF5's global heap, whose
+// code crashes on damaged files. The empty string still round-trips.
+TEST_F(H5Test, StringsAreWrittenFixedLengthAndRoundTrip) {
+  const fs::path p = dir_ / "s.h5";
+  tactile::h5::write_file_atomically(p, [](H5::H5File& f) {
+    tactile::h5::write_attr(f, "name", "stress2");
+    tactile::h5::write_attr(f, "empty", "");
+  });
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  const H5::StrType type = f.openAttribute("name").getStrType();
+  EXPECT_FALSE(type.isVariableStr());
+  EXPECT_EQ(type.getSize(), 7U);
+  EXPECT_EQ(tactile::h5::read_attr_string(f, "name", "s"), "stress2");
+  EXPECT_EQ(tactile::h5::read_attr_string(f, "empty", "s"), "");
+}
+
+// Files written before strings were fixed-length hold variable-length ones: still readable.
+TEST_F(H5Test, VariableLengthStringsOfOlderFilesAreRead) {
+  const fs::path p = dir_ / "old.h5";
+  {
+    H5::H5File f(p.string(), H5F_ACC_TRUNC);
+    H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+    type.setCset(H5T_CSET_UTF8);
+    f.createAttribute("name", type, H5::DataSpace()).write(type, std::string("latero"));
+  }
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  ASSERT_TRUE(f.openAttribute("name").getStrType().isVariableStr());
+  EXPECT_EQ(tactile::h5::read_attr_string(f, "name", "old"), "latero");
+}
+
+// A read that kills its process (as HDF5 does on some damaged files) is a FormatError naming the
+// file and saying it is damaged; a read that returns or throws lets the caller go on.
+TEST_F(H5Test, ReadThatCrashesInTheChildIsADamagedFileError) {
+  const fs::path p = dir_ / "d.h5";
+  write_sample(p);
+  for (const int sig : {SIGSEGV, SIGABRT, SIGBUS}) {
+    const std::string msg = error_of(
+        [&] { tactile::h5::read_in_child_first(p, "a test file", [sig] { std::raise(sig); }); });
+    EXPECT_THAT(msg, HasSubstr("d.h5: damaged file: reading it as a test file crashed"));
+    EXPECT_THAT(msg, HasSubstr(fmt::format("signal {}", sig)));
+  }
+  EXPECT_THAT(
+      error_of([&] { tactile::h5::read_in_child_first(p, "a test file", [] { std::_Exit(3); }); }),
+      HasSubstr("exit status 3"));
+  EXPECT_NO_THROW(tactile::h5::read_in_child_first(p, "a test file", [] {}));
+  EXPECT_NO_THROW(tactile::h5::read_in_child_first(
+      p, "a test file", [] { throw tactile::FormatError("refused in the child"); }));
 }

@@ -20,9 +20,12 @@ namespace tactile::test {
 
 class SmallDisk {
  public:
-  explicit SmallDisk(std::size_t size_kib = 64) : dir_("small-disk") {
+  // `read_only`: mounted read-only, a folder that even root cannot write in (root ignores mode
+  // bits such as chmod 0555, not a read-only mount).
+  explicit SmallDisk(std::size_t size_kib = 64, bool read_only = false) : dir_("small-disk") {
     const std::string options = "size=" + std::to_string(size_kib) + "k";
-    if (::mount("tmpfs", dir_.path().c_str(), "tmpfs", 0, options.c_str()) != 0) {
+    if (::mount("tmpfs", dir_.path().c_str(), "tmpfs", read_only ? MS_RDONLY : 0,
+                options.c_str()) != 0) {
       throw std::runtime_error("cannot mount a " + options + " tmpfs on " + dir_.path().string() +
                                " for a full-disk test: " + std::strerror(errno) +
                                " (the tests need root)");

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -91,6 +92,38 @@ TEST(HostileInput, ClassifierOfOneClassFailsAndWritesNothing) {
   EXPECT_THAT(r.output, HasSubstr("at least 2 classes"));
   EXPECT_THAT(r.output, HasSubstr("labels.csv"));
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A run that needs more memory than the process may have (an address-space limit the test sets
+// with the shell's ulimit: an experiment whose one movie, 256 x 256 contactors at 700 Hz for
+// 17 s, needs about 3 GB) ends as a failed run, exit 1, with one line naming the command, not
+// an abort with std::bad_alloc.
+TEST(HostileInput, OutOfMemoryIsAFailedRunNamingTheCommand) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: ulimit -v cannot bound "
+                  "a sanitized program";
+#endif
+  const tactile::test::TempDir tmp("out-of-memory");
+  const auto dir = tmp.path();
+  std::ofstream(dir / "big.json") << R"({"name": "big", "rows": 256, "cols": 256,
+    "pitch_mm": [0.05, 0.05], "contactor_size_mm": [0.02, 0.02], "deflection_axis": "x",
+    "deflection_range_um": [-50, 50], "max_rate_hz": 700})";
+  std::ofstream(dir / "exp.json") << R"({"name": "mem", "seed": 1,
+    "sources": [{"name": "gt", "ground_truth": {"scene": "bump", "frames": 1000},
+                 "grid_spacing_mm": 0.6}],
+    "layouts": ["big.json"], "methods": ["proportional"], "write_movies": false})";
+  const std::string cmd = "ulimit -v 1500000 && " + std::string(TACTILE_CLI_PATH) + " experiment " +
+                          (dir / "exp.json").string() + " --out " + (dir / "out").string() +
+                          " --threads 1 2>&1; echo \"exit=$?\"";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) output.append(buf, n);
+  pclose(pipe);
+  EXPECT_THAT(output, HasSubstr("tactile experiment: error: out of memory")) << output;
+  EXPECT_THAT(output, HasSubstr("exit=1")) << output;
+  EXPECT_THAT(output, ::testing::Not(HasSubstr("std::bad_alloc"))) << output;
 }
 
 }  // namespace

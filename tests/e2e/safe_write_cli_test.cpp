@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -116,6 +117,57 @@ TEST_F(SafeWrite, AnOutputThatCannotBeWrittenIsAUsageErrorBeforeTheWork) {
                   (dir_ / "file").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("--out " + (dir_ / "file").string() + ": is a file"));
+  EXPECT_EQ(bytes(dir_ / "file"), "a file");
+}
+
+// A folder that cannot be written, made in two ways that hold although the tests run as root
+// (root ignores mode bits, so chmod 0555 would prove nothing): a tmpfs the test mounts
+// read-only (access() answers EROFS to root too), and, independent of file system and
+// privileges, a path whose parent is a regular file. For map and capture, every output there is
+// a usage error (exit 2) naming the option and the reason, found before the work: no line of
+// the work is printed and nothing is written.
+TEST_F(SafeWrite, AnOutputInAFolderThatCannotBeWrittenIsRefusedBeforeTheWork) {
+  const tactile::test::SmallDisk read_only(64, true);
+  std::ofstream(dir_ / "file") << "a file";
+  const fs::path strain = kDemo / "strain.h5";
+  const std::string capture = "capture " + (kDemo / "frames").string() + " --px-per-mm 62 ";
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"map " + strain.string() + " --out " + (read_only / "m.h5").string(),
+       "--out " + (read_only / "m.h5").string() + ": cannot write in the folder " +
+           read_only.path().string() + ": Read-only file system"},
+      {"map " + strain.string() + " --out " + (dir_ / "m.h5").string() + " --csv " +
+           (read_only / "m.csv").string(),
+       "--csv " + (read_only / "m.csv").string() + ": cannot write in the folder"},
+      {"map " + strain.string() + " --out " + (dir_ / "file" / "m.h5").string(),
+       "--out " + (dir_ / "file" / "m.h5").string() + ": " + (dir_ / "file").string() +
+           " is not a folder"},
+      {capture + "--out " + (read_only / "s.h5").string(),
+       "--out " + (read_only / "s.h5").string() + ": cannot write in the folder " +
+           read_only.path().string() + ": Read-only file system"},
+      {capture + "--out " + (dir_ / "s.h5").string() + " --maps " + (read_only / "maps").string(),
+       "--maps " + (read_only / "maps").string() + ": cannot write in the folder " +
+           read_only.path().string() + ": Read-only file system"},
+      {capture + "--out " + (dir_ / "s.h5").string() + " --csv " + (dir_ / "file" / "csv").string(),
+       "--csv " + (dir_ / "file" / "csv").string() + ": " + (dir_ / "file").string() +
+           " is not a folder"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_tactile(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+    EXPECT_THAT(r.output, HasSubstr(c.message)) << c.args;
+    // The error is all it printed: the work's first lines (capture's choice of detector, map's
+    // summary) never came.
+    EXPECT_EQ(r.output.rfind("tactile " + c.args.substr(0, c.args.find(' ')) + ": error: ", 0), 0U)
+        << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "m.h5"));
+  EXPECT_FALSE(fs::exists(dir_ / "s.h5"));
+  EXPECT_TRUE(fs::is_empty(read_only.path()));
   EXPECT_EQ(bytes(dir_ / "file"), "a file");
 }
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
@@ -173,7 +174,8 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
           "parameters.strain: unknown strain 'integral' (known: per-frame, accumulated)");
   refused(edit("\"rate_hz\": 200", "\"rate_hz\": 800"),
           "rate 800 Hz is above layout 'stress' maximum rate 700 Hz");
-  refused(edit("\"rate_hz\": 200", "\"rate_hz\": -1"), "rate_hz must be positive");
+  refused(edit("\"rate_hz\": 200", "\"rate_hz\": -1"),
+          "parameters.rate_hz -1 is out of range: must be from 1 to 65535");
   refused(edit("\"rate_hz\": 200", "\"gain\": 2"), "unknown field 'gain'");
   refused(edit("\"frames\": 12}", "\"frames\": 12, \"frame_rate_hz\": 900}"),
           "source 'bump' runs at 900 Hz, faster than layout 'stress' can play (700 Hz");
@@ -192,6 +194,46 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
   refused(edit(source, source + ", " + source), "two sources are named 'bump'");
   refused(edit("\"grid_spacing_mm\": 0.5", "\"grid_spacing_mm\": 0"),
           "grid_spacing_mm = 0 is not in [0.05, 5]");
+}
+
+// Numbers of a ground-truth scene and of the parameters: a value no camera, finger or display
+// has is refused with the field and the range (those of `tactile synth` and `tactile map`).
+TEST(Experiment, RefusesNumbersOutOfTheirRangeByField) {
+  struct Case {
+    const char* after;  // the field is added after this text of kSmall
+    const char* field;
+    const char* message;
+  };
+  const std::vector<Case> cases = {
+      {"\"frames\": 12", "\"frame_rate_hz\": 1e300",
+       "sources[0].ground_truth.frame_rate_hz 1e+300 is out of range: must be from 1 to 100000"},
+      {"\"frames\": 12", "\"frame_rate_hz\": 0.5",
+       "sources[0].ground_truth.frame_rate_hz 0.5 is out of range"},
+      {"\"frames\": 12", "\"height_mm\": 1e9",
+       "sources[0].ground_truth.height_mm 1000000000 is out of range: must be from 0 to 5"},
+      {"\"frames\": 12", "\"width_mm\": 0.01",
+       "sources[0].ground_truth.width_mm 0.01 is out of range: must be from 0.1 to 50"},
+      {"\"frames\": 12", "\"contact_semi_x_mm\": 300",
+       "sources[0].ground_truth.contact_semi_x_mm 300 is out of range: must be from 0.5 to 20"},
+      {"\"frames\": 12", "\"speed_mm_per_s\": -3",
+       "sources[0].ground_truth.speed_mm_per_s -3 is out of range: must be from 0 to 100"},
+      {"\"frames\": 12", "\"noise\": 1000",
+       "sources[0].ground_truth.noise 1000 is out of range: must be from 0 to 128"},
+      {"\"frames\": 12", "\"frame_rate_hz\": 1e999", "not valid JSON"},
+      {"\"rate_hz\": 200", "\"gain_um_per_strain\": 1e12",
+       "parameters.gain_um_per_strain 1000000000000 is out of range: must be from -1000000 to "
+       "1000000"},
+      {"\"rate_hz\": 200", "\"peak_fraction\": 2",
+       "parameters.peak_fraction 2 is out of range: must be from 0 to 1"},
+      {"\"rate_hz\": 200", "\"min_triangle_quality\": -0.5",
+       "parameters.min_triangle_quality -0.5 is out of range: must be from 0 to 1"},
+      // Beyond a 32-bit frame number: once cast silently to another frame.
+      {"\"rate_hz\": 200", "\"reference_frame\": 4294967296",
+       "parameters.reference_frame 4294967296 is out of range: must be from -1 to 100000000"},
+  };
+  for (const auto& c : cases) {
+    refused(edit(c.after, std::string(c.after) + ", " + c.field), c.message);
+  }
 }
 
 TEST(Experiment, CustomLayoutFilesResolveFromTheExperimentsFolder) {

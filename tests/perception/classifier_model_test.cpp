@@ -112,6 +112,20 @@ TEST(RecordingLabels, MalformedFilesAreNamedErrors) {
   EXPECT_NE(error("file,class\n").find("no labelled recordings"), std::string::npos);
   EXPECT_NE(error("file,class,weight\na.csv,x,1\n").find("unknown column 'weight'"),
             std::string::npos);
+  EXPECT_NE(error("file,class,value\na.csv,x,nan\n").find("line 2: value is not finite (nan)"),
+            std::string::npos);
+  EXPECT_NE(error("file,class,value\na.csv,x,2e6\n")
+                .find("line 2: value 2000000 is out of range: must be from -1000000 to 1000000"),
+            std::string::npos);
+  EXPECT_NE(error("file,class,file\na.csv,x,b.csv\n").find("column 'file' appears twice"),
+            std::string::npos);
+  // A labelled file is read from the recordings folder and names an output of `classify test`:
+  // a path leading out of the folder is refused.
+  for (const std::string file : {"../a.csv", "/etc/passwd", "sub/../../a.csv"})
+    EXPECT_NE(error("file,class\n" + file + ",x\n")
+                  .find("line 2: file '" + file + "' must be a path inside the recordings folder"),
+              std::string::npos)
+        << file;
   for (const auto& text : {"file,class\na.csv\n", "file,class\n"})
     EXPECT_NE(error(text).find((dir / "bad.csv").string()), std::string::npos) << text;
 }

@@ -26,6 +26,7 @@
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/experiments/experiment.hpp"
 #include "tactile/movie/layout_json.hpp"
 #include "tactile/movie/movie_io.hpp"
 #include "tactile/perception/classifier_model.hpp"
@@ -137,6 +138,27 @@ const std::map<std::string, Reader>& readers() {
        {".csv", [](const fs::path& p) { perception::read_sensor_csv(p); },
         [](const fs::path& dir) {
           copy_head(data / "biotac-materials" / "mat1_1_bio.csv", dir / "rec.csv", 12);
+        }}},
+      {"labels-csv",
+       {".csv", [](const fs::path& p) { perception::read_recording_labels(p); },
+        [](const fs::path& dir) {
+          write_text(dir / "labels.csv",
+                     "file,class,value\na_bio.csv,rough,-2.5\nb_bio.csv,smooth,4\n");
+          write_text(dir / "plain.csv", "class,file\nx,sub/c.csv\n");
+        }}},
+      // Parsing only (the file's runs are not made): every field of the experiment, its
+      // ground-truth and synthetic scenes, its parameters and its perception section.
+      {"experiment-json",
+       {".json", [](const fs::path& p) { experiments::read_experiment(p); },
+        [](const fs::path& dir) {
+          write_text(dir / "small.json", R"({"name": "small", "seed": 3,
+  "sources": [{"name": "bump", "ground_truth": {"scene": "bump", "frames": 12,
+               "frame_rate_hz": 60, "height_mm": 0.5}, "grid_spacing_mm": 0.5},
+              {"name": "slide", "synthetic": {"scene": "flat-slide", "frames": 4, "noise": 2}}],
+  "layouts": ["stress", "latero"], "methods": ["proportional", "integrated", "profile"],
+  "parameters": {"strain": ["per-frame"], "rate_hz": 200, "gain_um_per_strain": [500, 1000],
+                 "peak_fraction": 0.9, "reference_frame": -1},
+  "perception": {"trials": 2, "degree": [1], "footprints_mm": [5]}})");
         }}},
       {"pore-marks",
        {".txt", [](const fs::path& p) { capture::read_pore_marks(p, 640, 480); },

@@ -6,8 +6,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <stdexcept>
+#include <string>
 
 #include "command.hpp"
+#include "tactile/capture/image.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 
@@ -60,19 +64,39 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "tactile: error: {}\nRun `tactile --help` or `tactile <command> --help`.\n",
                e.what());
     return 2;
+  } catch (const std::exception& e) {
+    // A check of an option that failed otherwise than CLI11 reports: still a usage error.
+    fmt::print(stderr, "tactile: error: {}\nRun `tactile --help` or `tactile <command> --help`.\n",
+               e.what());
+    return 2;
   }
 
   if (!action) return 2;  // unreachable: require_subcommand(1) guarantees a command ran
+  // Every failure ends here as one line naming the command, and exit 1; nothing escapes main
+  // (an escaped exception aborts with the C++ runtime's words and a core dump).
+  const std::string command = app.get_subcommands().front()->get_name();
+  const auto failed = [&command](const std::string& why) {
+    fmt::print(stderr, "tactile {}: error: {}\n", command, why);
+    return 1;
+  };
   try {
     return action();
   } catch (const tactile::OutputPathError& e) {
     // Found before any work, like a parse error, but only once a command knows its inputs.
-    fmt::print(stderr, "tactile {}: error: {}\n", app.get_subcommands().front()->get_name(),
-               e.what());
+    fmt::print(stderr, "tactile {}: error: {}\n", command, e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    return failed(
+        "out of memory: the work needs more memory than this machine gives it (a smaller "
+        "input or a lower setting may fit)");
+  } catch (const std::length_error&) {
+    return failed(
+        "a size beyond what this program can hold (a damaged input or an option far "
+        "too large?)");
   } catch (const std::exception& e) {
-    fmt::print(stderr, "tactile {}: error: {}\n", app.get_subcommands().front()->get_name(),
-               e.what());
-    return 1;
+    return failed(tactile::capture::opencv_error_text(e).value_or(e.what()));
+  } catch (...) {
+    return failed(
+        "an unexpected failure that is not a standard exception (a bug: please report it)");
   }
 }

@@ -32,13 +32,25 @@ GrayImage read_image(const std::filesystem::path& path) {
   try {
     decoded = cv::imdecode(bytes, cv::IMREAD_GRAYSCALE);
   } catch (const cv::Exception& e) {
-    throw FormatError(fmt::format("{}: not a readable image ({})", path.string(), e.what()));
+    throw FormatError(
+        fmt::format("{}: not a readable image ({})", path.string(), *opencv_error_text(e)));
   }
   if (decoded.empty()) {
     throw FormatError(
         fmt::format("{}: not a readable image (unknown or corrupt format)", path.string()));
   }
   return from_mat(decoded);
+}
+
+std::optional<std::string> opencv_error_text(const std::exception& e) {
+  const auto* cv_error = dynamic_cast<const cv::Exception*>(&e);
+  if (cv_error == nullptr) return std::nullopt;
+  // The one limit a user meets in practice, in its own words.
+  if (cv_error->err.find("CV_IO_MAX_IMAGE_PIXELS") != std::string::npos) {
+    return "the image has more pixels than OpenCV decodes (2^30)";
+  }
+  return fmt::format("image processing failed in OpenCV's {}: {}",
+                     cv_error->func.empty() ? std::string("code") : cv_error->func, cv_error->err);
 }
 
 void write_png(const std::filesystem::path& path, const GrayImage& image) {

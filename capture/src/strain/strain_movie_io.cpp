@@ -221,7 +221,9 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path);
 
 }  // namespace
 
-StrainMovie read_strain_movie(const std::filesystem::path& path) {
+namespace {
+
+StrainMovie read_in_process(const std::filesystem::path& path) {
   // HDF5's own exceptions are not std::exceptions: none may leave this reader raw.
   try {
     return read_strain_movie_checked(path);
@@ -229,6 +231,13 @@ StrainMovie read_strain_movie(const std::filesystem::path& path) {
     throw FormatError(fmt::format("{}: cannot read as a strain movie (damaged file?): {}",
                                   path.string(), e.getDetailMsg()));
   }
+}
+
+}  // namespace
+
+StrainMovie read_strain_movie(const std::filesystem::path& path) {
+  h5::read_in_child_first(path, "a strain movie", [&] { read_in_process(path); });
+  return read_in_process(path);
 }
 
 namespace {

@@ -77,9 +77,12 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
   if (file_col == width || class_col == width)
     throw FormatError(
         fmt::format("{}: line 1: header needs columns 'file' and 'class' (has '{}')", where, line));
-  for (const auto& h : header)
+  for (const auto& h : header) {
     if (h != "file" && h != "class" && h != "value")
       throw FormatError(fmt::format("{}: line 1: unknown column '{}'", where, h));
+    if (std::count(header.begin(), header.end(), h) > 1)
+      throw FormatError(fmt::format("{}: line 1: column '{}' appears twice", where, h));
+  }
   RecordingLabels labels;
   labels.has_values = value_col != width;
   std::set<std::string> seen;
@@ -92,6 +95,14 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
     RecordingLabel l{f[file_col], f[class_col], 0.0};
     if (l.file.empty() || l.label.empty())
       throw FormatError(fmt::format("{}: line {}: empty file or class", where, number));
+    // Recordings are read from (and `classify test --csv` names its outputs after) this path
+    // inside the recordings folder: it may not lead out of it.
+    const std::filesystem::path file_path(l.file);
+    if (file_path.is_absolute() ||
+        std::any_of(file_path.begin(), file_path.end(), [](const auto& p) { return p == ".."; }))
+      throw FormatError(fmt::format(
+          "{}: line {}: file '{}' must be a path inside the recordings folder (relative, no '..')",
+          where, number, l.file));
     if (!seen.insert(l.file).second)
       throw FormatError(fmt::format("{}: line {}: {} is labelled twice", where, number, l.file));
     if (labels.has_values) {
@@ -101,9 +112,12 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used == 0 || used != f[value_col].size() || !std::isfinite(l.value))
+      if (used == 0 || used != f[value_col].size())
         throw FormatError(
             fmt::format("{}: line {}: value '{}' is not a number", where, number, f[value_col]));
+      // A curvature or a footprint in mm; far beyond any, a value is a typing error.
+      l.value =
+          checks::in_range(l.value, -1e6, 1e6, fmt::format("{}: line {}", where, number), "value");
     }
     labels.rows.push_back(std::move(l));
   }

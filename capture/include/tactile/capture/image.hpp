@@ -2,7 +2,9 @@
 // 8-bit grey images as plain data, so that OpenCV stays out of the public headers.
 
 #include <cstdint>
+#include <exception>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,5 +42,11 @@ std::string frame_file_name(std::size_t i);
 // Writes frames under frame_file_name in `dir` (created if missing), the layout read_frames
 // reads back in order.
 void write_frames(const std::filesystem::path& dir, const std::vector<GrayImage>& frames);
+
+// OpenCV's exceptions (cv::Exception, a std::exception whose text is a source path, a line and
+// an assertion) said in a person's words: "image processing failed in OpenCV's resize: <what
+// it checked>"; nullopt for any other exception. For the one place that reports failures (the
+// program's main), which does not see OpenCV itself.
+std::optional<std::string> opencv_error_text(const std::exception& e);
 
 }  // namespace tactile::capture

@@ -21,6 +21,15 @@ namespace tactile::h5 {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(H5::H5File&)>& fill);
 
+// HDF5 1.10 itself crashes or hangs on some damaged files (inside its object-header and
+// global-heap code, before any check of ours can run), so readers first run `read` on `path` in
+// a forked child process: a child that dies, or that has not finished within a bound that grows
+// with the file's size, makes this throw FormatError naming `path` and `what` ("a tactile
+// movie") as a damaged file. A child that returned or threw is forgotten, and the caller then
+// reads in-process, reaching the same result on the same bytes. Costs one extra read.
+void read_in_child_first(const std::filesystem::path& path, const std::string& what,
+                         const std::function<void()>& read);
+
 // Opens an existing file for reading; throws FormatError if missing or not HDF5.
 H5::H5File open_for_reading(const std::filesystem::path& path);
 
