@@ -10,6 +10,7 @@
 #include "camera/cv_image.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tracking/align_rows.hpp"
 
 namespace tactile::capture {
 namespace {
@@ -40,38 +41,6 @@ Vector6 descent_at(double gx, double gy, double ox, double oy) {
   Vector6 d;
   d << gx * ox, gy * ox, gx * oy, gy * oy, gx, gy;
   return d;
-}
-
-// A single-channel float image's rows, for sampling without OpenCV's accessors in the
-// alignment's innermost loop.
-struct FloatRows {
-  const float* data = nullptr;
-  std::size_t stride = 0;  // floats from one row to the next
-  int cols = 0, rows = 0;
-  explicit FloatRows(const cv::Mat& m)
-      : data(m.ptr<float>(0)), stride(m.step1()), cols(m.cols), rows(m.rows) {}
-};
-
-// Bilinear interpolation in double precision (OpenCV's warps round sample positions to 1/32
-// pixel, and the alignment is after hundredths of a pixel), for a position known to be inside
-// [0, cols - 1) x [0, rows - 1).
-double sample_inside(const FloatRows& image, double x, double y) {
-  // Truncation is the floor for these positions (std::floor is a library call on the baseline
-  // x86-64 target, and sampling is most of an alignment's time).
-  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
-  const double ax = x - ix, ay = y - iy;
-  const float* r0 = image.data + static_cast<std::size_t>(iy) * image.stride + ix;
-  const float* r1 = r0 + image.stride;
-  return (1 - ay) * ((1 - ax) * r0[0] + ax * r0[1]) + ay * ((1 - ax) * r1[0] + ax * r1[1]);
-}
-
-// As sample_inside, for any position; false outside the image.
-bool sample(const FloatRows& image, double x, double y, double& value) {
-  if (!(x >= 0 && y >= 0)) return false;
-  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
-  if (ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
-  value = sample_inside(image, x, y);
-  return true;
 }
 
 // The reference around (x, y) in a smoothed frame; false where too little of the window is
@@ -146,11 +115,11 @@ struct Aligned {
 
 // Whether every sample of the window warped to `position` + `l` x offset falls inside the
 // image with room for bilinear interpolation. The warped window is a parallelogram and the
-// allowed region convex, so its four corners decide; a small margin leaves the samples
-// computed step by step along a row on the safe side.
+// allowed region convex, so its four corners decide. The margin keeps samples computed step by
+// step along a row, or in single precision (about 4e-6 px off at 32 px), on the safe side.
 bool warped_window_inside(const Reference& ref, const FloatRows& image,
                           const Eigen::Vector2d& position, const Eigen::Matrix2d& l) {
-  constexpr double margin = 1e-6;
+  constexpr double margin = 1e-3;
   const double ox[2] = {ref.left - ref.x_px, ref.left + ref.cols - 1 - ref.x_px};
   const double oy[2] = {ref.top - ref.y_px, ref.top + ref.rows - 1 - ref.y_px};
   for (const double a : ox) {
@@ -173,7 +142,7 @@ bool warped_window_inside(const Reference& ref, const FloatRows& image,
 Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_px,
               const Eigen::Matrix2d& linear, const RefineParams& params) {
   Aligned a;
-  const FloatRows smooth(frame);
+  const FloatRows smooth{frame.ptr<float>(0), frame.step1(), frame.cols, frame.rows};
   Eigen::Vector2d position(x_px, y_px);
   Eigen::Matrix2d l = linear;
   const std::size_t n = ref.grey.size();
@@ -200,36 +169,50 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
       const double oy = ref.top + r - ref.y_px;
       double x = position.x() + l00 * ox0 + l01 * oy;
       double y = position.y() + l10 * ox0 + l11 * oy;
-      double sa = 0, sa_ox = 0, sc = 0, sc_ox = 0;
       const std::size_t row0 = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.cols);
-      for (int c = 0; c < ref.cols; ++c, x += l00, y += l10) {
-        const std::size_t i = row0 + static_cast<std::size_t>(c);
-        double v;
-        if (whole) {
-          v = sample_inside(smooth, x, y);
-        } else {
+      RowSums rs;
+      if (whole) {
+        const RowSpan span{ref.weight.data() + row0,
+                           ref.grey.data() + row0,
+                           ref.gx.data() + row0,
+                           ref.gy.data() + row0,
+                           0,
+                           ref.cols,
+                           x,
+                           y,
+                           l00,
+                           l10,
+                           ox0};
+        add_row_sums_vector(smooth, span, rs);
+      } else {
+        for (int c = 0; c < ref.cols; ++c, x += l00, y += l10) {
+          const std::size_t i = row0 + static_cast<std::size_t>(c);
+          double v;
           inside[i] = sample(smooth, x, y, v);
           if (!inside[i]) continue;
           warped[i] = static_cast<float>(v);
           ++inside_count;
+          const double ox = ox0 + c;
+          const double wv = ref.weight[i] * v;
+          rs.i += wv;
+          rs.ii += wv * v;
+          rs.it += wv * ref.grey[i];
+          const double ga = wv * ref.gx[i], gc = wv * ref.gy[i];
+          rs.a += ga;
+          rs.a_ox += ga * ox;
+          rs.c += gc;
+          rs.c_ox += gc * ox;
         }
-        const double ox = ox0 + c;
-        const double wv = ref.weight[i] * v;
-        swi += wv;
-        swii += wv * v;
-        swit += wv * ref.grey[i];
-        const double ga = wv * ref.gx[i], gc = wv * ref.gy[i];
-        sa += ga;
-        sa_ox += ga * ox;
-        sc += gc;
-        sc_ox += gc * ox;
       }
-      swid(0) += sa_ox;
-      swid(1) += sc_ox;
-      swid(2) += sa * oy;
-      swid(3) += sc * oy;
-      swid(4) += sa;
-      swid(5) += sc;
+      swi += rs.i;
+      swii += rs.ii;
+      swit += rs.it;
+      swid(0) += rs.a_ox;
+      swid(1) += rs.c_ox;
+      swid(2) += rs.a * oy;
+      swid(3) += rs.c * oy;
+      swid(4) += rs.a;
+      swid(5) += rs.c;
     }
     // The reference's own sums over the whole window are fixed; only a cut window needs them
     // summed again.
