@@ -12,17 +12,8 @@ namespace tactile::capture {
 void add_row_sums(const FloatRows& image, const RowSpan& row, RowSums& s) {
   double x = row.x0 + row.first * row.dx, y = row.y0 + row.first * row.dy;
   for (int k = row.first; k < row.cols; ++k, x += row.dx, y += row.dy) {
-    const double v = sample_inside(image, x, y);
-    const double ox = row.ox0 + k;
-    const double wv = row.weight[k] * v;
-    s.i += wv;
-    s.ii += wv * v;
-    s.it += wv * row.grey[k];
-    const double ga = wv * row.gx[k], gc = wv * row.gy[k];
-    s.a += ga;
-    s.a_ox += ga * ox;
-    s.c += gc;
-    s.c_ox += gc * ox;
+    s.add(sample_inside(image, x, y), row.weight[k], row.grey[k], row.gx[k], row.gy[k],
+          row.ox0 + k);
   }
 }
 

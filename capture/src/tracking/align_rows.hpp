@@ -41,6 +41,20 @@ inline bool sample(const FloatRows& image, double x, double y, double& value) {
 // and times the offset along x (a_ox, c_ox).
 struct RowSums {
   double i = 0, ii = 0, it = 0, a = 0, a_ox = 0, c = 0, c_ox = 0;
+
+  // One sample v where the reference has weight w, grey level g and gradient (gx, gy), at an
+  // offset ox along x.
+  void add(double v, double w, double g, double gx, double gy, double ox) {
+    const double wv = w * v;
+    i += wv;
+    ii += wv * v;
+    it += wv * g;
+    const double ga = wv * gx, gc = wv * gy;
+    a += ga;
+    a_ox += ga * ox;
+    c += gc;
+    c_ox += gc * ox;
+  }
 };
 
 // One row of the reference window (weights, grey levels and gradients, `cols` of each) and

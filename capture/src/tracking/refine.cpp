@@ -192,16 +192,7 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
           if (!inside[i]) continue;
           warped[i] = static_cast<float>(v);
           ++inside_count;
-          const double ox = ox0 + c;
-          const double wv = ref.weight[i] * v;
-          rs.i += wv;
-          rs.ii += wv * v;
-          rs.it += wv * ref.grey[i];
-          const double ga = wv * ref.gx[i], gc = wv * ref.gy[i];
-          rs.a += ga;
-          rs.a_ox += ga * ox;
-          rs.c += gc;
-          rs.c_ox += gc * ox;
+          rs.add(v, ref.weight[i], ref.grey[i], ref.gx[i], ref.gy[i], ox0 + c);
         }
       }
       swi += rs.i;
