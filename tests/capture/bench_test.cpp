@@ -25,6 +25,12 @@ TEST(CaptureBench, NamesPrintsAndCases) {
   EXPECT_EQ(print_number("image_07.jpg"), "07");
   EXPECT_EQ(case_label({WarpPattern::wave, 0.08, 25}), "wave-fast");
   EXPECT_EQ(case_label({WarpPattern::bump, 0.04, 0}), "bump");
+  EXPECT_EQ(case_label({WarpPattern::wave, 0.08, 25, 1.0}), "wave-fast+loss");
+  // Every motion of the speed of touch but the plain wave, which the quick bench has.
+  for (const auto& c : touch_bench_cases()) {
+    EXPECT_GT(c.travel_mm_per_s, 0);
+    EXPECT_TRUE(c.pattern != WarpPattern::wave || c.contact_loss > 0);
+  }
   // The quick bench is the quasi-static wave and the fast scene; the full one adds the rest.
   EXPECT_EQ(print_bench_cases(true).size(), 2u);
   EXPECT_EQ(print_bench_cases(false).size(), 8u);

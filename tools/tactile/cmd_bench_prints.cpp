@@ -42,6 +42,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
     int frames = 30;
     double px_per_mm = 47;
     bool quick = false;
+    bool touch = false;
     bool sweeps = false;
     double max_rms = 0.0025;
     double min_points = 150;
@@ -73,6 +74,10 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       ->capture_default_str();
   sub->add_flag("--quick", opt->quick,
                 "Only the 4 % wave and the fast 8 % wave, landmarks and Lucas-Kanade");
+  sub->add_flag("--touch", opt->touch,
+                "Instead of the wave and the other quasi-static patterns, the other motions of "
+                "the fast scene (8 %, 25 mm/s, 60 Hz): pulse, ridge, stick-slip, kernels, and "
+                "the wave with a loss of contact");
   sub->add_flag("--sweeps", opt->sweeps, "Also the stability sweeps (slow)");
   sub->add_option("--max-rms", opt->max_rms, "Sweep failure: strain RMS error above this")
       ->check(positive())
@@ -97,7 +102,8 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       bench.held_out = opt->held_out;
       bench.frame_count = opt->frames;
       bench.px_per_mm = opt->px_per_mm;
-      bench.cases = capture::print_bench_cases(opt->quick);
+      bench.cases =
+          opt->touch ? capture::touch_bench_cases() : capture::print_bench_cases(opt->quick);
       bench.method_count = opt->quick ? 2 : all.size();
       fmt::print("{:<6} {:<8} {:<10} {:>5} {:<20} {:>7} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print",
                  "group", "pattern", "strain", "method", "frames/s", "cpu_ms", "rms_err",

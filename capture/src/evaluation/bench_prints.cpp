@@ -50,8 +50,17 @@ std::vector<PrintBenchCase> print_bench_cases(bool quick) {
           {WarpPattern::wave, 0.08},  {WarpPattern::wave, 0.08, 25}};
 }
 
+std::vector<PrintBenchCase> touch_bench_cases() {
+  return {{WarpPattern::pulse, 0.08, 25},
+          {WarpPattern::ridge, 0.08, 25},
+          {WarpPattern::stick_slip, 0.08, 25},
+          {WarpPattern::kernels, 0.08, 25},
+          {WarpPattern::wave, 0.08, 25, 1.0}};
+}
+
 std::string case_label(const PrintBenchCase& c) {
-  return std::string(to_string(c.pattern)) + (c.travel_mm_per_s > 0 ? "-fast" : "");
+  return std::string(to_string(c.pattern)) + (c.travel_mm_per_s > 0 ? "-fast" : "") +
+         (c.contact_loss > 0 ? "+loss" : "");
 }
 
 void set_fast_scene(PrintWarpSpec& s, double travel_mm_per_s) {
@@ -106,6 +115,7 @@ std::vector<PrintBenchRow> bench_prints(const std::vector<PoreTrainingPrint>& pr
       spec.pattern = c.pattern;
       spec.strain = c.strain;
       if (c.travel_mm_per_s > 0) set_fast_scene(spec, c.travel_mm_per_s);
+      spec.contact_loss = c.contact_loss;
       const PrintSequence seq = render_print_sequence(spec, p.image, p.pores_px);
       for (std::size_t k = 0; k < used; ++k) {
         PrintBenchRow r = run_print_bench(methods[k], seq);

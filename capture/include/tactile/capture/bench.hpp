@@ -111,13 +111,19 @@ struct PrintBenchCase {
   WarpPattern pattern = WarpPattern::wave;
   double strain = 0.04;
   double travel_mm_per_s = 0;
+  double contact_loss = 0;  // PrintWarpSpec::contact_loss
 };
 
 // Quick: the 4 % wave and the fast 8 % wave; else rigid, stretch, compress and bump at 4 %, the
 // wave at 1, 4 and 8 % and the fast 8 % wave.
 std::vector<PrintBenchCase> print_bench_cases(bool quick);
 
-// "wave", or "wave-fast" for a case with a travel speed.
+// The other motions of the speed of touch, each as the fast scene at 8 %: a bump (pulse) and
+// a ridge of compression crossing at 25 mm/s, stick-slip, random displacement kernels, and the
+// fast wave with a region that lifts off and lands again.
+std::vector<PrintBenchCase> touch_bench_cases();
+
+// "wave", "wave-fast" for a case with a travel speed, "+loss" added for a loss of contact.
 std::string case_label(const PrintBenchCase& c);
 
 // The fast scene: the pattern crossing at travel_mm_per_s, filmed as a camera does (a 2 ms
