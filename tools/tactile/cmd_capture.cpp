@@ -426,6 +426,8 @@ void add_capture(CLI::App& app, Action& action) {
         const capture::CaptureChoice choice =
             capture::choose_capture_settings(first, 1.0 / c.mm_per_px);
         pores = choice.detector == capture::PoreDetector::ridge_blob ? "ridge-blob" : "paper";
+        // Found with the default detector settings, which are the capture's here (no model).
+        params.first_frame_features = choice.first_frame_features;
         fmt::print(
             "capture: pores: {} (on the first frame the paper's rule found {} pores, the "
             "ridge-blob detector {}; --pores overrides)\n",
