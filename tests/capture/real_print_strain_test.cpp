@@ -283,6 +283,38 @@ TEST(PrintWarp, SequenceFolderIsAGroundTruthAndBrokenOnesAreNamed) {
   }
 }
 
+// The landmarks the choice found on the first frame are the ones the capture would detect
+// there, and handing them over changes nothing in the strain.
+TEST(RealPrintStrain, TheChoicesFirstFrameLandmarksAreTheCapturesOwn) {
+  const GrayImage print = read_image(print_path("12", "image_"));
+  PrintWarpSpec spec = spec_for(print, WarpPattern::wave, 0.04);
+  spec.frame_count = 12;
+  const PrintSequence seq = render_print_sequence(spec, print);
+  const CaptureChoice choice = choose_capture_settings(seq.frames[0], spec.px_per_mm);
+  ASSERT_EQ(choice.detector, PoreDetector::ridge_blob);
+  FeatureParams ridge_blob = pores_only();
+  ridge_blob.pore_detector = PoreDetector::ridge_blob;
+  const auto detected = extract_features(seq.frames[0], spec.px_per_mm, ridge_blob);
+  ASSERT_EQ(choice.first_frame_features.size(), detected.size());
+  EXPECT_EQ(static_cast<int>(detected.size()), choice.ridge_blob_pores);
+  for (std::size_t i = 0; i < detected.size(); ++i) {
+    EXPECT_EQ(choice.first_frame_features[i].x_px, detected[i].x_px);
+    EXPECT_EQ(choice.first_frame_features[i].y_px, detected[i].y_px);
+  }
+  CaptureParams handed = with_choice({}, choice);
+  handed.refinement.min_frames = 5;
+  CaptureParams detecting = handed;
+  detecting.first_frame_features.clear();
+  const StrainMovie a = measure_strain(seq.frames, seq.calibration, 60, handed);
+  const StrainMovie b = measure_strain(seq.frames, seq.calibration, 60, detecting);
+  ASSERT_EQ(a.tracks.size(), b.tracks.size());
+  ASSERT_GT(a.tracks.size(), 100u);
+  for (std::size_t i = 0; i < a.tracks.size(); ++i) {
+    EXPECT_EQ(a.tracks[i].x_px, b.tracks[i].x_px);
+    EXPECT_EQ(a.tracks[i].y_px, b.tracks[i].y_px);
+  }
+}
+
 // The acceptance figures on two prints that no setting of the strain pipeline was tuned on
 // (the refinement was tuned on prints 01-10; the shipped pore model was trained on all 15).
 // Asserted on the 8 % travelling wave and the 4 % bump: >= 150 tracked landmarks per frame, edge

@@ -107,6 +107,8 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
   } else if (settings.pores == PoreSetting::automatic) {
     const CaptureChoice choice = choose_capture_settings(first, 1.0 / c.mm_per_px);
     detector = choice.detector;
+    // Found with the default detector settings, which are the capture's here (no model).
+    params.first_frame_features = choice.first_frame_features;
     messages.note(fmt::format(
         "pores: {} (on the first frame the paper's rule found {} pores, the ridge-blob detector "
         "{}; --pores overrides)",

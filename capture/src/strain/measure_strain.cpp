@@ -55,22 +55,29 @@ CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_pe
     FeatureParams p = base;
     p.pore_detector = detector;
     p.find_minutiae = false;
-    const auto found = extract_features(first_frame, px_per_mm, p);
+    return extract_features(first_frame, px_per_mm, p);
+  };
+  auto pore_count = [](const std::vector<Feature>& found) {
     return static_cast<int>(std::count_if(
         found.begin(), found.end(), [](const Feature& f) { return f.type == FeatureType::pore; }));
   };
-  CaptureChoice choice;
+  std::vector<Feature> paper, ridge_blob;
   // The two detectors side by side: the choice is made before any frame is tracked.
   parallel_for(2, worker_count(0), [&](std::size_t k) {
     if (k == 0) {
-      choice.paper_pores = pores_with(PoreDetector::paper);
+      paper = pores_with(PoreDetector::paper);
     } else {
-      choice.ridge_blob_pores = pores_with(PoreDetector::ridge_blob);
+      ridge_blob = pores_with(PoreDetector::ridge_blob);
     }
   });
+  CaptureChoice choice;
+  choice.paper_pores = pore_count(paper);
+  choice.ridge_blob_pores = pore_count(ridge_blob);
   if (choice.ridge_blob_pores > choice.paper_pores) choice.detector = PoreDetector::ridge_blob;
   choice.refine = refinement_for(choice.detector);
   choice.smoothing_half_window = smoothing_half_window_for(choice.refine);
+  choice.first_frame_features =
+      std::move(choice.detector == PoreDetector::ridge_blob ? ridge_blob : paper);
   return choice;
 }
 
@@ -78,6 +85,7 @@ CaptureParams with_choice(CaptureParams params, const CaptureChoice& choice) {
   params.features.pore_detector = choice.detector;
   params.refine = choice.refine;
   params.smoothing_half_window = choice.smoothing_half_window;
+  params.first_frame_features = choice.first_frame_features;
   return params;
 }
 
@@ -129,7 +137,9 @@ std::vector<Track> tracks_from_detections(const FrameSource& next_frame, GrayIma
     const std::size_t base = features.size();
     features.resize(base + batch.size());
     parallel_for(batch.size(), workers, [&](std::size_t i) {
-      features[base + i] = pores_in(batch[i], px_per_mm, params.features);
+      features[base + i] = base + i == 0 && !params.first_frame_features.empty()
+                               ? params.first_frame_features
+                               : pores_in(batch[i], px_per_mm, params.features);
     });
     batch.clear();
     if (progress) progress("extract", static_cast<int>(features.size()), expected);
@@ -161,7 +171,10 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
     // A fifth of the tracks gone: landmarks have left the view or stopped matching their
     // first-frame neighbourhood.
     const bool short_of_tracks = 5 * tracker.live_tracks() < 4 * live_after_detection;
-    if (due || short_of_tracks) {
+    if (f == 0 && !params.first_frame_features.empty()) {
+      tracker.add_frame(frame, params.first_frame_features);
+      live_after_detection = tracker.live_tracks();
+    } else if (due || short_of_tracks) {
       tracker.add_frame(frame, pores_in(frame, px_per_mm, params.features));
       last_detection = f;
       live_after_detection = tracker.live_tracks();

@@ -10,6 +10,7 @@
 #include "camera/cv_image.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tracking/align_rows.hpp"
 
 namespace tactile::capture {
 namespace {
@@ -18,14 +19,16 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 // The landmark's neighbourhood in its reference frame, ready for inverse-compositional
-// alignment (the warp's update is measured on the reference, not on the frame): the grey levels,
-// their offsets from the landmark, their weights, the steepest-descent images of an affine warp and
-// the inverse of their Hessian. All of it depends on the reference alone, so it is computed once
-// for every later frame.
+// alignment (the warp's update is measured on the reference, not on the frame): the window's
+// grey levels, weights and gradients (rows of `cols` pixels from `left`, `top`), the sums of the
+// steepest-descent images of an affine warp that depend on the reference alone, and the inverse
+// of their Hessian. All of it is computed once for every later frame. Single precision and no
+// per-pixel offsets or descent images keep a window in the first-level cache: the alignment
+// reads it a few times per frame for every track, and the memory traffic was its main cost.
 struct Reference {
-  std::vector<double> grey, dx, dy, weight;
-  std::vector<Vector6> descent;
-  std::vector<Vector6> weighted_descent;  // weight x descent
+  int left = 0, top = 0, cols = 0, rows = 0;
+  double x_px = 0, y_px = 0;  // the landmark
+  std::vector<float> grey, weight, gx, gy;
   Vector6 sum_weighted_descent = Vector6::Zero();
   Vector6 sum_weighted_grey_descent = Vector6::Zero();
   Matrix6 hessian_inverse = Matrix6::Zero();
@@ -33,19 +36,11 @@ struct Reference {
   double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
 };
 
-// Bilinear interpolation in double precision (OpenCV's warps round sample positions to 1/32
-// pixel, and the alignment is after hundredths of a pixel); false outside the image.
-bool sample(const cv::Mat& image, double x, double y, double& value) {
-  // Truncation is the floor for the positions that pass (std::floor is a library call on the
-  // baseline x86-64 target, and sampling is most of an alignment's time).
-  if (!(x >= 0 && y >= 0)) return false;
-  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
-  if (ix + 1 >= image.cols || iy + 1 >= image.rows) return false;
-  const double ax = x - ix, ay = y - iy;
-  const float* r0 = image.ptr<float>(iy) + ix;
-  const float* r1 = image.ptr<float>(iy + 1) + ix;
-  value = (1 - ay) * ((1 - ax) * r0[0] + ax * r0[1]) + ay * ((1 - ax) * r1[0] + ax * r1[1]);
-  return true;
+// The steepest-descent image of an affine warp at offset (ox, oy) from the landmark.
+Vector6 descent_at(double gx, double gy, double ox, double oy) {
+  Vector6 d;
+  d << gx * ox, gy * ox, gx * oy, gy * oy, gx, gy;
+  return d;
 }
 
 // The reference around (x, y) in a smoothed frame; false where too little of the window is
@@ -63,6 +58,17 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
   if (4 * (right - left + 1) * (bottom - top + 1) < (2 * half_side + 1) * (2 * half_side + 1)) {
     return false;
   }
+  ref.left = left;
+  ref.top = top;
+  ref.cols = right - left + 1;
+  ref.rows = bottom - top + 1;
+  ref.x_px = x_px;
+  ref.y_px = y_px;
+  const auto n = static_cast<std::size_t>(ref.cols * ref.rows);
+  ref.grey.reserve(n);
+  ref.weight.reserve(n);
+  ref.gx.reserve(n);
+  ref.gy.reserve(n);
   // Gaussian weights favour the landmark's own surroundings where the skin's strain varies
   // across the window.
   const double sigma = half_side;
@@ -74,23 +80,20 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
     const float* down = smooth.ptr<float>(v + 1);
     for (int u = left; u <= right; ++u) {
       const double ox = u - x_px, oy = v - y_px;
-      const double w = std::exp(-(ox * ox + oy * oy) / (2 * sigma * sigma));
-      const double gx = 0.5 * (row[u + 1] - row[u - 1]);
-      const double gy = 0.5 * (down[u] - up[u]);
-      Vector6 d;
-      d << gx * ox, gy * ox, gx * oy, gy * oy, gx, gy;
+      const auto w = static_cast<float>(std::exp(-(ox * ox + oy * oy) / (2 * sigma * sigma)));
+      const float gx = 0.5f * (row[u + 1] - row[u - 1]);
+      const float gy = 0.5f * (down[u] - up[u]);
+      const Vector6 d = descent_at(gx, gy, ox, oy);
       hessian += w * d * d.transpose();
       ref.grey.push_back(row[u]);
-      ref.dx.push_back(ox);
-      ref.dy.push_back(oy);
       ref.weight.push_back(w);
-      ref.descent.push_back(d);
-      ref.weighted_descent.push_back(w * d);
+      ref.gx.push_back(gx);
+      ref.gy.push_back(gy);
       ref.sum_weighted_descent += w * d;
       ref.sum_weighted_grey_descent += w * row[u] * d;
       sw += w;
       swg += w * row[u];
-      swgg += w * row[u] * row[u];
+      swgg += static_cast<double>(w) * row[u] * row[u];
     }
   }
   ref.total_weight = sw;
@@ -110,42 +113,102 @@ struct Aligned {
   Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
 };
 
+// Whether every sample of the window warped to `position` + `l` x offset falls inside the
+// image with room for bilinear interpolation. The warped window is a parallelogram and the
+// allowed region convex, so its four corners decide. The margin keeps samples computed step by
+// step along a row, or in single precision (about 4e-6 px off at 32 px), on the safe side.
+bool warped_window_inside(const Reference& ref, const FloatRows& image,
+                          const Eigen::Vector2d& position, const Eigen::Matrix2d& l) {
+  constexpr double margin = 1e-3;
+  const double ox[2] = {ref.left - ref.x_px, ref.left + ref.cols - 1 - ref.x_px};
+  const double oy[2] = {ref.top - ref.y_px, ref.top + ref.rows - 1 - ref.y_px};
+  for (const double a : ox) {
+    for (const double b : oy) {
+      const double x = position.x() + l(0, 0) * a + l(0, 1) * b;
+      const double y = position.y() + l(1, 0) * a + l(1, 1) * b;
+      if (!(x >= margin && y >= margin && x < image.cols - 1 - margin &&
+            y < image.rows - 1 - margin)) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 // Finds where the reference's landmark is in `smooth` (warp x -> position + linear x), from a
 // start. Gain and offset of the grey levels are fitted at every step, so a change of exposure
 // does not move the result. Where part of the warped window falls outside the frame (a landmark
 // near the border), the rest is used if it holds at least half of the weight.
-Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y_px,
+Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_px,
               const Eigen::Matrix2d& linear, const RefineParams& params) {
   Aligned a;
+  const FloatRows smooth{frame.ptr<float>(0), frame.step1(), frame.cols, frame.rows};
   Eigen::Vector2d position(x_px, y_px);
   Eigen::Matrix2d l = linear;
   const std::size_t n = ref.grey.size();
-  std::vector<double> warped(n);
-  std::vector<char> inside(n);
+  std::vector<float> warped;
+  std::vector<char> inside;
   double correlation = 0;
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
     double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
     // sum of weight x sample x descent: with the reference's own sums it gives the update in
-    // this one pass over the window when the whole window is inside the frame.
+    // this one pass over the window when the whole window is inside the frame. Its six entries
+    // come from four sums per row, since the descent images are the gradients times the
+    // offsets.
     Vector6 swid = Vector6::Zero();
+    const bool whole = warped_window_inside(ref, smooth, position, l);
+    if (!whole && warped.empty()) {
+      warped.resize(n);
+      inside.resize(n);
+    }
     std::size_t inside_count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = position.x() + l(0, 0) * ref.dx[i] + l(0, 1) * ref.dy[i];
-      const double y = position.y() + l(1, 0) * ref.dx[i] + l(1, 1) * ref.dy[i];
-      inside[i] = sample(smooth, x, y, warped[i]);
-      if (!inside[i]) continue;
-      ++inside_count;
-      const double w = ref.weight[i], v = warped[i];
-      const double wv = w * v;
-      swi += wv;
-      swii += wv * v;
-      swit += wv * ref.grey[i];
-      swid += v * ref.weighted_descent[i];
+    const double l00 = l(0, 0), l01 = l(0, 1), l10 = l(1, 0), l11 = l(1, 1);
+    const double ox0 = ref.left - ref.x_px;
+    for (int r = 0; r < ref.rows; ++r) {
+      const double oy = ref.top + r - ref.y_px;
+      double x = position.x() + l00 * ox0 + l01 * oy;
+      double y = position.y() + l10 * ox0 + l11 * oy;
+      const std::size_t row0 = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.cols);
+      RowSums rs;
+      if (whole) {
+        const RowSpan span{ref.weight.data() + row0,
+                           ref.grey.data() + row0,
+                           ref.gx.data() + row0,
+                           ref.gy.data() + row0,
+                           0,
+                           ref.cols,
+                           x,
+                           y,
+                           l00,
+                           l10,
+                           ox0};
+        add_row_sums_vector(smooth, span, rs);
+      } else {
+        for (int c = 0; c < ref.cols; ++c, x += l00, y += l10) {
+          const std::size_t i = row0 + static_cast<std::size_t>(c);
+          double v;
+          inside[i] = sample(smooth, x, y, v);
+          if (!inside[i]) continue;
+          warped[i] = static_cast<float>(v);
+          ++inside_count;
+          rs.add(v, ref.weight[i], ref.grey[i], ref.gx[i], ref.gy[i], ox0 + c);
+        }
+      }
+      swi += rs.i;
+      swii += rs.ii;
+      swit += rs.it;
+      swid(0) += rs.a_ox;
+      swid(1) += rs.c_ox;
+      swid(2) += rs.a * oy;
+      swid(3) += rs.c * oy;
+      swid(4) += rs.a;
+      swid(5) += rs.c;
     }
     // The reference's own sums over the whole window are fixed; only a cut window needs them
     // summed again.
-    if (inside_count == n) {
+    if (whole) {
+      inside_count = n;
       sw = ref.total_weight;
       swt = ref.sum_weighted_grey;
       swtt = ref.sum_weighted_grey_squared;
@@ -166,21 +229,25 @@ Aligned align(const Reference& ref, const cv::Mat& smooth, double x_px, double y
     correlation = (swit / sw - mean * ref_mean) / (spread * ref_spread);
     // Grey levels of the frame brought to the reference's mean and spread: the error at a
     // sample is ref_mean + gain (warped - mean) - grey.
-    const bool whole = inside_count == n;
     const double gain = ref_spread / spread;
     Vector6 p;
-    if (whole) {
+    if (inside_count == n) {
       const Vector6 b = gain * swid + (ref_mean - gain * mean) * ref.sum_weighted_descent -
                         ref.sum_weighted_grey_descent;
       p = ref.hessian_inverse * b;
     } else {
       Vector6 b = Vector6::Zero();
       Matrix6 hessian = Matrix6::Zero();
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!inside[i]) continue;
-        const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
-        b += e * ref.weighted_descent[i];
-        hessian += ref.weight[i] * ref.descent[i] * ref.descent[i].transpose();
+      for (int r = 0; r < ref.rows; ++r) {
+        const double oy = ref.top + r - ref.y_px;
+        for (int c = 0; c < ref.cols; ++c) {
+          const std::size_t i = static_cast<std::size_t>(r * ref.cols + c);
+          if (!inside[i]) continue;
+          const Vector6 d = descent_at(ref.gx[i], ref.gy[i], ox0 + c, oy);
+          const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
+          b += e * ref.weight[i] * d;
+          hessian += ref.weight[i] * d * d.transpose();
+        }
       }
       const Eigen::FullPivLU<Matrix6> lu(hessian);
       if (!lu.isInvertible()) return a;

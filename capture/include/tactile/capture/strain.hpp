@@ -42,6 +42,9 @@ struct CaptureParams {
   // frames, or sooner when a fifth of the tracks have ended since the last detection; between
   // detections they are followed by alignment alone (AlignmentTracker).
   int redetect_every_frames = 30;
+  // Landmarks already found on the first frame with `features` (choose_capture_settings finds
+  // them while choosing): used instead of detecting that frame again. Empty: detect it.
+  std::vector<Feature> first_frame_features;
 };
 
 // Triangulates `from` (millimetre positions) and measures each edge at `to` (same order and
@@ -78,10 +81,12 @@ struct CaptureChoice {
   int smoothing_half_window = smoothing_half_window_for(false);
   int paper_pores = 0;  // pores each detector found on the frame
   int ridge_blob_pores = 0;
+  std::vector<Feature> first_frame_features;  // what the chosen detector found there
 };
 CaptureChoice choose_capture_settings(const GrayImage& first_frame, double px_per_mm,
                                       const FeatureParams& base = pores_only());
-// `params` with the choice's detector, refinement and smoothing.
+// `params` with the choice's detector, refinement, smoothing and first-frame landmarks (which
+// are right for `params.features` = pores_only() with the chosen detector, as here).
 CaptureParams with_choice(CaptureParams params, const CaptureChoice& choice);
 
 // Fills `frame` with the next frame and returns true, or returns false after the last one.
