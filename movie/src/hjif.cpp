@@ -83,13 +83,16 @@ std::string open_object(const json& j) {
   return s;
 }
 
-// First sample of each effect: the movie split into effects of at most `per_effect` samples,
-// none of exactly two keyframes (the reference synthesiser renders such an effect silent).
+// First sample of each effect: the movie split into effects of at most `per_effect` samples.
+// The last effect ends with one more keyframe (the last frame held for its frame period), so
+// it gets at least two samples: then no effect has exactly two keyframes, which the reference
+// synthesiser renders silent.
 std::vector<std::int32_t> effect_starts(std::int32_t frames, std::int64_t per_effect) {
   std::vector<std::int32_t> starts;
-  for (std::int64_t s = 0; s < frames; s += per_effect)
+  for (std::int64_t s = 0; s < frames; s += per_effect) {
     starts.push_back(static_cast<std::int32_t>(s));
-  if (starts.size() >= 2 && frames - starts.back() == 2) --starts.back();
+  }
+  if (starts.size() >= 2 && frames - starts.back() == 1) --starts.back();
   return starts;
 }
 
@@ -114,9 +117,9 @@ std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, Hji
         movie.rate_hz));
   }
   std::int32_t tps = options.ticks_per_sample;
-  // Two frames make an effect of two keyframes, which the reference synthesiser renders
-  // silent: a third keyframe half way keeps the line and needs an even tick count.
-  if (movie.frame_count == 2 && tps % 2 != 0) tps *= 2;
+  // One frame and its closing keyframe make an effect of two keyframes, which the reference
+  // synthesiser renders silent: a third keyframe half way needs an even tick count.
+  if (movie.frame_count == 1 && tps % 2 != 0) tps *= 2;
   const auto rate = static_cast<std::int64_t>(movie.rate_hz);
   if (tps < 1 || rate * tps > kHjifMaxTimescale) {
     throw std::invalid_argument(fmt::format(
@@ -134,14 +137,15 @@ std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, Hji
     throw std::invalid_argument(fmt::format("HJIF: {} contactors is out of range: must be <= {}",
                                             channels, kHjifLevel2MaxChannels));
   }
-  const std::int64_t per_effect = std::min(options.max_effect_ticks / tps + 1, kHjifMaxKeyframes);
+  // Samples per effect, with room for the closing keyframe of the last one.
+  const std::int64_t per_effect = std::min(options.max_effect_ticks / tps, kHjifMaxKeyframes - 1);
   if (per_effect < 4) {
     throw std::invalid_argument(
         fmt::format("HJIF: max_effect_ticks {} holds fewer than 4 samples at {} ticks per sample",
                     options.max_effect_ticks, tps));
   }
 
-  if (static_cast<std::int64_t>(movie.frame_count - 1) * tps > kHjifMaxEffectPosition) {
+  if (static_cast<std::int64_t>(movie.frame_count) * tps > kHjifMaxEffectPosition) {
     throw std::invalid_argument(fmt::format(
         "HJIF: {} frames at {} ticks per sample is out of range: effect positions reach at most "
         "tick {}",
@@ -230,15 +234,17 @@ std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, Hji
       out +=
           fmt::format("{}\n{{\"id\":{},\"effect_type\":\"Basis\",\"position\":{},\"keyframes\":[",
                       e ? "," : "", e, static_cast<std::int64_t>(s0) * tps);
-      for (std::int32_t s = s0; s < s1; ++s) {
-        const double a = movie.frame(s)[static_cast<std::size_t>(k)] / scale_um;
+      const bool last = e + 1 == starts.size();
+      // The last frame lasts one frame period: a closing keyframe holds it until the movie's
+      // end (the reference synthesiser also drops an effect's last keyframe).
+      for (std::int32_t s = s0; s < s1 + (last ? 1 : 0); ++s) {
+        const double a = movie.frame(std::min(s, s1 - 1))[static_cast<std::size_t>(k)] / scale_um;
         out += fmt::format("{}{{\"relative_position\":{},\"amplitude_modulation\":{}}}",
                            s > s0 ? "," : "", static_cast<std::int64_t>(s - s0) * tps,
                            amplitude_text(a));
-        if (movie.frame_count == 2 && s == 0) {
-          const double mid = (a + movie.frame(1)[static_cast<std::size_t>(k)] / scale_um) / 2;
+        if (movie.frame_count == 1 && s == 0) {
           out += fmt::format(",{{\"relative_position\":{},\"amplitude_modulation\":{}}}", tps / 2,
-                             amplitude_text(mid));
+                             amplitude_text(a));
         }
       }
       out += "]}";
