@@ -9,8 +9,8 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -105,7 +105,12 @@ double full_scale_um(const TactileMovie& movie) {
   return peak;
 }
 
-std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, HjifSummary* summary) {
+namespace {
+
+// The HJIF text handed to `sink` a channel at a time, so that a long movie never sits in memory
+// as text whole.
+HjifSummary write_hjif_to(const TactileMovie& movie, const HjifOptions& options,
+                          const std::function<void(const std::string&)>& sink) {
   validate(movie);
   const Layout& l = movie.layout;
   if (movie.frame_count < 1) {
@@ -171,13 +176,13 @@ std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, Hji
                {"profile", "Main"},
                {"level", level},
                {"date", date},
-               {"description", summary_text.substr(0, kHjifMaxDescriptionBytes)},
+               {"description", pieces(summary_text, kHjifMaxDescriptionBytes).front()},
                {"timescale", rate * tps},
                {"avatars", json::array()},
                {"syncs", json::array()}};
   json device = {{"id", 0},
                  {"name", fmt::format("{} lateral skin-stretch display",
-                                      l.name.substr(0, kHjifMaxDescriptionBytes - 40))},
+                                      pieces(l.name, kHjifMaxDescriptionBytes - 40).front())},
                  {"type", "Piezo"},
                  {"maximum_displacement", scale_um},
                  {"minimum_frequency", 0.0},
@@ -226,6 +231,10 @@ std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, Hji
                           {"direction", direction},
                           {"actuator_resolution", {{"X", l.cols}, {"Y", l.rows}, {"Z", 1}}},
                           {"actuator_target", json::array({{{"X", c}, {"Y", r}, {"Z", 0}}})}};
+    if (out.size() >= (1U << 20)) {
+      sink(out);
+      out.clear();
+    }
     out += k ? ",\n" : "";
     out += open_object(channel) + ",\"bands\":[" + open_object(band) + ",\"effects\":[";
     for (std::size_t e = 0; e < starts.size(); ++e) {
@@ -252,18 +261,27 @@ std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, Hji
     out += "]}]}";
   }
   out += "\n]}]}\n";
-  if (summary) {
-    *summary = {channels, level, rate * tps, static_cast<std::int32_t>(starts.size()), scale_um};
-  }
-  return out;
+  sink(out);
+  return {channels, level, rate * tps, static_cast<std::int32_t>(starts.size()), scale_um};
+}
+
+}  // namespace
+
+std::string hjif_text(const TactileMovie& movie, const HjifOptions& options, HjifSummary* summary) {
+  std::string text;
+  const HjifSummary s =
+      write_hjif_to(movie, options, [&text](const std::string& part) { text += part; });
+  if (summary) *summary = s;
+  return text;
 }
 
 HjifSummary write_hjif(const TactileMovie& movie, const std::filesystem::path& path,
                        const HjifOptions& options) {
-  HjifSummary summary;
-  const std::string text = hjif_text(movie, options, &summary);
-  write_text_atomically(path, text);
-  return summary;
+  AtomicFile file(path);
+  const HjifSummary s =
+      write_hjif_to(movie, options, [&file](const std::string& part) { file.write(part); });
+  file.commit();
+  return s;
 }
 
 namespace {
