@@ -121,6 +121,11 @@ HjifSummary write_hjif_to(const TactileMovie& movie, const HjifOptions& options,
         "HJIF: rate {:g} Hz is not a whole number of hertz (frequency_sampling is an integer)",
         movie.rate_hz));
   }
+  if (options.ticks_per_sample < 1 || options.ticks_per_sample > kHjifMaxTimescale) {
+    throw std::invalid_argument(
+        fmt::format("HJIF: ticks per sample {} is out of range: must be from 1 to {}",
+                    options.ticks_per_sample, kHjifMaxTimescale));
+  }
   std::int32_t tps = options.ticks_per_sample;
   // One frame and its closing keyframe make an effect of two keyframes, which the reference
   // synthesiser renders silent: a third keyframe half way needs an even tick count.
