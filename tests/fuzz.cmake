@@ -42,6 +42,7 @@ set(rf_sources
     common/src/value_checks.cpp capture/src/strain/strain_movie_io.cpp
     capture/src/camera/calibration_io.cpp capture/src/pores/pore_model_io.cpp
     capture/src/pores/pore_training_io.cpp movie/src/movie_io.cpp movie/src/layout_json.cpp
+    movie/src/hjif.cpp
     perception/src/signals/recording_csv.cpp perception/src/learning/classifier_model.cpp
     experiments/src/experiment.cpp)
 set(rf_flags -std=c++20 -g -O1 -fsanitize=fuzzer-no-link,address,undefined
@@ -87,7 +88,7 @@ add_custom_target(reader_fuzz ALL DEPENDS ${rf_target})
 # tools/fuzz.sh runs them longer. HDF5 1.10 itself crashes or hangs on some damaged files; the
 # movie readers contain that by reading in a child process first, so such a file is a
 # FormatError here like any other.
-set(TACTILE_FUZZ_READERS strain-movie tactile-movie layout-json calibration-json pore-model-json
+set(TACTILE_FUZZ_READERS strain-movie tactile-movie layout-json hjif calibration-json pore-model-json
                          classifier-model-json recording-csv pore-marks labels-csv experiment-json)
 # HDF5 1.10 leaks a few bytes on some damaged files: leak checks only where the library is ours.
 # HDF5 asks malloc for whatever size a damaged file declares; outside the sanitizer malloc answers

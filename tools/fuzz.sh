@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds every libFuzzer target and runs them for SECONDS in total, split evenly: the firmware's
-# frame decoder and each file reader (HDF5 strain and tactile movies, JSON layout, calibration,
+# frame decoder and each file reader (HDF5 strain and tactile movies, JSON layout, HJIF, calibration,
 # pore-model and classifier-model files, recording CSV, pore marks, classifier labels CSV,
 # experiment JSON with its ground-truth and synthetic scenes). Prints the executions per
 # target and in all; exits 1 on a finding (its input is kept in build/release/tests/*fuzz*/).
@@ -17,7 +17,7 @@ cmake --preset release >/dev/null
 cmake --build --preset release --target firmware_fuzz reader_fuzz >/dev/null
 
 build=build/release/tests
-readers=(strain-movie tactile-movie layout-json calibration-json pore-model-json
+readers=(strain-movie tactile-movie layout-json hjif calibration-json pore-model-json
   classifier-model-json recording-csv pore-marks labels-csv experiment-json)
 targets=(frame-decoder "${readers[@]}")
 each=$((seconds / ${#targets[@]}))

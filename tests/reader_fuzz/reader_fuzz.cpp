@@ -27,6 +27,7 @@
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/experiments/experiment.hpp"
+#include "tactile/movie/hjif.hpp"
 #include "tactile/movie/layout_json.hpp"
 #include "tactile/movie/movie_io.hpp"
 #include "tactile/perception/classifier_model.hpp"
@@ -105,6 +106,19 @@ const std::map<std::string, Reader>& readers() {
         [](const fs::path& dir) {
           movie::write_tactile_movie(dir / "one.h5", small_tactile_movie(1));
           movie::write_tactile_movie(dir / "some.h5", small_tactile_movie(5));
+        }}},
+      {"hjif",
+       {".hjif", [](const fs::path& p) { movie::read_hjif(p); },
+        [](const fs::path& dir) {
+          movie::TactileMovie m = small_tactile_movie(5);
+          m.layout.rows = 2;
+          m.layout.cols = 2;
+          m.deflection_um.resize(20);
+          m.provenance.mapping_parameters_json = R"({"gain":1})";
+          write_text(dir / "small.hjif", movie::hjif_text(m));
+          m.frame_count = 1;
+          m.deflection_um.resize(4);
+          write_text(dir / "one.hjif", movie::hjif_text(m));
         }}},
       {"layout-json",
        {".json", [](const fs::path& p) { movie::read_layout_json(p); },

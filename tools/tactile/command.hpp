@@ -26,6 +26,8 @@ void add_play(CLI::App& app, Action& action);
 void add_view(CLI::App& app, Action& action);
 void add_devices(CLI::App& app, Action& action);
 void add_info(CLI::App& app, Action& action);
+void add_export(CLI::App& app, Action& action);
+void add_import(CLI::App& app, Action& action);
 void add_emulate(CLI::App& app, Action& action);
 void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);

@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
   tactile::cli::add_view(app, action);
   tactile::cli::add_devices(app, action);
   tactile::cli::add_info(app, action);
+  tactile::cli::add_export(app, action);
+  tactile::cli::add_import(app, action);
   tactile::cli::add_emulate(app, action);
   tactile::cli::add_bench(app, action);
 

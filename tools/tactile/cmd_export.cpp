@@ -1,0 +1,109 @@
+// `tactile export` and `tactile import`: tactile movies to and from files other tools read
+// (MPEG-I Haptics HJIF, multichannel WAV). The formats live in the movie library.
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "command.hpp"
+#include "number_checks.hpp"
+#include "tactile/common/h5.hpp"
+#include "tactile/common/output_paths.hpp"
+#include "tactile/common/version.hpp"
+#include "tactile/movie/hjif.hpp"
+#include "tactile/movie/layout_json.hpp"
+#include "tactile/movie/movie_io.hpp"
+#include "tactile/movie/wav.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+void add_export(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path movie;
+    std::optional<fs::path> hjif, wav;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "export",
+      "Write a tactile movie in formats other tools read: MPEG-I Haptics (.hjif, one Position\n"
+      "channel per contactor) or a multichannel float WAV (one channel per contactor).\n"
+      "Mapping and what is lost: docs/formats.md.");
+  sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--hjif", opt->hjif, "MPEG-I Haptics interchange file to write");
+  sub->add_option("--wav", opt->wav, "WAV file to write (float32, 1.0 = full scale)");
+  sub->callback([opt, &action] {
+    if (!opt->hjif && !opt->wav) {
+      throw CLI::ValidationError("export", "give --hjif OUT.hjif, --wav OUT.wav or both");
+    }
+    action = [opt] {
+      std::vector<Output> outputs;
+      if (opt->hjif) outputs.push_back(output_file("--hjif", *opt->hjif));
+      if (opt->wav) outputs.push_back(output_file("--wav", *opt->wav));
+      refuse_output_over_input(outputs, {{"MOVIE_H5", opt->movie}});
+      const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
+      if (opt->hjif) {
+        const movie::HjifSummary s = movie::write_hjif(movie, *opt->hjif);
+        fmt::print(
+            "export: {} channels, level {}, timescale {}, {} effect(s) per channel, amplitude 1 = "
+            "{:g} um -> {}\n",
+            s.channels, s.level, s.timescale, s.effects_per_channel, s.full_scale_um,
+            opt->hjif->string());
+      }
+      if (opt->wav) {
+        const double scale = movie::write_wav(movie, *opt->wav);
+        fmt::print("export: {} channels at {:g} Hz, {} frames, 1.0 = {:g} um -> {}\n",
+                   movie.layout.contactor_count(), movie.rate_hz, movie.frame_count, scale,
+                   opt->wav->string());
+      }
+      return 0;
+    };
+  });
+}
+
+void add_import(CLI::App& app, Action& action) {
+  struct Options {
+    fs::path in;
+    fs::path out;
+    std::optional<std::string> layout;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "import",
+      "Read an MPEG-I Haptics interchange file (.hjif) as a tactile movie: one Position\n"
+      "perception whose channels target the contactors of a grid (docs/formats.md).");
+  sub->add_option("IN_HJIF", opt->in, "MPEG-I Haptics interchange file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", opt->out, "Tactile movie to write (HDF5)")->required();
+  sub->add_option("--layout", opt->layout,
+                  "Display layout: stress, stress2, latero or FILE.json (default: the layout the\n"
+                  "file carries; required for files from other tools)");
+  sub->callback([opt, &action] {
+    action = [opt] {
+      std::vector<NamedPath> inputs = {{"IN_HJIF", opt->in}};
+      if (opt->layout && fs::path(*opt->layout).extension() == ".json") {
+        inputs.push_back({"--layout", *opt->layout});
+      }
+      refuse_output_over_input({output_file("--out", opt->out)}, inputs);
+      movie::HjifImportOptions options;
+      if (opt->layout) options.layout = movie::resolve_layout(*opt->layout);
+      movie::TactileMovie movie = movie::read_hjif(opt->in, options);
+      if (movie.provenance.source.empty()) {
+        // A file from another tool: say where this movie came from.
+        movie.provenance = {kVersion, h5::utc_now_iso8601(), opt->in.string(), "hjif import", ""};
+      }
+      movie::write_tactile_movie(opt->out, movie);
+      fmt::print("import: {} x {} contactors ({}), {} frames at {:g} Hz ({:.2f} s) -> {}\n",
+                 movie.layout.rows, movie.layout.cols, movie.layout.name, movie.frame_count,
+                 movie.rate_hz, movie.duration_s(), opt->out.string());
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli
