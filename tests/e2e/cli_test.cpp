@@ -20,7 +20,7 @@ TEST(Cli, HelpListsEverySubcommand) {
   const auto r = run_tactile("--help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* cmd : {"demo", "synth", "calibrate", "features", "capture", "map", "play",
-                          "view", "devices", "info"}) {
+                          "view", "devices", "info", "export", "import"}) {
     EXPECT_THAT(r.output, HasSubstr(cmd)) << cmd;
   }
 }
