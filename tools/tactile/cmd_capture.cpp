@@ -2,9 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -12,6 +10,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "progress.hpp"
 #include "tactile/capture/calibrate.hpp"
@@ -25,6 +24,7 @@
 #include "tactile/capture/video.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/output_paths.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/common/version.hpp"
 
 namespace tactile::cli {
@@ -66,19 +66,12 @@ void require_calibration(const std::optional<fs::path>& calib_file,
 // --pores paper|ridge-blob: the paper's binarised blobs (fast, for sequences) or the learned
 // ridge-blob detector (for real high-resolution prints, about 0.1 s CPU per 320 x 240 print);
 // --pore-model: a model from `tactile train-pores` instead of the shipped one.
-void add_pore_options(CLI::App& sub, std::string& pores, std::optional<fs::path>& pore_model,
-                      bool with_auto = false) {
-  sub.add_option("--pores", pores,
-                 std::string("Pore detector: paper (binarised blobs; fast) or ridge-blob (bright "
-                             "spots above\ntheir own ridge, kept by a pore model trained on "
-                             "hand-marked 1200 dpi prints;\nfinds open pores on real prints at "
-                             "about 47 px/mm, slower)") +
-                     (with_auto ? "; auto: the one that finds more pores\non the first frame "
-                                  "(printed)"
-                                : ""))
-      ->check(with_auto ? CLI::IsMember({"auto", "paper", "ridge-blob"})
-                        : CLI::IsMember({"paper", "ridge-blob"}))
-      ->capture_default_str();
+constexpr const char* kPoresHelp =
+    "Pore detector: paper (binarised blobs; fast) or ridge-blob (bright spots above\ntheir own "
+    "ridge, kept by a pore model trained on hand-marked 1200 dpi prints;\nfinds open pores on "
+    "real prints at about 47 px/mm, slower)";
+
+void add_pore_model_option(CLI::App& sub, std::optional<fs::path>& pore_model) {
   sub.add_option("--pore-model", pore_model,
                  "Pore model file from `tactile train-pores` (with --pores ridge-blob), used\n"
                  "with its threshold instead of the shipped model")
@@ -86,9 +79,9 @@ void add_pore_options(CLI::App& sub, std::string& pores, std::optional<fs::path>
 }
 
 // Runs at parse time: the paper's rule has no model, so a model given with it would be ignored.
-void require_ridge_blob_for_model(const std::string& pores,
+void require_ridge_blob_for_model(std::optional<capture::PoreDetector> pores,
                                   const std::optional<fs::path>& pore_model) {
-  if (pore_model && pores == "paper") {
+  if (pore_model && pores == capture::PoreDetector::paper) {
     throw CLI::ValidationError("--pore-model",
                                "goes with --pores ridge-blob (the paper's rule has no model)");
   }
@@ -101,10 +94,10 @@ std::optional<capture::PoreModelFile> pore_model_file(const std::optional<fs::pa
 }
 
 // The chosen pore detector (and model) in `fp`; px_per_mm is the image's scale.
-void use_pore_detector(const std::string& pores, const std::optional<capture::PoreModelFile>& model,
-                       double px_per_mm, const char* command, capture::FeatureParams& fp) {
-  fp.pore_detector =
-      pores == "ridge-blob" ? capture::PoreDetector::ridge_blob : capture::PoreDetector::paper;
+void use_pore_detector(capture::PoreDetector pores,
+                       const std::optional<capture::PoreModelFile>& model, double px_per_mm,
+                       const char* command, capture::FeatureParams& fp) {
+  fp.pore_detector = pores;
   if (!model) return;
   fp.ridge_blob.model = model->coefficients;
   fp.ridge_blob.min_log_odds = model->min_log_odds;
@@ -221,12 +214,6 @@ class FrameInput {
   int width_px_ = 0, height_px_ = 0;
 };
 
-// CPU time of the whole process (every thread), seconds: the machine may be shared, so the wall
-// time alone says little about the pipeline's cost.
-double process_cpu_s() {
-  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
-}
-
 }  // namespace
 
 void add_calibrate(CLI::App& app, Action& action) {
@@ -268,7 +255,7 @@ void add_features(CLI::App& app, Action& action) {
     std::optional<fs::path> calib;
     std::optional<double> px_per_mm;
     std::optional<fs::path> csv;
-    std::string pores = "paper";
+    capture::PoreDetector pores = capture::PoreDetector::paper;
     std::optional<fs::path> pore_model;
   };
   auto opt = std::make_shared<Options>();
@@ -281,7 +268,8 @@ void add_features(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   add_calibration_options(*sub, opt->calib, opt->px_per_mm);
   sub->add_option("--csv", opt->csv, "Write the features to this CSV file");
-  add_pore_options(*sub, opt->pores, opt->pore_model);
+  add_mode_option(*sub, "--pores", opt->pores, capture::kPoreDetectorNames, kPoresHelp);
+  add_pore_model_option(*sub, opt->pore_model);
   sub->callback([opt, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
@@ -322,12 +310,12 @@ void add_capture(CLI::App& app, Action& action) {
     int span = 1;
     double rate_hz = 60;
     int min_track_frames = 30;
-    std::string pores = "auto";
-    std::string refine = "auto";
+    std::optional<capture::PoreDetector> pores;  // unset: auto
+    std::optional<bool> refine;                  // unset: auto
     std::optional<int> smoothing;
     double refine_window_mm = capture::RefineParams{}.window_mm;
     std::optional<fs::path> pore_model;
-    std::string assignment = "greedy";
+    capture::Assignment assignment = capture::Assignment::greedy;
     int start = 0;
     std::optional<int> frames;
   };
@@ -365,13 +353,16 @@ void add_capture(CLI::App& app, Action& action) {
                   "without\nrefinement; refined tracks are kept from 10 frames)")
       ->check(within(2, 100000))
       ->capture_default_str();
-  add_pore_options(*sub, opt->pores, opt->pore_model, true);
-  sub->add_option("--refine", opt->refine,
-                  "Sub-pixel refinement of every track against the images (each landmark's\n"
-                  "neighbourhood aligned to its first frame by an affine warp): auto = with the\n"
-                  "ridge-blob detector, whose centres on real prints are noisy")
-      ->check(CLI::IsMember({"auto", "on", "off"}))
-      ->capture_default_str();
+  add_mode_option_or_auto(*sub, "--pores", opt->pores, capture::kPoreDetectorNames,
+                          std::string(kPoresHelp) +
+                              "; auto: the one that finds more pores\non the first frame "
+                              "(printed)");
+  add_pore_model_option(*sub, opt->pore_model);
+  add_mode_option_or_auto(
+      *sub, "--refine", opt->refine, kOnOffNames,
+      "Sub-pixel refinement of every track against the images (each landmark's\n"
+      "neighbourhood aligned to its first frame by an affine warp): auto = with the\n"
+      "ridge-blob detector, whose centres on real prints are noisy");
   sub->add_option("--refine-window", opt->refine_window_mm,
                   "Side of the refinement's alignment window, mm (smaller follows strain\n"
                   "gradients better, larger averages more noise)")
@@ -381,11 +372,9 @@ void add_capture(CLI::App& app, Action& action) {
                   "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
                   "0 = none); default 3, or 5 with refinement")
       ->check(within(0, 50));
-  sub->add_option("--assignment", opt->assignment,
+  add_mode_option(*sub, "--assignment", opt->assignment, capture::kAssignmentNames,
                   "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "
-                  "confidence, Hungarian method)")
-      ->check(CLI::IsMember({"greedy", "optimal"}))
-      ->capture_default_str();
+                  "confidence, Hungarian method)");
   sub->callback([opt, rate, &action] {
     require_calibration(opt->calib, opt->px_per_mm);
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
@@ -419,33 +408,31 @@ void add_capture(CLI::App& app, Action& action) {
       capture::CaptureParams params;
       params.span_frames = opt->span;
       params.min_track_frames = opt->min_track_frames;
-      std::string pores = opt->pores;
-      bool refine = opt->refine == "on";
-      if (pores == "auto" && model) pores = "ridge-blob";  // a pore model is a ridge-blob model
-      if (pores == "auto") {
-        const capture::CaptureChoice choice =
-            capture::choose_capture_settings(first, 1.0 / c.mm_per_px);
-        pores = choice.detector == capture::PoreDetector::ridge_blob ? "ridge-blob" : "paper";
+      capture::CaptureChoice choice;
+      if (opt->pores) {
+        choice.detector = *opt->pores;
+      } else if (model) {
+        choice.detector = capture::PoreDetector::ridge_blob;  // a pore model is a ridge-blob model
+      } else {
+        choice = capture::choose_capture_settings(first, 1.0 / c.mm_per_px);
         fmt::print(
             "capture: pores: {} (on the first frame the paper's rule found {} pores, the "
             "ridge-blob detector {}; --pores overrides)\n",
-            pores, choice.paper_pores, choice.ridge_blob_pores);
+            to_string(choice.detector), choice.paper_pores, choice.ridge_blob_pores);
       }
-      if (opt->refine == "auto") {
-        refine = capture::refinement_for(pores == "ridge-blob" ? capture::PoreDetector::ridge_blob
-                                                               : capture::PoreDetector::paper);
+      choice.refine = opt->refine.value_or(capture::refinement_for(choice.detector));
+      if (!opt->refine) {
         fmt::print("capture: refinement against the images: {} (--refine overrides)\n",
-                   refine ? "on" : "off");
+                   name_in(kOnOffNames, choice.refine));
       }
-      params.refine = refine;
+      choice.smoothing_half_window =
+          opt->smoothing.value_or(capture::smoothing_half_window_for(choice.refine));
+      params = capture::with_choice(params, choice);
       params.refinement.window_mm = opt->refine_window_mm;
-      params.smoothing_half_window =
-          opt->smoothing.value_or(capture::smoothing_half_window_for(refine));
-      use_pore_detector(pores, model, 1.0 / c.mm_per_px, "capture", params.features);
-      params.assignment =
-          opt->assignment == "optimal" ? capture::Assignment::optimal : capture::Assignment::greedy;
-      const auto t0 = std::chrono::steady_clock::now();
-      const double cpu0 = process_cpu_s();
+      use_pore_detector(choice.detector, model, 1.0 / c.mm_per_px, "capture", params.features);
+      params.assignment = opt->assignment;
+      // The machine may be shared, so the wall time alone says little about the pipeline's cost.
+      const Stopwatch stopwatch;
       bool first_given = false;
       capture::StrainMovie movie = capture::measure_strain(
           [&](capture::GrayImage& frame) {
@@ -458,7 +445,7 @@ void add_capture(CLI::App& app, Action& action) {
           [&](const std::string& stage, int done, int total) { progress(stage, done, total); },
           input.count());
       progress.finish();
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double s = stopwatch.wall_s();
       // An empty strain movie maps to a still display: report the reason instead of writing it.
       if (movie.frames.empty()) {
         throw std::runtime_error(fmt::format(
@@ -467,7 +454,7 @@ void add_capture(CLI::App& app, Action& action) {
             opt->image_dir.string(), movie.camera_frame_count, opt->min_track_frames, opt->span,
             movie.tracks.size(), opt->out.string()));
       }
-      const double cpu_s = process_cpu_s() - cpu0;
+      const double cpu_s = stopwatch.cpu_s();
       const int n = movie.camera_frame_count;
       movie.source = opt->image_dir.string();
       movie.program_version = kVersion;
