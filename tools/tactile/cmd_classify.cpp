@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
@@ -44,11 +45,12 @@ struct TrainOptions {
   std::filesystem::path recordings, labels, out;
   std::string procedure = "stroke";
   // Unset: the procedure's default (perception::default_recording_inputs).
-  std::optional<std::string> baseline_at, electrodes;
+  std::optional<perception::ContactOptions::BaselineAt> baseline_at;
+  std::optional<perception::ContactOptions::Electrodes> electrodes;
   std::optional<double> trim;
-  std::vector<std::string> inputs;  // empty: the procedure's default
-  std::optional<int> degree;        // unset: the procedure's default, or searched with --select
-  std::optional<double> c;          // unset: the procedure's default, or searched with --select
+  std::vector<perception::InputGroup> inputs;  // empty: the procedure's default
+  std::optional<int> degree;  // unset: the procedure's default, or searched with --select
+  std::optional<double> c;    // unset: the procedure's default, or searched with --select
   bool select = false;
   int cv = 0;
   int threads = 0;
@@ -62,14 +64,10 @@ int train_selected(const TrainOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto base = perception::default_recording_inputs(o.procedure);
   auto grid = perception::default_selection_grid(o.procedure);
-  if (o.baseline_at) grid.baselines = {perception::parse_baseline_at(*o.baseline_at)};
-  if (o.electrodes) grid.electrodes = {perception::parse_electrodes(*o.electrodes)};
+  if (o.baseline_at) grid.baselines = {*o.baseline_at};
+  if (o.electrodes) grid.electrodes = {*o.electrodes};
   if (o.trim) grid.trims = {*o.trim};
-  if (!o.inputs.empty()) {
-    grid.input_sets = {{}};
-    for (const auto& name : o.inputs)
-      grid.input_sets.front().push_back(perception::parse_input_group(name));
-  }
+  if (!o.inputs.empty()) grid.input_sets = {o.inputs};
   if (o.degree) grid.degrees = {*o.degree};
   if (o.c) grid.cs = {*o.c};
   const auto data = perception::read_labelled_recordings(o.recordings, o.labels, {}, o.threads);
@@ -103,13 +101,10 @@ int train(const TrainOptions& o) {
   if (o.select) return train_selected(o);
   const auto t0 = std::chrono::steady_clock::now();
   auto in = perception::default_recording_inputs(o.procedure);
-  if (o.baseline_at) in.contact.baseline_at = perception::parse_baseline_at(*o.baseline_at);
-  if (o.electrodes) in.contact.electrodes = perception::parse_electrodes(*o.electrodes);
+  if (o.baseline_at) in.contact.baseline_at = *o.baseline_at;
+  if (o.electrodes) in.contact.electrodes = *o.electrodes;
   if (o.trim) in.contact.trim_fraction = *o.trim;
-  if (!o.inputs.empty()) {
-    in.groups.clear();
-    for (const auto& name : o.inputs) in.groups.push_back(perception::parse_input_group(name));
-  }
+  if (!o.inputs.empty()) in.groups = o.inputs;
   const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
   fmt::print(
       "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, electrodes "
@@ -263,15 +258,15 @@ void add_classify(CLI::App& app, Action& action) {
                  "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
       ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
       ->capture_default_str();
-  tr->add_option("--baseline-at", t->baseline_at,
-                 "Where the free-air baseline is: end (recordings that begin in contact), start, "
-                 "or none (the recording software already subtracted one); default: none for "
-                 "stroke, end otherwise")
-      ->check(CLI::IsMember(names_of(values_of(perception::kBaselineAtNames))));
-  tr->add_option("--electrodes", t->electrodes,
-                 "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
-                 "(all 19 electrodes); default: clusters")
-      ->check(CLI::IsMember(names_of(values_of(perception::kElectrodesNames))));
+  add_optional_mode_option(
+      *tr, "--baseline-at", t->baseline_at, perception::kBaselineAtNames,
+      "Where the free-air baseline is: end (recordings that begin in contact), start, "
+      "or none (the recording software already subtracted one); default: none for "
+      "stroke, end otherwise");
+  add_optional_mode_option(
+      *tr, "--electrodes", t->electrodes, perception::kElectrodesNames,
+      "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
+      "(all 19 electrodes); default: clusters");
   tr->add_option("--trim", t->trim,
                  "Strokes: fraction of the contact left out at each end, in [0, 0.5) (the press "
                  "and the lift of a slide); default: 0.1 for stroke, 0 otherwise")
@@ -294,14 +289,13 @@ void add_classify(CLI::App& app, Action& action) {
             return std::string();
           },
           "in [0, 0.5)"));
-  tr->add_option("--inputs", t->inputs,
-                 "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
-                 "band powers of the vibration), stds (standard deviation of each signal over the "
-                 "contact), stats (plain statistics: mean and standard deviation of each signal, "
-                 "the vibration's, and the bands); default: stroke means,bands; dp, ru, roll the "
-                 "paper's means,rates,hht; static means")
-      ->delimiter(',')
-      ->check(CLI::IsMember(names_of(perception::kInputGroups)));
+  add_mode_list_option(
+      *tr, "--inputs", t->inputs, perception::kInputGroupNames,
+      "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
+      "band powers of the vibration), stds (standard deviation of each signal over the "
+      "contact), stats (plain statistics: mean and standard deviation of each signal, "
+      "the vibration's, and the bands); default: stroke means,bands; dp, ru, roll the "
+      "paper's means,rates,hht; static means");
   tr->add_option("--kernel-degree", t->degree,
                  "Exponent of the polynomial kernel; default 1 (searched with --select)")
       ->check(CLI::IsMember({1, 2}));

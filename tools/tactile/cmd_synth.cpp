@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
 #include "tactile/capture/image.hpp"
@@ -66,7 +67,6 @@ void add_synth(CLI::App& app, Action& action) {
     std::optional<std::filesystem::path> print;
     std::optional<std::filesystem::path> marks;
     capture::PrintWarpSpec warp;
-    std::string pattern = "wave";
     double strain_pct = 4.0;
     double exposure_ms = 0;
     std::optional<double> slide_speed_mm_per_s;
@@ -97,14 +97,12 @@ void add_synth(CLI::App& app, Action& action) {
                               "carry through the warp as landmarks.csv; default pores_NN.txt\n"
                               "beside image_NN.*, when there is one")
                   ->check(CLI::ExistingFile));
-  needs_print(sub->add_option("--warp", opt->pattern,
+  needs_print(add_mode_option(*sub, "--warp", opt->warp.pattern, capture::kWarpPatternNames,
                               "--from-print: strain pattern: rigid (slide and rotation only),\n"
                               "stretch (along x), compress (along y), bump (radial), wave\n"
                               "(travelling along x), pulse (a bump crossing along x), ridge\n"
                               "(compression ahead of a sliding edge), stick-slip (rim loads and\n"
-                              "slips around a sticking centre), kernels (random smooth field)")
-                  ->check(CLI::IsMember(capture::warp_pattern_names()))
-                  ->capture_default_str());
+                              "slips around a sticking centre), kernels (random smooth field)"));
   needs_print(sub->add_option("--strain-pct", opt->strain_pct,
                               "--from-print: peak strain of the pattern, per cent")
                   ->check(within(-20.0, 20.0))
@@ -174,7 +172,6 @@ void add_synth(CLI::App& app, Action& action) {
       if (sub->count("--frames") > 0) opt->warp.frame_count = opt->spec.frame_count;
       if (sub->count("--noise") > 0) opt->warp.noise_sigma = opt->spec.noise_sigma;
       if (sub->count("--seed") > 0) opt->warp.seed = opt->spec.seed;
-      opt->warp.pattern = capture::parse_warp_pattern(opt->pattern);
       opt->warp.strain = opt->strain_pct / 100;
       opt->warp.exposure_s = opt->exposure_ms / 1000;
       const double duration_s = capture::sequence_duration_s(opt->warp);

@@ -24,9 +24,11 @@ std::vector<std::string> table_names(const std::array<Named<E>, N>& table) {
   return names;
 }
 
-template <typename E, std::size_t N>
-CLI::Option* add_mode_option(CLI::App& sub, const std::string& flag, E& target,
-                             const std::array<Named<E>, N>& table, const std::string& description) {
+// `target` (an E or a std::optional<E>) set from the name given; only the table's names pass.
+template <typename Target, typename E, std::size_t N>
+CLI::Option* add_parsed_option(CLI::App& sub, const std::string& flag, Target& target,
+                               const std::array<Named<E>, N>& table,
+                               const std::string& description) {
   return sub
       .add_option_function<std::string>(
           flag,
@@ -34,7 +36,13 @@ CLI::Option* add_mode_option(CLI::App& sub, const std::string& flag, E& target,
             target = parse_name(flag, name, table);
           },
           description)
-      ->check(CLI::IsMember(table_names(table)))
+      ->check(CLI::IsMember(table_names(table)));
+}
+
+template <typename E, std::size_t N>
+CLI::Option* add_mode_option(CLI::App& sub, const std::string& flag, E& target,
+                             const std::array<Named<E>, N>& table, const std::string& description) {
+  return add_parsed_option(sub, flag, target, table, description)
       ->default_str(name_in(table, target));
 }
 
@@ -44,14 +52,7 @@ CLI::Option* add_optional_mode_option(CLI::App& sub, const std::string& flag,
                                       std::optional<E>& target,
                                       const std::array<Named<E>, N>& table,
                                       const std::string& description) {
-  return sub
-      .add_option_function<std::string>(
-          flag,
-          [&target, table, flag](const std::string& name) {
-            target = parse_name(flag, name, table);
-          },
-          description)
-      ->check(CLI::IsMember(table_names(table)));
+  return add_parsed_option(sub, flag, target, table, description);
 }
 
 // A mode that may also be `auto` (the default, listed first), left unset for the work to choose.

@@ -22,17 +22,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-struct Names {
-  WarpPattern pattern;
-  const char* name;
-};
-constexpr Names kNames[] = {
-    {WarpPattern::rigid, "rigid"},       {WarpPattern::stretch, "stretch"},
-    {WarpPattern::compress, "compress"}, {WarpPattern::bump, "bump"},
-    {WarpPattern::wave, "wave"},         {WarpPattern::pulse, "pulse"},
-    {WarpPattern::ridge, "ridge"},       {WarpPattern::stick_slip, "stick-slip"},
-    {WarpPattern::kernels, "kernels"}};
-
 PointMm centre_mm(const PrintWarpSpec& s) {
   return {(s.width_px - 1) / (2 * s.px_per_mm), (s.height_px - 1) / (2 * s.px_per_mm)};
 }
@@ -279,27 +268,11 @@ float sample_lanczos(const cv::Mat& source, double x, double y, float outside) {
 }  // namespace
 
 WarpPattern parse_warp_pattern(std::string_view name) {
-  for (const auto& n : kNames) {
-    if (name == n.name) return n.pattern;
-  }
-  throw std::invalid_argument(fmt::format("warp pattern '{}' is not one of {}", name,
-                                          fmt::join(warp_pattern_names(), ", ")));
+  return parse_name("warp pattern", name, kWarpPatternNames);
 }
 
-std::string_view to_string(WarpPattern pattern) {
-  for (const auto& n : kNames) {
-    if (n.pattern == pattern) return n.name;
-  }
-  return "unknown";
-}
-
-const std::vector<std::string>& warp_pattern_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> v;
-    for (const auto& n : kNames) v.emplace_back(n.name);
-    return v;
-  }();
-  return names;
+std::string to_string(WarpPattern pattern) {
+  return name_in(kWarpPatternNames, pattern);
 }
 
 void validate(const PrintWarpSpec& s) {

@@ -22,6 +22,7 @@
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/names.hpp"
 
 namespace tactile::capture {
 
@@ -37,9 +38,19 @@ enum class WarpPattern {
   kernels,     // a random smooth field: several Gaussian displacement kernels, own time courses
 };
 
+inline constexpr std::array<Named<WarpPattern>, 9> kWarpPatternNames = {{
+    {WarpPattern::rigid, "rigid"},
+    {WarpPattern::stretch, "stretch"},
+    {WarpPattern::compress, "compress"},
+    {WarpPattern::bump, "bump"},
+    {WarpPattern::wave, "wave"},
+    {WarpPattern::pulse, "pulse"},
+    {WarpPattern::ridge, "ridge"},
+    {WarpPattern::stick_slip, "stick-slip"},
+    {WarpPattern::kernels, "kernels"},
+}};
 WarpPattern parse_warp_pattern(std::string_view name);  // throws std::invalid_argument
-std::string_view to_string(WarpPattern pattern);
-const std::vector<std::string>& warp_pattern_names();
+std::string to_string(WarpPattern pattern);
 
 struct PrintWarpSpec {
   std::string source;  // the print's file name, for the record
