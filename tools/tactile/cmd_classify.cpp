@@ -13,7 +13,6 @@
 #include "command.hpp"
 #include "mode_option.hpp"
 #include "number_checks.hpp"
-#include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stopwatch.hpp"
@@ -167,18 +166,8 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
                                                          model.class_names, threads);
   const auto t = perception::test_classifier(fitted, model.class_names.size(), data);
   const bool values = fitted.has_values() && !data.values.empty();
-  for (std::size_t c = 0; c < model.class_names.size(); ++c) {
-    int total = 0;
-    std::vector<std::string> wrong;
-    for (std::size_t p = 0; p < model.class_names.size(); ++p) {
-      total += t.confusion[c][p];
-      if (p != c && t.confusion[c][p])
-        wrong.push_back(fmt::format("{} {}", model.class_names[p], t.confusion[c][p]));
-    }
-    if (total == 0) continue;
-    fmt::print("{}: {}/{} correct{}{}\n", model.class_names[c], t.confusion[c][c], total,
-               wrong.empty() ? "" : "; taken for ", fmt::join(wrong, ", "));
-  }
+  for (const auto& line : perception::confusion_lines(model.class_names, t.confusion))
+    fmt::print("{}\n", line);
   if (values) {
     double ss = 0;
     for (std::size_t i = 0; i < data.rows.size(); ++i)
@@ -189,20 +178,8 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
   fmt::print("accuracy {:.3f} ({}/{})\n", t.accuracy(), t.correct, t.tested);
   if (!csv_dir.empty()) {
     perception::write_confusion_report(csv_dir, model.class_names, t.confusion);
-    const auto predictions_path = csv_dir / "predictions.csv";
-    auto pred = csv::open_with_header(predictions_path,
-                                      values ? "file,class,predicted,correct,value,predicted_value"
-                                             : "file,class,predicted,correct");
-    for (std::size_t i = 0; i < data.rows.size(); ++i) {
-      const auto& p = t.predictions[i];
-      pred << fmt::format("{},{},{},{}", data.files[i],
-                          model.class_names[static_cast<std::size_t>(data.classes[i])],
-                          model.class_names[static_cast<std::size_t>(p.class_index)],
-                          p.class_index == data.classes[i] ? 1 : 0);
-      if (values) pred << fmt::format(",{:g},{:.6g}", data.values[i], p.value);
-      pred << '\n';
-    }
-    csv::finish(pred, predictions_path);
+    perception::write_predictions_csv(csv_dir / "predictions.csv", model.class_names, data, t,
+                                      values);
     fmt::print(
         "classify test: confusion.csv, confusion.svg, confusion.png, predictions.csv -> {}\n",
         csv_dir.string());
