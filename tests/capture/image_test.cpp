@@ -3,9 +3,12 @@
 
 #include <fstream>
 
+#include "../common/error_of.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/common/error.hpp"
 #include "test_util.hpp"
+
+using tactile::test::error_of;
 
 namespace tactile::capture {
 namespace {
@@ -24,16 +27,6 @@ GrayImage gradient(int w, int h) {
   return img;
 }
 
-template <typename F>
-std::string format_error_of(F&& f) {
-  try {
-    f();
-  } catch (const FormatError& e) {
-    return e.what();
-  }
-  return "no FormatError";
-}
-
 TEST(Image, PngRoundTripIsLossless) {
   TempDir dir;
   const GrayImage img = gradient(37, 21);
@@ -46,13 +39,13 @@ TEST(Image, PngRoundTripIsLossless) {
 
 TEST(Image, MissingEmptyAndNonImageFilesAreFormatErrorsNamingTheFile) {
   TempDir dir;
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "nope.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "nope.png"); }),
               HasSubstr("nope.png: no such image file"));
   std::ofstream(dir.path() / "empty.png").close();
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "empty.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "empty.png"); }),
               HasSubstr("empty.png: image file is empty"));
   std::ofstream(dir.path() / "text.png") << "this is not a PNG\n";
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "text.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "text.png"); }),
               HasSubstr("text.png: not a readable image"));
 }
 
@@ -62,7 +55,7 @@ TEST(Image, TruncatedPngIsAFormatError) {
   std::ifstream in(dir.path() / "full.png", std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::ofstream(dir.path() / "cut.png", std::ios::binary) << bytes.substr(0, 40);
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "cut.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "cut.png"); }),
               HasSubstr("cut.png: not a readable image"));
 }
 
@@ -84,8 +77,8 @@ TEST(Image, ListFramesSortsByNameAndSkipsOtherFiles) {
 
 TEST(Image, EmptyOrMissingDirectoryIsAFormatError) {
   TempDir dir;
-  EXPECT_THAT(format_error_of([&] { list_frames(dir.path()); }), HasSubstr("no image files"));
-  EXPECT_THAT(format_error_of([&] { read_frames(dir.path() / "missing"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { list_frames(dir.path()); }), HasSubstr("no image files"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_frames(dir.path() / "missing"); }),
               HasSubstr("not a directory"));
 }
 
@@ -94,7 +87,7 @@ TEST(Image, MixedFrameSizesNameTheOddFile) {
   write_png(dir.path() / "a.png", gradient(16, 16));
   write_png(dir.path() / "b.png", gradient(16, 16));
   write_png(dir.path() / "c.png", gradient(17, 16));
-  const std::string msg = format_error_of([&] { read_frames(dir.path()); });
+  const std::string msg = error_of<FormatError>([&] { read_frames(dir.path()); });
   EXPECT_THAT(msg, HasSubstr("c.png"));
   EXPECT_THAT(msg, HasSubstr("17x16"));
 }
@@ -103,7 +96,7 @@ TEST(Image, NonImageAmongFramesIsAFormatError) {
   TempDir dir;
   write_png(dir.path() / "a.png", gradient(16, 16));
   std::ofstream(dir.path() / "b.png") << "garbage";
-  EXPECT_THAT(format_error_of([&] { read_frames(dir.path()); }), HasSubstr("b.png"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_frames(dir.path()); }), HasSubstr("b.png"));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "camera/cv_image.hpp"
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
 
@@ -361,10 +362,8 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   as_mat(print).convertTo(source, CV_32F);
   // Skin that slides in from outside the print is shown as the print's valleys: bright, no
   // ridges, as skin out of contact is in a prism.
-  std::vector<float> values(source.begin<float>(), source.end<float>());
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() * 9 / 10),
-                   values.end());
-  const float background = values[values.size() * 9 / 10];
+  const auto background = static_cast<float>(
+      quantile(std::vector<float>(source.begin<float>(), source.end<float>()), 0.9));
 
   const int w = spec.width_px, h = spec.height_px;
   const Warp warp(spec);
