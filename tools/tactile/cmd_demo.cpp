@@ -64,7 +64,7 @@ class StageTimer {
 
 int run_demo(DemoOptions& opt) {
   const movie::Layout layout = movie::layout_by_name(opt.layout);
-  capture::validate(opt.scene);
+  capture::validate_scene(opt.scene);
   mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
   fs::create_directories(opt.out);
   Progress progress;

@@ -276,7 +276,7 @@ std::string to_string(WarpPattern pattern) {
   return name_in(kWarpPatternNames, pattern);
 }
 
-void validate(const PrintWarpSpec& s) {
+void validate_print_warp(const PrintWarpSpec& s) {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("invalid print warp: " + what);
   };
@@ -346,7 +346,7 @@ double warp_rel_change(const PrintWarpSpec& s, PointMm a_from, PointMm b_from, i
 
 PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& print,
                                     const std::vector<std::array<double, 2>>& marks_px) {
-  validate(spec);
+  validate_print_warp(spec);
   if (print.width_px != spec.width_px || print.height_px != spec.height_px) {
     throw std::invalid_argument(fmt::format("the print is {} x {} px but the spec says {} x {} px",
                                             print.width_px, print.height_px, spec.width_px,

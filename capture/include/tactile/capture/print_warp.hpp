@@ -84,7 +84,7 @@ struct PrintWarpSpec {
 
 // Throws std::invalid_argument naming the first bad field (strain above 0.2 would fold the
 // Gaussian patterns; the fixed-point inversion of the warp needs its gradient below 1).
-void validate(const PrintWarpSpec& spec);
+void validate_print_warp(const PrintWarpSpec& spec);
 
 // Seconds from the first frame to the last.
 double sequence_duration_s(const PrintWarpSpec& spec);
