@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "tactile/common/chart.hpp"
+#include "tactile/perception/cascade.hpp"
 #include "tactile/perception/classifier_model.hpp"
-#include "tactile/perception/eval.hpp"
 
 namespace tactile::perception {
 
