@@ -10,8 +10,8 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/ground_truth.hpp"
-#include "tactile/capture/strain.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"

@@ -16,11 +16,11 @@
 #include "../common/temp_dir.hpp"
 #include "real_prints.hpp"
 #include "tactile/capture/baselines.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
-#include "tactile/capture/strain.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {

@@ -13,7 +13,7 @@
 #include "scene_options.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/h5.hpp"
