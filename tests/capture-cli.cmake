@@ -33,6 +33,11 @@ capture_cli_expect(features_ridge_blob 0 "features: [0-9]+ pores" features
 capture_cli_expect(capture_bad_assignment 2 "assignment" capture ${cc_dir}/seq --px-per-mm 62
                    --out ${cc_dir}/never.h5 --assignment bogus)
 capture_cli_expect(synth_bad_scene 2 "scene" synth ${cc_dir}/never --scene volcano)
+# --rate, the old spelling of --rate-hz: still taken, with a warning, and like it only with
+# --from-print.
+capture_cli_expect(synth_old_rate_warns 2 "--rate is deprecated" synth ${cc_dir}/never --rate 30)
+capture_cli_expect(synth_old_rate_needs_print 2 "--rate requires --from-print" synth ${cc_dir}/never
+                   --rate 30)
 capture_cli_expect(synth_rotation_too_large 1 "rotation_deg" synth ${cc_dir}/never
                    --scene flat-rotate --rotation 40 --frames 2)
 

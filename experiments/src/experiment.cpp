@@ -88,7 +88,7 @@ capture::SceneSpec scene_spec(const Context& cx, const json& j, const std::strin
     s.seed = static_cast<std::uint64_t>(seed);
   }
   try {
-    capture::validate(s);
+    capture::validate_scene(s);
   } catch (const std::invalid_argument& e) {
     cx.fail(fmt::format("{}: {}", where, e.what()));
   }

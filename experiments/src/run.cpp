@@ -13,7 +13,6 @@
 
 #include "run_steps.hpp"
 #include "tactile/capture/ground_truth.hpp"
-#include "tactile/capture/strain.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"

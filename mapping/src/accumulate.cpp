@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 
 namespace tactile::mapping {
 

@@ -21,7 +21,7 @@ FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::Strain
     throw std::invalid_argument(
         fmt::format("fidelity: um_per_strain {} must be positive", um_per_strain));
   }
-  movie::validate(movie);
+  movie::validate_movie(movie);
   const auto& layout = movie.layout;
   const auto n = static_cast<std::size_t>(layout.contactor_count());
   const auto frames = static_cast<std::size_t>(movie.frame_count);

@@ -42,7 +42,7 @@ ProfileShape parse_profile_shape(std::string_view name) {
 }
 
 SurfaceProfile profile_of_scene(const capture::SceneSpec& spec) {
-  capture::validate(spec);
+  capture::validate_scene(spec);
   SurfaceProfile p;
   // Every scene but the bump and the hole is on flat glass.
   p.shape = spec.scene == "bump"   ? ProfileShape::bump

@@ -59,7 +59,7 @@ movie::SideField strain_side_field(const capture::StrainMovie& strain, const std
   }
   field.width_mm = max_x - min_x;
   field.height_mm = max_y - min_y;
-  movie::validate(field);
+  movie::validate_side_field(field);
   return field;
 }
 

@@ -111,7 +111,7 @@ namespace {
 // as text whole.
 HjifSummary write_hjif_to(const TactileMovie& movie, const HjifOptions& options,
                           const std::function<void(const std::string&)>& sink) {
-  validate(movie);
+  validate_movie(movie);
   const Layout& l = movie.layout;
   if (movie.frame_count < 1) {
     throw std::invalid_argument("HJIF: the movie has no frames; an HJIF channel needs a keyframe");
@@ -614,7 +614,7 @@ TactileMovie parse_hjif(const std::string& text, const std::string& where,
                         text_of("mapping_method"), text_of("mapping_parameters_json")};
   }
   try {
-    validate(movie);
+    validate_movie(movie);
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }

@@ -103,7 +103,7 @@ void validate_layout(const Layout& l) {
 
 }  // namespace
 
-void validate(const TactileMovie& movie) {
+void validate_movie(const TactileMovie& movie) {
   validate_layout(movie.layout);
   if (!positive(movie.rate_hz)) {
     throw std::invalid_argument("movie rate_hz " + std::to_string(movie.rate_hz) +

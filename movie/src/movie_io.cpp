@@ -84,7 +84,7 @@ std::string optional_string(const H5::H5File& file, const std::string& name,
 }  // namespace
 
 void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie) {
-  validate(movie);
+  validate_movie(movie);
   h5::write_file_atomically(path, [&](H5::H5File& file) {
     h5::write_attr(file, "format", kFormatName);
     h5::write_attr(file, "format_version", std::int64_t{kTactileMovieFormatVersion});
@@ -158,7 +158,7 @@ TactileMovie read_checked(const std::filesystem::path& path) {
   movie.provenance.mapping_parameters_json =
       optional_string(file, "provenance_mapping_parameters_json", where);
   try {
-    validate(movie);  // NaN values and layout ranges
+    validate_movie(movie);  // NaN values and layout ranges
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
@@ -187,7 +187,7 @@ TactileMovie read_tactile_movie(const std::filesystem::path& path) {
 }
 
 void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovie& movie) {
-  validate(movie);
+  validate_movie(movie);
   std::string header = "frame,t_s";
   for (std::int32_t r = 0; r < movie.layout.rows; ++r) {
     for (std::int32_t c = 0; c < movie.layout.cols; ++c) header += fmt::format(",r{}c{}_um", r, c);

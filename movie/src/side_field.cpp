@@ -32,7 +32,7 @@ ViewTransform fit_field(const SideField& field, int width_px, int height_px) {
   return t;
 }
 
-void validate(const SideField& field) {
+void validate_side_field(const SideField& field) {
   if (field.frames.empty()) throw std::invalid_argument("side field has no frames");
   if (!(field.full_scale > 0) || !std::isfinite(field.full_scale)) {
     throw std::invalid_argument(

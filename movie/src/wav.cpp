@@ -32,7 +32,7 @@ constexpr std::array<unsigned char, 16> kFloatSubformat = {
 }  // namespace
 
 double write_wav(const TactileMovie& movie, const std::filesystem::path& path) {
-  validate(movie);
+  validate_movie(movie);
   if (movie.rate_hz != std::round(movie.rate_hz)) {
     throw std::invalid_argument(fmt::format(
         "WAV: rate {:g} Hz is not a whole number of hertz (a WAV header holds an integer rate)",

@@ -92,7 +92,7 @@ std::shared_ptr<TactileMovie> make_movie(const py::array& deflection_um,
   m->deflection_um = deflections_from(deflection_um, m->layout);
   m->frame_count = static_cast<std::int32_t>(deflection_um.shape(0));
   if (provenance) m->provenance = *provenance;
-  movie::validate(*m);
+  movie::validate_movie(*m);
   return m;
 }
 

@@ -5,9 +5,9 @@
 #include <map>
 
 #include "tactile/capture/baselines.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
-#include "tactile/capture/strain.hpp"
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/error.hpp"
 #include "test_util.hpp"

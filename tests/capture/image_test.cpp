@@ -6,9 +6,12 @@
 #include <opencv2/core.hpp>
 #include <stdexcept>
 
+#include "../common/error_of.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/common/error.hpp"
 #include "test_util.hpp"
+
+using tactile::test::error_of;
 
 namespace tactile::capture {
 namespace {
@@ -27,16 +30,6 @@ GrayImage gradient(int w, int h) {
   return img;
 }
 
-template <typename F>
-std::string format_error_of(F&& f) {
-  try {
-    f();
-  } catch (const FormatError& e) {
-    return e.what();
-  }
-  return "no FormatError";
-}
-
 TEST(Image, PngRoundTripIsLossless) {
   TempDir dir;
   const GrayImage img = gradient(37, 21);
@@ -49,13 +42,13 @@ TEST(Image, PngRoundTripIsLossless) {
 
 TEST(Image, MissingEmptyAndNonImageFilesAreFormatErrorsNamingTheFile) {
   TempDir dir;
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "nope.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "nope.png"); }),
               HasSubstr("nope.png: no such image file"));
   std::ofstream(dir.path() / "empty.png").close();
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "empty.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "empty.png"); }),
               HasSubstr("empty.png: image file is empty"));
   std::ofstream(dir.path() / "text.png") << "this is not a PNG\n";
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "text.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "text.png"); }),
               HasSubstr("text.png: not a readable image"));
 }
 
@@ -65,7 +58,7 @@ TEST(Image, TruncatedPngIsAFormatError) {
   std::ifstream in(dir.path() / "full.png", std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::ofstream(dir.path() / "cut.png", std::ios::binary) << bytes.substr(0, 40);
-  EXPECT_THAT(format_error_of([&] { read_image(dir.path() / "cut.png"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "cut.png"); }),
               HasSubstr("cut.png: not a readable image"));
 }
 
@@ -96,7 +89,7 @@ TEST(Image, PngDeclaringTooManyPixelsIsRefusedInWords) {
   const std::uint32_t crc = png_crc(bytes.substr(12, 17));
   for (int i = 0; i < 4; ++i) bytes[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
   std::ofstream(dir.path() / "huge.png", std::ios::binary) << bytes;
-  const std::string e = format_error_of([&] { read_image(dir.path() / "huge.png"); });
+  const std::string e = error_of<FormatError>([&] { read_image(dir.path() / "huge.png"); });
   EXPECT_THAT(e, HasSubstr("huge.png: not a readable image (the image has more pixels than "
                            "OpenCV decodes (2^30))"));
   EXPECT_THAT(e, ::testing::Not(HasSubstr("OpenCV(")));
@@ -126,8 +119,8 @@ TEST(Image, ListFramesSortsByNameAndSkipsOtherFiles) {
 
 TEST(Image, EmptyOrMissingDirectoryIsAFormatError) {
   TempDir dir;
-  EXPECT_THAT(format_error_of([&] { list_frames(dir.path()); }), HasSubstr("no image files"));
-  EXPECT_THAT(format_error_of([&] { read_frames(dir.path() / "missing"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { list_frames(dir.path()); }), HasSubstr("no image files"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_frames(dir.path() / "missing"); }),
               HasSubstr("not a directory"));
 }
 
@@ -136,7 +129,7 @@ TEST(Image, MixedFrameSizesNameTheOddFile) {
   write_png(dir.path() / "a.png", gradient(16, 16));
   write_png(dir.path() / "b.png", gradient(16, 16));
   write_png(dir.path() / "c.png", gradient(17, 16));
-  const std::string msg = format_error_of([&] { read_frames(dir.path()); });
+  const std::string msg = error_of<FormatError>([&] { read_frames(dir.path()); });
   EXPECT_THAT(msg, HasSubstr("c.png"));
   EXPECT_THAT(msg, HasSubstr("17x16"));
 }
@@ -145,7 +138,7 @@ TEST(Image, NonImageAmongFramesIsAFormatError) {
   TempDir dir;
   write_png(dir.path() / "a.png", gradient(16, 16));
   std::ofstream(dir.path() / "b.png") << "garbage";
-  EXPECT_THAT(format_error_of([&] { read_frames(dir.path()); }), HasSubstr("b.png"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_frames(dir.path()); }), HasSubstr("b.png"));
 }
 
 }  // namespace

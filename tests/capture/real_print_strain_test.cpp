@@ -16,11 +16,11 @@
 #include "../common/temp_dir.hpp"
 #include "real_prints.hpp"
 #include "tactile/capture/baselines.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
-#include "tactile/capture/strain.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {
@@ -49,11 +49,12 @@ std::vector<Track> tracks_of(const StrainMovie& movie) {
 }
 
 TEST(PrintWarp, ImageAndMaterialMapsInvertEachOther) {
-  for (const auto& name : warp_pattern_names()) {
+  for (const auto& [pattern, name] : kWarpPatternNames) {
     PrintWarpSpec s;
     s.width_px = 320;
     s.height_px = 240;
     s.pattern = parse_warp_pattern(name);
+    EXPECT_EQ(s.pattern, pattern) << name;
     s.strain = 0.08;
     for (int frame : {0, 7, 14, 29}) {
       for (const PointMm m : {PointMm{0.3, 0.4}, PointMm{3.4, 2.5}, PointMm{6.0, 4.9}}) {

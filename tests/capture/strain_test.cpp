@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <map>
 
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/synth.hpp"
 #include "test_util.hpp"
 

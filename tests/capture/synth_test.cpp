@@ -216,11 +216,11 @@ TEST(Synth, BadSpecIsRejectedWithTheFieldName) {
                                                ::testing::HasSubstr("frame_rate_hz")));
   s = tiny("flat-rotate");
   s.rotation_deg = 40;  // the slip field would fold the skin over itself
-  EXPECT_THAT([&] { validate(s); }, ::testing::ThrowsMessage<std::invalid_argument>(
-                                        ::testing::HasSubstr("rotation_deg")));
+  EXPECT_THAT([&] { validate_scene(s); }, ::testing::ThrowsMessage<std::invalid_argument>(
+                                              ::testing::HasSubstr("rotation_deg")));
   s = tiny("flat-stick-slip");
   s.stick_ratio = 0.95;
-  EXPECT_THAT([&] { validate(s); },
+  EXPECT_THAT([&] { validate_scene(s); },
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("stick_ratio")));
 }
 

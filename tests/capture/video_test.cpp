@@ -13,7 +13,7 @@
 
 #include "../common/temp_dir.hpp"
 #include "real_prints.hpp"
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/video.hpp"
 #include "tactile/common/error.hpp"
 

@@ -18,9 +18,12 @@
 #include <string>
 #include <thread>
 
+#include "../common/error_of.hpp"
 #include "../common/small_disk.hpp"
 #include "../common/temp_dir.hpp"
 #include "tactile/common/h5.hpp"
+
+using tactile::test::error_of;
 
 namespace tactile {
 namespace {
@@ -39,16 +42,6 @@ std::set<std::string> names_in(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
   return names;
-}
-
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 class AtomicWrite : public ::testing::Test {

@@ -8,8 +8,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "../common/error_of.hpp"
 #include "../common/temp_dir.hpp"
 #include "tactile/common/json.hpp"
+
+using tactile::test::error_of;
 
 namespace tactile {
 namespace {
@@ -17,42 +20,33 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const FormatError& e) {
-    return e.what();
-  }
-  return "no FormatError";
-}
-
 TEST(Json, ParseErrorsNameTheOrigin) {
   const JsonOrigin at{"doc.json"};
-  EXPECT_THAT(message_of([&] { parse_json(at, "{\"a\": "); }),
+  EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, "{\"a\": "); }),
               HasSubstr("doc.json: not valid JSON"));
   // A number beyond a double is nlohmann's out_of_range, not a parse error: still a FormatError.
-  EXPECT_THAT(message_of([&] { parse_json(at, "{\"a\": 1e999}"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, "{\"a\": 1e999}"); }),
               HasSubstr("doc.json: not valid JSON"));
 }
 
 TEST(Json, FieldsAreCheckedForWhatAPersonMeant) {
   const JsonOrigin at{"doc.json"};
   const auto j = parse_json(at, R"({"n": "3", "i": 2.5, "s": "", "x": 1, "nan": null})");
-  EXPECT_THAT(message_of([&] { json_number(at, j["n"], "n"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { json_number(at, j["n"], "n"); }),
               HasSubstr("doc.json: 'n' must be a number, got \"3\""));
-  EXPECT_THAT(message_of([&] { json_integer(at, j["i"], "i"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { json_integer(at, j["i"], "i"); }),
               HasSubstr("doc.json: 'i' must be an integer, got 2.5"));
-  EXPECT_THAT(message_of([&] { json_string(at, j["s"], "s"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { json_string(at, j["s"], "s"); }),
               HasSubstr("'s' must be a non-empty string"));
-  EXPECT_THAT(message_of([&] { json_required(at, j, "missing", "the doc"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { json_required(at, j, "missing", "the doc"); }),
               HasSubstr("doc.json: the doc: missing field 'missing'"));
-  EXPECT_THAT(message_of([&] { json_required(at, j, "missing", ""); }),
+  EXPECT_THAT(error_of<FormatError>([&] { json_required(at, j, "missing", ""); }),
               HasSubstr("doc.json: missing field 'missing'"));
-  EXPECT_THAT(message_of([&] {
+  EXPECT_THAT(error_of<FormatError>([&] {
                 json_only_keys(at, j, "the doc", {"n", "i", "s", "nan"});
               }),
               HasSubstr("the doc: unknown field 'x'"));
-  EXPECT_THAT(message_of([&] { json_field<int>(j, "s", "doc.json"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { json_field<int>(j, "s", "doc.json"); }),
               HasSubstr("field 's' has the wrong type"));
   EXPECT_DOUBLE_EQ(json_number(at, j["x"], "x"), 1.0);
   EXPECT_EQ(json_integer(at, j["x"], "x"), 1);
@@ -65,14 +59,15 @@ class Files : public ::testing::Test {
 };
 
 TEST_F(Files, ReadJsonObjectRefusesWhatIsNotAnObject) {
-  EXPECT_THAT(message_of([&] { read_json_object(dir_ / "none.json", "a calibration"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_ / "none.json", "a calibration"); }),
               HasSubstr("none.json: cannot open a calibration"));
   std::ofstream(dir_ / "list.json") << "[1, 2]";
-  EXPECT_THAT(message_of([&] { read_json_object(dir_ / "list.json", "a calibration"); }),
+  EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_ / "list.json", "a calibration"); }),
               HasSubstr("list.json: expected a JSON object"));
   std::ofstream(dir_ / "empty.json") << "";
-  EXPECT_THAT(message_of([&] { read_json_object(dir_ / "empty.json", "a calibration"); }),
-              HasSubstr("empty.json: not valid JSON"));
+  EXPECT_THAT(
+      error_of<FormatError>([&] { read_json_object(dir_ / "empty.json", "a calibration"); }),
+      HasSubstr("empty.json: not valid JSON"));
 }
 
 }  // namespace

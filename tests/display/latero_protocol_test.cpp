@@ -240,14 +240,14 @@ TEST(LateroProtocol, BladeMappingFollowsOpenLateroByDefault) {
   EXPECT_EQ(blade_raw(100, c), 28);
   EXPECT_EQ(centre_raw(c), 128);
   c.centre_raw = 300;
-  EXPECT_THROW(validate(c), std::invalid_argument);
+  EXPECT_THROW(validate_blade_mapping(c), std::invalid_argument);
   c = {};
   c.max_raw = 256;
-  EXPECT_THROW(validate(c), std::invalid_argument);
+  EXPECT_THROW(validate_blade_mapping(c), std::invalid_argument);
   c = {};
   c.full_scale_um = 0;
-  EXPECT_THROW(validate(c), std::invalid_argument);
-  EXPECT_NO_THROW(validate(LateroBladeMapping{}));
+  EXPECT_THROW(validate_blade_mapping(c), std::invalid_argument);
+  EXPECT_NO_THROW(validate_blade_mapping(LateroBladeMapping{}));
 }
 
 }  // namespace

@@ -55,7 +55,7 @@ TEST(SideField, FitsUniformlyAndCentred) {
 TEST(SideField, MalformedFieldsAreRefusedWithTheReason) {
   const auto message = [](const movie::SideField& f) {
     try {
-      validate(f);
+      validate_side_field(f);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }

@@ -254,7 +254,7 @@ TEST(MapStrainMovie, WorksOnTheBuiltInLayouts) {
       // 34/35 s of strain frames at the layout's rate, both ends included.
       EXPECT_EQ(out.frame_count,
                 static_cast<std::int32_t>(34.0 / 35.0 * layout.max_rate_hz + 1e-9) + 1);
-      EXPECT_NO_THROW(movie::validate(out)) << name << " " << to_string(method);
+      EXPECT_NO_THROW(movie::validate_movie(out)) << name << " " << to_string(method);
       float peak = 0;
       for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
       EXPECT_GT(peak, 5.0f) << name << " " << to_string(method);

@@ -51,7 +51,7 @@ TEST(Layouts, UnknownNameListsTheKnownOnes) {
 
 void expect_invalid(const TactileMovie& m, const std::string& words) {
   try {
-    validate(m);
+    validate_movie(m);
     FAIL() << "accepted; expected an error about " << words;
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), HasSubstr(words));
@@ -60,7 +60,7 @@ void expect_invalid(const TactileMovie& m, const std::string& words) {
 
 TEST(Validate, AcceptsAConsistentMovieAndNamesEachInconsistency) {
   const TactileMovie good = testing::sine_movie(stress_layout(), 700, 10, 20);
-  EXPECT_NO_THROW(validate(good));
+  EXPECT_NO_THROW(validate_movie(good));
   TactileMovie m = good;
   m.deflection_um.resize(m.deflection_um.size() - 1);
   expect_invalid(m, "999 deflection values");

@@ -9,12 +9,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../common/error_of.hpp"
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/perception/classifier_model.hpp"
 #include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/report.hpp"
+
+using tactile::test::error_of;
 
 namespace perception = tactile::perception;
 
@@ -52,16 +55,6 @@ perception::SensorRecording recording(std::size_t contact_rows) {
     for (int k = 0; k < perception::kVibrationPerRow; ++k) r.vibration.push_back(2000);
   }
   return r;
-}
-
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 // The model file, as JSON, of the vendored trials 1 trained with `options`, written to dir/m.json.

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/perception/eval.hpp"
+#include "tactile/perception/cascade.hpp"
 
 namespace perception = tactile::perception;
 

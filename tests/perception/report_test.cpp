@@ -103,3 +103,32 @@ TEST(AccuracyByFootprint, WritesOneCsvRowPerFootprintAndOneLinePerInputSet) {
   EXPECT_THROW(perception::write_accuracy_by_footprint_chart(dir / "missing" / "x.svg", rows, 1),
                std::runtime_error);
 }
+
+// `classify test --csv`: one row per recording, the class names of the model, the value columns
+// only when asked for; and the terminal's lines name what each class was taken for.
+TEST(ClassifyReport, PredictionsCsvAndConfusionLines) {
+  const tactile::test::TempDir dir_tmp;
+  const fs::path& dir = dir_tmp.path();
+  const std::vector<std::string> names = {"oak", "pine", "felt"};
+  perception::LabelledInputs data;
+  data.files = {"a.csv", "b.csv", "c.csv"};
+  data.rows = {{0.0}, {1.0}, {2.0}};
+  data.classes = {0, 1, 1};
+  data.values = {1.5, 2.0, 3.0};
+  perception::ClassifierTest test;
+  test.predictions = {{0, 1.25}, {1, 2.5}, {0, 0.75}};
+  test.confusion = {{1, 0, 0}, {1, 1, 0}, {0, 0, 0}};
+
+  perception::write_predictions_csv(dir / "p.csv", names, data, test, false);
+  EXPECT_EQ(read(dir / "p.csv"),
+            "file,class,predicted,correct\na.csv,oak,oak,1\nb.csv,pine,pine,1\nc.csv,pine,oak,0\n");
+  perception::write_predictions_csv(dir / "v.csv", names, data, test, true);
+  const std::string with_values = read(dir / "v.csv");
+  EXPECT_EQ(with_values.substr(0, with_values.find('\n')),
+            "file,class,predicted,correct,value,predicted_value");
+  EXPECT_NE(with_values.find("c.csv,pine,oak,0,3,0.75\n"), std::string::npos) << with_values;
+
+  // felt was never tested: no line for it.
+  EXPECT_EQ(perception::confusion_lines(names, test.confusion),
+            (std::vector<std::string>{"oak: 1/1 correct", "pine: 1/2 correct; taken for oak 1"}));
+}

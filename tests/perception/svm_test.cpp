@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "tactile/perception/eval.hpp"
+#include "tactile/perception/cascade.hpp"
 #include "tactile/perception/svm_model.hpp"
 
 namespace perception = tactile::perception;

@@ -17,7 +17,7 @@
 
 #include "../common/temp_dir.hpp"
 #include "tactile/perception/arff.hpp"
-#include "tactile/perception/eval.hpp"
+#include "tactile/perception/cascade.hpp"
 #include "tactile/perception/svm_model.hpp"
 
 namespace perception = tactile::perception;

@@ -11,8 +11,8 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/ground_truth.hpp"
-#include "tactile/capture/strain.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/common/stopwatch.hpp"
 #include "tactile/mapping/map.hpp"

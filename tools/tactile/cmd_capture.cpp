@@ -20,7 +20,7 @@
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/pore_model_io.hpp"
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/video.hpp"

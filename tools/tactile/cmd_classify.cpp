@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "number_checks.hpp"
-#include "tactile/common/csv.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stopwatch.hpp"
@@ -44,11 +44,12 @@ struct TrainOptions {
   std::filesystem::path recordings, labels, out;
   std::string procedure = "stroke";
   // Unset: the procedure's default (perception::default_recording_inputs).
-  std::optional<std::string> baseline_at, electrodes;
+  std::optional<perception::ContactOptions::BaselineAt> baseline_at;
+  std::optional<perception::ContactOptions::Electrodes> electrodes;
   std::optional<double> trim;
-  std::vector<std::string> inputs;  // empty: the procedure's default
-  std::optional<int> degree;        // unset: the procedure's default, or searched with --select
-  std::optional<double> c;          // unset: the procedure's default, or searched with --select
+  std::vector<perception::InputGroup> inputs;  // empty: the procedure's default
+  std::optional<int> degree;  // unset: the procedure's default, or searched with --select
+  std::optional<double> c;    // unset: the procedure's default, or searched with --select
   bool select = false;
   int cv = 0;
   int threads = 0;
@@ -62,14 +63,10 @@ int train_selected(const TrainOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto base = perception::default_recording_inputs(o.procedure);
   auto grid = perception::default_selection_grid(o.procedure);
-  if (o.baseline_at) grid.baselines = {perception::parse_baseline_at(*o.baseline_at)};
-  if (o.electrodes) grid.electrodes = {perception::parse_electrodes(*o.electrodes)};
+  if (o.baseline_at) grid.baselines = {*o.baseline_at};
+  if (o.electrodes) grid.electrodes = {*o.electrodes};
   if (o.trim) grid.trims = {*o.trim};
-  if (!o.inputs.empty()) {
-    grid.input_sets = {{}};
-    for (const auto& name : o.inputs)
-      grid.input_sets.front().push_back(perception::parse_input_group(name));
-  }
+  if (!o.inputs.empty()) grid.input_sets = {o.inputs};
   if (o.degree) grid.degrees = {*o.degree};
   if (o.c) grid.cs = {*o.c};
   const auto data = perception::read_labelled_recordings(o.recordings, o.labels, {}, o.threads);
@@ -107,9 +104,9 @@ int train(const TrainOptions& o) {
   training.trim = o.trim;
   training.kernel_degree = o.degree;
   training.c = o.c;
-  if (o.baseline_at) training.baseline_at = perception::parse_baseline_at(*o.baseline_at);
-  if (o.electrodes) training.electrodes = perception::parse_electrodes(*o.electrodes);
-  for (const auto& name : o.inputs) training.inputs.push_back(perception::parse_input_group(name));
+  if (o.baseline_at) training.baseline_at = o.baseline_at;
+  if (o.electrodes) training.electrodes = o.electrodes;
+  training.inputs = o.inputs;
   const auto in = perception::recording_inputs_for(training);
   const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
   fmt::print(
@@ -165,18 +162,8 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
                                                          model.class_names, threads);
   const auto t = perception::test_classifier(fitted, model.class_names.size(), data);
   const bool values = fitted.has_values() && !data.values.empty();
-  for (std::size_t c = 0; c < model.class_names.size(); ++c) {
-    int total = 0;
-    std::vector<std::string> wrong;
-    for (std::size_t p = 0; p < model.class_names.size(); ++p) {
-      total += t.confusion[c][p];
-      if (p != c && t.confusion[c][p])
-        wrong.push_back(fmt::format("{} {}", model.class_names[p], t.confusion[c][p]));
-    }
-    if (total == 0) continue;
-    fmt::print("{}: {}/{} correct{}{}\n", model.class_names[c], t.confusion[c][c], total,
-               wrong.empty() ? "" : "; taken for ", fmt::join(wrong, ", "));
-  }
+  for (const auto& line : perception::confusion_lines(model.class_names, t.confusion))
+    fmt::print("{}\n", line);
   if (values) {
     double ss = 0;
     for (std::size_t i = 0; i < data.rows.size(); ++i)
@@ -187,20 +174,8 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
   fmt::print("accuracy {:.3f} ({}/{})\n", t.accuracy(), t.correct, t.tested);
   if (!csv_dir.empty()) {
     perception::write_confusion_report(csv_dir, model.class_names, t.confusion);
-    const auto predictions_path = csv_dir / "predictions.csv";
-    auto pred = csv::open_with_header(predictions_path,
-                                      values ? "file,class,predicted,correct,value,predicted_value"
-                                             : "file,class,predicted,correct");
-    for (std::size_t i = 0; i < data.rows.size(); ++i) {
-      const auto& p = t.predictions[i];
-      pred << fmt::format("{},{},{},{}", data.files[i],
-                          model.class_names[static_cast<std::size_t>(data.classes[i])],
-                          model.class_names[static_cast<std::size_t>(p.class_index)],
-                          p.class_index == data.classes[i] ? 1 : 0);
-      if (values) pred << fmt::format(",{:g},{:.6g}", data.values[i], p.value);
-      pred << '\n';
-    }
-    csv::finish(pred, predictions_path);
+    perception::write_predictions_csv(csv_dir / "predictions.csv", model.class_names, data, t,
+                                      values);
     fmt::print(
         "classify test: confusion.csv, confusion.svg, confusion.png, predictions.csv -> {}\n",
         csv_dir.string());
@@ -256,15 +231,15 @@ void add_classify(CLI::App& app, Action& action) {
                  "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
       ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
       ->capture_default_str();
-  tr->add_option("--baseline-at", t->baseline_at,
-                 "Where the free-air baseline is: end (recordings that begin in contact), start, "
-                 "or none (the recording software already subtracted one); default: none for "
-                 "stroke, end otherwise")
-      ->check(CLI::IsMember(names_of(values_of(perception::kBaselineAtNames))));
-  tr->add_option("--electrodes", t->electrodes,
-                 "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
-                 "(all 19 electrodes); default: clusters")
-      ->check(CLI::IsMember(names_of(values_of(perception::kElectrodesNames))));
+  add_optional_mode_option(
+      *tr, "--baseline-at", t->baseline_at, perception::kBaselineAtNames,
+      "Where the free-air baseline is: end (recordings that begin in contact), start, "
+      "or none (the recording software already subtracted one); default: none for "
+      "stroke, end otherwise");
+  add_optional_mode_option(
+      *tr, "--electrodes", t->electrodes, perception::kElectrodesNames,
+      "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
+      "(all 19 electrodes); default: clusters");
   tr->add_option("--trim", t->trim,
                  "Strokes: fraction of the contact left out at each end, in [0, 0.5) (the press "
                  "and the lift of a slide); default: 0.1 for stroke, 0 otherwise")
@@ -287,14 +262,13 @@ void add_classify(CLI::App& app, Action& action) {
             return std::string();
           },
           "in [0, 0.5)"));
-  tr->add_option("--inputs", t->inputs,
-                 "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
-                 "band powers of the vibration), stds (standard deviation of each signal over the "
-                 "contact), stats (plain statistics: mean and standard deviation of each signal, "
-                 "the vibration's, and the bands); default: stroke means,bands; dp, ru, roll the "
-                 "paper's means,rates,hht; static means")
-      ->delimiter(',')
-      ->check(CLI::IsMember(names_of(perception::kInputGroups)));
+  add_mode_list_option(
+      *tr, "--inputs", t->inputs, perception::kInputGroupNames,
+      "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
+      "band powers of the vibration), stds (standard deviation of each signal over the "
+      "contact), stats (plain statistics: mean and standard deviation of each signal, "
+      "the vibration's, and the bands); default: stroke means,bands; dp, ru, roll the "
+      "paper's means,rates,hht; static means");
   tr->add_option("--kernel-degree", t->degree,
                  "Exponent of the polynomial kernel; default 1 (searched with --select)")
       ->check(CLI::IsMember({1, 2}));

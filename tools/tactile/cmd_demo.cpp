@@ -12,7 +12,7 @@
 #include "scene_options.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/h5.hpp"
@@ -64,7 +64,7 @@ class StageTimer {
 
 int run_demo(DemoOptions& opt) {
   const movie::Layout layout = movie::layout_by_name(opt.layout);
-  capture::validate(opt.scene);
+  capture::validate_scene(opt.scene);
   mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
   fs::create_directories(opt.out);
   Progress progress;

@@ -131,7 +131,7 @@ int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& o,
   check_latero_movie(movie);
   display::LateroTransportOptions transport;
   transport.mapping = o.mapping;
-  display::validate(transport.mapping);
+  display::validate_blade_mapping(transport.mapping);
   display::LateroTransport latero(display::parse_latero_address(o.address), transport);
   fmt::print(
       "play: streaming to the Latero at {} at {:g} Hz (paced by this computer's clock); blades: "
@@ -215,7 +215,7 @@ void add_emulate(CLI::App& app, Action& action) {
                                                   std::chrono::duration<double>(opt->seconds))
                              : Clock::time_point::max();
       if (opt->window) {
-        display::validate(opt->mapping);
+        display::validate_blade_mapping(opt->mapping);
         show_live(emulator, opt->mapping, until, stop_fd);
       } else {
         emulator.serve(until, stop_fd);

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "progress.hpp"
 #include "tactile/common/csv.hpp"
@@ -16,6 +17,7 @@
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/report.hpp"
 #include "tactile/perception/seeds.hpp"
+#include "tactile/perception/sensor_model.hpp"
 
 namespace tactile::cli {
 namespace {
@@ -92,7 +94,7 @@ void add_perceive(CLI::App& app, Action& action) {
     int threads = 0;
     perception::VariationScale variation;
     std::vector<double> footprints_mm;
-    std::string electrode_field = "gaussian";
+    perception::ElectrodeField electrode_field = perception::ElectrodeField::gaussian;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -132,12 +134,10 @@ void add_perceive(CLI::App& app, Action& action) {
                   "Scale of the spread of the speed (0.5 %); 0 = none")
       ->check(within(0.0, 100.0))
       ->capture_default_str();
-  sub->add_option("--electrode-field", opt->electrode_field,
+  add_mode_option(*sub, "--electrode-field", opt->electrode_field, perception::kElectrodeFieldNames,
                   "How an electrode weighs the skin: gaussian (its face and a 0.4 mm margin) or "
                   "sheet (the fluid as a thin conducting sheet: 1/r^2 out to 3 mm, smooth in the "
-                  "position of a small feature)")
-      ->check(CLI::IsMember({"gaussian", "sheet"}))
-      ->capture_default_str();
+                  "position of a small feature)");
   sub->add_option("--footprints", opt->footprints_mm,
                   "Only features of these footprints (mm, of 1.25 2.5 3.75 5 7.5 10 15 20; "
                   "bumps and pits of all three curvatures each), e.g. --footprints 1.25,2.5")
@@ -173,8 +173,7 @@ void add_perceive(CLI::App& app, Action& action) {
           features.push_back(f);
       perception::SensorModel model;
       model.variation = opt->variation;
-      if (opt->electrode_field == "sheet")
-        model.electrode_field = perception::ElectrodeField::sheet;
+      model.electrode_field = opt->electrode_field;
       const auto simulate = [&](std::uint64_t seed) {
         const auto t0 = std::chrono::steady_clock::now();
         Progress progress;

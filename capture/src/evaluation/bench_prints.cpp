@@ -6,7 +6,7 @@
 
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/bench.hpp"
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/common/stopwatch.hpp"
 

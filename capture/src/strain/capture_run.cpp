@@ -66,9 +66,6 @@ std::string to_string(PoreSetting setting) {
 std::string to_string(RefineSetting setting) {
   return name_in(kRefineSettingNames, setting);
 }
-std::string to_string(Assignment assignment) {
-  return name_in(kAssignmentNames, assignment);
-}
 
 std::string use_pore_detector(PoreDetector detector, const std::optional<PoreModelFile>& model,
                               double px_per_mm, FeatureParams& features) {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/common/stats.hpp"
 
 namespace tactile::capture {

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/common/parallel_for.hpp"
 
 namespace tactile::capture {

@@ -11,7 +11,7 @@
 namespace tactile::capture {
 
 StrainMovie ground_truth_strain_movie(const SceneSpec& spec, double grid_spacing_mm) {
-  validate(spec);
+  validate_scene(spec);
   if (!(grid_spacing_mm > 0) || !std::isfinite(grid_spacing_mm)) {
     throw std::invalid_argument(
         fmt::format("ground truth: grid spacing {} mm must be positive", grid_spacing_mm));

@@ -47,7 +47,7 @@ void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTr
   optional_field("supersample", spec.supersample);
   optional_field("contact_loss", spec.contact_loss);
   try {
-    validate(spec);
+    validate_print_warp(spec);
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", w, e.what()));
   }
@@ -99,7 +99,7 @@ void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   spec.lateral_amplitude_mm = optional("lateral_amplitude_mm", defaults.lateral_amplitude_mm);
   spec.stick_ratio = optional("stick_ratio", defaults.stick_ratio);
   try {
-    validate(spec);
+    validate_scene(spec);
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", w, e.what()));
   }

@@ -15,23 +15,13 @@
 
 #include "camera/cv_image.hpp"
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-struct Names {
-  WarpPattern pattern;
-  const char* name;
-};
-constexpr Names kNames[] = {
-    {WarpPattern::rigid, "rigid"},       {WarpPattern::stretch, "stretch"},
-    {WarpPattern::compress, "compress"}, {WarpPattern::bump, "bump"},
-    {WarpPattern::wave, "wave"},         {WarpPattern::pulse, "pulse"},
-    {WarpPattern::ridge, "ridge"},       {WarpPattern::stick_slip, "stick-slip"},
-    {WarpPattern::kernels, "kernels"}};
 
 PointMm centre_mm(const PrintWarpSpec& s) {
   return {(s.width_px - 1) / (2 * s.px_per_mm), (s.height_px - 1) / (2 * s.px_per_mm)};
@@ -279,30 +269,14 @@ float sample_lanczos(const cv::Mat& source, double x, double y, float outside) {
 }  // namespace
 
 WarpPattern parse_warp_pattern(std::string_view name) {
-  for (const auto& n : kNames) {
-    if (name == n.name) return n.pattern;
-  }
-  throw std::invalid_argument(fmt::format("warp pattern '{}' is not one of {}", name,
-                                          fmt::join(warp_pattern_names(), ", ")));
+  return parse_name("warp pattern", name, kWarpPatternNames);
 }
 
-std::string_view to_string(WarpPattern pattern) {
-  for (const auto& n : kNames) {
-    if (n.pattern == pattern) return n.name;
-  }
-  return "unknown";
+std::string to_string(WarpPattern pattern) {
+  return name_in(kWarpPatternNames, pattern);
 }
 
-const std::vector<std::string>& warp_pattern_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> v;
-    for (const auto& n : kNames) v.emplace_back(n.name);
-    return v;
-  }();
-  return names;
-}
-
-void validate(const PrintWarpSpec& s) {
+void validate_print_warp(const PrintWarpSpec& s) {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("invalid print warp: " + what);
   };
@@ -372,7 +346,7 @@ double warp_rel_change(const PrintWarpSpec& s, PointMm a_from, PointMm b_from, i
 
 PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& print,
                                     const std::vector<std::array<double, 2>>& marks_px) {
-  validate(spec);
+  validate_print_warp(spec);
   if (print.width_px != spec.width_px || print.height_px != spec.height_px) {
     throw std::invalid_argument(fmt::format("the print is {} x {} px but the spec says {} x {} px",
                                             print.width_px, print.height_px, spec.width_px,
@@ -388,10 +362,8 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   as_mat(print).convertTo(source, CV_32F);
   // Skin that slides in from outside the print is shown as the print's valleys: bright, no
   // ridges, as skin out of contact is in a prism.
-  std::vector<float> values(source.begin<float>(), source.end<float>());
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() * 9 / 10),
-                   values.end());
-  const float background = values[values.size() * 9 / 10];
+  const auto background = static_cast<float>(
+      quantile(std::vector<float>(source.begin<float>(), source.end<float>()), 0.9));
 
   const int w = spec.width_px, h = spec.height_px;
   const Warp warp(spec);

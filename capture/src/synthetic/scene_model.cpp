@@ -23,7 +23,7 @@ const std::vector<std::string>& scene_names() {
   return names;
 }
 
-void validate(const SceneSpec& spec) {
+void validate_scene(const SceneSpec& spec) {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("invalid scene: " + what);
   };
@@ -69,7 +69,7 @@ void validate(const SceneSpec& spec) {
 }
 
 SceneModel::SceneModel(const SceneSpec& spec) : spec_(spec) {
-  validate(spec);
+  validate_scene(spec);
   mm_per_px_x_ = spec.field_width_mm / spec.width_px;
   mm_per_px_y_ = spec.field_height_mm / spec.height_px;
   frame_rate_hz_ = spec.frame_rate_hz;
@@ -190,8 +190,8 @@ PointMm SceneModel::to_skin(PointMm image, int frame) const {
 
 PointMm SceneModel::to_image(PointMm skin, int frame) const {
   // Every scene's map is x = F(X, x) with F a contraction in x (|grad d| <= |A|/sigma < 1 for
-  // the feature; the slip field's gradient is bounded in validate()), so fixed-point iteration
-  // converges geometrically.
+  // the feature; the slip field's gradient is bounded in validate_scene()), so fixed-point
+  // iteration converges geometrically.
   auto step = [&](PointMm x) -> PointMm {
     if (kind_ == Kind::flat_rotate) {
       return rotate_about(skin, finger_centre0_, partial_slip_load(frame) * slip_fraction(x));

@@ -27,7 +27,7 @@ std::uint16_t integer_rate(double rate_hz, const char* what) {
 
 tfw_config make_config(const EmulatedDeviceOptions& o) {
   const movie::Layout& l = o.layout;
-  validate(movie::TactileMovie{l, l.max_rate_hz, 0, {}, {}});
+  validate_movie(movie::TactileMovie{l, l.max_rate_hz, 0, {}, {}});
   tfw_config c{};
   c.rows = static_cast<std::uint16_t>(l.rows);
   c.cols = static_cast<std::uint16_t>(l.cols);

@@ -213,7 +213,7 @@ std::string describe_io_status(std::uint16_t word) {
                      (word >> 4) & 0x0F, word & 0x0F);
 }
 
-void validate(const LateroBladeMapping& m) {
+void validate_blade_mapping(const LateroBladeMapping& m) {
   for (const double v : {m.centre_raw, m.raw_per_unit, m.max_raw, m.full_scale_um}) {
     if (!std::isfinite(v))
       throw std::invalid_argument("Latero blade mapping has a non-finite value");

@@ -85,7 +85,7 @@ LateroAddress parse_latero_address(const std::string& text) {
 
 LateroTransport::LateroTransport(LateroAddress address, LateroTransportOptions options)
     : address_(std::move(address)), options_(std::move(options)) {
-  validate(options_.mapping);
+  validate_blade_mapping(options_.mapping);
   if (options_.layout.contactor_count() != kLateroBlades) {
     throw std::invalid_argument(fmt::format("layout '{}' has {} contactors; a Latero has {} blades",
                                             options_.layout.name, options_.layout.contactor_count(),

@@ -79,7 +79,7 @@ bool close(double a, double b) {
 
 void check_movie_against_device(const movie::TactileMovie& movie, const DeviceInfo& device,
                                 const PlayOptions& options) {
-  validate(movie);
+  validate_movie(movie);
   const movie::Layout& m = movie.layout;
   const movie::Layout& d = device.layout;
   if (m.rows != d.rows || m.cols != d.cols) {

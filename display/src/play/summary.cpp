@@ -20,7 +20,7 @@ std::vector<double> frame_rms_um(const movie::TactileMovie& movie) {
 }
 
 MovieSummary summarize(const movie::TactileMovie& movie) {
-  validate(movie);
+  validate_movie(movie);
   MovieSummary s;
   s.layout_name = movie.layout.name;
   s.rows = movie.layout.rows;

@@ -122,7 +122,7 @@ void draw_plot(cv::Mat& plot, const movie::TactileMovie& movie,
 
 void write_preview_strip(const std::filesystem::path& png, const movie::TactileMovie& movie,
                          const PreviewOptions& options) {
-  validate(movie);
+  validate_movie(movie);
   if (options.frames < 1 || options.panel_px < 40 || options.plot_height_px < 0) {
     throw std::invalid_argument(fmt::format(
         "preview options: frames {} (need >= 1), panel_px {} (need >= 40), plot_height_px {}",

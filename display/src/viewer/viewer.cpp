@@ -276,8 +276,8 @@ bool screen_available() {
 }
 
 ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& options) {
-  validate(movie);
-  if (options.field) validate(*options.field);
+  validate_movie(movie);
+  if (options.field) validate_side_field(*options.field);
   ViewerResult result;
   movie::TactileMovie shown;
   std::int64_t lead_in_frames = 0;  // shown frames before the movie's first (the start ramp)

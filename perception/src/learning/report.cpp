@@ -283,4 +283,40 @@ void write_confusion_report(const std::filesystem::path& dir,
   write_confusion_chart(dir / "confusion.svg", names, ordered);
 }
 
+void write_predictions_csv(const std::filesystem::path& path,
+                           const std::vector<std::string>& class_names, const LabelledInputs& data,
+                           const ClassifierTest& test, bool with_values) {
+  auto out =
+      csv::open_with_header(path, with_values ? "file,class,predicted,correct,value,predicted_value"
+                                              : "file,class,predicted,correct");
+  for (std::size_t i = 0; i < data.rows.size(); ++i) {
+    const auto& p = test.predictions.at(i);
+    out << fmt::format("{},{},{},{}", data.files[i],
+                       class_names.at(static_cast<std::size_t>(data.classes[i])),
+                       class_names.at(static_cast<std::size_t>(p.class_index)),
+                       p.class_index == data.classes[i] ? 1 : 0);
+    if (with_values) out << fmt::format(",{:g},{:.6g}", data.values.at(i), p.value);
+    out << '\n';
+  }
+  csv::finish(out, path);
+}
+
+std::vector<std::string> confusion_lines(const std::vector<std::string>& class_names,
+                                         const std::vector<std::vector<int>>& confusion) {
+  std::vector<std::string> lines;
+  for (std::size_t c = 0; c < class_names.size(); ++c) {
+    int total = 0;
+    std::vector<std::string> wrong;
+    for (std::size_t p = 0; p < class_names.size(); ++p) {
+      total += confusion.at(c).at(p);
+      if (p != c && confusion[c][p])
+        wrong.push_back(fmt::format("{} {}", class_names[p], confusion[c][p]));
+    }
+    if (total == 0) continue;
+    lines.push_back(fmt::format("{}: {}/{} correct{}{}", class_names[c], confusion[c][c], total,
+                                wrong.empty() ? "" : "; taken for ", fmt::join(wrong, ", ")));
+  }
+  return lines;
+}
+
 }  // namespace tactile::perception

@@ -30,7 +30,7 @@ std::vector<int> contactor_clusters(const movie::Layout& layout) {
 
 perception::SensorRecording movie_signals(const movie::TactileMovie& movie,
                                           const std::string& source) {
-  movie::validate(movie);
+  movie::validate_movie(movie);
   const auto clusters = contactor_clusters(movie.layout);
   perception::SensorRecording r;
   r.source = source;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "tactile/capture/pore_model_io.hpp"
-#include "tactile/capture/strain.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/video.hpp"
 #include "tactile/common/names.hpp"
 
@@ -57,13 +57,8 @@ inline constexpr std::array<Named<RefineSetting>, 3> kRefineSettingNames = {{
     {RefineSetting::on, "on"},
     {RefineSetting::off, "off"},
 }};
-inline constexpr std::array<Named<Assignment>, 2> kAssignmentNames = {{
-    {Assignment::greedy, "greedy"},
-    {Assignment::optimal, "optimal"},
-}};
 std::string to_string(PoreSetting setting);
 std::string to_string(RefineSetting setting);
-std::string to_string(Assignment assignment);
 
 // The detector in `features`, with a pore model from `tactile train-pores` when given. Returns a
 // warning for a person (empty: none) when the image's scale is far from the model's.

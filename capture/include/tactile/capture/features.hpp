@@ -2,11 +2,14 @@
 // Landmarks of one prism fingerprint image: sweat pores and valley minutiae (the first paper's
 // feature extraction; docs/capture-models.md explains each step).
 
+#include <array>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/common/names.hpp"
 
 namespace tactile::capture {
 
@@ -17,6 +20,13 @@ namespace tactile::capture {
 // ridge noise and against its own pores, place across the ridge, size) that a small logistic
 // model trained on hand-marked real prints turns into a pore probability.
 enum class PoreDetector { paper, ridge_blob };
+inline constexpr std::array<Named<PoreDetector>, 2> kPoreDetectorNames = {{
+    {PoreDetector::paper, "paper"},
+    {PoreDetector::ridge_blob, "ridge-blob"},
+}};
+inline std::string to_string(PoreDetector d) {
+  return name_in(kPoreDetectorNames, d);
+}
 
 // Parameters of PoreDetector::ridge_blob (millimetres; chosen at about 47 px/mm on the PolyU HRF
 // prints; docs/capture-models.md section 5b says how).

@@ -22,6 +22,7 @@
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/common/names.hpp"
 
 namespace tactile::capture {
 
@@ -37,9 +38,19 @@ enum class WarpPattern {
   kernels,     // a random smooth field: several Gaussian displacement kernels, own time courses
 };
 
+inline constexpr std::array<Named<WarpPattern>, 9> kWarpPatternNames = {{
+    {WarpPattern::rigid, "rigid"},
+    {WarpPattern::stretch, "stretch"},
+    {WarpPattern::compress, "compress"},
+    {WarpPattern::bump, "bump"},
+    {WarpPattern::wave, "wave"},
+    {WarpPattern::pulse, "pulse"},
+    {WarpPattern::ridge, "ridge"},
+    {WarpPattern::stick_slip, "stick-slip"},
+    {WarpPattern::kernels, "kernels"},
+}};
 WarpPattern parse_warp_pattern(std::string_view name);  // throws std::invalid_argument
-std::string_view to_string(WarpPattern pattern);
-const std::vector<std::string>& warp_pattern_names();
+std::string to_string(WarpPattern pattern);
 
 struct PrintWarpSpec {
   std::string source;  // the print's file name, for the record
@@ -73,7 +84,7 @@ struct PrintWarpSpec {
 
 // Throws std::invalid_argument naming the first bad field (strain above 0.2 would fold the
 // Gaussian patterns; the fixed-point inversion of the warp needs its gradient below 1).
-void validate(const PrintWarpSpec& spec);
+void validate_print_warp(const PrintWarpSpec& spec);
 
 // Seconds from the first frame to the last.
 double sequence_duration_s(const PrintWarpSpec& spec);

@@ -74,7 +74,7 @@ struct SyntheticSequence {
 const std::vector<std::string>& scene_names();
 
 // Throws std::invalid_argument naming the first bad field.
-void validate(const SceneSpec& spec);
+void validate_scene(const SceneSpec& spec);
 
 // Exact skin kinematics of the scene. Image-plane millimetres (origin at the top-left pixel
 // centre) and skin (material) millimetres, which coincide with the image plane at frame 0 away

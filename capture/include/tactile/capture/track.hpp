@@ -1,18 +1,28 @@
 #pragma once
 // Frame-to-frame matching of landmarks and their trajectories.
 
+#include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/common/names.hpp"
 
 namespace tactile::capture {
 
 // One-to-one matching of tracks to a frame's features: greedy by decreasing confidence, or
 // optimal (maximum total confidence; Hungarian method on each group of competing candidates).
 enum class Assignment { greedy, optimal };
+inline constexpr std::array<Named<Assignment>, 2> kAssignmentNames = {{
+    {Assignment::greedy, "greedy"},
+    {Assignment::optimal, "optimal"},
+}};
+inline std::string to_string(Assignment a) {
+  return name_in(kAssignmentNames, a);
+}
 
 struct TrackParams {
   Assignment assignment = Assignment::greedy;

@@ -130,7 +130,7 @@ struct LateroBladeMapping {
 };
 // Throws std::invalid_argument naming the inconsistent field (centre outside [0, max_raw],
 // max_raw above 255, non-positive scale, non-finite values).
-void validate(const LateroBladeMapping& mapping);
+void validate_blade_mapping(const LateroBladeMapping& mapping);
 // Rounds to the nearest raw value and clamps to [0, max_raw].
 std::uint8_t blade_raw(double deflection_um, const LateroBladeMapping& mapping);
 double blade_deflection_um(std::uint8_t raw, const LateroBladeMapping& mapping);

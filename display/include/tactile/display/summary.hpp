@@ -29,7 +29,7 @@ struct MovieSummary {
 // RMS deflection over the contactors of each frame.
 std::vector<double> frame_rms_um(const movie::TactileMovie& movie);
 
-// Throws std::invalid_argument for an invalid movie (see validate()).
+// Throws std::invalid_argument for an invalid movie (see validate_movie()).
 MovieSummary summarize(const movie::TactileMovie& movie);
 
 // Several lines of human-readable text, ending in a newline.

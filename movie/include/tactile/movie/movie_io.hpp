@@ -18,7 +18,7 @@ inline constexpr double kMinLayoutSizeMm = 0.001;
 inline constexpr double kMaxLayoutSizeMm = 1000;
 
 // Writes `movie` as HDF5, atomically (an existing file is replaced only on success).
-// Throws std::invalid_argument if the movie is inconsistent (see validate()), and
+// Throws std::invalid_argument if the movie is inconsistent (see validate_movie()), and
 // std::runtime_error if the file cannot be written.
 void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie);
 

@@ -46,6 +46,6 @@ ViewTransform fit_field(const SideField& field, int width_px, int height_px);
 
 // Throws std::invalid_argument naming what is wrong: no frames, a non-positive or non-finite
 // full scale or extent, times not increasing, non-finite coordinates.
-void validate(const SideField& field);
+void validate_side_field(const SideField& field);
 
 }  // namespace tactile::movie

@@ -65,6 +65,6 @@ Layout latero_layout();   // 8 x 8, 1.2 mm x 1.6125 mm, contactors 0.5 x 1.4 mm,
 Layout layout_by_name(const std::string& name);
 
 // Throws std::invalid_argument naming the first inconsistency (sizes, rate, NaN values).
-void validate(const TactileMovie& movie);
+void validate_movie(const TactileMovie& movie);
 
 }  // namespace tactile::movie

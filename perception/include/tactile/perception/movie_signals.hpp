@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "tactile/movie/tactile_movie.hpp"
-#include "tactile/perception/features.hpp"
+#include "tactile/perception/contact_inputs.hpp"
 #include "tactile/perception/recording.hpp"
 
 namespace tactile::perception {

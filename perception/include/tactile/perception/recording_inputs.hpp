@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "tactile/common/names.hpp"
-#include "tactile/perception/features.hpp"
+#include "tactile/perception/contact_inputs.hpp"
 #include "tactile/perception/recording.hpp"
 
 namespace tactile::perception {

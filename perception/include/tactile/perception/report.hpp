@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "tactile/common/chart.hpp"
-#include "tactile/perception/eval.hpp"
+#include "tactile/perception/cascade.hpp"
+#include "tactile/perception/classifier_model.hpp"
 
 namespace tactile::perception {
 
@@ -63,6 +64,18 @@ std::vector<std::size_t> confusion_order(const std::vector<std::vector<int>>& co
 void write_confusion_report(const std::filesystem::path& dir,
                             const std::vector<std::string>& class_names,
                             const std::vector<std::vector<int>>& confusion);
+
+// `path` (`file,class,predicted,correct` and, `with_values`, `value,predicted_value`): one row
+// per tested recording of `data`, its prediction in `test` (same order), classes named by
+// `class_names` (the model's).
+void write_predictions_csv(const std::filesystem::path& path,
+                           const std::vector<std::string>& class_names, const LabelledInputs& data,
+                           const ClassifierTest& test, bool with_values);
+
+// One line per true class that was tested, for the terminal: its correct count and the classes
+// it was taken for, e.g. "oak: 8/10 correct; taken for pine 2".
+std::vector<std::string> confusion_lines(const std::vector<std::string>& class_names,
+                                         const std::vector<std::vector<int>>& confusion);
 
 // One line per row of Table 2, for the terminal.
 std::string table2_line(const TimedCascade& row);

@@ -7,8 +7,10 @@
 // skin ringing and sliding-friction noise. Output is a SensorRecording in integer raw counts,
 // like a real recording.
 
+#include <array>
 #include <cstdint>
 
+#include "tactile/common/names.hpp"
 #include "tactile/perception/recording.hpp"
 #include "tactile/perception/sensor_scene.hpp"
 
@@ -26,6 +28,10 @@ struct VariationScale {
 // conducting sheet, in which a change of the gap at distance r weighs as 1 / r^2 out to
 // sheet_reach_mm (1 / face^2 over the face of radius sheet_face_mm).
 enum class ElectrodeField { gaussian, sheet };
+inline constexpr std::array<Named<ElectrodeField>, 2> kElectrodeFieldNames = {{
+    {ElectrodeField::gaussian, "gaussian"},
+    {ElectrodeField::sheet, "sheet"},
+}};
 
 struct SensorModel {
   double pad_radius_x_mm = 15.0;  // curvature of the pad along the finger (distal-proximal)

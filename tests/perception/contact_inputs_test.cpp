@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "tactile/perception/eval.hpp"
-#include "tactile/perception/features.hpp"
+#include "tactile/perception/cascade.hpp"
+#include "tactile/perception/contact_inputs.hpp"
 #include "tactile/perception/recording_csv.hpp"
 #include "tactile/perception/sensor_model.hpp"
 

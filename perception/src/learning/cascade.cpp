@@ -1,6 +1,6 @@
-// Data set, split and SVC/SVR cascade of paper 2 (see eval.hpp).
+// Data set, split and SVC/SVR cascade of paper 2 (see cascade.hpp).
 
-#include "tactile/perception/eval.hpp"
+#include "tactile/perception/cascade.hpp"
 
 #include <algorithm>
 #include <cmath>

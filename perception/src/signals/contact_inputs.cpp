@@ -1,6 +1,6 @@
-// Contact segmentation, windows and Table 1 inputs (see features.hpp).
+// Contact segmentation, windows and Table 1 inputs (see contact_inputs.hpp).
 
-#include "tactile/perception/features.hpp"
+#include "tactile/perception/contact_inputs.hpp"
 
 #include <fmt/format.h>
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/perception/features.hpp"
+#include "tactile/perception/contact_inputs.hpp"
 #include "tactile/perception/sensor_model.hpp"
 
 namespace tactile::perception {
