@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "run_steps.hpp"
+#include "tactile/capture/capture.hpp"
 #include "tactile/capture/ground_truth.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/chart.hpp"
