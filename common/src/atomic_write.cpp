@@ -5,6 +5,7 @@
 #include <limits.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -130,6 +131,13 @@ std::string reason(int error) {
 
 void remove_temporary_files() noexcept {
   for (auto& slot : g_slots) {
+    // A slot claimed but not yet live is another thread between naming its temporary file and
+    // creating it, with these signals blocked there but not here: wait (briefly, nanosleep is
+    // safe in a handler) for it to finish, or the file it creates would outlive the process.
+    for (int waited_ms = 0; slot.state.load() == kClaimed && waited_ms < 200; ++waited_ms) {
+      const timespec one_ms{0, 1'000'000};
+      ::nanosleep(&one_ms, nullptr);
+    }
     if (slot.state.load() == kLive) ::unlink(slot.path);
   }
 }
