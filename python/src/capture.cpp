@@ -72,7 +72,7 @@ std::shared_ptr<capture::StrainMovie> capture_movie(
             }};
     auto movie = std::make_shared<capture::StrainMovie>(
         capture::capture_strain(input, calibration, px_per_mm, rate, settings, messages));
-    if (movie->frames.empty()) {
+    if (capture::measured_no_strain(*movie)) {
       throw std::runtime_error(capture::no_strain_reason(*movie, settings, source));
     }
     movie->source = source.string();

@@ -13,6 +13,7 @@
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
+#include "tactile/capture/image.hpp"
 
 using tactile::test::demo_dir;
 using tactile::test::run_tactile;
@@ -127,3 +128,17 @@ TEST(HostileInput, OutOfMemoryIsAFailedRunNamingTheCommand) {
 }
 
 }  // namespace
+
+// Frames too small to hold a triangle of tracked points: strain frames come out, but with no
+// edge in any of them; that is no strain measured, not a movie of a still display.
+TEST(HostileInput, CaptureOfFramesWithNoEdgeFailsAndWritesNothing) {
+  const tactile::test::TempDir dir("tiny");
+  const tactile::capture::GrayImage pixel{1, 1, {128}};
+  tactile::capture::write_frames(dir.path() / "frames", {pixel, pixel});
+  const auto out = dir.path() / "strain.h5";
+  const auto r = run_tactile("capture " + (dir.path() / "frames").string() +
+                             " --px-per-mm 62 --min-track 2 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("no strain measured")) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}

@@ -71,7 +71,8 @@ def test_capture_bad_input(frames, tmp_path):
     with pytest.raises(RuntimeError) as error:
         tactile.capture(images, px_per_mm=PX_PER_MM, frames=1, pores="paper", refine="off")
     assert str(error.value) == (f"capture: {images}: no strain measured in 1 frames (tracks of at "
-                                "least --min-track 30 frames over --span 1: 0 tracked points)")
+                                "least --min-track 30 frames over --span 1: 0 tracked points, 0 strain "
+                                "frames with any edge between them)")
 
 
 def write_raw_avi(path, frames, rate_hz):

@@ -358,7 +358,7 @@ void add_capture(CLI::App& app, Action& action) {
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       // An empty strain movie maps to a still display: report the reason instead of writing it.
-      if (movie.frames.empty()) {
+      if (capture::measured_no_strain(movie)) {
         throw std::runtime_error(fmt::format(
             "{}; nothing written to {}", capture::no_strain_reason(movie, settings, opt->image_dir),
             opt->out.string()));

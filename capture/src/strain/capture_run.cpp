@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tactile/common/error.hpp"
@@ -139,13 +140,20 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
       c, frame_rate_hz, params, progress, frames.count());
 }
 
+bool measured_no_strain(const StrainMovie& movie) {
+  return std::all_of(movie.frames.begin(), movie.frames.end(),
+                     [](const StrainFrame& f) { return f.edges.empty(); });
+}
+
 std::string no_strain_reason(const StrainMovie& movie, const CaptureSettings& settings,
                              const fs::path& source) {
   return fmt::format(
       "capture: {}: no strain measured in {} frames (tracks of at least --min-track {} frames "
-      "over --span {}: {} tracked points)",
+      "over --span {}: {} tracked points, {} strain frames with any edge between them)",
       source.string(), movie.camera_frame_count, settings.min_track_frames, settings.span_frames,
-      movie.tracks.size());
+      movie.tracks.size(),
+      std::count_if(movie.frames.begin(), movie.frames.end(),
+                    [](const StrainFrame& f) { return !f.edges.empty(); }));
 }
 
 }  // namespace tactile::capture

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "tactile/capture/pore_model_io.hpp"
 #include "tactile/capture/capture.hpp"
+#include "tactile/capture/pore_model_io.hpp"
 #include "tactile/capture/video.hpp"
 #include "tactile/common/names.hpp"
 
@@ -89,8 +89,12 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
                            const CaptureSettings& settings, const CaptureMessages& messages,
                            const CaptureProgress& progress = {});
 
+// True when no strain frame holds an edge: no strain frames at all, or frames whose tracked
+// points were too few or too close to triangulate (two 1 x 1 images, say). Such a movie maps to
+// a still display, so callers refuse it with no_strain_reason.
+bool measured_no_strain(const StrainMovie& movie);
 // Why a capture of `source` measured no strain, for a person (in the words of `tactile capture`'s
-// options). A movie without strain frames maps to a still display, so callers refuse it.
+// options).
 std::string no_strain_reason(const StrainMovie& movie, const CaptureSettings& settings,
                              const std::filesystem::path& source);
 
