@@ -65,9 +65,9 @@ train_pores_cli_expect(features_with_model 0 "features: [3-6][0-9]{2} pores" fea
                        --pore-model ${tp_dir}/model.json)
 train_pores_cli_expect(features_with_strict_model 0 "features: 0 pores" features ${tp_print4}
                        --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/strict.json)
-train_pores_cli_expect(capture_with_model 0 "capture: 3 frames" capture ${tp_dir}/three
+train_pores_cli_expect(capture_with_model 0 "capture: 3 frames" capture ${tp_dir}/still
                        --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/model.json
-                       --min-track 2 --out ${tp_dir}/three.h5)
+                       --min-track 2 --out ${tp_dir}/still.h5)
 train_pores_cli_expect(capture_model_with_paper_rule 2 "pore-model: goes with --pores ridge-blob"
                        capture ${tp_dir}/three --px-per-mm 47 --pores paper
                        --pore-model ${tp_dir}/model.json --out ${tp_dir}/never.h5)

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Usage: train_pores_cli.sh TACTILE DATA_DIR WORK_DIR: the fixture of the train-pores command-line
-# tests. Builds WORK_DIR (3 marked PolyU prints, an empty folder, a folder with a broken marks
-# file, a print alone, a corrupt model file), then trains on the 3 prints and checks what a user
+# tests. Builds WORK_DIR (3 marked PolyU prints, a still sequence of a 4th, an empty folder, a
+# folder with a broken marks file, a print alone, a corrupt model file), then trains on the 3 prints and checks what a user
 # would look at: the model file holds 153 finite numbers and the table has an overall TDR.
 tactile=$1 data=$2 work=$3
 fail() {
@@ -13,6 +13,12 @@ for n in 01 02 03; do
   ln -s "$data/image_$n.jpg" "$data/pores_$n.txt" "$work/three/" || fail "cannot link print $n"
 done
 ln -s "$data/image_01.jpg" "$data/pores_01.txt" "$work/one/" || fail "cannot link print 01"
+# A still finger: print 04 (not trained on) three times, a sequence whose landmarks a capture
+# with the model must track (three different prints make no sequence to track).
+mkdir -p "$work/still" || fail "cannot make $work/still"
+for n in 0 1 2; do
+  ln -s "$data/image_04.jpg" "$work/still/frame_00$n.jpg" || fail "cannot link frame $n"
+done
 ln -s "$data/image_01.jpg" "$work/broken/" || fail "cannot link print 01"
 printf '42 1\n86 1 7\n' > "$work/broken/pores_01.txt"
 printf '{"format": "tactile-pore-model", "format_version": 1, "coeffic' > "$work/corrupt.json"
