@@ -1,8 +1,9 @@
 #!/bin/sh
 # Usage: train_pores_cli.sh TACTILE DATA_DIR WORK_DIR: the fixture of the train-pores command-line
 # tests. Builds WORK_DIR (3 marked PolyU prints, a still sequence of a 4th, an empty folder, a
-# folder with a broken marks file, a print alone, a corrupt model file), then trains on the 3 prints and checks what a user
-# would look at: the model file holds 153 finite numbers and the table has an overall TDR.
+# folder with a broken marks file, a print alone, a corrupt model file), then trains on the 3
+# prints and checks what a user would look at: the model file holds 153 finite numbers and the
+# table has an overall TDR.
 tactile=$1 data=$2 work=$3
 fail() {
   echo "train_pores_cli: $*" >&2
