@@ -162,7 +162,11 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
                                        const CaptureProgress& progress, int expected,
                                        int& frame_count) {
   const double px_per_mm = 1.0 / cal.mm_per_px;
-  AlignmentTracker tracker(px_per_mm, params.refinement, params.threads);
+  // --min-track below the alignment's own shortest track lowers it too (a short sequence asked
+  // for short tracks); above it, the alignment keeps its own, as it did by default.
+  RefineParams refinement = params.refinement;
+  refinement.min_frames = std::min(refinement.min_frames, std::max(2, params.min_track_frames));
+  AlignmentTracker tracker(px_per_mm, refinement, params.threads);
   const GrayImage size_of_first{first.width_px, first.height_px, {}};
   GrayImage frame = std::move(first);
   int last_detection = 0, live_after_detection = 0;
