@@ -225,8 +225,9 @@ TEST(Hjif, LongMoviesAreSplitIntoEffectsNoneOfTwoKeyframes) {
     const std::string text = hjif_text(m, o, &s);
     EXPECT_EQ(s.effects_per_channel, (frames + 8) / 9);
     expect_conformant(text, m);
-    for (const json& e :
-         json::parse(text)["perceptions"][0]["channels"][0]["bands"][0]["effects"]) {
+    // Held in a variable: a range-for over a part of a temporary would outlive the temporary.
+    const json doc = json::parse(text);
+    for (const json& e : doc["perceptions"][0]["channels"][0]["bands"][0]["effects"]) {
       EXPECT_LE(e["keyframes"].back()["relative_position"].get<int>(), 9);
       EXPECT_GE(e["keyframes"].size(), 3U);
     }
