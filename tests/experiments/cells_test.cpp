@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/file_text.hpp"
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/experiments/cells.hpp"
@@ -32,10 +33,7 @@ const char* kGrid = R"({
 })";
 
 std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return tactile::test::file_text(path);
 }
 
 // metrics.csv without its comment line and without the timing column (the last).

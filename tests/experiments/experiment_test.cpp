@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/file_text.hpp"
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/experiments/experiment.hpp"
@@ -35,10 +36,7 @@ const char* kSmall = R"({
 })";
 
 std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return tactile::test::file_text(path);
 }
 
 // The CSV without its first line (which carries the creation time).
