@@ -93,6 +93,22 @@ TEST(ClassifyCli, CrossValidationReportsMeanAndSpread) {
       << r.output;
   EXPECT_NE(r.output.find("pooled "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("16 recordings, 4 classes, 21 inputs"), std::string::npos) << r.output;
+  // Baseline, electrodes and trim are the slide defaults, chosen on the project's recordings:
+  // the report says so and names the nested command.
+  EXPECT_NE(r.output.find("plain cross-validation of fixed options. The stroke defaults were "
+                          "chosen by nested cross-validation"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("`classify train --select --cv 4`"), std::string::npos) << r.output;
+  // Every option named: nothing was chosen on the project's recordings, no such note.
+  const auto all = run_tactile("classify train --recordings " + kMaterials + " --labels " +
+                               kMaterials + "/labels.csv --out " + (dir / "m2.json").string() +
+                               " --cv 4 --kernel-degree 1 --inputs stats --c 1 --baseline-at "
+                               "none --electrodes each --trim 0");
+  ASSERT_EQ(all.exit_code, 0) << all.output;
+  EXPECT_NE(all.output.find("cross-validation (4 folds, stratified): accuracy "), std::string::npos)
+      << all.output;
+  EXPECT_EQ(all.output.find("stroke defaults"), std::string::npos) << all.output;
 }
 
 // --select with --cv: the nested figure (every recording tested once by an outer fold), each
@@ -105,9 +121,9 @@ TEST(ClassifyCli, SelectReportsNestedCrossValidationAndRecordsTheChoice) {
                              kMaterials + "/labels.csv --out " + (dir / "m.json").string() +
                              " --cv 4 --select --trim 0.1 --kernel-degree 1 --baseline-at none");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  // 5 input sets x 2 electrode signals x 3 values of C.
+  // 5 input sets x 2 electrode signals x 6 values of C.
   EXPECT_NE(r.output.find("nested cross-validation (4 outer folds, stratified; options chosen in "
-                          "each by up to 5-fold cross-validation of its training rows among 30 "
+                          "each by up to 5-fold cross-validation of its training rows among 60 "
                           "candidates): accuracy "),
             std::string::npos)
       << r.output;
@@ -120,7 +136,7 @@ TEST(ClassifyCli, SelectReportsNestedCrossValidationAndRecordsTheChoice) {
       << r.output;
   const auto model = tactile::perception::read_classifier_model(dir / "m.json");
   ASSERT_TRUE(model.selection.has_value());
-  ASSERT_EQ(model.selection->candidates.size(), 30u);
+  ASSERT_EQ(model.selection->candidates.size(), 60u);
   for (const auto& c : model.selection->candidates) {
     EXPECT_EQ(c.inputs.contact.trim_fraction, 0.1);
     EXPECT_EQ(c.svm.degree, 1);

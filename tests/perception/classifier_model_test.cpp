@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -361,9 +362,9 @@ TEST(RecordingInputs, DefaultsByProcedure) {
   EXPECT_EQ(tactile::names_of(slide.groups), (std::vector<std::string>{"means", "bands"}));
   EXPECT_EQ(slide.contact.baseline_at, ContactOptions::BaselineAt::none);
   EXPECT_EQ(slide.contact.electrodes, ContactOptions::Electrodes::clusters);
-  EXPECT_EQ(slide.contact.trim_fraction, 0.1);
+  EXPECT_EQ(slide.contact.trim_fraction, 0.2);
   EXPECT_EQ(perception::recording_input_names(slide).size(), 14u + 7u);
-  EXPECT_EQ(perception::default_svm_options("stroke").c, 10.0);
+  EXPECT_EQ(perception::default_svm_options("stroke").c, 100.0);
   EXPECT_EQ(perception::default_svm_options("dp").c, 1.0);
   EXPECT_EQ(perception::default_svm_options("stroke").degree, 1);
   EXPECT_THROW(perception::default_recording_inputs("tap"), std::invalid_argument);
@@ -530,6 +531,54 @@ TEST(ModelSelection, ChoosesByInnerFoldsAndScoresByOuterFolds) {
               perception::select_options(data, base, grid, 5, {0, 1, 4}, 1);
             }).find("at least 2 recordings of every class"),
             std::string::npos);
+}
+
+// The selection scores each candidate by sharing one kernel matrix among the exponents and
+// values of C of each fold: every count must be the candidate's own cross-validation, on all
+// rows and on a subset (trials 1-3, folds lowered to 3).
+TEST(ModelSelection, ScoresAreEachCandidatesCrossValidation) {
+  const auto data =
+      perception::read_labelled_recordings(kMaterials, kMaterials / "labels.csv", {}, 2);
+  auto grid = perception::default_selection_grid("stroke");
+  grid.input_sets = {{perception::InputGroup::stats},
+                     {perception::InputGroup::means, perception::InputGroup::bands}};
+  grid.baselines = {perception::ContactOptions::BaselineAt::none};
+  grid.electrodes = {perception::ContactOptions::Electrodes::clusters};
+  grid.trims = {0.1};
+  grid.degrees = {1, 2};
+  grid.cs = {0.01, 1, 1000};
+  const auto base = perception::default_recording_inputs("stroke");
+  std::vector<std::size_t> first_three;
+  for (std::size_t i = 0; i < data.files.size(); ++i)
+    if (data.files[i].find("_4_") == std::string::npos) first_three.push_back(i);
+  ASSERT_EQ(first_three.size(), 12u);
+  for (const auto& rows : {std::vector<std::size_t>{}, first_three}) {
+    const auto record = perception::select_options(data, base, grid, 5, rows, 2);
+    ASSERT_EQ(record.candidates.size(), 12u);
+    EXPECT_EQ(record.folds, rows.empty() ? 4 : 3);
+    int lowest = 1000, highest = -1;
+    for (const auto& c : record.candidates) {
+      auto inputs = perception::analyse_recordings(data, c.inputs, 2);
+      if (!rows.empty()) inputs = perception::subset(inputs, rows);
+      const auto cv = perception::cross_validate(inputs, c.svm, record.folds, 1);
+      EXPECT_EQ(c.correct, cv.correct) << perception::describe_candidate(c);
+      EXPECT_EQ(c.tested, cv.tested);
+      lowest = std::min(lowest, c.correct);
+      highest = std::max(highest, c.correct);
+    }
+    EXPECT_LT(lowest, highest);  // the candidates differ, so equal counts are no accident
+  }
+}
+
+// The default grid reaches past the slide default's C on both sides: a default chosen at the
+// grid's end would not say whether a larger or smaller C is better still.
+TEST(ModelSelection, SlideDefaultCIsInsideTheGrid) {
+  const auto grid = perception::default_selection_grid("stroke");
+  const auto [lo, hi] = std::minmax_element(grid.cs.begin(), grid.cs.end());
+  const double c = perception::default_svm_options("stroke").c;
+  EXPECT_LT(*lo, c);
+  EXPECT_GT(*hi, c);
+  EXPECT_NE(std::find(grid.cs.begin(), grid.cs.end(), c), grid.cs.end());
 }
 
 // Version 2 files (no selection) still read; a version 3 file's selection is checked.

@@ -40,6 +40,43 @@ TEST(SvmModel, SeparatesThreeWellSeparatedClasses) {
   }
 }
 
+// Overlapping classes, so that the exponent and C change which test rows are right: the SVMs
+// that share one kernel matrix predict what each trained alone predicts.
+TEST(SvmModel, SharedKernelGivesTheModelsTrainedAlone) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0, 1.5);
+  const double centres[4][3] = {{0, 0, 5}, {2, 0, 5}, {0, 2, 5}, {2, 2, 6}};
+  perception::SvmRows train, test;
+  std::vector<int> labels;
+  for (int i = 0; i < 100; ++i) {
+    const int c = i % 4;
+    std::vector<double> row;
+    for (const double m : centres[c]) row.push_back(100 * (m + noise(rng)));
+    (i < 60 ? train : test).push_back(row);
+    if (i < 60) labels.push_back(c);
+  }
+  std::vector<perception::SvmOptions> options;
+  for (const int degree : {1, 2, 3})
+    for (const double c : {0.01, 1.0, 100.0, 1000.0}) {
+      perception::SvmOptions o;
+      o.degree = degree;
+      o.c = c;
+      options.push_back(o);
+    }
+  const auto shared = perception::classify_with_each(train, labels, test, options);
+  ASSERT_EQ(shared.size(), options.size());
+  std::vector<std::vector<int>> alone;
+  for (std::size_t k = 0; k < options.size(); ++k) {
+    const auto m = perception::SvmModel::train_classifier(train, labels, options[k]);
+    auto& classes = alone.emplace_back();
+    for (const auto& row : test) classes.push_back(static_cast<int>(std::lround(m.predict(row))));
+    EXPECT_EQ(shared[k], classes) << "exponent " << options[k].degree << ", C " << options[k].c;
+  }
+  // The options matter here, so equal predictions are not one model's answers repeated.
+  EXPECT_NE(alone.front(), alone.back());
+  EXPECT_NE(alone[0], alone[2]);
+}
+
 TEST(SvmModel, RegressorRecoversALinearTargetInItsUnits) {
   // y = 3 a - 2 b + 40 on a grid; a linear kernel with the scaled target maps back exactly up
   // to the epsilon tube (1e-3 of the target range, here 50).

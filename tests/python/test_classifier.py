@@ -12,7 +12,7 @@ def test_train_test_predict_agree_with_the_command_line(tmp_path, data_dir, cli)
     rec = data_dir / "biotac-materials"
     model = tactile.train(rec, rec / "labels.csv", out=tmp_path / "py.json")
     assert model.class_names == ["mat1", "mat14", "mat20", "mat7"] or len(model.class_names) == 4
-    assert model.c == 10  # the stroke procedure's default, as on the command line
+    assert model.c == 100  # the stroke procedure's default, as on the command line
     subprocess.run([cli, "classify", "train", "--recordings", str(rec), "--labels",
                     str(rec / "labels.csv"), "--out", str(tmp_path / "cli.json")],
                    check=True, capture_output=True)

@@ -198,7 +198,7 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
 
 SvmOptions default_svm_options(std::string_view procedure) {
   SvmOptions svm;
-  if (recording_procedure_name(default_recording_inputs(procedure)) == "stroke") svm.c = 10.0;
+  if (recording_procedure_name(default_recording_inputs(procedure)) == "stroke") svm.c = 100.0;
   return svm;
 }
 

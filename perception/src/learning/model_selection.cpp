@@ -11,6 +11,7 @@
 
 #include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tactile/perception/svm_model.hpp"
 
 namespace tactile::perception {
 namespace {
@@ -126,21 +127,64 @@ Selections run_selections(const LabelledRecordings& data, const RecordingInputOp
           s.candidates.push_back(cd);
         }
     }
+  // One job per (split, inputs, fold): the candidates on the same inputs differ only in exponent
+  // and C and share the fold's kernel matrix. Folds as cross_validate makes them on the split's
+  // rows, so each candidate's count is its cross-validation's.
   const std::size_t n = s.candidates.size();
-  std::vector<CrossValidation> scores(splits.size() * n);
-  parallel_for(scores.size(), worker_count(threads), [&](std::size_t job) {
-    const std::size_t split = job / n;
-    const auto& cd = s.candidates[job % n];
-    scores[job] = cross_validate(subset(s.inputs[cd.inputs], splits[split]), cd.candidate.svm,
-                                 split_folds[split], 1);
+  std::vector<std::vector<std::size_t>> by_inputs(s.inputs.size());
+  for (std::size_t k = 0; k < n; ++k) by_inputs[s.candidates[k].inputs].push_back(k);
+  std::vector<std::vector<int>> fold_of;
+  for (std::size_t split = 0; split < splits.size(); ++split) {
+    std::vector<int> classes;
+    for (const auto i : splits[split]) classes.push_back(data.classes[i]);
+    fold_of.push_back(stratified_folds(classes, split_folds[split]));
+  }
+  std::vector<std::size_t> job_split, job_fold;
+  for (std::size_t split = 0; split < splits.size(); ++split)
+    for (int k = 0; k < split_folds[split]; ++k) {
+      job_split.push_back(split);
+      job_fold.push_back(static_cast<std::size_t>(k));
+    }
+  // [job x inputs][candidate of those inputs]: rows correct on the job's test fold.
+  std::vector<std::vector<int>> correct(job_split.size() * s.inputs.size());
+  std::vector<int> tested(job_split.size(), 0);
+  parallel_for(correct.size(), worker_count(threads), [&](std::size_t job) {
+    const std::size_t j = job / s.inputs.size(), in = job % s.inputs.size();
+    const auto& rows = splits[job_split[j]];
+    const auto& folds = fold_of[job_split[j]];
+    const auto& d = s.inputs[in];
+    SvmRows train, test;
+    std::vector<int> train_classes, test_classes;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const bool held_out = folds[i] == static_cast<int>(job_fold[j]);
+      (held_out ? test : train).push_back(d.rows[rows[i]]);
+      (held_out ? test_classes : train_classes).push_back(d.classes[rows[i]]);
+    }
+    std::vector<SvmOptions> options;
+    for (const auto k : by_inputs[in]) options.push_back(s.candidates[k].candidate.svm);
+    const auto predicted = classify_with_each(train, train_classes, test, options);
+    auto& count = correct[job];
+    for (const auto& classes : predicted) {
+      int right = 0;
+      for (std::size_t i = 0; i < classes.size(); ++i) right += classes[i] == test_classes[i];
+      count.push_back(right);
+    }
+    if (in == 0) tested[j] = static_cast<int>(test.size());
   });
+  std::vector<int> split_correct(splits.size() * n, 0), split_tested(splits.size(), 0);
+  for (std::size_t j = 0; j < job_split.size(); ++j) {
+    split_tested[job_split[j]] += tested[j];
+    for (std::size_t in = 0; in < s.inputs.size(); ++in)
+      for (std::size_t m = 0; m < by_inputs[in].size(); ++m)
+        split_correct[job_split[j] * n + by_inputs[in][m]] += correct[j * s.inputs.size() + in][m];
+  }
   for (std::size_t split = 0; split < splits.size(); ++split) {
     SelectionRecord r;
     r.folds = split_folds[split];
     for (std::size_t k = 0; k < n; ++k) {
       auto c = s.candidates[k].candidate;
-      c.correct = scores[split * n + k].correct;
-      c.tested = scores[split * n + k].tested;
+      c.correct = split_correct[split * n + k];
+      c.tested = split_tested[split];
       r.candidates.push_back(c);
       const auto& best = r.candidates[r.chosen];
       if (c.correct > best.correct ||
@@ -178,7 +222,7 @@ SelectionGrid default_selection_grid(std::string_view procedure) {
   g.baselines = {ContactOptions::BaselineAt::none, ContactOptions::BaselineAt::end};
   g.electrodes = {ContactOptions::Electrodes::each, ContactOptions::Electrodes::clusters};
   g.degrees = {1, 2};
-  g.cs = {1.0, 0.1, 10.0};
+  g.cs = {0.01, 0.1, 1.0, 10.0, 100.0, 1000.0};
   return g;
 }
 

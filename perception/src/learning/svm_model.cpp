@@ -5,6 +5,7 @@
 #include <libsvm/svm.h>
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -67,17 +68,22 @@ struct SvmModel::Impl {
   }
 
   void train(const SvmRows& x, std::vector<double> targets, int type, const SvmOptions& o) {
-    if (o.c <= 0 || o.degree < 1) throw std::invalid_argument("svm: C > 0 and degree >= 1 needed");
     scaler = MinMaxScaler::fit(x);
     for (const auto& row : x) nodes.push_back(to_nodes(scaler.apply(row)));
+    // (x . y)^1 is the linear kernel; libsvm computes it without pow().
+    train_nodes(std::move(targets), type, o, o.degree == 1 ? LINEAR : POLY);
+  }
+
+  // Trains on `nodes` as they are: scaled rows, or rows of a precomputed kernel.
+  void train_nodes(std::vector<double> targets, int type, const SvmOptions& o, int kernel) {
+    if (o.c <= 0 || o.degree < 1) throw std::invalid_argument("svm: C > 0 and degree >= 1 needed");
     for (auto& n : nodes) rows.push_back(n.data());
     y = std::move(targets);
     problem.l = static_cast<int>(rows.size());
     problem.x = rows.data();
     problem.y = y.data();
     param.svm_type = type;
-    // (x . y)^1 is the linear kernel; libsvm computes it without pow().
-    param.kernel_type = o.degree == 1 ? LINEAR : POLY;
+    param.kernel_type = kernel;
     param.degree = o.degree;
     param.gamma = 1.0;
     param.coef0 = 0.0;
@@ -134,6 +140,69 @@ double SvmModel::predict(const std::vector<double>& row) const {
 
 std::size_t SvmModel::support_vectors() const {
   return static_cast<std::size_t>(svm_get_nr_sv(impl_->model));
+}
+
+namespace {
+
+// libsvm's dot product of two rows (every attribute present), in its order of summation.
+double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  double sum = 0;
+  for (std::size_t j = 0; j < a.size(); ++j) sum += a[j] * b[j];
+  return sum;
+}
+
+// libsvm's powi: (x . y)^degree by squaring, as its POLY kernel computes it (gamma 1, coef0 0).
+double kernel_power(double base, int degree) {
+  double tmp = base, ret = 1.0;
+  for (int t = degree; t > 0; t /= 2) {
+    if (t % 2 == 1) ret *= tmp;
+    tmp = tmp * tmp;
+  }
+  return ret;
+}
+
+// A row of libsvm's precomputed kernel: node 0 holds the row's serial number (1-based; 0 for a
+// test row, which libsvm does not read), node s its kernel value with training row s.
+std::vector<svm_node> kernel_row(double serial, const std::vector<double>& dots, int degree) {
+  std::vector<svm_node> nodes(dots.size() + 2);
+  nodes[0] = {0, serial};
+  for (std::size_t s = 0; s < dots.size(); ++s)
+    nodes[s + 1] = {static_cast<int>(s + 1), degree == 1 ? dots[s] : kernel_power(dots[s], degree)};
+  nodes.back() = {-1, 0.0};
+  return nodes;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> classify_with_each(const SvmRows& train,
+                                                 const std::vector<int>& labels,
+                                                 const SvmRows& test,
+                                                 const std::vector<SvmOptions>& options) {
+  check_rows(train, labels.size());
+  const auto scaler = MinMaxScaler::fit(train);
+  SvmRows x, t;
+  for (const auto& row : train) x.push_back(scaler.apply(row));
+  for (const auto& row : test) t.push_back(scaler.apply(row));
+  SvmRows train_dots(x.size(), std::vector<double>(x.size())), test_dots;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = 0; j <= i; ++j) train_dots[i][j] = train_dots[j][i] = dot(x[i], x[j]);
+  for (const auto& row : t) {
+    auto& d = test_dots.emplace_back();
+    for (const auto& r : x) d.push_back(dot(row, r));
+  }
+  std::vector<std::vector<int>> out;
+  for (const auto& o : options) {
+    SvmModel::Impl svc;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      svc.nodes.push_back(kernel_row(static_cast<double>(i + 1), train_dots[i], o.degree));
+    svc.train_nodes(std::vector<double>(labels.begin(), labels.end()), C_SVC, o, PRECOMPUTED);
+    auto& classes = out.emplace_back();
+    for (const auto& d : test_dots) {
+      const auto nodes = kernel_row(0, d, o.degree);
+      classes.push_back(static_cast<int>(std::lround(svm_predict(svc.model, nodes.data()))));
+    }
+  }
+  return out;
 }
 
 }  // namespace tactile::perception

@@ -156,7 +156,7 @@ RecordingInputOptions default_recording_inputs(std::string_view procedure) {
     o.groups = {InputGroup::means, InputGroup::bands};
     o.contact.baseline_at = ContactOptions::BaselineAt::none;
     o.contact.electrodes = ContactOptions::Electrodes::clusters;
-    o.contact.trim_fraction = 0.1;
+    o.contact.trim_fraction = 0.2;
   }
   return o;
 }

@@ -114,7 +114,7 @@ struct ClassifierModel {
 ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptions& svm);
 
 // The SVM settings `classify train --procedure NAME` uses unless told otherwise: the paper's
-// (exponent 1, C = 1) for its scenes; for real slides ("stroke") C = 10, chosen with the inputs
+// (exponent 1, C = 1) for its scenes; for real slides ("stroke") C = 100, chosen with the inputs
 // by `--select` (default_recording_inputs). Throws std::invalid_argument as
 // set_recording_procedure.
 SvmOptions default_svm_options(std::string_view procedure);

@@ -36,7 +36,8 @@ struct SelectionGrid {
 // "roll"): the plain statistics, the paper's groups and combinations of the two (means and bands,
 // the paper's with stats); baseline none or at the end (recordings that begin in contact have no
 // free air at the start); clusters or each electrode; trim 0, 0.1, 0.2 (strokes); exponent 1 or
-// 2; C 0.1, 1, 10. Throws std::invalid_argument as set_recording_procedure.
+// 2; C 0.01, 0.1, 1, 10, 100, 1000 (a choice at either end would say the range is too narrow).
+// Throws std::invalid_argument as set_recording_procedure.
 SelectionGrid default_selection_grid(std::string_view procedure);
 
 // The candidate with the most rows correct over `folds` stratified folds of `rows` (all rows

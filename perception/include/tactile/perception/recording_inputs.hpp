@@ -69,7 +69,7 @@ std::string recording_procedure_name(const RecordingInputOptions& o);
 // ("stroke"): what `classify train --select` chooses on 200 real slides of 20 materials
 // (model_selection.hpp, docs/perception-models.md): groups means and bands, the 6 clusters, no
 // baseline (the files are tared by the recording software, and many end still in contact, so
-// their last 0.2 s is no baseline), 10 % trimmed at each end. Throws std::invalid_argument as
+// their last 0.2 s is no baseline), 20 % trimmed at each end. Throws std::invalid_argument as
 // set_recording_procedure.
 RecordingInputOptions default_recording_inputs(std::string_view procedure);
 

@@ -29,6 +29,15 @@ struct MinMaxScaler {
   std::vector<double> apply(const std::vector<double>& row) const;
 };
 
+// The classes that SvmModel::train_classifier(train, labels, options[k]).predict gives for each
+// row of `test`, for every k: [k][row]. The SVMs share the training rows' kernel matrix, computed
+// once (libsvm's precomputed kernel with the same kernel values, hence the same models), so
+// comparing many exponents and values of C on one fold costs little more than one.
+std::vector<std::vector<int>> classify_with_each(const SvmRows& train,
+                                                 const std::vector<int>& labels,
+                                                 const SvmRows& test,
+                                                 const std::vector<SvmOptions>& options);
+
 class SvmModel {
  public:
   // Classification: labels are small non-negative integers.
@@ -47,6 +56,9 @@ class SvmModel {
   ~SvmModel();
 
  private:
+  friend std::vector<std::vector<int>> classify_with_each(const SvmRows&, const std::vector<int>&,
+                                                          const SvmRows&,
+                                                          const std::vector<SvmOptions>&);
   struct Impl;
   explicit SvmModel(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
