@@ -122,6 +122,25 @@ TEST(RealPores, RidgeBlobDetectorOnPolyUHrf) {
 // The committed coefficients are what the documented training gives on the 15 prints, read as
 // `tactile train-pores` reads them (not hand edits); after a change to the measures, this prints
 // the table to paste into capture/src/pore_model_coefficients.cpp.
+TEST(RealPores, RidgeBlobPoresDoNotDependOnTheWorkerCount) {
+  // The ridge-level filter splits rows between workers; each pixel is still filtered alone.
+  const auto prints = read_prints();
+  ASSERT_FALSE(prints.empty());
+  FeatureParams one;
+  one.pore_detector = PoreDetector::ridge_blob;
+  one.find_minutiae = false;
+  FeatureParams three = one;
+  three.ridge_blob.threads = 3;
+  const auto a = extract_features(prints[0].image, kPxPerMm, one);
+  const auto b = extract_features(prints[0].image, kPxPerMm, three);
+  ASSERT_GT(a.size(), 100u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].x_px, b[i].x_px);
+    EXPECT_EQ(a[i].y_px, b[i].y_px);
+  }
+}
+
 TEST(RealPores, ShippedPoreModelIsTrainedOnAllPrints) {
   const auto prints = read_prints();
   ASSERT_EQ(prints.size(), 15u);

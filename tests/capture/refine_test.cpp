@@ -129,6 +129,47 @@ TEST(RefineTracks, RecoversTheExactMotionFromNoisyDetections) {
   EXPECT_LT(stats.cut, static_cast<long>(c.truth.size()) / 10);
 }
 
+TEST(RefineTracks, WindowsCutByTheFrameBorderFollowTheMotionToo) {
+  // Landmarks whose 0.7 mm window (33 px) reaches past the frame's border: their references
+  // are cut to the part inside, and the slide carries some of them further out, so the
+  // alignment sums over a window cut differently at every step.
+  Case c = make_case(WarpPattern::rigid, 0.0, 0.5);
+  const int w = c.seq.spec.width_px, h = c.seq.spec.height_px;
+  const double half_side_px = 0.7 * c.seq.spec.px_per_mm / 2;
+  std::vector<Track> near_border, truth;
+  for (std::size_t i = 0; i < c.truth.size(); ++i) {
+    const double x = c.truth[i].x_px[0], y = c.truth[i].y_px[0];
+    if (std::min({x, y, w - 1 - x, h - 1 - y}) < half_side_px) {
+      near_border.push_back(c.detected[i]);
+      truth.push_back(c.truth[i]);
+    }
+  }
+  ASSERT_GE(near_border.size(), 20u);
+  std::map<std::pair<double, double>, std::size_t> by_start;
+  for (std::size_t i = 0; i < near_border.size(); ++i) {
+    by_start[{near_border[i].x_px[0], near_border[i].y_px[0]}] = i;
+  }
+  std::vector<Track> refined = near_border;
+  refine_tracks(c.seq.frames, refined, c.seq.spec.px_per_mm);
+  // The goals for whole windows above, the 90th percentile's doubled: a window cut to a quarter
+  // of its pixels (the least a reference keeps) averages its noise over a quarter of them.
+  EXPECT_GE(refined.size(), near_border.size() * 3 / 4);
+  std::vector<double> after;
+  for (const auto& r : refined) {
+    const auto it = by_start.find({r.x_px[0], r.y_px[0]});
+    ASSERT_NE(it, by_start.end());
+    Track t = truth[it->second];
+    t.x_px.resize(r.x_px.size());
+    t.y_px.resize(r.y_px.size());
+    after.push_back(motion_error_px({r}, {t}));
+  }
+  std::sort(after.begin(), after.end());
+  EXPECT_LT(after[after.size() / 2], 0.05);
+  EXPECT_LT(after[after.size() * 9 / 10], 0.2);
+  std::printf("%zu of %zu windows at the border kept; motion error median %.4f px\n",
+              refined.size(), near_border.size(), after[after.size() / 2]);
+}
+
 TEST(RefineTracks, ATrackEndsWhereTheImageCannotConfirmIt) {
   Case c = make_case(WarpPattern::rigid, 0.0, 0.3);
   ASSERT_GE(c.truth.size(), 2u);

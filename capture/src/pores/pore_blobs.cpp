@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "pores/pore_model.hpp"
+#include "tactile/common/parallel_for.hpp"
 #include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
@@ -107,31 +108,38 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
                      kernels.half + kernels.stride - rows, cv::BORDER_REFLECT);
   using Lanes = float __attribute__((vector_size(16)));
   cv::Mat out(gray.size(), CV_32F);
-  for (int y = 0; y < gray.rows; ++y) {
-    const float* a = jxx.ptr<float>(y);
-    const float* b = jyy.ptr<float>(y);
-    const float* d = jxy.ptr<float>(y);
-    float* o = out.ptr<float>(y);
-    for (int x = 0; x < gray.cols; ++x) {
-      // The dominant gradient is across the ridges; the ridge runs at right angles to it.
-      const double ridge = 0.5 * std::atan2(2.0 * d[x], a[x] - b[x]) + std::numbers::pi / 2;
-      const int k = ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
-      const float* taps = &kernels.taps[static_cast<std::size_t>(k * rows * kernels.stride)];
-      const auto* spans = &kernels.spans[static_cast<std::size_t>(k * rows)];
-      Lanes sum = {0, 0, 0, 0};
-      for (int r = 0; r < rows; ++r) {
-        const float* w = taps + r * kernels.stride;
-        const float* v = padded.ptr<float>(y + r) + x;
-        for (int c = spans[r].first; c < spans[r].second; c += FlankKernels::kLanes) {
-          Lanes wl, vl;
-          std::memcpy(&wl, w + c, sizeof wl);
-          std::memcpy(&vl, v + c, sizeof vl);
-          sum += wl * vl;
+  // Bands of rows, a few per worker so that an uneven band does not hold the others up.
+  const int workers = std::max(1, p.threads);
+  const int bands = workers == 1 ? 1 : std::min(gray.rows, 4 * workers);
+  parallel_for(static_cast<std::size_t>(bands), workers, [&](std::size_t band) {
+    const int y_begin = static_cast<int>(band) * gray.rows / bands;
+    const int y_end = (static_cast<int>(band) + 1) * gray.rows / bands;
+    for (int y = y_begin; y < y_end; ++y) {
+      const float* a = jxx.ptr<float>(y);
+      const float* b = jyy.ptr<float>(y);
+      const float* d = jxy.ptr<float>(y);
+      float* o = out.ptr<float>(y);
+      for (int x = 0; x < gray.cols; ++x) {
+        // The dominant gradient is across the ridges; the ridge runs at right angles to it.
+        const double ridge = 0.5 * std::atan2(2.0 * d[x], a[x] - b[x]) + std::numbers::pi / 2;
+        const int k = ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
+        const float* taps = &kernels.taps[static_cast<std::size_t>(k * rows * kernels.stride)];
+        const auto* spans = &kernels.spans[static_cast<std::size_t>(k * rows)];
+        Lanes sum = {0, 0, 0, 0};
+        for (int r = 0; r < rows; ++r) {
+          const float* w = taps + r * kernels.stride;
+          const float* v = padded.ptr<float>(y + r) + x;
+          for (int c = spans[r].first; c < spans[r].second; c += FlankKernels::kLanes) {
+            Lanes wl, vl;
+            std::memcpy(&wl, w + c, sizeof wl);
+            std::memcpy(&vl, v + c, sizeof vl);
+            sum += wl * vl;
+          }
         }
+        o[x] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
       }
-      o[x] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
     }
-  }
+  });
   return out;
 }
 

@@ -34,13 +34,148 @@ struct Reference {
   Matrix6 hessian_inverse = Matrix6::Zero();
   double total_weight = 0;
   double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
+  // Row prefix sums of the quantities a step needs over a window cut by the frame's border
+  // (CutSum), made the first time the window is cut: with them a cut window's step costs what
+  // a whole window's does instead of a per-pixel pass that builds the Hessian again.
+  mutable std::vector<double> cut_prefix;
 };
 
-// The steepest-descent image of an affine warp at offset (ox, oy) from the landmark.
-Vector6 descent_at(double gx, double gy, double ox, double oy) {
-  Vector6 d;
-  d << gx * ox, gy * ox, gx * oy, gy * oy, gx, gy;
-  return d;
+// The per-pixel terms summed over the part of a cut window inside the frame. With oy constant
+// along a row, the descent d = (gx ox, gy ox, gx oy, gy oy, gx, gy) needs gx and gy alone and
+// times ox, and the Hessian w d d^T needs gx gx, gx gy and gy gy times 1, ox and ox^2.
+enum CutSum : std::size_t {
+  kW,
+  kWG,
+  kWGG,
+  kWGx,
+  kWGy,
+  kWGxOx,
+  kWGyOx,
+  kWGGx,
+  kWGGy,
+  kWGGxOx,
+  kWGGyOx,
+  kXX0,
+  kXX1,
+  kXX2,
+  kXY0,
+  kXY1,
+  kXY2,
+  kYY0,
+  kYY1,
+  kYY2,
+  kCutSums
+};
+
+// Adds one pixel's terms (weight w, grey level g, gradient (gx, gy), offset ox along its row).
+void add_pixel_terms(double w, double g, double gx, double gy, double ox, double* t) {
+  const double xx = w * gx * gx, xy = w * gx * gy, yy = w * gy * gy;
+  t[kW] += w;
+  t[kWG] += w * g;
+  t[kWGG] += w * g * g;
+  t[kWGx] += w * gx;
+  t[kWGy] += w * gy;
+  t[kWGxOx] += w * gx * ox;
+  t[kWGyOx] += w * gy * ox;
+  t[kWGGx] += w * g * gx;
+  t[kWGGy] += w * g * gy;
+  t[kWGGxOx] += w * g * gx * ox;
+  t[kWGGyOx] += w * g * gy * ox;
+  t[kXX0] += xx;
+  t[kXX1] += xx * ox;
+  t[kXX2] += xx * ox * ox;
+  t[kXY0] += xy;
+  t[kXY1] += xy * ox;
+  t[kXY2] += xy * ox * ox;
+  t[kYY0] += yy;
+  t[kYY1] += yy * ox;
+  t[kYY2] += yy * ox * ox;
+}
+
+// Sums over pixels of a window: of the weights (sw), x grey (swg), x grey^2 (swgg), of weight x
+// descent (swd), x grey (swgd), and the Hessian, sum of weight x descent x descent^T.
+struct WindowSums {
+  double sw = 0, swg = 0, swgg = 0;
+  Vector6 swd = Vector6::Zero(), swgd = Vector6::Zero();
+  Matrix6 hessian = Matrix6::Zero();
+
+  // Adds a row's terms (t, summed over its pixels) at offset oy across the rows.
+  void add_row(const double* t, double oy) {
+    sw += t[kW];
+    swg += t[kWG];
+    swgg += t[kWGG];
+    swd += Vector6(t[kWGxOx], t[kWGyOx], t[kWGx] * oy, t[kWGy] * oy, t[kWGx], t[kWGy]);
+    swgd += Vector6(t[kWGGxOx], t[kWGGyOx], t[kWGGx] * oy, t[kWGGy] * oy, t[kWGGx], t[kWGGy]);
+    const double oy2 = oy * oy;
+    const double h[6][6] = {{t[kXX2], t[kXY2], t[kXX1] * oy, t[kXY1] * oy, t[kXX1], t[kXY1]},
+                            {0, t[kYY2], t[kXY1] * oy, t[kYY1] * oy, t[kXY1], t[kYY1]},
+                            {0, 0, t[kXX0] * oy2, t[kXY0] * oy2, t[kXX0] * oy, t[kXY0] * oy},
+                            {0, 0, 0, t[kYY0] * oy2, t[kXY0] * oy, t[kYY0] * oy},
+                            {0, 0, 0, 0, t[kXX0], t[kXY0]},
+                            {0, 0, 0, 0, 0, t[kYY0]}};
+    for (int i = 0; i < 6; ++i) {
+      for (int j = i; j < 6; ++j) hessian(i, j) += h[i][j];
+    }
+  }
+
+  // The Hessian's lower triangle from its upper one.
+  Matrix6 full_hessian() const {
+    Matrix6 h = hessian;
+    h.triangularView<Eigen::StrictlyLower>() = h.transpose();
+    return h;
+  }
+};
+
+void make_cut_prefix(const Reference& ref) {
+  const auto stride = static_cast<std::size_t>(ref.cols + 1) * kCutSums;
+  ref.cut_prefix.assign(static_cast<std::size_t>(ref.rows) * stride, 0.0);
+  const double ox0 = ref.left - ref.x_px;
+  for (int r = 0; r < ref.rows; ++r) {
+    double* p = ref.cut_prefix.data() + static_cast<std::size_t>(r) * stride;
+    for (int c = 0; c < ref.cols; ++c, p += kCutSums) {
+      const std::size_t i = static_cast<std::size_t>(r * ref.cols + c);
+      std::copy(p, p + kCutSums, p + kCutSums);
+      add_pixel_terms(ref.weight[i], ref.grey[i], ref.gx[i], ref.gy[i], ox0 + c, p + kCutSums);
+    }
+  }
+}
+
+// Columns [first, end) of a row seen at (x0 + c dx, y0 + c dy) whose samples fall inside the
+// frame with the same margin as a whole window (see warped_window_inside); the samples of a
+// line inside a rectangle are one run of columns.
+void inside_columns(double x0, double y0, double dx, double dy, int cols, const FloatRows& image,
+                    int& first, int& end) {
+  constexpr double margin = 1e-3;
+  const double lo_x = margin, hi_x = image.cols - 1 - margin;
+  const double lo_y = margin, hi_y = image.rows - 1 - margin;
+  double lo = 0, hi = cols - 1;
+  // lo <= c <= hi where lo_v <= v0 + c dv < hi_v.
+  const auto clip = [&](double v0, double dv, double lo_v, double hi_v) {
+    if (dv == 0) {
+      if (!(v0 >= lo_v && v0 < hi_v)) hi = -1;
+      return;
+    }
+    const double a = (lo_v - v0) / dv, b = (hi_v - v0) / dv;
+    lo = std::max(lo, std::min(a, b));
+    hi = std::min(hi, std::max(a, b));
+  };
+  clip(x0, dx, lo_x, hi_x);
+  clip(y0, dy, lo_y, hi_y);
+  const auto inside = [&](int c) {
+    const double x = x0 + c * dx, y = y0 + c * dy;
+    return x >= lo_x && x < hi_x && y >= lo_y && y < hi_y;
+  };
+  if (!(hi >= lo)) {
+    first = end = 0;
+    return;
+  }
+  // The bounds above are exact up to rounding: the ends are checked sample by sample.
+  first = std::clamp(static_cast<int>(std::ceil(lo)), 0, cols);
+  end = std::clamp(static_cast<int>(std::floor(hi)) + 1, first, cols);
+  while (first < end && !inside(first)) ++first;
+  while (end > first && !inside(end - 1)) --end;
+  while (first > 0 && inside(first - 1)) --first;
+  while (end < cols && inside(end)) ++end;
 }
 
 // The reference around (x, y) in a smoothed frame; false where too little of the window is
@@ -70,38 +205,41 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
   ref.gx.reserve(n);
   ref.gy.reserve(n);
   // Gaussian weights favour the landmark's own surroundings where the skin's strain varies
-  // across the window.
+  // across the window; the Gaussian is the product of one along x and one along y.
   const double sigma = half_side;
-  Matrix6 hessian = Matrix6::Zero();
-  double sw = 0, swg = 0, swgg = 0;
+  std::vector<double> along_x(static_cast<std::size_t>(ref.cols));
+  for (int u = left; u <= right; ++u) {
+    const double ox = u - x_px;
+    along_x[static_cast<std::size_t>(u - left)] = std::exp(-ox * ox / (2 * sigma * sigma));
+  }
+  WindowSums sums;
   for (int v = top; v <= bottom; ++v) {
+    const double oy = v - y_px;
+    const double along_y = std::exp(-oy * oy / (2 * sigma * sigma));
     const float* row = smooth.ptr<float>(v);
     const float* up = smooth.ptr<float>(v - 1);
     const float* down = smooth.ptr<float>(v + 1);
+    double t[kCutSums] = {};
     for (int u = left; u <= right; ++u) {
-      const double ox = u - x_px, oy = v - y_px;
-      const auto w = static_cast<float>(std::exp(-(ox * ox + oy * oy) / (2 * sigma * sigma)));
+      const auto w = static_cast<float>(along_x[static_cast<std::size_t>(u - left)] * along_y);
       const float gx = 0.5f * (row[u + 1] - row[u - 1]);
       const float gy = 0.5f * (down[u] - up[u]);
-      const Vector6 d = descent_at(gx, gy, ox, oy);
-      hessian += w * d * d.transpose();
       ref.grey.push_back(row[u]);
       ref.weight.push_back(w);
       ref.gx.push_back(gx);
       ref.gy.push_back(gy);
-      ref.sum_weighted_descent += w * d;
-      ref.sum_weighted_grey_descent += w * row[u] * d;
-      sw += w;
-      swg += w * row[u];
-      swgg += static_cast<double>(w) * row[u] * row[u];
+      add_pixel_terms(w, row[u], gx, gy, u - x_px, t);
     }
+    sums.add_row(t, oy);
   }
-  ref.total_weight = sw;
-  ref.sum_weighted_grey = swg;
-  ref.sum_weighted_grey_squared = swgg;
-  const double mean = swg / sw;
-  const double spread = std::sqrt(std::max(0.0, swgg / sw - mean * mean));
-  const Eigen::FullPivLU<Matrix6> lu(hessian);
+  ref.total_weight = sums.sw;
+  ref.sum_weighted_grey = sums.swg;
+  ref.sum_weighted_grey_squared = sums.swgg;
+  ref.sum_weighted_descent = sums.swd;
+  ref.sum_weighted_grey_descent = sums.swgd;
+  const double mean = sums.swg / sums.sw;
+  const double spread = std::sqrt(std::max(0.0, sums.swgg / sums.sw - mean * mean));
+  const Eigen::FullPivLU<Matrix6> lu(sums.full_hessian());
   if (!lu.isInvertible() || spread < 1e-3) return false;
   ref.hessian_inverse = lu.inverse();
   return true;
@@ -145,56 +283,44 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
   const FloatRows smooth{frame.ptr<float>(0), frame.step1(), frame.cols, frame.rows};
   Eigen::Vector2d position(x_px, y_px);
   Eigen::Matrix2d l = linear;
-  const std::size_t n = ref.grey.size();
-  std::vector<float> warped;
-  std::vector<char> inside;
   double correlation = 0;
   bool converged = false;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
     double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
     // sum of weight x sample x descent: with the reference's own sums it gives the update in
-    // this one pass over the window when the whole window is inside the frame. Its six entries
-    // come from four sums per row, since the descent images are the gradients times the
-    // offsets.
+    // this one pass over the window. Its six entries come from four sums per row, since the
+    // descent images are the gradients times the offsets.
     Vector6 swid = Vector6::Zero();
+    // Over a cut window, the reference's sums over the part inside the frame.
+    WindowSums inside;
     const bool whole = warped_window_inside(ref, smooth, position, l);
-    if (!whole && warped.empty()) {
-      warped.resize(n);
-      inside.resize(n);
-    }
-    std::size_t inside_count = 0;
+    if (!whole && ref.cut_prefix.empty()) make_cut_prefix(ref);
+    const std::size_t prefix_stride = static_cast<std::size_t>(ref.cols + 1) * kCutSums;
     const double l00 = l(0, 0), l01 = l(0, 1), l10 = l(1, 0), l11 = l(1, 1);
     const double ox0 = ref.left - ref.x_px;
     for (int r = 0; r < ref.rows; ++r) {
       const double oy = ref.top + r - ref.y_px;
-      double x = position.x() + l00 * ox0 + l01 * oy;
-      double y = position.y() + l10 * ox0 + l11 * oy;
+      const double x = position.x() + l00 * ox0 + l01 * oy;
+      const double y = position.y() + l10 * ox0 + l11 * oy;
       const std::size_t row0 = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.cols);
-      RowSums rs;
-      if (whole) {
-        const RowSpan span{ref.weight.data() + row0,
-                           ref.grey.data() + row0,
-                           ref.gx.data() + row0,
-                           ref.gy.data() + row0,
-                           0,
-                           ref.cols,
-                           x,
-                           y,
-                           l00,
-                           l10,
-                           ox0};
-        add_row_sums_vector(smooth, span, rs);
-      } else {
-        for (int c = 0; c < ref.cols; ++c, x += l00, y += l10) {
-          const std::size_t i = row0 + static_cast<std::size_t>(c);
-          double v;
-          inside[i] = sample(smooth, x, y, v);
-          if (!inside[i]) continue;
-          warped[i] = static_cast<float>(v);
-          ++inside_count;
-          rs.add(v, ref.weight[i], ref.grey[i], ref.gx[i], ref.gy[i], ox0 + c);
-        }
+      int first = 0, end = ref.cols;
+      if (!whole) {
+        inside_columns(x, y, l00, l10, ref.cols, smooth, first, end);
+        if (first == end) continue;
       }
+      RowSums rs;
+      const RowSpan span{ref.weight.data() + row0,
+                         ref.grey.data() + row0,
+                         ref.gx.data() + row0,
+                         ref.gy.data() + row0,
+                         first,
+                         end,
+                         x,
+                         y,
+                         l00,
+                         l10,
+                         ox0};
+      add_row_sums_vector(smooth, span, rs);
       swi += rs.i;
       swii += rs.ii;
       swit += rs.it;
@@ -204,22 +330,25 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
       swid(3) += rs.c * oy;
       swid(4) += rs.a;
       swid(5) += rs.c;
+      if (whole) continue;
+      const double* row_prefix =
+          ref.cut_prefix.data() + static_cast<std::size_t>(r) * prefix_stride;
+      const double* before = row_prefix + static_cast<std::size_t>(first) * kCutSums;
+      const double* through = row_prefix + static_cast<std::size_t>(end) * kCutSums;
+      double t[kCutSums];
+      for (std::size_t q = 0; q < kCutSums; ++q) t[q] = through[q] - before[q];
+      inside.add_row(t, oy);
     }
     // The reference's own sums over the whole window are fixed; only a cut window needs them
-    // summed again.
+    // from its inside part.
     if (whole) {
-      inside_count = n;
       sw = ref.total_weight;
       swt = ref.sum_weighted_grey;
       swtt = ref.sum_weighted_grey_squared;
     } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!inside[i]) continue;
-        const double w = ref.weight[i], g = ref.grey[i];
-        sw += w;
-        swt += w * g;
-        swtt += w * g * g;
-      }
+      sw = inside.sw;
+      swt = inside.swg;
+      swtt = inside.swgg;
     }
     if (2 * sw < ref.total_weight) return a;
     const double mean = swi / sw, ref_mean = swt / sw;
@@ -228,28 +357,17 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     if (spread < 1e-3 || ref_spread < 1e-3) return a;
     correlation = (swit / sw - mean * ref_mean) / (spread * ref_spread);
     // Grey levels of the frame brought to the reference's mean and spread: the error at a
-    // sample is ref_mean + gain (warped - mean) - grey.
+    // sample is ref_mean + gain (warped - mean) - grey, and the update sums weight x error x
+    // descent.
     const double gain = ref_spread / spread;
     Vector6 p;
-    if (inside_count == n) {
+    if (whole) {
       const Vector6 b = gain * swid + (ref_mean - gain * mean) * ref.sum_weighted_descent -
                         ref.sum_weighted_grey_descent;
       p = ref.hessian_inverse * b;
     } else {
-      Vector6 b = Vector6::Zero();
-      Matrix6 hessian = Matrix6::Zero();
-      for (int r = 0; r < ref.rows; ++r) {
-        const double oy = ref.top + r - ref.y_px;
-        for (int c = 0; c < ref.cols; ++c) {
-          const std::size_t i = static_cast<std::size_t>(r * ref.cols + c);
-          if (!inside[i]) continue;
-          const Vector6 d = descent_at(ref.gx[i], ref.gy[i], ox0 + c, oy);
-          const double e = ref_mean + gain * (warped[i] - mean) - ref.grey[i];
-          b += e * ref.weight[i] * d;
-          hessian += ref.weight[i] * d * d.transpose();
-        }
-      }
-      const Eigen::FullPivLU<Matrix6> lu(hessian);
+      const Vector6 b = gain * swid + (ref_mean - gain * mean) * inside.swd - inside.swgd;
+      const Eigen::FullPivLU<Matrix6> lu(inside.full_hessian());
       if (!lu.isInvertible()) return a;
       p = lu.solve(b);
     }

@@ -46,6 +46,10 @@ struct RidgeBlobParams {
   // Coefficients of the pore model (pore_model.hpp); empty = the shipped model, trained on all
   // 15 PolyU HRF prints.
   std::vector<double> model;
+  // Workers for the per-pixel ridge-level filter (rows split between them; the result does not
+  // depend on the count). One by default: callers that detect several frames at once already
+  // keep every core busy.
+  int threads = 1;
 };
 
 struct FeatureParams {
