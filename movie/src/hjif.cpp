@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -38,6 +39,10 @@ constexpr std::int32_t kVectorRange = 127;  // a unit vector's component
 // body_part_target of every channel: the distal phalanx of a finger (the display is felt with a
 // fingertip; which finger is not known).
 const std::vector<std::string> kFingertip = {"Finger", "Third Phalanx"};
+// body_part_mask of every channel: the fingers of either hand (which hand is not known), in the
+// bit table of the format's reference software (docs/formats.md): right-hand fingers bit 20,
+// left-hand fingers bit 21.
+constexpr std::uint32_t kFingersOfEitherHand = (1U << 20) | (1U << 21);
 
 std::string provenance_json(const Provenance& p) {
   return json{{"program_version", p.program_version},
@@ -228,7 +233,7 @@ HjifSummary write_hjif_to(const TactileMovie& movie, const HjifOptions& options,
                           {"description", description},
                           {"gain", gain},
                           {"mixing_coefficient", 1.0},
-                          {"body_part_mask", 0},
+                          {"body_part_mask", kFingersOfEitherHand},
                           {"body_part_target", kFingertip},
                           {"reference_device_id", 0},
                           {"frequency_sampling", rate},

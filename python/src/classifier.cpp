@@ -9,7 +9,9 @@
 #include <variant>
 
 #include "bindings.hpp"
+#include "tactile/common/names.hpp"
 #include "tactile/perception/classifier_model.hpp"
+#include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
 
 namespace tactile::python {
@@ -34,20 +36,98 @@ void check_threads(int threads) {
   }
 }
 
-std::shared_ptr<ClassifierModel> train(const fs::path& recordings, const fs::path& labels,
-                                       std::optional<fs::path> out, const std::string& procedure,
-                                       std::optional<std::string> baseline_at,
-                                       std::optional<std::string> electrodes,
-                                       std::optional<double> trim,
-                                       std::optional<std::vector<std::string>> inputs,
-                                       std::optional<int> kernel_degree, std::optional<double> c,
-                                       int threads) {
+// The options a model's rows were analysed with, and its SVM's, by the names the command line
+// takes.
+void put_options(py::dict& out, const perception::RecordingInputOptions& in,
+                 const perception::SvmOptions& svm) {
+  out["inputs"] = names_of(in.groups);
+  out["baseline_at"] = perception::to_string(in.contact.baseline_at);
+  out["electrodes"] = perception::to_string(in.contact.electrodes);
+  out["trim"] = in.contact.trim_fraction;
+  out["kernel_degree"] = svm.degree;
+  out["c"] = svm.c;
+}
+
+py::dict candidate_dict(const perception::SelectionCandidate& c) {
+  py::dict out;
+  put_options(out, c.inputs, c.svm);
+  out["correct"] = c.correct;
+  out["tested"] = c.tested;
+  out["accuracy"] = c.accuracy();
+  out["description"] = perception::describe_candidate(c);
+  return out;
+}
+
+py::dict cv_dict(const perception::CrossValidation& cv, int folds) {
+  py::dict out;
+  out["folds"] = folds;
+  out["fold_accuracy"] = cv.fold_accuracy;
+  out["mean"] = cv.mean;
+  out["spread"] = cv.spread;  // sample standard deviation over folds
+  out["correct"] = cv.correct;
+  out["tested"] = cv.tested;
+  return out;
+}
+
+// What `classify train --select` compared (the model file's `selection`); None without.
+py::object selection_dict(const ClassifierModel& model) {
+  if (!model.selection) return py::none();
+  const auto& record = *model.selection;
+  py::dict out;
+  out["folds"] = record.folds;
+  py::list candidates;
+  for (const auto& c : record.candidates) candidates.append(candidate_dict(c));
+  out["candidates"] = candidates;
+  out["chosen"] = record.chosen;  // index in candidates
+  return out;
+}
+
+// What `classify train` prints, as data.
+py::dict report_dict(const perception::ClassifierTrainingRun& run,
+                     const perception::ClassifierTraining& training) {
+  const auto& m = run.model;
+  py::dict out;
+  out["recordings"] = m.files.size();
+  out["class_names"] = m.class_names;
+  out["procedure"] = training.procedure;
+  put_options(out, m.options, m.svm);
+  out["input_count"] = m.input_names.size();
+  out["values"] = !m.values.empty();  // one SVR per class for the value
+  out["training_correct"] = run.training_fit.correct;
+  out["training_tested"] = run.training_fit.tested;
+  if (!training.select) out["analysis_s"] = run.analysis_s;
+  out["selection"] = selection_dict(m);
+  if (run.cv) {
+    py::dict cv = cv_dict(*run.cv, training.cv_folds);
+    cv["nested"] = false;
+    out["cv"] = cv;
+  } else if (run.nested) {
+    py::dict cv = cv_dict(run.nested->outer, training.cv_folds);
+    cv["nested"] = true;
+    cv["inner_folds"] = perception::kSelectionFolds;
+    cv["candidates"] = run.candidates;
+    py::list chosen;
+    for (const auto& c : run.nested->chosen) chosen.append(candidate_dict(c));
+    cv["chosen"] = chosen;  // per outer fold, scored on its training rows
+    out["cv"] = cv;
+  } else {
+    out["cv"] = py::none();
+  }
+  return out;
+}
+
+py::object train(const fs::path& recordings, const fs::path& labels, std::optional<fs::path> out,
+                 const std::string& procedure, std::optional<std::string> baseline_at,
+                 std::optional<std::string> electrodes, std::optional<double> trim,
+                 std::optional<std::vector<std::string>> inputs, std::optional<int> kernel_degree,
+                 std::optional<double> c, bool select, std::optional<int> cv, int threads) {
   check_threads(threads);
   perception::ClassifierTraining training;
   training.procedure = procedure;
   training.trim = trim;
   training.kernel_degree = kernel_degree;
   training.c = c;
+  training.select = select;
   if (baseline_at) training.baseline_at = perception::parse_baseline_at(*baseline_at);
   if (electrodes) training.electrodes = perception::parse_electrodes(*electrodes);
   for (const auto& name : inputs.value_or(std::vector<std::string>{}))
@@ -59,16 +139,24 @@ std::shared_ptr<ClassifierModel> train(const fs::path& recordings, const fs::pat
     throw std::invalid_argument(
         fmt::format("c: {:g} is out of range: must be in [0.001, 100000]", *c));
   }
-  const auto in = perception::recording_inputs_for(training);
-  const auto svm = perception::svm_options_for(training);
-  py::gil_scoped_release unlocked;
-  const auto data = with_inputs({recordings, labels}, [&] {
-    return perception::load_labelled_recordings(recordings, labels, in, {}, threads);
-  });
-  perception::require_two_classes(data, labels);
-  auto model = std::make_shared<ClassifierModel>(perception::make_classifier_model(data, svm));
-  const perception::Classifier fitted(*model);  // checks that it trains before writing a file
-  if (out) perception::write_classifier_model(*out, *model);
+  if (cv && (*cv < 2 || *cv > 1000)) {
+    throw std::invalid_argument(fmt::format(
+        "cv: {} is out of range: must be in [2, 1000] (None: no cross-validation)", *cv));
+  }
+  training.cv_folds = cv.value_or(0);
+  // Checked before any recording is read, as on the command line.
+  perception::recording_inputs_for(training);
+  perception::svm_options_for(training);
+  perception::ClassifierTrainingRun run;
+  {
+    py::gil_scoped_release unlocked;
+    run = with_inputs({recordings, labels}, [&] {
+      return perception::train_classifier(recordings, labels, training, threads);
+    });
+    if (out) perception::write_classifier_model(*out, run.model);
+  }
+  py::object model = py::cast(std::make_shared<ClassifierModel>(run.model));
+  model.attr("report") = report_dict(run, training);
   return model;
 }
 
@@ -128,12 +216,18 @@ py::list predict(const ModelArgument& model_arg, const std::vector<fs::path>& fi
 
 void bind_classifier(py::module_& m) {
   py::class_<ClassifierModel, std::shared_ptr<ClassifierModel>>(
-      m, "ClassifierModel", "A trained classifier of labelled recordings (its model file).")
+      m, "ClassifierModel",
+      "A trained classifier of labelled recordings (its model file). A model from train() also\n"
+      "has `report`: what `classify train` prints, as a dict.",
+      py::dynamic_attr())
       .def_readonly("class_names", &ClassifierModel::class_names)
       .def_readonly("input_names", &ClassifierModel::input_names)
       .def_readonly("files", &ClassifierModel::files)
       .def_property_readonly("kernel_degree", [](const ClassifierModel& c) { return c.svm.degree; })
       .def_property_readonly("c", [](const ClassifierModel& c) { return c.svm.c; })
+      .def_property_readonly("selection", &selection_dict,
+                             "What `classify train --select` compared (folds, candidates, chosen "
+                             "index), None when the options were not chosen from the data")
       .def(
           "write",
           [](const ClassifierModel& c, const fs::path& path) {
@@ -147,10 +241,19 @@ void bind_classifier(py::module_& m) {
         py::arg("out") = py::none(), py::arg("procedure") = "stroke",
         py::arg("baseline_at") = py::none(), py::arg("electrodes") = py::none(),
         py::arg("trim") = py::none(), py::arg("inputs") = py::none(),
-        py::arg("kernel_degree") = py::none(), py::arg("c") = py::none(), py::arg("threads") = 0,
+        py::arg("kernel_degree") = py::none(), py::arg("c") = py::none(), py::arg("select") = false,
+        py::arg("cv") = py::none(), py::arg("threads") = 0,
         "Trains a classifier of the labelled recordings (labels CSV file,class[,value]) as\n"
         "`tactile classify train`: options left unset are the procedure's defaults (stroke,\n"
-        "static, dp, ru, roll); writes the model file when `out` is given.");
+        "static, dp, ru, roll), or with select=True chosen by 5-fold cross-validation on these\n"
+        "recordings (`--select`; the comparison recorded in the model); cv=K also scores it by\n"
+        "stratified K-fold cross-validation (`--cv K`; nested with select, the choice made again\n"
+        "inside each fold). Writes the model file when `out` is given. The model's `report` is\n"
+        "what the command prints: recordings, class_names, the options used (inputs,\n"
+        "baseline_at, electrodes, trim, kernel_degree, c), training_correct/_tested, `cv` (folds,\n"
+        "fold_accuracy, mean, spread, correct, tested, nested; with select also inner_folds,\n"
+        "candidates and the candidate each fold chose) and `selection` (folds, candidates with\n"
+        "their accuracy, chosen index), each None when not asked for.");
   m.def("test", &test, py::arg("model"), py::arg("recordings"), py::arg("labels"), py::kw_only(),
         py::arg("threads") = 0,
         "Accuracy of a model (a ClassifierModel or its file) on labelled recordings: accuracy,\n"

@@ -15,6 +15,7 @@
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/latero_emulator.hpp"
 #include "tactile/display/latero_transport.hpp"
+#include "tactile/display/play_anywhere.hpp"
 #include "tactile/display/player.hpp"
 
 namespace tactile::display {
@@ -245,6 +246,54 @@ TEST(LateroTransport, PlaysEveryFramePacedByTheHostClockAndStopsAtCentre) {
   // The clean stop left every blade at centre.
   const auto blades = emulator->blades();
   EXPECT_TRUE(std::all_of(blades.begin(), blades.end(), [](std::uint8_t b) { return b == 75; }));
+}
+
+// The path `tactile play --latero` and Python's play(backend="latero") share: play_anywhere
+// with a Latero asked for goes there and nowhere else, with the blade mapping it was given.
+TEST(LateroPlay, PlayAnywhereSendsTheMovieToTheLateroAskedForWithItsBladeMapping) {
+  RunningEmulator emulator;
+  PlayRequest request;
+  request.headless = true;  // not looked at when a Latero is asked for
+  request.latero = LateroPlayTarget{emulator.address().text(), {}};
+  request.latero->mapping.centre_raw = 128;
+  request.latero->mapping.max_raw = 255;
+  std::string said;
+  const PlayResult r =
+      play_anywhere(movie::testing::sine_movie(movie::latero_layout(), 750, 150, 40), request,
+                    [&](const std::string& text) { said += text; });
+  EXPECT_EQ(r.target, PlaybackTarget::latero);
+  ASSERT_TRUE(r.report && r.latero_link && r.latero_address);
+  EXPECT_FALSE(r.stopped);
+  EXPECT_EQ(r.latero_address->port, emulator->port());
+  EXPECT_EQ(r.report->movie_frames, 150);
+  EXPECT_EQ(r.latero_link->frames_sent, static_cast<std::uint64_t>(r.report->frames_sent));
+  const LateroEmulatorCounters c = emulator->counters();
+  EXPECT_EQ(c.full_requests, r.latero_link->requests_sent);
+  EXPECT_EQ(c.io_requests, 1u);
+  // Stopped at the centre it was given, not OpenLatero's 75.
+  const auto blades = emulator->blades();
+  EXPECT_TRUE(std::all_of(blades.begin(), blades.end(), [](std::uint8_t b) { return b == 128; }));
+  EXPECT_THAT(said, HasSubstr("play: streaming to the Latero at " + emulator.address().text()));
+  EXPECT_THAT(said, HasSubstr("raw 128 at rest"));
+}
+
+TEST(LateroPlay, RefusesAnotherLayoutOrABadMappingBeforeSendingAnything) {
+  RunningEmulator emulator;
+  PlayRequest request;
+  request.latero = LateroPlayTarget{emulator.address().text(), {}};
+  const auto quiet = [](const std::string&) {};
+  try {
+    play_anywhere(movie::testing::sine_movie(movie::stress_layout(), 700, 10, 10), request, quiet);
+    ADD_FAILURE() << "a stress movie was played on a Latero";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'stress'"));
+    EXPECT_THAT(e.what(), HasSubstr("--layout latero"));
+  }
+  request.latero->mapping.centre_raw = 200;
+  EXPECT_THROW(play_anywhere(movie::testing::sine_movie(movie::latero_layout(), 750, 10, 10),
+                             request, quiet),
+               std::invalid_argument);
+  EXPECT_EQ(emulator->counters().datagrams, 0u);
 }
 
 TEST(LateroTransport, CountsRepliesTheDeviceLeftOut) {

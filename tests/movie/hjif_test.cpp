@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -85,7 +86,10 @@ void expect_conformant(const std::string& text, const TactileMovie& m) {
     }
     EXPECT_TRUE(ids.insert(c["id"].get<int>()).second);
     EXPECT_LE(c["description"].get<std::string>().size(), 255U);
-    EXPECT_TRUE(c["body_part_mask"].is_number_unsigned());
+    // The fingers of the right and of the left hand in the reference software's body table
+    // (OHMData::Body: RIGHT_HAND_FINGERS 0x00100000, LEFT_HAND_FINGERS 0x00200000), which it
+    // copies unchanged into a channel's body_part_mask; no other part.
+    EXPECT_EQ(c["body_part_mask"].get<std::uint32_t>(), 0x00100000U | 0x00200000U);
     for (const auto& part : c["body_part_target"]) EXPECT_TRUE(body_parts.contains(part));
     const json& res = c["actuator_resolution"];
     EXPECT_EQ(res["X"], m.layout.cols);

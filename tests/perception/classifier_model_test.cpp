@@ -581,6 +581,33 @@ TEST(ModelSelection, SlideDefaultCIsInsideTheGrid) {
   EXPECT_NE(std::find(grid.cs.begin(), grid.cs.end(), c), grid.cs.end());
 }
 
+// `classify train --select` searches only what the user left unset: the stroke grid (5 input
+// sets, 2 baselines, 2 electrode signals, 3 trims, 2 exponents, 6 values of C) with trim,
+// exponent and baseline named is 5 x 2 x 6 candidates; a bad trim is refused as without
+// --select, and so is one class, before anything is selected.
+TEST(ModelSelection, NamedOptionsAreNotSearched) {
+  perception::ClassifierTraining t;
+  EXPECT_EQ(perception::selection_grid_for(t).size(), 5u * 2 * 2 * 3 * 2 * 6);
+  t.trim = 0.1;
+  t.kernel_degree = 1;
+  t.baseline_at = perception::ContactOptions::BaselineAt::none;
+  const auto grid = perception::selection_grid_for(t);
+  EXPECT_EQ(grid.size(), 60u);
+  EXPECT_EQ(grid.trims, std::vector<double>{0.1});
+  EXPECT_EQ(grid.degrees, std::vector<int>{1});
+  t.trim = 0.5;
+  EXPECT_THROW(perception::selection_grid_for(t), std::invalid_argument);
+  t.trim = 0.1;
+  t.select = true;
+  const tactile::test::TempDir dir_tmp("one_class");
+  const auto labels = dir_tmp.path() / "one.csv";
+  write_text(labels, "file,class\nmat1_1_bio.csv,mat1\nmat1_2_bio.csv,mat1\n");
+  EXPECT_NE(error_of([&] {
+              perception::train_classifier(kMaterials, labels, t, 1);
+            }).find("at least 2 classes"),
+            std::string::npos);
+}
+
 // Version 2 files (no selection) still read; a version 3 file's selection is checked.
 TEST(ClassifierModel, ReadsVersionTwoAndChecksTheSelection) {
   const tactile::test::TempDir dir_tmp("model_v2");

@@ -1,7 +1,10 @@
-"""play(): the device selection and playing of `tactile play`."""
+"""play(): the device selection and playing of `tactile play`, a Latero included (played to the
+emulated Latero of `tactile emulate --latero` on 127.0.0.1)."""
 
 import os
+import re
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -50,7 +53,7 @@ def test_auto_without_display_or_screen_goes_headless_like_the_command_line(tmp_
 
 def test_play_bad_arguments():
     movie = small_movie()
-    with pytest.raises(ValueError, match="backend: 'usb' is not auto or headless"):
+    with pytest.raises(ValueError, match="backend: 'usb' is not auto, headless or latero"):
         tactile.play(movie, backend="usb")
     with pytest.raises(ValueError, match="loops: 0 is out of range"):
         tactile.play(movie, backend="headless", loops=0)
@@ -81,3 +84,150 @@ def test_ctrl_c_stops_between_frames_ramps_to_rest_and_raises(tmp_path):
     assert "stopped by a stop request, every contactor ramped to rest" in out
     assert "outputs ended at most 0 um from rest" in out
     assert "no preview written" in out and not (tmp_path / "p.png").exists()
+
+
+def latero_movie(frames, amplitude_um=40.0):
+    t = np.arange(frames) / 750.0
+    k = np.arange(64).reshape(8, 8) / 64.0
+    d = amplitude_um * np.sin(2 * np.pi * (3 * t[:, None, None] + k[None, :, :]))
+    return tactile.Movie(d.astype(np.float32), "latero")
+
+
+class EmulatedLatero:
+    """`tactile emulate --latero` on a free loopback port, stopped with SIGINT (its ordinary
+    end), after which its counters and where it left the blades are read from what it printed."""
+
+    def __init__(self, cli):
+        self.process = subprocess.Popen([cli, "emulate", "--latero", "--port", "0", "--seconds",
+                                         "60"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                        text=True)
+        first = self.process.stdout.readline()
+        found = re.search(r"answering on (127\.0\.0\.1:\d+) \(UDP\)", first)
+        assert found, first
+        self.address = found.group(1)
+
+    def stop(self):
+        self.process.send_signal(signal.SIGINT)
+        out, _ = self.process.communicate(timeout=10)
+        assert self.process.returncode == 0, out
+        return out
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+
+
+def counters(emulator_output):
+    datagrams = re.search(r"datagrams\s+(\d+) received: (\d+) FULL \(frames played\), (\d+) IO, "
+                          r"(\d+) RAW, (\d+) malformed", emulator_output)
+    replies = re.search(r"replies\s+(\d+) sent, (\d+) left out", emulator_output)
+    blades = re.search(r"blades\s+left at raw (\d+)\.\.(\d+)", emulator_output)
+    assert datagrams and replies and blades, emulator_output
+    return {"full": int(datagrams.group(2)), "io": int(datagrams.group(3)),
+            "malformed": int(datagrams.group(5)), "replies_sent": int(replies.group(1)),
+            "blades": (int(blades.group(1)), int(blades.group(2)))}
+
+
+def test_latero_backend_plays_to_the_emulated_latero_and_ends_at_rest(cli, capsys):
+    with EmulatedLatero(cli) as latero:
+        result = tactile.play(latero_movie(150), backend="latero", address=latero.address)
+        got = counters(latero.stop())
+    out = capsys.readouterr().out
+    assert result["target"] == "latero" and result["address"] == latero.address
+    assert not result["stopped"]
+    # Every movie frame was sent, with the start and stop ramps around them.
+    assert result["movie_frames"] == 150 and result["ramp_frames"] > 0
+    assert result["frames_sent"] == 150 + result["ramp_frames"]
+    assert result["rate_hz"] == 750 and result["achieved_rate_hz"] > 0
+    # What the sender counted is what the device received: every request a FULL request (the
+    # frames and the stop ramp), one IO request (the probe), nothing malformed, and every reply
+    # the device sent came back (the probe's among them).
+    assert got["full"] == result["requests_sent"] and got["full"] > result["frames_sent"]
+    assert got["io"] == 1 and got["malformed"] == 0
+    assert got["replies_sent"] == result["replies_received"] + 1
+    # The movie moved the blades (40 um of 100 um full scale: raw 75 +- 30); the stop ramp brought
+    # every one back to OpenLatero's centre, raw 75.
+    assert got["blades"] == (75, 75)
+    assert "play: streaming to the Latero at " + latero.address in out
+    assert "raw 75 at rest, +75 per 100 um, at most 150" in out
+
+
+def test_latero_blade_mapping_is_the_users_to_set(cli, capsys):
+    with EmulatedLatero(cli) as latero:
+        result = tactile.play(latero_movie(75), backend="latero", address=latero.address,
+                              blade_centre_raw=128, blade_max_raw=255)
+        got = counters(latero.stop())
+    assert result["target"] == "latero"
+    assert got["blades"] == (128, 128)
+    assert "raw 128 at rest" in capsys.readouterr().out
+
+
+def test_latero_bad_arguments(cli):
+    movie = latero_movie(10)
+    with pytest.raises(ValueError, match="backend 'latero' needs the Latero's address"):
+        tactile.play(movie, backend="latero")
+    with pytest.raises(ValueError, match="address: only with backend 'latero'"):
+        tactile.play(movie, backend="headless", address="127.0.0.1")
+    with pytest.raises(ValueError, match="blade mapping is only for backend 'latero'"):
+        tactile.play(movie, backend="headless", blade_centre_raw=100)
+    for address, why in [("127.0.0.1:0", "outside 1..65535"), ("127.0.0.1:port", "not a number"),
+                         (":8900", "no host"), ("[::1", "without ']'")]:
+        with pytest.raises(ValueError, match=re.escape(why)):
+            tactile.play(movie, backend="latero", address=address)
+    # The movie and the blade mapping are checked before anything is sent: no device needed.
+    with pytest.raises(ValueError, match="centre_raw 200 is outside \\[0, max_raw 150\\]"):
+        tactile.play(movie, backend="latero", address="127.0.0.1:9", blade_centre_raw=200)
+    with pytest.raises(ValueError) as e:
+        tactile.play(small_movie(), backend="latero", address="127.0.0.1:9")
+    assert "'stress'" in str(e.value) and "'latero'" in str(e.value)
+    assert "--layout latero" in str(e.value)
+
+
+def test_latero_nothing_answering_is_a_device_error_naming_the_address():
+    # A port with nobody on it (bound here, never answered): the probe gets no reply.
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        address = "127.0.0.1:%d" % s.getsockname()[1]
+        with pytest.raises(tactile.DeviceError, match=re.escape(address)):
+            tactile.play(latero_movie(10), backend="latero", address=address)
+
+
+def test_ctrl_c_on_the_latero_stops_and_ramps_every_blade_to_rest(cli):
+    with EmulatedLatero(cli) as latero:
+        # Ten seconds: only the signal can end it in time.
+        script = (
+            "import sys, numpy as np, tactile\n"
+            "t = np.arange(7500) / 750.0\n"
+            "d = np.zeros((7500, 8, 8), dtype=np.float32)\n"
+            "d[:] = (40 * np.sin(2 * np.pi * 3 * t))[:, None, None]\n"
+            "movie = tactile.Movie(d, 'latero')\n"
+            "print('ready', flush=True)\n"
+            "tactile.play(movie, backend='latero', address=%r)\n" % latero.address)
+        child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True, env=os.environ)
+        try:
+            assert child.stdout.readline().strip() == "ready"
+            time.sleep(1.0)
+            signalled = time.monotonic()
+            child.send_signal(signal.SIGINT)
+            out, err = child.communicate(timeout=30)
+            stop_s = time.monotonic() - signalled
+        finally:
+            child.kill()
+        got = counters(latero.stop())
+    assert child.returncode != 0 and "KeyboardInterrupt" in err
+    assert "stopped     by a stop request before the end" in out
+    # Within the 20 ms stop ramp and the wait for its replies, with room for a busy machine.
+    assert stop_s < 5
+    sent = re.search(r"frames\s+(\d+) sent \((\d+) movie", out)
+    requests = re.search(r"replies\s+(\d+) requests", out)
+    assert sent and requests, out
+    assert int(sent.group(2)) == 7500 and 0 < int(sent.group(1)) < 7500  # movie, sent
+    # The device received every request the player counted, the stop ramp included, and the
+    # blades are where its last request left them: at centre.
+    assert got["full"] == int(requests.group(1))
+    assert got["blades"] == (75, 75)

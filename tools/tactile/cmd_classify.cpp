@@ -42,125 +42,75 @@ std::vector<NamedPath> classify_inputs(const std::filesystem::path& recordings,
 
 struct TrainOptions {
   std::filesystem::path recordings, labels, out;
-  std::string procedure = "stroke";
-  // Unset: the procedure's default (perception::default_recording_inputs).
-  std::optional<perception::ContactOptions::BaselineAt> baseline_at;
-  std::optional<perception::ContactOptions::Electrodes> electrodes;
-  std::optional<double> trim;
-  std::vector<perception::InputGroup> inputs;  // empty: the procedure's default
-  std::optional<int> degree;  // unset: the procedure's default, or searched with --select
-  std::optional<double> c;    // unset: the procedure's default, or searched with --select
-  bool select = false;
-  int cv = 0;
+  // Options unset: the procedure's defaults, or searched with --select.
+  perception::ClassifierTraining training;
   int threads = 0;
 };
-
-int finish_training(const TrainOptions& o, const perception::ClassifierModel& model,
-                    std::chrono::steady_clock::time_point t0);
 
 // Whether training takes a default that was chosen from data: the slide defaults were chosen by
 // --select on the project's 200 recordings, so plain cross-validation of them on those
 // recordings scores the choice on the data it was made on.
-bool uses_chosen_defaults(const TrainOptions& o) {
-  return o.procedure == "stroke" &&
-         (o.inputs.empty() || !o.baseline_at || !o.electrodes || !o.trim || !o.degree || !o.c);
-}
-
-// --select: every option the user did not name is searched over the procedure's grid.
-int train_selected(const TrainOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto base = perception::default_recording_inputs(o.procedure);
-  auto grid = perception::default_selection_grid(o.procedure);
-  if (o.baseline_at) grid.baselines = {*o.baseline_at};
-  if (o.electrodes) grid.electrodes = {*o.electrodes};
-  if (o.trim) grid.trims = {*o.trim};
-  if (!o.inputs.empty()) grid.input_sets = {o.inputs};
-  if (o.degree) grid.degrees = {*o.degree};
-  if (o.c) grid.cs = {*o.c};
-  const auto data = perception::read_labelled_recordings(o.recordings, o.labels, {}, o.threads);
-  constexpr int kInnerFolds = 5;
-  perception::SelectionRecord record;
-  if (o.cv > 0) {
-    const auto nested =
-        perception::nested_cross_validate(data, base, grid, o.cv, kInnerFolds, o.threads);
-    fmt::print(
-        "nested cross-validation ({} outer folds, stratified; options chosen in each by up to "
-        "{}-fold cross-validation of its training rows among {} candidates): accuracy {:.3f} +- "
-        "{:.3f} (folds: {:.3f}); pooled {}/{}\n",
-        o.cv, kInnerFolds, grid.size(), nested.outer.mean, nested.outer.spread,
-        fmt::join(nested.outer.fold_accuracy, ", "), nested.outer.correct, nested.outer.tested);
-    for (std::size_t k = 0; k < nested.chosen.size(); ++k)
-      fmt::print("  fold {} chose {} (inner {:.3f})\n", k + 1,
-                 perception::describe_candidate(nested.chosen[k]), nested.chosen[k].accuracy());
-    record = nested.overall;
-  } else {
-    record = perception::select_options(data, base, grid, kInnerFolds, {}, o.threads);
-  }
-  const auto& chosen = record.candidates.at(record.chosen);
-  fmt::print("classify train --select: {} recordings, {} classes; chose {} ({}-fold CV {:.3f})\n",
-             data.files.size(), data.class_names.size(), perception::describe_candidate(chosen),
-             record.folds, chosen.accuracy());
-  return finish_training(o, perception::make_selected_model(data, record, o.threads), t0);
+bool uses_chosen_defaults(const perception::ClassifierTraining& t) {
+  return t.procedure == "stroke" && (t.inputs.empty() || !t.baseline_at || !t.electrodes ||
+                                     !t.trim || !t.kernel_degree || !t.c);
 }
 
 int train(const TrainOptions& o) {
   refuse_output_over_input({output_file("--out", o.out)}, classify_inputs(o.recordings, o.labels));
-  if (o.select) return train_selected(o);
   const auto t0 = std::chrono::steady_clock::now();
-  perception::ClassifierTraining training;
-  training.procedure = o.procedure;
-  training.trim = o.trim;
-  training.kernel_degree = o.degree;
-  training.c = o.c;
-  if (o.baseline_at) training.baseline_at = o.baseline_at;
-  if (o.electrodes) training.electrodes = o.electrodes;
-  training.inputs = o.inputs;
-  const auto in = perception::recording_inputs_for(training);
-  const auto data = perception::load_labelled_recordings(o.recordings, o.labels, in, {}, o.threads);
-  fmt::print(
-      "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, electrodes "
-      "{}, trim {:g}), analysed in {:.2f} s\n",
-      data.rows.size(), data.class_names.size(), data.input_names.size(),
-      fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
-      to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
-  perception::require_two_classes(data, o.labels);
-  const auto svm = perception::svm_options_for(training);
-  if (o.cv > 0) {
-    const auto cv = perception::cross_validate(data, svm, o.cv, o.threads);
-    fmt::print(
-        "cross-validation ({} folds, stratified): accuracy {:.3f} +- {:.3f} (folds: {:.3f}); "
-        "pooled {}/{}\n",
-        o.cv, cv.mean, cv.spread, fmt::join(cv.fold_accuracy, ", "), cv.correct, cv.tested);
-    if (uses_chosen_defaults(o))
+  const perception::ClassifierTraining& t = o.training;
+  const auto run = perception::train_classifier(o.recordings, o.labels, t, o.threads);
+  const auto& model = run.model;
+  if (t.select) {
+    if (run.nested) {
+      const auto& nested = *run.nested;
       fmt::print(
-          "  (plain cross-validation of fixed options. The stroke defaults were chosen by nested "
-          "cross-validation on the project's 200 recordings of 20 materials "
-          "(docs/perception-models.md): on other recordings this is an estimate for them; on "
-          "those 200 it carries the choice and overstates, and the estimate is nested: "
-          "`classify train --select --cv {}`)\n",
-          o.cv);
+          "nested cross-validation ({} outer folds, stratified; options chosen in each by up to "
+          "{}-fold cross-validation of its training rows among {} candidates): accuracy {:.3f} "
+          "+- {:.3f} (folds: {:.3f}); pooled {}/{}\n",
+          t.cv_folds, perception::kSelectionFolds, run.candidates, nested.outer.mean,
+          nested.outer.spread, fmt::join(nested.outer.fold_accuracy, ", "), nested.outer.correct,
+          nested.outer.tested);
+      for (std::size_t k = 0; k < nested.chosen.size(); ++k)
+        fmt::print("  fold {} chose {} (inner {:.3f})\n", k + 1,
+                   perception::describe_candidate(nested.chosen[k]), nested.chosen[k].accuracy());
+    }
+    const auto& record = *model.selection;
+    const auto& chosen = record.candidates.at(record.chosen);
+    fmt::print("classify train --select: {} recordings, {} classes; chose {} ({}-fold CV {:.3f})\n",
+               model.files.size(), model.class_names.size(), perception::describe_candidate(chosen),
+               record.folds, chosen.accuracy());
+  } else {
+    const auto& in = model.options;
+    fmt::print(
+        "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, "
+        "electrodes {}, trim {:g}), analysed in {:.2f} s\n",
+        model.rows.size(), model.class_names.size(), model.input_names.size(),
+        fmt::join(names_of(in.groups), ","), t.procedure, to_string(in.contact.baseline_at),
+        to_string(in.contact.electrodes), in.contact.trim_fraction, run.analysis_s);
+    if (run.cv) {
+      const auto& cv = *run.cv;
+      fmt::print(
+          "cross-validation ({} folds, stratified): accuracy {:.3f} +- {:.3f} (folds: {:.3f}); "
+          "pooled {}/{}\n",
+          t.cv_folds, cv.mean, cv.spread, fmt::join(cv.fold_accuracy, ", "), cv.correct, cv.tested);
+      if (uses_chosen_defaults(t))
+        fmt::print(
+            "  (plain cross-validation of fixed options. The stroke defaults were chosen by "
+            "nested cross-validation on the project's 200 recordings of 20 materials "
+            "(docs/perception-models.md): on other recordings this is an estimate for them; on "
+            "those 200 it carries the choice and overstates, and the estimate is nested: "
+            "`classify train --select --cv {}`)\n",
+            t.cv_folds);
+    }
   }
-  return finish_training(o, perception::make_classifier_model(data, svm), t0);
-}
-
-int finish_training(const TrainOptions& o, const perception::ClassifierModel& model,
-                    std::chrono::steady_clock::time_point t0) {
-  const auto& svm = model.svm;
-  const auto data = perception::LabelledInputs{.options = model.options,
-                                               .input_names = model.input_names,
-                                               .class_names = model.class_names,
-                                               .files = model.files,
-                                               .rows = model.rows,
-                                               .classes = model.classes,
-                                               .values = model.values};
-  const perception::Classifier fitted(model);  // checks that it trains before writing the file
-  const auto train_fit = perception::test_classifier(fitted, model.class_names.size(), data);
   perception::write_classifier_model(o.out, model);
   fmt::print(
       "classify train: SVC (polynomial kernel, exponent {}, C = {:g}){}; accuracy on the "
       "training set {}/{}; model -> {} ({:.2f} s in all)\n",
-      svm.degree, svm.c, fitted.has_values() ? " and one SVR per class for the value" : "",
-      train_fit.correct, train_fit.tested, o.out.string(), seconds_since(t0));
+      model.svm.degree, model.svm.c,
+      model.values.empty() ? "" : " and one SVR per class for the value", run.training_fit.correct,
+      run.training_fit.tested, o.out.string(), seconds_since(t0));
   return 0;
 }
 
@@ -243,21 +193,21 @@ void add_classify(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::ExistingFile);
   tr->add_option("--out", t->out, "Model file to write (JSON)")->required();
-  tr->add_option("--procedure", t->procedure,
+  tr->add_option("--procedure", t->training.procedure,
                  "What a recording is: stroke (a slide over a texture), static (a press), or a "
                  "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
       ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
       ->capture_default_str();
   add_optional_mode_option(
-      *tr, "--baseline-at", t->baseline_at, perception::kBaselineAtNames,
+      *tr, "--baseline-at", t->training.baseline_at, perception::kBaselineAtNames,
       "Where the free-air baseline is: end (recordings that begin in contact), start, "
       "or none (the recording software already subtracted one); default: none for "
       "stroke, end otherwise");
   add_optional_mode_option(
-      *tr, "--electrodes", t->electrodes, perception::kElectrodesNames,
+      *tr, "--electrodes", t->training.electrodes, perception::kElectrodesNames,
       "Electrode signals of the inputs: clusters (the paper's 6 cluster means) or each "
       "(all 19 electrodes); default: clusters");
-  tr->add_option("--trim", t->trim,
+  tr->add_option("--trim", t->training.trim,
                  "Strokes: fraction of the contact left out at each end, in [0, 0.5) (the press "
                  "and the lift of a slide); default: 0.2 for stroke, 0 otherwise")
       ->check(CLI::Validator(
@@ -280,25 +230,25 @@ void add_classify(CLI::App& app, Action& action) {
           },
           "in [0, 0.5)"));
   add_mode_list_option(
-      *tr, "--inputs", t->inputs, perception::kInputGroupNames,
+      *tr, "--inputs", t->training.inputs, perception::kInputGroupNames,
       "Input groups, comma-separated: means, rates, hht (the paper's), bands (octave "
       "band powers of the vibration), stds (standard deviation of each signal over the "
       "contact), stats (plain statistics: mean and standard deviation of each signal, "
       "the vibration's, and the bands); default: stroke means,bands; dp, ru, roll the "
       "paper's means,rates,hht; static means");
-  tr->add_option("--kernel-degree", t->degree,
+  tr->add_option("--kernel-degree", t->training.kernel_degree,
                  "Exponent of the polynomial kernel; default 1 (searched with --select)")
       ->check(CLI::IsMember({1, 2}));
   tr->add_option(
-        "--c", t->c,
+        "--c", t->training.c,
         "SVM complexity constant C; default: 100 for stroke, 1 otherwise (searched with --select)")
       ->check(within(0.001, 100000.0));
-  tr->add_option("--cv", t->cv,
+  tr->add_option("--cv", t->training.cv_folds,
                  "Also report stratified K-fold cross-validation accuracy: of the options as given "
                  "(the stroke defaults were chosen on the project's recordings: on those, use "
                  "--select), or with --select nested, the choice made again inside each fold")
       ->check(CLI::Range(2, 1000));
-  tr->add_flag("--select", t->select,
+  tr->add_flag("--select", t->training.select,
                "Choose every option not given (inputs, baseline, electrodes, trim, kernel "
                "exponent, C) by 5-fold cross-validation on these recordings; the model records "
                "the comparison");

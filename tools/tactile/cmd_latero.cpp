@@ -1,4 +1,4 @@
-// The Latero on the command line: play, probe, emulate and benchmark (latero_cli.hpp).
+// The Latero on the command line: options of play, probe, emulate and benchmark (latero_cli.hpp).
 
 #include <fmt/format.h>
 
@@ -23,22 +23,6 @@ namespace tactile::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A movie for another layout cannot play on the Latero's 8 x 8 blades; say what would.
-void check_latero_movie(const movie::TactileMovie& movie) {
-  const movie::Layout latero = movie::latero_layout();
-  const movie::Layout& m = movie.layout;
-  if (m.rows != latero.rows || m.cols != latero.cols ||
-      std::abs(m.pitch_x_mm - latero.pitch_x_mm) > 1e-6 ||
-      std::abs(m.pitch_y_mm - latero.pitch_y_mm) > 1e-6) {
-    throw std::invalid_argument(fmt::format(
-        "the movie is for layout '{}' ({} x {} at {:g} x {:g} mm) but a Latero has layout "
-        "'latero' ({} x {} at {:g} x {:g} mm); map the strain movie again with `tactile map "
-        "STRAIN.h5 --layout latero --out MOVIE.h5`",
-        m.name, m.rows, m.cols, m.pitch_x_mm, m.pitch_y_mm, latero.rows, latero.cols,
-        latero.pitch_x_mm, latero.pitch_y_mm));
-  }
-}
 
 // The emulator served on a thread for as long as this lives.
 class ServingThread {
@@ -98,7 +82,7 @@ CLI::Validator latero_address_check() {
       "HOST[:PORT]");
 }
 
-void add_latero_play_options(CLI::App& play, LateroPlayOptions& o) {
+void add_latero_play_options(CLI::App& play, display::LateroPlayTarget& o) {
   play.add_option("--latero", o.address,
                   "Play on the Latero at HOST[:PORT] (UDP, port 8900 by default)")
       ->check(latero_address_check());
@@ -124,27 +108,6 @@ void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& m
                   "Latero: deflection that moves a blade by raw-per-unit")
       ->check(positive())
       ->capture_default_str();
-}
-
-int play_on_latero(const movie::TactileMovie& movie, const LateroPlayOptions& o, int loops,
-                   int stop_fd) {
-  check_latero_movie(movie);
-  display::LateroTransportOptions transport;
-  transport.mapping = o.mapping;
-  display::validate_blade_mapping(transport.mapping);
-  display::LateroTransport latero(display::parse_latero_address(o.address), transport);
-  fmt::print(
-      "play: streaming to the Latero at {} at {:g} Hz (paced by this computer's clock); blades: "
-      "raw {:g} at rest, {:+g} per {:g} um, at most {:g}\n",
-      latero.address().text(), movie.rate_hz, o.mapping.centre_raw, o.mapping.raw_per_unit,
-      o.mapping.full_scale_um, o.mapping.max_raw);
-  display::PlayOptions options;
-  options.loops = loops;
-  options.stop_fd = stop_fd;
-  const display::PlaybackReport report = display::play_movie(movie, latero, options);
-  fmt::print("{}", display::format_playback_report(report));
-  fmt::print("{}", display::format_latero_link(latero.stats(), movie.rate_hz));
-  return 0;
 }
 
 int print_latero_device(const std::string& address) {

@@ -31,7 +31,7 @@ void add_play(CLI::App& app, Action& action) {
       r.preview_png = "preview.png";
       return r;
     }();
-    LateroPlayOptions latero;
+    display::LateroPlayTarget latero;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -60,19 +60,15 @@ void add_play(CLI::App& app, Action& action) {
       // the blocked signals, so Ctrl-C reaches the player and not the default action.
       StopSignals stop;
       opt->choice.stop_fd = stop.fd();
-      int code = 0;
-      if (!opt->latero.address.empty()) {
-        code = play_on_latero(movie, opt->latero, opt->choice.loops, stop.fd());
-      } else {
-        // A stopped playback returns too, after its summary; the signal decides the exit code.
-        display::play_anywhere(movie, opt->choice,
-                               [](const std::string& text) { fmt::print("{}", text); });
-      }
+      if (!opt->latero.address.empty()) opt->choice.latero = opt->latero;
+      // A stopped playback returns too, after its summary; the signal decides the exit code.
+      display::play_anywhere(movie, opt->choice,
+                             [](const std::string& text) { fmt::print("{}", text); });
       if (const int signal = stop.received(); signal != 0) {
         fmt::print("play: stopped by {}\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
         return exit_code_for_signal(signal);
       }
-      return code;
+      return 0;
     };
   });
 }

@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/devices.hpp"
 #include "tactile/display/emulated_device.hpp"
+#include "tactile/display/latero_transport.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
 #include "tactile/display/usb_transports.hpp"
@@ -71,10 +73,59 @@ void play_on_device(const movie::TactileMovie& movie, const PlayRequest& request
   say("play: " + playback_summary_line(*result.report));
 }
 
+// A movie for another layout cannot play on the Latero's 8 x 8 blades; say what would.
+void check_latero_movie(const movie::TactileMovie& movie) {
+  const movie::Layout latero = movie::latero_layout();
+  const movie::Layout& m = movie.layout;
+  if (m.rows != latero.rows || m.cols != latero.cols ||
+      std::abs(m.pitch_x_mm - latero.pitch_x_mm) > 1e-6 ||
+      std::abs(m.pitch_y_mm - latero.pitch_y_mm) > 1e-6) {
+    throw std::invalid_argument(fmt::format(
+        "the movie is for layout '{}' ({} x {} at {:g} x {:g} mm) but a Latero has layout "
+        "'latero' ({} x {} at {:g} x {:g} mm); map the strain movie again with `tactile map "
+        "STRAIN.h5 --layout latero --out MOVIE.h5`",
+        m.name, m.rows, m.cols, m.pitch_x_mm, m.pitch_y_mm, latero.rows, latero.cols,
+        latero.pitch_x_mm, latero.pitch_y_mm));
+  }
+}
+
+void play_on_latero(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
+                    PlayResult& result) {
+  check_latero_movie(movie);
+  const LateroPlayTarget& target = *request.latero;
+  LateroTransportOptions transport;
+  transport.mapping = target.mapping;
+  validate_blade_mapping(transport.mapping);
+  LateroTransport latero(parse_latero_address(target.address), transport);
+  result.latero_address = latero.address();
+  const LateroBladeMapping& b = target.mapping;
+  say(fmt::format(
+      "play: streaming to the Latero at {} at {:g} Hz (paced by this computer's clock); blades: "
+      "raw {:g} at rest, {:+g} per {:g} um, at most {:g}\n",
+      latero.address().text(), movie.rate_hz, b.centre_raw, b.raw_per_unit, b.full_scale_um,
+      b.max_raw));
+  PlayOptions options;
+  options.loops = request.loops;
+  options.stop_fd = request.stop_fd;
+  // A stop request ends the stream between two frames; the transport's stop() then ramps every
+  // blade from where it is back to centre.
+  result.report = play_movie(movie, latero, options);
+  result.stopped = result.report->interrupted;
+  result.latero_link = latero.stats();
+  say(format_playback_report(*result.report));
+  say(format_latero_link(*result.latero_link, movie.rate_hz));
+}
+
 }  // namespace
 
 PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& request,
                          const Say& say) {
+  if (request.latero) {
+    PlayResult result;
+    result.target = PlaybackTarget::latero;
+    play_on_latero(movie, request, say, result);
+    return result;
+  }
   const auto devices = request.headless ? std::vector<DeviceDescription>{} : list_usb_devices();
   const PlaybackPlan plan = plan_playback(request.headless, devices, screen_available);
   PlayResult result;
@@ -104,6 +155,7 @@ PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& re
       return result;
     }
     case PlaybackTarget::headless:
+    case PlaybackTarget::latero:  // never planned
       break;
   }
   say(fmt::format("play: {}\n", request.headless ? "headless (emulated device)"

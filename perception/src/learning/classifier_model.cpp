@@ -221,12 +221,13 @@ SvmOptions svm_options_for(const ClassifierTraining& t) {
   return svm;
 }
 
-void require_two_classes(const LabelledInputs& data, const std::filesystem::path& labels) {
-  if (data.class_names.size() < 2) {
+void require_two_classes(const std::vector<std::string>& class_names,
+                         const std::filesystem::path& labels) {
+  if (class_names.size() < 2) {
     throw std::runtime_error(
         fmt::format("classify train: {}: {} class(es) ({}); a classifier "
                     "needs recordings of at least 2 classes",
-                    labels.string(), data.class_names.size(), fmt::join(data.class_names, ", ")));
+                    labels.string(), class_names.size(), fmt::join(class_names, ", ")));
   }
 }
 

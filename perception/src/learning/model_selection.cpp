@@ -11,6 +11,7 @@
 
 #include "tactile/common/names.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tactile/common/stopwatch.hpp"
 #include "tactile/perception/svm_model.hpp"
 
 namespace tactile::perception {
@@ -269,6 +270,62 @@ NestedCrossValidation nested_cross_validate(const LabelledRecordings& data,
     nested.chosen.push_back(s.records[k].candidates[s.records[k].chosen]);
   nested.overall = s.records.back();
   return nested;
+}
+
+SelectionGrid selection_grid_for(const ClassifierTraining& t) {
+  auto grid = default_selection_grid(t.procedure);
+  if (t.baseline_at) grid.baselines = {*t.baseline_at};
+  if (t.electrodes) grid.electrodes = {*t.electrodes};
+  if (t.trim) {
+    check_trim_fraction(*t.trim);
+    grid.trims = {*t.trim};
+  }
+  if (!t.inputs.empty()) grid.input_sets = {t.inputs};
+  if (t.kernel_degree) grid.degrees = {*t.kernel_degree};
+  if (t.c) grid.cs = {*t.c};
+  return grid;
+}
+
+ClassifierTrainingRun train_classifier(const std::filesystem::path& recordings,
+                                       const std::filesystem::path& labels,
+                                       const ClassifierTraining& training, int threads) {
+  ClassifierTrainingRun run;
+  if (training.select) {
+    const auto base = default_recording_inputs(training.procedure);
+    const auto grid = selection_grid_for(training);
+    run.candidates = grid.size();
+    const auto data = read_labelled_recordings(recordings, labels, {}, threads);
+    require_two_classes(data.class_names, labels);
+    SelectionRecord record;
+    if (training.cv_folds > 0) {
+      run.nested =
+          nested_cross_validate(data, base, grid, training.cv_folds, kSelectionFolds, threads);
+      record = run.nested->overall;
+    } else {
+      record = select_options(data, base, grid, kSelectionFolds, {}, threads);
+    }
+    run.model = make_selected_model(data, record, threads);
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto in = recording_inputs_for(training);
+    const auto svm = svm_options_for(training);
+    const auto data = load_labelled_recordings(recordings, labels, in, {}, threads);
+    run.analysis_s = seconds_since(t0);
+    require_two_classes(data.class_names, labels);
+    if (training.cv_folds > 0) run.cv = cross_validate(data, svm, training.cv_folds, threads);
+    run.model = make_classifier_model(data, svm);
+  }
+  const auto& m = run.model;
+  const Classifier fitted(m);  // checks that it trains before anything is written
+  run.training_fit = test_classifier(fitted, m.class_names.size(),
+                                     LabelledInputs{.options = m.options,
+                                                    .input_names = m.input_names,
+                                                    .class_names = m.class_names,
+                                                    .files = m.files,
+                                                    .rows = m.rows,
+                                                    .classes = m.classes,
+                                                    .values = m.values});
+  return run;
 }
 
 std::string describe_candidate(const SelectionCandidate& c) {

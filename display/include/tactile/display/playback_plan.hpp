@@ -13,7 +13,8 @@
 
 namespace tactile::display {
 
-enum class PlaybackTarget { device, window, headless };
+// `latero` is never planned: it is asked for (PlayRequest::latero in play_anywhere.hpp).
+enum class PlaybackTarget { device, window, headless, latero };
 
 struct PlaybackPlan {
   PlaybackTarget target = PlaybackTarget::headless;

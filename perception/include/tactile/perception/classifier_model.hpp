@@ -119,8 +119,9 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
 // set_recording_procedure.
 SvmOptions default_svm_options(std::string_view procedure);
 
-// What `classify train` (without --select) and the Python module's train() take: every option
-// left unset is the procedure's default (default_recording_inputs, default_svm_options).
+// What `classify train` and the Python module's train() take: every option left unset is the
+// procedure's default (default_recording_inputs, default_svm_options), or with `select` searched
+// (train_classifier in model_selection.hpp).
 struct ClassifierTraining {
   std::string procedure = "stroke";
   std::optional<ContactOptions::BaselineAt> baseline_at;
@@ -129,13 +130,16 @@ struct ClassifierTraining {
   std::vector<InputGroup> inputs;  // empty: the procedure's groups
   std::optional<int> kernel_degree;
   std::optional<double> c;
+  bool select = false;  // choose every option left unset by cross-validation (--select)
+  int cv_folds = 0;     // 0: none; K: also score by stratified K-fold (nested with select)
 };
 // Throw std::invalid_argument as default_recording_inputs and check_trim_fraction.
 RecordingInputOptions recording_inputs_for(const ClassifierTraining& training);
 SvmOptions svm_options_for(const ClassifierTraining& training);
 // A model of one class answers that class whatever it is given: not a classifier. Throws
-// std::runtime_error naming the labels file and its classes when `data` has fewer than 2.
-void require_two_classes(const LabelledInputs& data, const std::filesystem::path& labels);
+// std::runtime_error naming the labels file and its classes when there are fewer than 2.
+void require_two_classes(const std::vector<std::string>& class_names,
+                         const std::filesystem::path& labels);
 
 // Strict JSON; writing replaces the file only once it is complete. Reading throws
 // tactile::FormatError naming the file: not JSON, another format version, a missing or

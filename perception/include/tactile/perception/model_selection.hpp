@@ -12,6 +12,8 @@
 // exponent, then C nearer 1, then grid order. Scored by class accuracy only; a value column's
 // SVRs follow the chosen options.
 
+#include <filesystem>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -65,6 +67,32 @@ NestedCrossValidation nested_cross_validate(const LabelledRecordings& data,
                                             const RecordingInputOptions& base,
                                             const SelectionGrid& grid, int outer_folds,
                                             int inner_folds, int threads = 0);
+
+// Folds of the selection by cross-validation (`classify train --select`), and the inner folds
+// of a nested cross-validation.
+inline constexpr int kSelectionFolds = 5;
+
+// The procedure's grid (default_selection_grid) with every option `training` names fixed to
+// that value.
+SelectionGrid selection_grid_for(const ClassifierTraining& training);
+
+// A training as `classify train` runs it, and what it reports.
+struct ClassifierTrainingRun {
+  ClassifierModel model;              // with select, the selection recorded in it (model.selection)
+  double analysis_s = 0;              // reading and analysing the recordings (without select)
+  std::size_t candidates = 0;         // select: the grid's size
+  std::optional<CrossValidation> cv;  // cv_folds without select
+  std::optional<NestedCrossValidation> nested;  // cv_folds with select
+  ClassifierTest training_fit;                  // the model on its own training rows
+};
+// Reads and analyses the labelled recordings, with training.select chooses the options left
+// unset (kSelectionFolds-fold cross-validation), with cv_folds scores the training by
+// cross-validation (nested with select), and trains the model on every recording. Throws as
+// load_labelled_recordings, require_two_classes (fewer than 2 classes), select_options and
+// cross_validate (std::invalid_argument for a fold count below 2 or above a class's rows).
+ClassifierTrainingRun train_classifier(const std::filesystem::path& recordings,
+                                       const std::filesystem::path& labels,
+                                       const ClassifierTraining& training, int threads = 0);
 
 // "stats; baseline none, electrodes each, trim 0.1; exponent 1, C = 1" (for messages).
 std::string describe_candidate(const SelectionCandidate& c);
