@@ -107,9 +107,9 @@ std::string file_bytes(const std::filesystem::path& path) {
   return {(std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()};
 }
 
-// PNG and JPEG are decoded by our own calls to libpng and libjpeg (for their messages): the
-// pixels must still be OpenCV's own grey decoding, for every kind of PNG OpenCV writes.
-TEST(Image, PngAndJpegDecodeToTheGreyOpencvGives) {
+// PNG and JPEG are decoded by our own calls to libpng and libjpeg (for their messages), BMP
+// checked first: the pixels must still be OpenCV's own grey decoding, for every kind of image.
+TEST(Image, EveryFormatReadDecodesToTheGreyOpencvGives) {
   TempDir dir;
   cv::Mat bgr(23, 31, CV_8UC3), bgra(23, 31, CV_8UC4), gray16(23, 31, CV_16UC1);
   cv::randu(bgr, 0, 256);
@@ -117,8 +117,9 @@ TEST(Image, PngAndJpegDecodeToTheGreyOpencvGives) {
   cv::randu(gray16, 0, 65536);
   const cv::Mat gray8 = to_mat(gradient(31, 23));
   const std::vector<std::pair<std::string, cv::Mat>> images = {
-      {"gray8.png", gray8}, {"gray16.png", gray16}, {"bgr.png", bgr},
-      {"bgra.png", bgra},   {"bgr.jpg", bgr},       {"gray8.jpg", gray8}};
+      {"gray8.png", gray8}, {"gray16.png", gray16}, {"bgr.png", bgr}, {"bgra.png", bgra},
+      {"bgr.jpg", bgr},     {"gray8.jpg", gray8},   {"bgr.bmp", bgr}, {"gray8.bmp", gray8},
+      {"bgr.tif", bgr},     {"bgr.webp", bgr}};
   for (const auto& [name, mat] : images) {
     const auto path = dir.path() / name;
     ASSERT_TRUE(cv::imwrite(path.string(), mat)) << name;
@@ -150,6 +151,27 @@ TEST(Image, DamagedPngAndJpegAreFormatErrorsSayingWhatIsWrong) {
   std::ofstream(dir.path() / "half.jpg", std::ios::binary) << jpg.substr(0, jpg.size() * 2 / 3);
   EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "half.jpg"); }),
               HasSubstr("half.jpg: not a readable image (Premature end of JPEG file)"));
+
+  // OpenCV's BMP decoder prints "imdecode_(''): can't read data" for a truncated file.
+  for (const char* name : {"gray8.bmp", "bgr.bmp"}) {
+    const cv::Mat mat = std::string(name) == "bgr.bmp"
+                            ? cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3))
+                            : to_mat(gradient(64, 48));
+    ASSERT_TRUE(cv::imwrite((dir.path() / name).string(), mat));
+    const std::string bmp = file_bytes(dir.path() / name);
+    std::ofstream(dir.path() / "cut.bmp", std::ios::binary) << bmp.substr(0, bmp.size() - 100);
+    EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "cut.bmp"); }),
+                HasSubstr("cut.bmp: not a readable image (the file ends early (truncated))"))
+        << name;
+  }
+}
+
+// Other formats OpenCV decodes print their own errors when damaged: they are refused by name.
+TEST(Image, OtherFormatsAreRefusedNamingTheFormatsRead) {
+  TempDir dir;
+  ASSERT_TRUE(cv::imwrite((dir.path() / "a.pgm").string(), to_mat(gradient(8, 8))));
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "a.pgm"); }),
+              HasSubstr("a.pgm: not a readable image (not a PNG, JPEG, BMP, TIFF or WebP file)"));
 }
 
 TEST(Image, OpencvErrorsAreSaidInWords) {

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -156,6 +158,67 @@ bool starts_with(const std::vector<std::uint8_t>& bytes, std::initializer_list<s
   return bytes.size() >= head.size() && std::equal(head.begin(), head.end(), bytes.begin());
 }
 
+std::uint32_t little_endian(const std::vector<std::uint8_t>& bytes, std::size_t at, int size) {
+  std::uint32_t value = 0;
+  for (int i = size - 1; i >= 0; --i) value = value << 8 | bytes[at + static_cast<std::size_t>(i)];
+  return value;
+}
+
+// OpenCV's BMP decoder reads through a stream that throws at the end of the data, and OpenCV
+// prints that on stderr. A BMP whose header, palette or pixels go past the end of the file is
+// found here first. Returns what is wrong, or nothing.
+std::optional<std::string> bmp_problem(const std::vector<std::uint8_t>& bytes) {
+  const std::string truncated = "the file ends early (truncated)";
+  if (bytes.size() < 18) return truncated;
+  const std::uint32_t offset = little_endian(bytes, 10, 4);
+  const std::uint32_t header = little_endian(bytes, 14, 4);
+  if (header != 12 && header < 40) return fmt::format("unknown BMP header of {} bytes", header);
+  if (bytes.size() < 14 + std::uint64_t{header} || offset > bytes.size()) return truncated;
+  const bool core = header == 12;
+  const std::uint64_t width = core ? little_endian(bytes, 18, 2) : little_endian(bytes, 18, 4);
+  // A negative height in the longer headers means rows from the top down.
+  const std::uint64_t height =
+      core ? little_endian(bytes, 20, 2)
+           : static_cast<std::uint64_t>(
+                 std::abs(std::int64_t{static_cast<std::int32_t>(little_endian(bytes, 22, 4))}));
+  const std::uint32_t bits = core ? little_endian(bytes, 24, 2) : little_endian(bytes, 28, 2);
+  const std::uint32_t compression = core ? 0 : little_endian(bytes, 30, 4);
+  if (bits <= 8) {  // the palette follows the header: 3-byte entries in the short header
+    const std::uint32_t used = core ? 0 : std::min<std::uint32_t>(little_endian(bytes, 46, 4), 256);
+    const std::uint64_t palette = (used != 0 ? used : 1U << bits) * (core ? 3U : 4U);
+    if (bytes.size() < 14 + std::uint64_t{header} + palette) return truncated;
+  }
+  if (compression == 0 || compression == 3) {  // rows of pixels, each padded to 4 bytes
+    const std::uint64_t row = (width * bits + 31) / 32 * 4;
+    if (height > 0 && row > (bytes.size() - offset) / height) return truncated;
+    return std::nullopt;
+  }
+  if (compression != 1 && compression != 2) return std::nullopt;  // OpenCV refuses it quietly
+  // Run-length codes: (count, value) pairs; 0 0 ends a row, 0 1 the image, 0 2 dx dy moves,
+  // 0 n copies n literal pixels (bytes for RLE8, nibbles for RLE4) padded to 2 bytes.
+  std::uint64_t y = 0;
+  std::size_t at = offset;
+  while (y < height) {
+    if (at + 2 > bytes.size()) return truncated;
+    const std::uint8_t count = bytes[at], code = bytes[at + 1];
+    at += 2;
+    if (count != 0) continue;
+    if (code == 0) {
+      ++y;
+    } else if (code == 1) {
+      return std::nullopt;
+    } else if (code == 2) {
+      if (at + 2 > bytes.size()) return truncated;
+      y += bytes[at + 1];
+      at += 2;
+    } else {
+      const std::size_t literal = compression == 1 ? code : (code + 1) / 2;
+      at += literal + (literal & 1);
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 GrayImage read_image(const std::filesystem::path& path) {
@@ -185,6 +248,21 @@ GrayImage read_image(const std::filesystem::path& path) {
     JpegErrors errors{};
     if (!check_jpeg(bytes, errors)) {
       throw FormatError(fmt::format("{}: not a readable image ({})", path.string(), errors.error));
+    }
+  } else if (starts_with(bytes, {'B', 'M'})) {
+    if (const auto problem = bmp_problem(bytes)) {
+      throw FormatError(fmt::format("{}: not a readable image ({})", path.string(), *problem));
+    }
+  } else {
+    // OpenCV's other decoders print their own errors on stderr (PNM, JPEG 2000, ...); TIFF's
+    // and WebP's do not: OpenCV silences libtiff, and libwebp says nothing.
+    const bool tiff =
+        starts_with(bytes, {'I', 'I', 42, 0}) || starts_with(bytes, {'M', 'M', 0, 42});
+    const bool webp = bytes.size() >= 12 && starts_with(bytes, {'R', 'I', 'F', 'F'}) &&
+                      std::equal(bytes.begin() + 8, bytes.begin() + 12, "WEBP");
+    if (!tiff && !webp) {
+      throw FormatError(fmt::format(
+          "{}: not a readable image (not a PNG, JPEG, BMP, TIFF or WebP file)", path.string()));
     }
   }
   cv::Mat decoded;
