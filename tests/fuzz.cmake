@@ -77,7 +77,7 @@ add_custom_command(
   OUTPUT ${rf_target}
   COMMAND ${TACTILE_CLANG}++ -fsanitize=fuzzer,address,undefined ${rf_objects}
           -Wl,--start-group ${rf_library_files} -Wl,--end-group
-          ${HDF5_CXX_LIBRARIES} ${HDF5_LIBRARIES} -lfmt -lsvm -lcairo -lopencv_imgcodecs
+          ${HDF5_CXX_LIBRARIES} ${HDF5_LIBRARIES} ${PNG_LIBRARIES} ${JPEG_LIBRARIES} -lfmt -lsvm -lcairo -lopencv_imgcodecs
           -lopencv_imgproc -lopencv_core -o ${rf_target}
   DEPENDS ${rf_objects} ${rf_libraries}
   COMMENT "Linking the reader fuzzer"

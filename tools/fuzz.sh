@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Builds every libFuzzer target and runs them for SECONDS in total, split evenly: the firmware's
-# frame decoder and each file reader (HDF5 strain and tactile movies, JSON layout, HJIF, calibration,
-# pore-model and classifier-model files, recording CSV, pore marks, classifier labels CSV,
-# experiment JSON with its ground-truth and synthetic scenes). Prints the executions per
-# target and in all; exits 1 on a finding (its input is kept in build/release/tests/*fuzz*/).
+# Builds every libFuzzer target and runs them for SECONDS of wall time, one per core at a time,
+# each target for the same share: the firmware's frame decoder and each file reader (HDF5 strain
+# and tactile movies, JSON layout, HJIF, calibration, pore-model and classifier-model files,
+# recording CSV, pore marks, classifier labels CSV, experiment JSON with its ground-truth and
+# synthetic scenes). Prints the executions per target and in all, and the load average (the
+# count depends on the CPU the machine spares); exits 1 on a finding (its input is kept in
+# build/release/tests/*fuzz*/).
 #   bash tools/fuzz.sh 600
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,35 +22,68 @@ build=build/release/tests
 readers=(strain-movie tactile-movie layout-json hjif calibration-json pore-model-json
   classifier-model-json recording-csv pore-marks labels-csv experiment-json)
 targets=(frame-decoder "${readers[@]}")
-each=$((seconds / ${#targets[@]}))
+# One fuzzer per core at a time (libFuzzer's loop is single-threaded), in rounds; every target
+# gets the same share of the wall time, so SECONDS is spent on each core.
+jobs=$(nproc)
+((jobs > ${#targets[@]})) && jobs=${#targets[@]}
+rounds=$(((${#targets[@]} + jobs - 1) / jobs))
+each=$((seconds / rounds))
 ((each >= 1)) || each=1
+
+dir_of() {
+  if [[ $1 == frame-decoder ]]; then echo "$build/fuzz/long"; else echo "$build/reader_fuzz/long-$1"; fi
+}
+
+# Runs one target for $each seconds; its log is $dir/log, its exit status $dir/status.
+fuzz_one() {
+  local target=$1 dir fuzzer leaks=1 timeout=10 asan=allocator_may_return_null=1 status=0
+  dir=$(dir_of "$target")
+  rm -rf "$dir" && mkdir -p "$dir/corpus" "$dir/seeds"
+  if [[ $target == frame-decoder ]]; then
+    fuzzer=$build/fuzz/frame_fuzz
+    "$build/fuzz/make_seeds" "$dir/seeds"
+  else
+    fuzzer=$build/reader_fuzz/reader_fuzz
+    TACTILE_FUZZ_READER=$target "$fuzzer" --write-seeds "$dir/seeds"
+  fi
+  if [[ $target == *movie ]]; then
+    # HDF5 1.10 leaks a few bytes on some damaged files: leak checks only where the library is
+    # ours. Above the movie readers' own bound for a stalled HDF5 (10 s for a small file).
+    leaks=0
+    timeout=20
+    # The movie readers fork a child for every file (crash containment), and a fork copies the
+    # page tables of everything the process has touched: AddressSanitizer's quarantine of freed
+    # memory (256 MB by default) made each fork several times dearer. 16 MB still holds the
+    # frees of many inputs for use-after-free checks.
+    asan+=:quarantine_size_mb=16
+  fi
+  ASAN_OPTIONS=detect_leaks=$leaks:$asan TACTILE_FUZZ_READER=$target "$fuzzer" \
+    -max_total_time="$each" -timeout="$timeout" -rss_limit_mb=2048 -detect_leaks=$leaks \
+    -print_final_stats=1 -artifact_prefix="$dir/" "$dir/corpus" "$dir/seeds" >"$dir/log" 2>&1 ||
+    status=$?
+  echo "$status" >"$dir/status"
+}
+
+running=0
+for target in "${targets[@]}"; do
+  if ((running >= jobs)); then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  fuzz_one "$target" &
+  running=$((running + 1))
+done
+wait || true
+
+echo "$(nproc) core(s), $jobs fuzzer(s) at a time, $each s per target; load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 total=0
 findings=0
 for target in "${targets[@]}"; do
-  if [[ $target == frame-decoder ]]; then
-    dir=$build/fuzz/long
-    fuzzer=$build/fuzz/frame_fuzz
-    rm -rf "$dir" && mkdir -p "$dir/corpus" "$dir/seeds"
-    "$build/fuzz/make_seeds" "$dir/seeds"
-  else
-    dir=$build/reader_fuzz/long-$target
-    fuzzer=$build/reader_fuzz/reader_fuzz
-    rm -rf "$dir" && mkdir -p "$dir/corpus" "$dir/seeds"
-    TACTILE_FUZZ_READER=$target "$fuzzer" --write-seeds "$dir/seeds"
-  fi
-  # HDF5 1.10 leaks a few bytes on some damaged files: leak checks only where the library is ours.
-  leaks=1
-  timeout=10
-  # Above the movie readers' own bound for a stalled HDF5 (10 s for a small file).
-  [[ $target == *movie ]] && leaks=0 && timeout=20
-  status=0
-  ASAN_OPTIONS=detect_leaks=$leaks:allocator_may_return_null=1 TACTILE_FUZZ_READER=$target "$fuzzer" -max_total_time="$each" -timeout="$timeout" -rss_limit_mb=2048 \
-    -detect_leaks=$leaks \
-    -print_final_stats=1 -artifact_prefix="$dir/" "$dir/corpus" "$dir/seeds" >"$dir/log" 2>&1 ||
-    status=$?
+  dir=$(dir_of "$target")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
   runs=${runs:-0}
   total=$((total + runs))
+  status=$(cat "$dir/status" 2>/dev/null || echo 1)
   if ((status != 0)); then
     findings=$((findings + 1))
     printf '%-24s %12s executions in %d s  FINDING (log: %s)\n' "$target" "$runs" "$each" "$dir/log"

@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
   libopencv-dev libopencv-videoio-dev  # videoio: `capture VIDEO` over FFmpeg (libavcodec, libavformat)
   libhdf5-dev
+  libpng-dev libjpeg-dev  # images read with our own message handlers (capture/src/camera/image.cpp)
   libusb-1.0-0-dev libhidapi-dev
   libglfw3-dev libgl-dev libimgui-dev
   libsvm-dev libcli11-dev nlohmann-json3-dev libfmt-dev

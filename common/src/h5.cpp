@@ -76,6 +76,36 @@ void write_any(H5::Group& group, const std::string& name, const std::vector<T>& 
   if (count > 0) ds.write(data.data(), native_type<T>());
 }
 
+// Deflate, the one filter our files use, shrinks data at most 1032:1.
+constexpr double kMaxDeflateRatio = 1032;
+
+// A damaged header can declare far more values than the file holds: allocating them before
+// HDF5's read fails took gigabytes and seconds. What the file stores (no more than the file
+// itself), expanded by deflate's largest ratio, bounds what a dataset can hold.
+void check_stored(const H5::DataSet& ds, std::uint64_t count, const std::string& loc) {
+  if (count == 0) return;
+  const hsize_t stored = ds.getStorageSize();
+  hsize_t file_bytes = 0;
+  const hid_t file = H5Iget_file_id(ds.getId());
+  if (file >= 0) {
+    if (H5Fget_filesize(file, &file_bytes) < 0) file_bytes = 0;
+    H5Fclose(file);
+  }
+  if (file_bytes > 0 && stored > file_bytes) {
+    throw FormatError(fmt::format("{}: declares {} bytes of stored data in a file of {} bytes", loc,
+                                  stored, file_bytes));
+  }
+  // The size of a value as stored: a damaged type can declare gigabytes for each.
+  const std::size_t value_bytes = ds.getDataType().getSize();
+  const double bytes = static_cast<double>(count) * static_cast<double>(value_bytes);
+  if (bytes > static_cast<double>(stored) * kMaxDeflateRatio) {
+    throw FormatError(
+        fmt::format("{}: declares {} values of {} bytes each ({} bytes) but the file "
+                    "stores {} bytes of them (at most 1:{} compressed)",
+                    loc, count, value_bytes, bytes, stored, kMaxDeflateRatio));
+  }
+}
+
 template <typename T>
 std::vector<T> read_any(const H5::Group& group, const std::string& name, std::size_t rank,
                         std::vector<hsize_t>& dims, const std::string& where, H5T_class_t want) {
@@ -98,6 +128,7 @@ std::vector<T> read_any(const H5::Group& group, const std::string& name, std::si
     // Before allocating: a damaged or hostile shape must fail here, not in the allocator.
     const auto count = checks::value_count(std::vector<std::uint64_t>(dims.begin(), dims.end()),
                                            sizeof(T), where, name);
+    check_stored(ds, count, loc);
     std::vector<T> out(count);
     if (count > 0) ds.read(out.data(), native_type<T>());
     return out;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <fstream>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
 #include "../common/error_of.hpp"
@@ -93,6 +94,84 @@ TEST(Image, PngDeclaringTooManyPixelsIsRefusedInWords) {
   EXPECT_THAT(e, HasSubstr("huge.png: not a readable image (the image has more pixels than "
                            "OpenCV decodes (2^30))"));
   EXPECT_THAT(e, ::testing::Not(HasSubstr("OpenCV(")));
+}
+
+cv::Mat to_mat(const GrayImage& image) {
+  return cv::Mat(image.height_px, image.width_px, CV_8U,
+                 const_cast<std::uint8_t*>(image.pixels.data()))
+      .clone();
+}
+
+std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {(std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()};
+}
+
+// PNG and JPEG are decoded by our own calls to libpng and libjpeg (for their messages), BMP
+// checked first: the pixels must still be OpenCV's own grey decoding, for every kind of image.
+TEST(Image, EveryFormatReadDecodesToTheGreyOpencvGives) {
+  TempDir dir;
+  cv::Mat bgr(23, 31, CV_8UC3), bgra(23, 31, CV_8UC4), gray16(23, 31, CV_16UC1);
+  cv::randu(bgr, 0, 256);
+  cv::randu(bgra, 0, 256);
+  cv::randu(gray16, 0, 65536);
+  const cv::Mat gray8 = to_mat(gradient(31, 23));
+  const std::vector<std::pair<std::string, cv::Mat>> images = {
+      {"gray8.png", gray8}, {"gray16.png", gray16}, {"bgr.png", bgr}, {"bgra.png", bgra},
+      {"bgr.jpg", bgr},     {"gray8.jpg", gray8},   {"bgr.bmp", bgr}, {"gray8.bmp", gray8},
+      {"bgr.tif", bgr},     {"bgr.webp", bgr}};
+  for (const auto& [name, mat] : images) {
+    const auto path = dir.path() / name;
+    ASSERT_TRUE(cv::imwrite(path.string(), mat)) << name;
+    const cv::Mat expected = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+    const GrayImage got = read_image(path);
+    ASSERT_EQ(got.width_px, expected.cols) << name;
+    ASSERT_EQ(got.height_px, expected.rows) << name;
+    EXPECT_EQ(cv::norm(to_mat(got), expected, cv::NORM_INF), 0) << name;
+  }
+}
+
+// A damaged PNG or JPEG is refused in our words, naming the file and what is wrong (libpng and
+// libjpeg would print their own lines on stderr; tests/e2e checks the real program's stderr).
+TEST(Image, DamagedPngAndJpegAreFormatErrorsSayingWhatIsWrong) {
+  TempDir dir;
+  write_png(dir.path() / "good.png", gradient(64, 48));
+  const std::string png = file_bytes(dir.path() / "good.png");
+  std::ofstream(dir.path() / "half.png", std::ios::binary) << png.substr(0, png.size() / 2);
+  std::string bad_crc = png;
+  bad_crc[29] = static_cast<char>(bad_crc[29] ^ 0xFF);  // the IHDR chunk's checksum
+  std::ofstream(dir.path() / "crc.png", std::ios::binary) << bad_crc;
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "half.png"); }),
+              HasSubstr("half.png: not a readable image (the file ends early (truncated))"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "crc.png"); }),
+              HasSubstr("crc.png: not a readable image (IHDR: CRC error)"));
+
+  ASSERT_TRUE(cv::imwrite((dir.path() / "good.jpg").string(), to_mat(gradient(64, 48))));
+  const std::string jpg = file_bytes(dir.path() / "good.jpg");
+  std::ofstream(dir.path() / "half.jpg", std::ios::binary) << jpg.substr(0, jpg.size() * 2 / 3);
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "half.jpg"); }),
+              HasSubstr("half.jpg: not a readable image (Premature end of JPEG file)"));
+
+  // OpenCV's BMP decoder prints "imdecode_(''): can't read data" for a truncated file.
+  for (const char* name : {"gray8.bmp", "bgr.bmp"}) {
+    const cv::Mat mat = std::string(name) == "bgr.bmp"
+                            ? cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3))
+                            : to_mat(gradient(64, 48));
+    ASSERT_TRUE(cv::imwrite((dir.path() / name).string(), mat));
+    const std::string bmp = file_bytes(dir.path() / name);
+    std::ofstream(dir.path() / "cut.bmp", std::ios::binary) << bmp.substr(0, bmp.size() - 100);
+    EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "cut.bmp"); }),
+                HasSubstr("cut.bmp: not a readable image (the file ends early (truncated))"))
+        << name;
+  }
+}
+
+// Other formats OpenCV decodes print their own errors when damaged: they are refused by name.
+TEST(Image, OtherFormatsAreRefusedNamingTheFormatsRead) {
+  TempDir dir;
+  ASSERT_TRUE(cv::imwrite((dir.path() / "a.pgm").string(), to_mat(gradient(8, 8))));
+  EXPECT_THAT(error_of<FormatError>([&] { read_image(dir.path() / "a.pgm"); }),
+              HasSubstr("a.pgm: not a readable image (not a PNG, JPEG, BMP, TIFF or WebP file)"));
 }
 
 TEST(Image, OpencvErrorsAreSaidInWords) {

@@ -328,6 +328,18 @@ TEST_F(Tampered, HugeDeclaredSizesNameTheLimitQuickly) {
   }
 }
 
+// Found by the reader fuzzer: one byte makes /frames/point_type declare about 2 GB of values the
+// file does not hold (tests/data/damaged-movies/README.md). Refused before they are allocated.
+TEST(StrainMovieIo, DatasetDeclaringMoreThanTheFileHoldsIsRefusedQuickly) {
+  const auto path = std::filesystem::path(TACTILE_TEST_DATA_DIR) / "damaged-movies" /
+                    "strain-oversized-dataset.h5";
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string e = read_error(path);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
+  EXPECT_THAT(e, HasSubstr("strain-oversized-dataset.h5:/frames/point_type"));
+  EXPECT_THAT(e, HasSubstr("but the file stores"));
+}
+
 // Cut at every eighth, filled with random bytes, or with bytes scrambled: a FormatError naming
 // the file, or (a scramble that left the data readable) a movie; never a crash.
 TEST(StrainMovieIo, CutRandomAndScrambledFilesAreFormatErrors) {

@@ -37,6 +37,28 @@ void write_sample(const fs::path& path) {
 
 }  // namespace
 
+// A dataset whose data were never written stores nothing: HDF5 would give its fill value for
+// every declared value, after the reader allocated them all. A damaged file declaring more values
+// than it holds is refused the same way, before the allocation.
+TEST_F(H5Test, DatasetDeclaringMoreThanTheFileStoresIsNamedBeforeAllocating) {
+  const fs::path p = dir_ / "unwritten.h5";
+  {
+    H5::H5File f(p.string(), H5F_ACC_TRUNC);
+    const hsize_t dims[1] = {50000000};
+    const hsize_t chunk[1] = {65536};
+    H5::DSetCreatPropList props;
+    props.setChunk(1, chunk);
+    props.setDeflate(4);
+    f.createDataSet("values", H5::PredType::NATIVE_INT32, H5::DataSpace(1, dims), props);
+  }
+  H5::H5File f = tactile::h5::open_for_reading(p);
+  std::vector<hsize_t> dims;
+  EXPECT_THAT(error_of<tactile::FormatError>(
+                  [&] { tactile::h5::read_ints(f, "values", 1, dims, "unwritten.h5"); }),
+              HasSubstr("unwritten.h5/values: declares 50000000 values of 4 bytes each (200000000 "
+                        "bytes) but the file stores 0 bytes of them"));
+}
+
 TEST_F(H5Test, AttributesAndDatasetsRoundTrip) {
   const fs::path p = dir_ / "a.h5";
   write_sample(p);

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -141,4 +143,54 @@ TEST(HostileInput, CaptureOfFramesWithNoEdgeFailsAndWritesNothing) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("no strain measured")) << r.output;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A damaged frame among good ones: libpng would print "libpng error: ..." on stderr before the
+// program's own message; the only line about the file must be the program's one error line.
+TEST(HostileInput, DamagedPngFrameGivesOnlyTheProgramsOneLineNamingIt) {
+  const tactile::test::TempDir dir("damaged-png");
+  tactile::capture::GrayImage frame{64, 48, std::vector<std::uint8_t>(64 * 48)};
+  for (std::size_t i = 0; i < frame.pixels.size(); ++i) {
+    frame.pixels[i] = static_cast<std::uint8_t>(i * 7 % 251);
+  }
+  struct Damage {
+    std::string name;
+    std::string reason;
+    std::function<void(std::string&)> apply;
+  };
+  const std::vector<Damage> damages = {{"truncated", "the file ends early (truncated)",
+                                        [](std::string& png) { png.resize(png.size() / 2); }},
+                                       {"bad-crc", "IHDR: CRC error", [](std::string& png) {
+                                          png[29] = static_cast<char>(png[29] ^ 0xFF);
+                                        }}};
+  for (const Damage& damage : damages) {
+    const auto frames = dir.path() / damage.name;
+    tactile::capture::write_frames(frames, {frame, frame, frame});
+    const auto bad = frames / tactile::capture::frame_file_name(1);
+    std::string bytes;
+    {
+      std::ifstream in(bad, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    damage.apply(bytes);
+    std::ofstream(bad, std::ios::binary | std::ios::trunc) << bytes;
+    const auto out = dir.path() / (damage.name + ".h5");
+    const auto r = run_tactile("capture " + frames.string() +
+                               " --px-per-mm 62 --min-track 2 --out " + out.string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    // Before the frame, capture's own notes (its choices, its progress); then its error, last.
+    std::vector<std::string> lines;
+    std::istringstream text(r.output);
+    for (std::string line; std::getline(text, line);) lines.push_back(line);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_EQ(lines.back(), "tactile capture: error: " + bad.string() + ": not a readable image (" +
+                                damage.reason + ")");
+    for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+      EXPECT_TRUE(lines[i].rfind("capture: ", 0) == 0 || lines[i].rfind("  ", 0) == 0)
+          << "not one of capture's own notes: " << lines[i];
+      EXPECT_THAT(lines[i], ::testing::Not(HasSubstr(bad.filename().string())));
+    }
+    EXPECT_THAT(r.output, ::testing::Not(HasSubstr("libpng")));
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
 }

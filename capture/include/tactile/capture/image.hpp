@@ -21,8 +21,9 @@ struct GrayImage {
   }
 };
 
-// Reads any image file OpenCV can decode, converted to grey. Throws tactile::FormatError naming
-// the file if it is missing, empty or not an image.
+// Reads a PNG, JPEG, BMP, TIFF or WebP image (by its content, not its name), converted to grey.
+// Throws tactile::FormatError naming the file and what is wrong if it is missing, empty, of
+// another format, damaged or truncated; no library prints anything of its own.
 GrayImage read_image(const std::filesystem::path& path);
 
 // Writes a PNG; throws std::runtime_error naming the file on failure.
