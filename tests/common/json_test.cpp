@@ -29,6 +29,26 @@ TEST(Json, ParseErrorsNameTheOrigin) {
               HasSubstr("doc.json: not valid JSON"));
 }
 
+// Found by the second hostile-input run: nlohmann keeps the last of two equal keys, so a layout
+// file with "rows" twice silently meant the second; and its messages carried the library's
+// "[json.exception.parse_error.101]" tag.
+TEST(Json, RepeatedKeysAreRefusedAndMessagesAreTheProgramsWords) {
+  const JsonOrigin at{"doc.json"};
+  EXPECT_THAT(
+      error_of<FormatError>([&] { parse_json(at, R"({"rows": 6, "cols": 2, "rows": 200})"); }),
+      HasSubstr("doc.json: field 'rows' appears twice"));
+  EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, R"({"a": {"b": 1, "b": 2}})"); }),
+              HasSubstr("field 'b' appears twice"));
+  // The same key in two different objects is no repetition.
+  EXPECT_NO_THROW(parse_json(at, R"({"a": {"b": 1}, "c": {"b": 2}, "b": [{"b": 3}, {"b": 4}]})"));
+  const std::string cut = error_of<FormatError>([&] { parse_json(at, "{\"a\": "); });
+  EXPECT_THAT(cut, HasSubstr("doc.json: not valid JSON (parse error at line 1"));
+  EXPECT_THAT(cut, ::testing::Not(HasSubstr("json.exception")));
+  EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, "[1e999]"); }),
+              ::testing::AllOf(HasSubstr("number overflow parsing '1e999'"),
+                               ::testing::Not(HasSubstr("json.exception"))));
+}
+
 TEST(Json, FieldsAreCheckedForWhatAPersonMeant) {
   const JsonOrigin at{"doc.json"};
   const auto j = parse_json(at, R"({"n": "3", "i": 2.5, "s": "", "x": 1, "nan": null})");

@@ -169,8 +169,9 @@ void add_calibrate(CLI::App& app, Action& action) {
   sub->add_option("DOT_GRID_IMAGE", opt->image, "Image of the dot grid")
       ->required()
       ->check(CLI::ExistingFile);
+  // A grid of at least 4 x 4 dots in a fingertip camera's 5-50 mm field.
   sub->add_option("--spacing-mm", opt->spacing_mm, "Dot spacing in mm")
-      ->check(positive())
+      ->check(within(0.01, 10.0))
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Calibration file to write (JSON)")->capture_default_str();
   sub->callback([opt, &action] {

@@ -14,10 +14,14 @@
 
 namespace tactile::capture {
 
+namespace {
+constexpr int kCalibrationFormatVersion = 1;
+}  // namespace
+
 void write_calibration_json(const std::filesystem::path& path, const Calibration& calibration) {
   nlohmann::json j;
   j["format"] = "tactile-calibration";
-  j["format_version"] = 1;
+  j["format_version"] = kCalibrationFormatVersion;
   j["px_to_mm"] = calibration.px_to_mm;
   j["mm_per_px"] = calibration.mm_per_px;
   j["image_width_px"] = calibration.image_width_px;
@@ -32,6 +36,14 @@ Calibration read_calibration_json(const std::filesystem::path& path) {
   if (json_field<std::string>(j, "format", where) != "tactile-calibration") {
     throw FormatError(fmt::format("{}: 'format' is not tactile-calibration", where));
   }
+  // A later version may mean the fields differently: refused rather than guessed.
+  const JsonOrigin at{where};
+  const auto version =
+      json_integer(at, json_required(at, j, "format_version", ""), "format_version");
+  if (version != kCalibrationFormatVersion) {
+    at.fail(fmt::format("format_version {} is not supported (this program reads {})", version,
+                        kCalibrationFormatVersion));
+  }
   Calibration c;
   const auto h = json_field<std::vector<double>>(j, "px_to_mm", where);
   if (h.size() != 9) {
@@ -40,8 +52,14 @@ Calibration read_calibration_json(const std::filesystem::path& path) {
   }
   std::copy(h.begin(), h.end(), c.px_to_mm.begin());
   c.mm_per_px = json_field<double>(j, "mm_per_px", where);
-  c.image_width_px = json_field<int>(j, "image_width_px", where);
-  c.image_height_px = json_field<int>(j, "image_height_px", where);
+  // Read as 64-bit whole numbers and range-checked before narrowing: 1e12 or 640.5 is named as
+  // it was written, not wrapped into some other int.
+  const auto side = [&](const char* name) {
+    return static_cast<int>(checks::int_in_range(
+        json_integer(at, json_required(at, j, name, ""), name), 1, kMaxImageSidePx, where, name));
+  };
+  c.image_width_px = side("image_width_px");
+  c.image_height_px = side("image_height_px");
   c.method = j.value("method", std::string("unknown"));
   check_calibration(c, where);
   return c;
