@@ -7,6 +7,7 @@
 #include <iterator>
 #include <set>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace tactile {
@@ -72,6 +73,12 @@ nlohmann::json parse_json(const JsonOrigin& at, const std::string& text) {
 
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what) {
   const JsonOrigin at{path.string()};
+  // A pipe or a device would block the read forever (a FIFO with no writer) or never end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    at.fail(
+        fmt::format("cannot open {}: not a regular file (a folder, device, pipe or socket)", what));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) at.fail(fmt::format("cannot open {}", what));
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

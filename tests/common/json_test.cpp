@@ -2,6 +2,7 @@
 // names its origin and what is wrong.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,12 @@ TEST_F(Files, ReadJsonObjectRefusesWhatIsNotAnObject) {
   std::ofstream(dir_ / "list.json") << "[1, 2]";
   EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_ / "list.json", "a calibration"); }),
               HasSubstr("list.json: expected a JSON object"));
+  // Found by the second hostile-input run: a FIFO as the model file blocked the read forever.
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.json").c_str(), 0600), 0);
+  EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_ / "fifo.json", "a model file"); }),
+              HasSubstr("fifo.json: cannot open a model file: not a regular file"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_, "a model file"); }),
+              HasSubstr("not a regular file"));
   std::ofstream(dir_ / "empty.json") << "";
   EXPECT_THAT(
       error_of<FormatError>([&] { read_json_object(dir_ / "empty.json", "a calibration"); }),
