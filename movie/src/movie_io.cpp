@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -80,25 +79,6 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
   l.max_rate_hz = checks::in_range(h5::read_attr_double(file, "layout_max_rate_hz", where), 1,
                                    kMaxMovieRateHz, where, "layout_max_rate_hz");
   return l;
-}
-
-// Every deflection inside the layout's range: mapping clamps to it, so a value outside means a
-// damaged file or a range edited after the fact, and a device would be driven where its layout
-// says it cannot go. The tolerance covers the float rounding of a clamped value.
-void check_within_layout_range(const TactileMovie& movie, const std::string& where) {
-  const Layout& l = movie.layout;
-  const double slack =
-      1e-6 * std::max(std::abs(l.deflection_min_um), std::abs(l.deflection_max_um));
-  for (std::size_t i = 0; i < movie.deflection_um.size(); ++i) {
-    const double v = movie.deflection_um[i];
-    if (v < l.deflection_min_um - slack || v > l.deflection_max_um + slack) {
-      const auto per_frame = static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.cols);
-      throw FormatError(fmt::format(
-          "{}/{}: frame {} holds {} um, outside the layout's deflection range [{}, {}] um "
-          "(layout_deflection_min_um, layout_deflection_max_um)",
-          where, kDataset, i / per_frame, v, l.deflection_min_um, l.deflection_max_um));
-    }
-  }
 }
 
 // Provenance is optional on reading: a movie made by another tool may lack it.
@@ -188,7 +168,6 @@ TactileMovie read_checked(const std::filesystem::path& path) {
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
-  check_within_layout_range(movie, where);
   return movie;
 }
 

@@ -115,6 +115,11 @@ TEST(CalibrationIo, TamperedVersionsSizesAndRepeatedKeysAreRefused) {
   std::string twice = with("format", "\"tactile-calibration\"");
   twice.insert(twice.size() - 1, ", \"mm_per_px\": 0.5");
   expect_refused(dir.path(), twice, "'mm_per_px' appears twice");
+  // The homography and the mean scale must agree: here 0.00002 mm vs 0.02 mm per pixel.
+  expect_refused(
+      dir.path(), with("px_to_mm", "[0.00002, 0, 0, 0, 0.00002, 0, 0, 0, 1]"),
+      "'px_to_mm' gives 2e-05 mm per pixel at the image centre but 'mm_per_px' says 0.02");
+  expect_refused(dir.path(), with("mm_per_px", "0.05"), "but 'mm_per_px' says 0.05");
 }
 
 TEST(CalibrationIo, AFailedWriteKeepsTheFileThatWasThere) {

@@ -136,6 +136,23 @@ TEST_F(NoClobber, CaptureWritesNewNamesIntoItsInputFolder) {
   EXPECT_EQ(bytes(dir_ / "seq" / "frame_000.png"), before);
 }
 
+// Found by the second hostile-input run: strain maps drawn into the frames folder became frames
+// of the next capture of it.
+TEST_F(NoClobber, CaptureDrawsNoMapsAmongItsFrames) {
+  for (const char* f : {"frame_000.png", "frame_001.png", "frame_002.png"}) {
+    copy(kDemo / "frames" / f, fs::path("seq") / f);
+  }
+  const auto seq = (dir_ / "seq").string();
+  for (const std::string& maps : {seq, seq + "/.", seq + "/../seq"}) {
+    const auto r = run_tactile("capture " + seq + " --px-per-mm 62 --min-track 2 --out " +
+                               (dir_ / "s.h5").string() + " --maps " + maps);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--maps " + maps + " is the frames folder IMAGE_DIR"));
+    EXPECT_FALSE(fs::exists(dir_ / "seq" / "strain_000.png")) << maps;
+    EXPECT_FALSE(fs::exists(dir_ / "s.h5")) << maps;
+  }
+}
+
 TEST_F(NoClobber, TrainPores) {
   copy(kPrints / "image_01.jpg", "prints/image_01.jpg");
   const auto marks = copy(kPrints / "pores_01.txt", "prints/pores_01.txt");

@@ -336,6 +336,14 @@ void add_capture(CLI::App& app, Action& action) {
         outputs.push_back(output_folder("--maps", *opt->maps_dir, maps));
       }
       refuse_output_over_input(outputs, inputs);
+      // The maps are PNG images: drawn among the frames, the next capture of the folder would
+      // read them as frames of the sequence.
+      if (opt->maps_dir && !input.is_video() && same_file(*opt->maps_dir, opt->image_dir)) {
+        throw OutputIsInputError(fmt::format(
+            "--maps {} is the frames folder IMAGE_DIR: its strain_NNN.png images would become "
+            "frames of the next capture of it; draw them into another folder",
+            opt->maps_dir->string()));
+      }
       Progress progress;
       const auto from_file = calibration_file(opt->calib);
       capture::CaptureSettings settings;

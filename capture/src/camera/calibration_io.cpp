@@ -16,6 +16,28 @@ namespace tactile::capture {
 
 namespace {
 constexpr int kCalibrationFormatVersion = 1;
+
+// `mm_per_px` is the homography's mean scale, written beside it: two fields that must tell the
+// same story. A file where they disagree by more than a factor of 2 was edited or damaged (a
+// nearly singular px_to_mm passes the determinant check and shrinks every length a
+// thousandfold). The homography's local scale is taken at the image centre.
+void check_scale_agrees(const Calibration& c, const std::string& where) {
+  const auto& h = c.px_to_mm;
+  const double x = c.image_width_px / 2.0, y = c.image_height_px / 2.0;
+  const double w = h[6] * x + h[7] * y + h[8];
+  const double u = h[0] * x + h[1] * y + h[2], v = h[3] * x + h[4] * y + h[5];
+  const double w2 = w * w;
+  const double det = ((h[0] * w - u * h[6]) * (h[4] * w - v * h[7]) -
+                      (h[1] * w - u * h[7]) * (h[3] * w - v * h[6])) /
+                     (w2 * w2);
+  const double scale = std::sqrt(std::abs(det));
+  if (!(std::isfinite(scale) && scale > 0.5 * c.mm_per_px && scale < 2 * c.mm_per_px)) {
+    throw FormatError(fmt::format(
+        "{}: 'px_to_mm' gives {:.3g} mm per pixel at the image centre but 'mm_per_px' says {:.3g} "
+        "(edited or damaged file?)",
+        where, scale, c.mm_per_px));
+  }
+}
 }  // namespace
 
 void write_calibration_json(const std::filesystem::path& path, const Calibration& calibration) {
@@ -62,6 +84,7 @@ Calibration read_calibration_json(const std::filesystem::path& path) {
   c.image_height_px = side("image_height_px");
   c.method = j.value("method", std::string("unknown"));
   check_calibration(c, where);
+  check_scale_agrees(c, where);
   return c;
 }
 
