@@ -689,9 +689,10 @@ for o in "$W/rec/labels.csv" "$W/lab-sym.csv" "$W/rec/./labels.csv" "$W/rec/mat1
   check "out-is-input" usage -k "$W/rec/labels.csv" -k "$W/rec/mat1_1_bio.csv" -- classify train --recordings "$W/rec" --labels "$W/rec/labels.csv" --out "$o"
 done
 check "out-is-input" usage -k "$W/md.json" -- classify train --recordings "$W/rec" --labels "$W/rec/labels.csv" --out "$W/md.json" --select --cv 2 --c 1 --labels "$W/md.json"
-check "out-is-input" usage -k "$W/rec/labels.csv" -- classify test --model "$W/md.json" --recordings "$W/rec" --labels "$W/rec/labels.csv" --csv "$W/rec"
+# Results beside the recordings or the model are new names, not overwrites: only the inputs count.
+check "out-is-input" any -k "$W/rec/labels.csv" -k "$W/rec/mat1_1_bio.csv" -- classify test --model "$W/md.json" --recordings "$W/rec" --labels "$W/rec/labels.csv" --csv "$W/rec"
 printf 'x' >"$W/rec/predictions.csv.keep"
-check "out-is-input" usage -m md.json -k "$W/md.json" -- classify test --model "$W/md.json" --recordings "$W/rec" --labels "$W/rec/labels.csv" --csv "$W"
+check "out-is-input" any -k "$W/md.json" -- classify test --model "$W/md.json" --recordings "$W/rec" --labels "$W/rec/labels.csv" --csv "$W"
 ln -sf "$W/md.json" "$W/pmodel-sym.json"
 check "out-is-input" usage -k "$W/md.json" -- train-pores --prints "$PRINTS" --px-per-mm 47 --out "$PRINTS/pores_01.txt"
 cp "$W/fr/frame_000.png" "$W/print.png"
