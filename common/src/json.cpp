@@ -4,6 +4,11 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
+#include <system_error>
+#include <vector>
 
 namespace tactile {
 
@@ -11,24 +16,74 @@ void JsonOrigin::fail(const std::string& what) const {
   throw FormatError(fmt::format("{}: {}", origin, what));
 }
 
-nlohmann::json parse_json(const JsonOrigin& at, const std::string& text) {
+namespace {
+
+// nlohmann's message without its "[json.exception.parse_error.101] " tag: the user reads where
+// and why, not the library's error number.
+std::string plain_message(const nlohmann::json::exception& e) {
+  const std::string what = e.what();
+  const auto tag_end = what.rfind("] ", what.find(' '));
+  return what.starts_with("[json.exception.") && tag_end != std::string::npos
+             ? what.substr(tag_end + 2)
+             : what;
+}
+
+// Parses `text`, refusing a key written twice in one object: nlohmann keeps the last, so
+// {"rows": 6, ..., "rows": 200} would silently be 200 rows.
+nlohmann::json parse_strict(const JsonOrigin& at, const std::string& text) {
+  std::vector<std::set<std::string>> keys;  // one per open object
+  std::string repeated;
+  const auto callback = [&](int /*depth*/, nlohmann::json::parse_event_t event,
+                            nlohmann::json& parsed) {
+    switch (event) {
+      case nlohmann::json::parse_event_t::object_start:
+        keys.emplace_back();
+        break;
+      case nlohmann::json::parse_event_t::object_end:
+        if (!keys.empty()) keys.pop_back();
+        break;
+      case nlohmann::json::parse_event_t::key:
+        if (!keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+            repeated.empty()) {
+          repeated = parsed.get<std::string>();
+        }
+        break;
+      default:
+        break;
+    }
+    return true;
+  };
+  nlohmann::json j;
   try {
-    return nlohmann::json::parse(text);
+    j = nlohmann::json::parse(text, callback);
   } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers beyond a double
-    at.fail(fmt::format("not valid JSON ({})", e.what()));
+    at.fail(fmt::format("not valid JSON ({})", plain_message(e)));
   }
+  if (!repeated.empty()) {
+    at.fail(fmt::format("field '{}' appears twice in one object (which one is meant?)", repeated));
+  }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json parse_json(const JsonOrigin& at, const std::string& text) {
+  return parse_strict(at, text);
 }
 
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what) {
   const JsonOrigin at{path.string()};
-  std::ifstream in(path);
-  if (!in) at.fail(fmt::format("cannot open {}", what));
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    at.fail(fmt::format("not valid JSON ({})", e.what()));
+  // A pipe or a device would block the read forever (a FIFO with no writer) or never end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    at.fail(
+        fmt::format("cannot open {}: not a regular file (a folder, device, pipe or socket)", what));
   }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) at.fail(fmt::format("cannot open {}", what));
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) at.fail(fmt::format("cannot read {}", what));
+  nlohmann::json j = parse_strict(at, text);
   if (!j.is_object()) at.fail("expected a JSON object");
   return j;
 }

@@ -128,6 +128,12 @@ void refuse_unwritable_output(const Output& output) {
   const auto refuse = [&](const std::string& why) {
     throw UnwritableOutputError(fmt::format("{} {}: {}", output.option, output.path.string(), why));
   };
+  // An empty path reached HDF5 as "H5Fcreate failed", and `play --preview ""` wrote nothing
+  // and said nothing.
+  if (output.path.empty()) {
+    throw UnwritableOutputError(fmt::format("{}: the path is empty; give a {} name", output.option,
+                                            output.folder ? "folder" : "file"));
+  }
   // A folder that will hold new files (and is searched): W_OK for the entry, X_OK to reach it.
   const auto refuse_unless_writable_folder = [&](const fs::path& folder) {
     std::error_code ec;

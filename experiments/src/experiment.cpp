@@ -153,6 +153,16 @@ ExperimentSource parse_source(const Context& cx, const json& j, std::size_t inde
   return s;
 }
 
+// More runs than any study needs (each writes files and plots): a file asking for more is a
+// mistake (lists pasted where a value was meant), refused before millions of runs are made.
+constexpr std::size_t kMaxRuns = 100000;
+
+void check_run_count(const Context& cx, std::size_t runs, const std::string& what) {
+  if (runs > kMaxRuns) {
+    cx.fail(fmt::format("{} make {} runs, more than the limit of {}", what, runs, kMaxRuns));
+  }
+}
+
 // Every combination of the parameter lists, in a fixed order (the JSON key order is sorted).
 std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
   static const std::set<std::string> known = {
@@ -162,8 +172,11 @@ std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
   std::vector<MappingParams> grid(1);
   for (const auto& [key, value] : j.items()) {
     const std::string what = "parameters." + key;
+    const auto values = list(cx, value, what);
+    // Checked before the product is built: 3000 x 8000 values would be 24 million runs.
+    check_run_count(cx, grid.size() * values.size(), "the parameter lists");
     std::vector<MappingParams> next;
-    for (const auto& v : list(cx, value, what)) {
+    for (const auto& v : values) {
       for (MappingParams p : grid) {
         // Ranges as `tactile map`'s options; the mapping checks the finer rules (a playable
         // rate, a positive gain) for the run.
@@ -295,6 +308,10 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
   }
   const auto grid = j.contains("parameters") ? parameter_grid(cx, j["parameters"])
                                              : std::vector<MappingParams>(1);
+  check_run_count(
+      cx, ex.sources.size() * ex.layouts.size() * method_list.size() * grid.size(),
+      fmt::format("{} sources x {} layouts x {} methods x {} parameter sets", ex.sources.size(),
+                  ex.layouts.size(), method_list.size(), grid.size()));
 
   // Every run checked against its layout and source now, so nothing fails halfway.
   for (std::size_t s = 0; s < ex.sources.size(); ++s) {

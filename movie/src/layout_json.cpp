@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -78,6 +79,15 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
     throw FormatError(fmt::format("{}: 'name' must be a non-empty string", where));
   }
   l.name = name.get<std::string>();
+  // Experiments name their movies and plots after the layout: a '/' would write outside the
+  // experiment's folder ("../../x").
+  for (const char c : l.name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
+      throw FormatError(fmt::format(
+          "{}: 'name' '{}' may hold only letters, digits, '-', '_' and '.' (it names files)", where,
+          l.name));
+    }
+  }
   l.rows = count(field(j, "rows", where), "rows", where);
   l.cols = count(field(j, "cols", where), "cols", where);
   const auto pitch = field(j, "pitch_mm", where);

@@ -70,6 +70,12 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
         fmt::format("{}: layout_deflection_min_um {} must be below layout_deflection_max_um {}",
                     where, l.deflection_min_um, l.deflection_max_um));
   }
+  // As in a layout file: rest (0) is where every contactor starts and is parked.
+  if (!(l.deflection_min_um <= 0 && l.deflection_max_um >= 0)) {
+    throw FormatError(fmt::format(
+        "{}: layout deflection range [{}, {}] um does not contain 0 (the rest position)", where,
+        l.deflection_min_um, l.deflection_max_um));
+  }
   l.max_rate_hz = checks::in_range(h5::read_attr_double(file, "layout_max_rate_hz", where), 1,
                                    kMaxMovieRateHz, where, "layout_max_rate_hz");
   return l;

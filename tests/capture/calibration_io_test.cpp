@@ -97,8 +97,29 @@ TEST(CalibrationIo, MalformedFilesAreRefusedNamingTheProblem) {
   expect_refused(dir.path(), with("px_to_mm", "\"identity\""), "px_to_mm");
   expect_refused(dir.path(), with("mm_per_px", "5"), "implausible");
   expect_refused(dir.path(), with("mm_per_px", ""), "mm_per_px");
-  expect_refused(dir.path(), with("image_width_px", "0"), "image size must be positive");
+  expect_refused(dir.path(), with("image_width_px", "0"), "image_width_px");
   expect_refused(dir.path(), with("image_height_px", "\"tall\""), "image_height_px");
+}
+
+// Found by the second hostile-input run: a file of another format version, a size that is no
+// whole number or beyond any camera, and a key written twice were read as if valid.
+TEST(CalibrationIo, TamperedVersionsSizesAndRepeatedKeysAreRefused) {
+  TempDir dir;
+  expect_refused(dir.path(), with("format_version", "2"), "format_version 2 is not supported");
+  expect_refused(dir.path(), with("format_version", "\"1\""), "format_version");
+  expect_refused(dir.path(), with("format_version", ""), "format_version");
+  expect_refused(dir.path(), with("image_width_px", "1e12"), "image_width_px");
+  expect_refused(dir.path(), with("image_width_px", "640.5"), "image_width_px");
+  expect_refused(dir.path(), with("image_height_px", "4294967536"), "image_height_px");
+  // nlohmann keeps the last of two equal keys: the file would silently mean 32 mm per pixel.
+  std::string twice = with("format", "\"tactile-calibration\"");
+  twice.insert(twice.size() - 1, ", \"mm_per_px\": 0.5");
+  expect_refused(dir.path(), twice, "'mm_per_px' appears twice");
+  // The homography and the mean scale must agree: here 0.00002 mm vs 0.02 mm per pixel.
+  expect_refused(
+      dir.path(), with("px_to_mm", "[0.00002, 0, 0, 0, 0.00002, 0, 0, 0, 1]"),
+      "'px_to_mm' gives 2e-05 mm per pixel at the image centre but 'mm_per_px' says 0.02");
+  expect_refused(dir.path(), with("mm_per_px", "0.05"), "but 'mm_per_px' says 0.05");
 }
 
 TEST(CalibrationIo, AFailedWriteKeepsTheFileThatWasThere) {

@@ -2,6 +2,7 @@
 // names its origin and what is wrong.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,26 @@ TEST(Json, ParseErrorsNameTheOrigin) {
   // A number beyond a double is nlohmann's out_of_range, not a parse error: still a FormatError.
   EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, "{\"a\": 1e999}"); }),
               HasSubstr("doc.json: not valid JSON"));
+}
+
+// Found by the second hostile-input run: nlohmann keeps the last of two equal keys, so a layout
+// file with "rows" twice silently meant the second; and its messages carried the library's
+// "[json.exception.parse_error.101]" tag.
+TEST(Json, RepeatedKeysAreRefusedAndMessagesAreTheProgramsWords) {
+  const JsonOrigin at{"doc.json"};
+  EXPECT_THAT(
+      error_of<FormatError>([&] { parse_json(at, R"({"rows": 6, "cols": 2, "rows": 200})"); }),
+      HasSubstr("doc.json: field 'rows' appears twice"));
+  EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, R"({"a": {"b": 1, "b": 2}})"); }),
+              HasSubstr("field 'b' appears twice"));
+  // The same key in two different objects is no repetition.
+  EXPECT_NO_THROW(parse_json(at, R"({"a": {"b": 1}, "c": {"b": 2}, "b": [{"b": 3}, {"b": 4}]})"));
+  const std::string cut = error_of<FormatError>([&] { parse_json(at, "{\"a\": "); });
+  EXPECT_THAT(cut, HasSubstr("doc.json: not valid JSON (parse error at line 1"));
+  EXPECT_THAT(cut, ::testing::Not(HasSubstr("json.exception")));
+  EXPECT_THAT(error_of<FormatError>([&] { parse_json(at, "[1e999]"); }),
+              ::testing::AllOf(HasSubstr("number overflow parsing '1e999'"),
+                               ::testing::Not(HasSubstr("json.exception"))));
 }
 
 TEST(Json, FieldsAreCheckedForWhatAPersonMeant) {
@@ -64,6 +85,12 @@ TEST_F(Files, ReadJsonObjectRefusesWhatIsNotAnObject) {
   std::ofstream(dir_ / "list.json") << "[1, 2]";
   EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_ / "list.json", "a calibration"); }),
               HasSubstr("list.json: expected a JSON object"));
+  // Found by the second hostile-input run: a FIFO as the model file blocked the read forever.
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.json").c_str(), 0600), 0);
+  EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_ / "fifo.json", "a model file"); }),
+              HasSubstr("fifo.json: cannot open a model file: not a regular file"));
+  EXPECT_THAT(error_of<FormatError>([&] { read_json_object(dir_, "a model file"); }),
+              HasSubstr("not a regular file"));
   std::ofstream(dir_ / "empty.json") << "";
   EXPECT_THAT(
       error_of<FormatError>([&] { read_json_object(dir_ / "empty.json", "a calibration"); }),

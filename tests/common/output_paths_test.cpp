@@ -161,6 +161,12 @@ TEST_F(OutputPathsTest, AnOutputThatCannotBeWrittenIsFoundBeforeTheWork) {
               HasSubstr("--out " + (dir_ / "in").string() + ": is a folder"));
   EXPECT_THAT(unwritable(output_file("--out", dir_ / "in" / "s.h5" / "m.h5")),
               HasSubstr("is not a folder"));
+  // Found by the second hostile-input run: `map --out ""` failed in HDF5, `play --preview ""`
+  // silently wrote no preview.
+  EXPECT_THAT(unwritable(output_file("--out", "")),
+              HasSubstr("--out: the path is empty; give a file name"));
+  EXPECT_THAT(unwritable(output_folder("--csv", "", {"a.csv"})),
+              HasSubstr("--csv: the path is empty; give a folder name"));
   EXPECT_THAT(unwritable(output_file("--preview", "/dev/null")),
               HasSubstr("--preview /dev/null: is not a regular file"));
   EXPECT_THAT(unwritable(output_folder("--csv", dir_ / "in" / "s.h5", {"a.csv"})),

@@ -136,6 +136,23 @@ TEST_F(NoClobber, CaptureWritesNewNamesIntoItsInputFolder) {
   EXPECT_EQ(bytes(dir_ / "seq" / "frame_000.png"), before);
 }
 
+// Found by the second hostile-input run: strain maps drawn into the frames folder became frames
+// of the next capture of it.
+TEST_F(NoClobber, CaptureDrawsNoMapsAmongItsFrames) {
+  for (const char* f : {"frame_000.png", "frame_001.png", "frame_002.png"}) {
+    copy(kDemo / "frames" / f, fs::path("seq") / f);
+  }
+  const auto seq = (dir_ / "seq").string();
+  for (const std::string& maps : {seq, seq + "/.", seq + "/../seq"}) {
+    const auto r = run_tactile("capture " + seq + " --px-per-mm 62 --min-track 2 --out " +
+                               (dir_ / "s.h5").string() + " --maps " + maps);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--maps " + maps + " is the frames folder IMAGE_DIR"));
+    EXPECT_FALSE(fs::exists(dir_ / "seq" / "strain_000.png")) << maps;
+    EXPECT_FALSE(fs::exists(dir_ / "s.h5")) << maps;
+  }
+}
+
 TEST_F(NoClobber, TrainPores) {
   copy(kPrints / "image_01.jpg", "prints/image_01.jpg");
   const auto marks = copy(kPrints / "pores_01.txt", "prints/pores_01.txt");
@@ -207,6 +224,46 @@ TEST_F(NoClobber, PerceiveRecordings) {
     EXPECT_THAT(r.output, HasSubstr(std::string("through a ") + how + " link")) << how;
     EXPECT_EQ(bytes(rec), before) << how;
   }
+}
+
+// Found by the second hostile-input run: `synth` of 4 frames into the folder of an earlier run of
+// 12 left frame_004..frame_011 there, and `capture` then read one sequence of both runs.
+TEST_F(NoClobber, SynthRefusesAFolderWithFramesItWouldNotReplace) {
+  const auto out = dir_ / "seq";
+  for (const char* f : {"frame_000.png", "frame_001.png", "frame_002.png", "frame_003.png"}) {
+    copy(kDemo / "frames" / f, fs::path("seq") / f);
+  }
+  const std::string last = bytes(out / "frame_003.png");
+  auto r = run_tactile("synth " + out.string() + " --frames 2");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("already holds 2 image file(s) this run of 2 frames would not "
+                                  "replace (frame_002.png .. frame_003.png)"));
+  EXPECT_EQ(bytes(out / "frame_003.png"), last);
+  EXPECT_FALSE(fs::exists(out / "landmarks.csv"));
+  r = run_tactile("synth " + out.string() + " --frames 2 --from-print " +
+                  (kPrints / "image_01.jpg").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("would not replace"));
+  // Frames it does replace are no obstacle: a rerun of the same length works.
+  fs::remove(out / "frame_002.png");
+  fs::remove(out / "frame_003.png");
+  r = run_tactile("synth " + out.string() + " --frames 2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// Found by the second hostile-input run: when no recording could be analysed, perceive replaced
+// the recordings.csv of an earlier run by an empty table.
+TEST_F(NoClobber, PerceiveOfNoReadableRecordingKeepsTheOldTable) {
+  fs::create_directories(dir_ / "rec");
+  std::ofstream(dir_ / "rec" / "broken_bio.csv") << "not,a,recording\n";
+  fs::create_directories(dir_ / "out");
+  std::ofstream(dir_ / "out" / "recordings.csv") << "an earlier table\n";
+  const auto r = run_tactile("perceive --recordings " + (dir_ / "rec").string() + " --out " +
+                             (dir_ / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("none of the 1 recordings could be analysed"));
+  EXPECT_THAT(r.output, HasSubstr("broken_bio.csv"));
+  EXPECT_EQ(bytes(dir_ / "out" / "recordings.csv"), "an earlier table\n");
 }
 
 TEST_F(NoClobber, ClassifyTrain) {

@@ -56,6 +56,31 @@ TEST(RangeErrors, ReadLikeAPersonWroteThem) {
   expect_readable_range_error("synth x --frames 2.5", "--frames: 2.5 is not a whole number");
 }
 
+// Found by the second hostile-input run: each was accepted (a calibration or a movie of nothing
+// but rest, a sweep that always passes) or failed later with a message not naming the option.
+TEST(RangeErrors, OptionsANumberCanNoLongerEmptyOfMeaning) {
+  const std::string strain = (demo_dir() / "strain.h5").string();
+  const std::string movie = (demo_dir() / "movie.h5").string();
+  const std::string dots = (demo_dir() / "frames" / "calibration" / "dot_grid.png").string();
+  expect_readable_range_error("calibrate " + dots + " --out x.json --spacing-mm 1e308",
+                              "--spacing-mm: 1e308 is out of range: must be from 0.01 to 10");
+  expect_readable_range_error("calibrate " + dots + " --out x.json --spacing-mm 1e-300",
+                              "--spacing-mm: 1e-300 is out of range");
+  expect_readable_range_error("map " + strain + " --out x.h5 --gain 0",
+                              "--gain: 0 is out of range: must be from 0.001 to 1000000");
+  expect_readable_range_error("map " + strain + " --out x.h5 --gain -5",
+                              "--gain: -5 is out of range");
+  expect_readable_range_error("map " + strain + " --out x.h5 --gain 1e-300",
+                              "--gain: 1e-300 is out of range");
+  expect_readable_range_error(
+      "play " + movie + " --headless --blade-full-scale-um 1e308",
+      "--blade-full-scale-um: 1e308 is out of range: must be from 0.1 to 10000");
+  expect_readable_range_error("bench capture --min-points 1e308",
+                              "--min-points: 1e308 is out of range: must be from 0 to 1000000");
+  expect_readable_range_error("bench capture --max-rms 1e-300",
+                              "--max-rms: 1e-300 is out of range: must be from 1e-06 to 1");
+}
+
 TEST(RangeErrors, HelpShowsReadableBounds) {
   const auto r = run_tactile("capture --help");
   EXPECT_EQ(r.exit_code, 0);

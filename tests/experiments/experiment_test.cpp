@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -192,6 +193,28 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
   refused(edit(source, source + ", " + source), "two sources are named 'bump'");
   refused(edit("\"grid_spacing_mm\": 0.5", "\"grid_spacing_mm\": 0"),
           "grid_spacing_mm = 0 is not in [0.05, 5]");
+  // Found by the second hostile-input run: a key given twice was read as its last value.
+  refused(edit("\"seed\": 3,", "\"seed\": 3, \"seed\": 4,"), "field 'seed' appears twice");
+}
+
+// Found by the second hostile-input run: lists of 3000 and 8000 values (24 million runs) made
+// the parse run for minutes; the count is refused before the product is built.
+TEST(Experiment, RefusesMoreRunsThanTheLimitAtOnce) {
+  std::string gains, fractions;
+  for (int i = 1; i <= 3000; ++i) gains.append(i > 1 ? "," : "").append(std::to_string(i));
+  for (int i = 1; i <= 8000; ++i)
+    fractions.append(i > 1 ? "," : "").append(std::to_string(i / 10000.0));
+  const auto t0 = std::chrono::steady_clock::now();
+  refused(edit("\"rate_hz\": 200", "\"rate_hz\": 200, \"gain_um_per_strain\": [" + gains +
+                                       "], \"peak_fraction\": [" + fractions + "]"),
+          "the parameter lists make 24000000 runs, more than the limit of 100000");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10);
+  // Within the limit per list but not in all: 1 source x 2 layouts x 2 methods x 30000 sets.
+  std::string rates;
+  for (int i = 0; i < 30000; ++i)
+    rates.append(i > 0 ? "," : "").append(std::to_string(1 + i % 200));
+  refused(edit("\"rate_hz\": 200", "\"rate_hz\": [" + rates + "]"),
+          "1 sources x 2 layouts x 2 methods x 60000 parameter sets make 240000 runs");
 }
 
 // Numbers of a ground-truth scene and of the parameters: a value no camera, finger or display

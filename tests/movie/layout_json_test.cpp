@@ -134,6 +134,11 @@ TEST(LayoutJson, RefusesMalformedFilesByName) {
   refused(edit("\"max_rate_hz\": 900", "\"max_rate_hz\": 0"),
           "max_rate_hz 0 is out of range: must be from 1 to 100000");
   refused(edit("\"max_rate_hz\": 900", "\"max_rate_hz\": null"), "'max_rate_hz' must be a number");
+  // Found by the second hostile-input run: an experiment wrote the movie of a layout named
+  // "../../evil" outside its folder; and "rows" given twice meant the second.
+  refused(edit("\"name\": \"lab-6x5\"", "\"name\": \"../../evil\""),
+          "'name' '../../evil' may hold only letters, digits, '-', '_' and '.'");
+  refused(edit("\"rows\": 6", "\"rows\": 6, \"rows\": 200"), "field 'rows' appears twice");
 }
 
 }  // namespace

@@ -261,6 +261,24 @@ TEST_F(MovieIo, HostileNumbersInEveryAttributeAreNamed) {
   }
 }
 
+// Found by the second hostile-input run: a range edited to [-50, -5] was read as valid; a layout
+// file with it is refused, and rest (0) is where every contactor starts and is parked. (Values
+// outside a range that holds 0 stay legal: the player decides, see docs/formats.md.)
+TEST_F(MovieIo, DeflectionRangeWithoutRestIsNamed) {
+  expect_format_error(
+      edited(
+          "m.h5",
+          [](H5::H5File& f) { tactile::testing::set_attr(f, "layout_deflection_max_um", -5.0); }),
+      "layout deflection range [-50, -5] um does not contain 0 (the rest position)");
+  expect_format_error(
+      edited("m.h5",
+             [](H5::H5File& f) { tactile::testing::set_attr(f, "layout_deflection_min_um", 3.0); }),
+      "does not contain 0");
+  EXPECT_NO_THROW(read_tactile_movie(edited("m.h5", [](H5::H5File& f) {
+    tactile::testing::set_attr(f, "layout_deflection_max_um", 0.0);
+  })));
+}
+
 TEST_F(MovieIo, HugeDeclaredFrameCountNamesTheLimitQuickly) {
   for (const hsize_t frames : {hsize_t{2000000000}, hsize_t{1} << 40}) {
     const auto p = edited("huge.h5", [&](H5::H5File& f) {

@@ -210,6 +210,28 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   EXPECT_NE(error(j).find((dir / "bad.json").string()), std::string::npos);
 }
 
+// Found by the second hostile-input run: the classifier is retrained from the stored rows, so
+// a row or scaler edited by hand changed every prediction and the file was still read.
+TEST(ClassifierModel, TamperedTrainingRowsAndScalerAreNamedErrors) {
+  const tactile::test::TempDir dir_tmp("model_tampered");
+  const std::filesystem::path& dir = dir_tmp.path();
+  const auto good = model_file_json(dir);
+  const auto error = [&](const nlohmann::json& j) { return model_file_error(dir, j); };
+  EXPECT_EQ(error(good), "(no error)");
+  auto j = good;
+  j["training"][1]["inputs"][0] = 1e300;
+  EXPECT_NE(error(j).find("= 1e+300 is not a finite number"), std::string::npos) << error(j);
+  j = good;
+  j["scaler"]["max"][2] = j["scaler"]["max"][2].get<double>() * 0.5 - 1;
+  EXPECT_NE(error(j).find("but its training rows span"), std::string::npos) << error(j);
+  j = good;
+  j["scaler"]["min"][0] = j["scaler"]["min"][0].get<double>() - 1;
+  EXPECT_NE(error(j).find("scaler of input "), std::string::npos) << error(j);
+  j = good;
+  j["class_names"].push_back("glass");  // a class no row teaches
+  EXPECT_NE(error(j).find("class 'glass' has no training row"), std::string::npos) << error(j);
+}
+
 TEST(LabelledRecordings, BadRecordingsAndLabelsNameTheFile) {
   const tactile::test::TempDir dir_tmp("recordings_bad");
   const std::filesystem::path& dir = dir_tmp.path();

@@ -169,8 +169,9 @@ void add_calibrate(CLI::App& app, Action& action) {
   sub->add_option("DOT_GRID_IMAGE", opt->image, "Image of the dot grid")
       ->required()
       ->check(CLI::ExistingFile);
+  // A grid of at least 4 x 4 dots in a fingertip camera's 5-50 mm field.
   sub->add_option("--spacing-mm", opt->spacing_mm, "Dot spacing in mm")
-      ->check(positive())
+      ->check(within(0.01, 10.0))
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Calibration file to write (JSON)")->capture_default_str();
   sub->callback([opt, &action] {
@@ -335,6 +336,14 @@ void add_capture(CLI::App& app, Action& action) {
         outputs.push_back(output_folder("--maps", *opt->maps_dir, maps));
       }
       refuse_output_over_input(outputs, inputs);
+      // The maps are PNG images: drawn among the frames, the next capture of the folder would
+      // read them as frames of the sequence.
+      if (opt->maps_dir && !input.is_video() && same_file(*opt->maps_dir, opt->image_dir)) {
+        throw OutputIsInputError(fmt::format(
+            "--maps {} is the frames folder IMAGE_DIR: its strain_NNN.png images would become "
+            "frames of the next capture of it; draw them into another folder",
+            opt->maps_dir->string()));
+      }
       Progress progress;
       const auto from_file = calibration_file(opt->calib);
       capture::CaptureSettings settings;

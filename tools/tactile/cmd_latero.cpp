@@ -106,7 +106,9 @@ void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& m
   command
       .add_option("--blade-full-scale-um", mapping.full_scale_um,
                   "Latero: deflection that moves a blade by raw-per-unit")
-      ->check(positive())
+      // Blades move tens to hundreds of micrometres; far outside, every frame maps to rest
+      // (too large) or to the clamp (too small) without a word.
+      ->check(within(0.1, 10000.0))
       ->capture_default_str();
 }
 

@@ -51,7 +51,8 @@ void add_map(CLI::App& app, Action& action) {
                   "profile (experiments only)");
   sub->add_option("--gain", opt->params.gain_um_per_strain,
                   "Micrometres of deflection per unit strain")
-      ->check(within(-1000000.0, 1000000.0))
+      // Positive, as mapping requires; below 0.001 every deflection rounds to rest.
+      ->check(within(0.001, 1000000.0))
       ->capture_default_str();
   add_mode_option(*sub, "--normalise", opt->params.normalisation, mapping::kNormalisationNames,
                   "none: gain as given; peak: scale so the largest deflection fills the range;\n"

@@ -74,6 +74,12 @@ int analyse_recordings(const std::vector<std::filesystem::path>& files,
       fmt::print(stderr, "tactile perceive: {}\n", e.what());
     }
   }
+  // A table of no recording is no result: the recordings.csv of an earlier run stays.
+  if (failed == static_cast<int>(files.size())) {
+    throw std::runtime_error(
+        fmt::format("none of the {} recordings could be analysed; {} not written", files.size(),
+                    path.string()));
+  }
   csv::finish(out, path);
   fmt::print("perceive: {} of {} recordings analysed -> {}\n", files.size() - failed, files.size(),
              path.string());

@@ -60,6 +60,46 @@ std::vector<T> array_of(const nlohmann::json& j, const char* key, const std::str
   }
 }
 
+// The classifier is retrained from the stored rows when the model is loaded, so a damaged row
+// changes every prediction without a sign: each input must be finite and of a size a sensor
+// gives, and the stored scaler (written as the rows' own minimum and maximum) must still be
+// theirs, which catches hand edits of either.
+void check_training_rows(const ClassifierModel& m, const std::string& where) {
+  constexpr double kMaxInput = 1e12;  // far beyond any mean, rate or band power of a 12-bit ADC
+  for (std::size_t i = 0; i < m.rows.size(); ++i) {
+    for (std::size_t k = 0; k < m.rows[i].size(); ++k) {
+      const double v = m.rows[i][k];
+      if (!std::isfinite(v) || std::abs(v) > kMaxInput)
+        throw FormatError(
+            fmt::format("{}: training row {} ({}): input {} = {} is not a finite "
+                        "number within +-1e12",
+                        where, i, m.files[i], m.input_names[k], v));
+    }
+  }
+  for (std::size_t k = 0; k < m.input_names.size(); ++k) {
+    double lo = m.rows.front()[k], hi = lo;
+    for (const auto& row : m.rows) {
+      lo = std::min(lo, row[k]);
+      hi = std::max(hi, row[k]);
+    }
+    const auto same = [](double a, double b) {
+      return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)});
+    };
+    if (!same(m.scaler.min[k], lo) || !same(m.scaler.max[k], hi))
+      throw FormatError(fmt::format(
+          "{}: scaler of input {} is [{}, {}] but its training rows span [{}, {}] (edited or "
+          "damaged file): retrain the model",
+          where, m.input_names[k], m.scaler.min[k], m.scaler.max[k], lo, hi));
+  }
+  for (std::size_t c = 0; c < m.class_names.size(); ++c) {
+    if (std::find(m.classes.begin(), m.classes.end(), static_cast<int>(c)) == m.classes.end())
+      throw FormatError(fmt::format("{}: class '{}' has no training row", where, m.class_names[c]));
+  }
+  if (m.class_names.size() < 2)
+    throw FormatError(fmt::format("{}: {} class(es); a classifier needs at least 2", where,
+                                  m.class_names.size()));
+}
+
 }  // namespace
 
 RecordingLabels read_recording_labels(const std::filesystem::path& path) {
@@ -422,6 +462,7 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
   if (m.scaler.min.size() != m.input_names.size() || m.scaler.max.size() != m.input_names.size())
     throw FormatError(
         fmt::format("{}: scaler does not match the {} inputs", where, m.input_names.size()));
+  check_training_rows(m, where);
   return m;
 }
 
