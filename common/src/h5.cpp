@@ -18,6 +18,7 @@
 #include <csignal>
 #include <cstring>
 
+#include "provenance_fields.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/value_checks.hpp"
 
@@ -392,6 +393,29 @@ H5::Group open_group(const H5::Group& parent, const std::string& name, const std
   } catch (const H5::Exception& e) {
     throw FormatError(fmt::format("{}: '{}' is not a group ({})", where, name, describe(e)));
   }
+}
+
+void write_provenance(H5::H5Object& obj, const Provenance& provenance) {
+  Provenance p = provenance;
+  if (p.created_utc.empty()) p.created_utc = utc_now_iso8601();
+  for (const auto& f : kProvenanceFields)
+    write_attr(obj, std::string("provenance_") + f.name, p.*f.field);
+}
+
+Provenance read_provenance(const H5::H5Object& obj, const std::string& where) {
+  Provenance p;
+  for (const auto& f : kProvenanceFields) {
+    // The current name, else the former one, else empty.
+    for (const char* name : {f.name, f.former_name}) {
+      if (name == nullptr) continue;
+      const std::string attr = std::string("provenance_") + name;
+      if (has_attr(obj, attr)) {
+        p.*f.field = read_attr_string(obj, attr, where);
+        break;
+      }
+    }
+  }
+  return p;
 }
 
 std::string utc_now_iso8601() {

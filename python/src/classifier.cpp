@@ -44,7 +44,7 @@ std::shared_ptr<ClassifierModel> train(const fs::path& recordings, const fs::pat
                                        int threads) {
   check_threads(threads);
   perception::ClassifierTraining training;
-  training.procedure = procedure;
+  training.procedure = perception::parse_recording_procedure(procedure);
   training.trim = trim;
   training.kernel_degree = kernel_degree;
   training.c = c;

@@ -42,7 +42,7 @@ std::vector<NamedPath> classify_inputs(const std::filesystem::path& recordings,
 
 struct TrainOptions {
   std::filesystem::path recordings, labels, out;
-  std::string procedure = "stroke";
+  perception::RecordingProcedure procedure = perception::RecordingProcedure::stroke;
   // Unset: the procedure's default (perception::default_recording_inputs).
   std::optional<perception::ContactOptions::BaselineAt> baseline_at;
   std::optional<perception::ContactOptions::Electrodes> electrodes;
@@ -113,8 +113,9 @@ int train(const TrainOptions& o) {
       "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, electrodes "
       "{}, trim {:g}), analysed in {:.2f} s\n",
       data.rows.size(), data.class_names.size(), data.input_names.size(),
-      fmt::join(names_of(in.groups), ","), o.procedure, to_string(in.contact.baseline_at),
-      to_string(in.contact.electrodes), in.contact.trim_fraction, seconds_since(t0));
+      fmt::join(names_of(in.groups), ","), to_string(o.procedure),
+      to_string(in.contact.baseline_at), to_string(in.contact.electrodes), in.contact.trim_fraction,
+      seconds_since(t0));
   perception::require_two_classes(data, o.labels);
   const auto svm = perception::svm_options_for(training);
   if (o.cv > 0) {
@@ -226,11 +227,9 @@ void add_classify(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::ExistingFile);
   tr->add_option("--out", t->out, "Model file to write (JSON)")->required();
-  tr->add_option("--procedure", t->procedure,
-                 "What a recording is: stroke (a slide over a texture), static (a press), or a "
-                 "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
-      ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
-      ->capture_default_str();
+  add_mode_option(*tr, "--procedure", t->procedure, perception::kRecordingProcedureNames,
+                  "What a recording is: stroke (a slide over a texture), static (a press), or a "
+                  "scene of the paper: dp, ru, roll (feature contact from its kinematics)");
   add_optional_mode_option(
       *tr, "--baseline-at", t->baseline_at, perception::kBaselineAtNames,
       "Where the free-air baseline is: end (recordings that begin in contact), start, "

@@ -115,14 +115,13 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
 
 // The SVM settings `classify train --procedure NAME` uses unless told otherwise: the paper's
 // (exponent 1, C = 1) for its scenes; for real slides ("stroke") C = 10, chosen with the inputs
-// by `--select` (default_recording_inputs). Throws std::invalid_argument as
-// set_recording_procedure.
-SvmOptions default_svm_options(std::string_view procedure);
+// by `--select` (default_recording_inputs).
+SvmOptions default_svm_options(RecordingProcedure procedure);
 
 // What `classify train` (without --select) and the Python module's train() take: every option
 // left unset is the procedure's default (default_recording_inputs, default_svm_options).
 struct ClassifierTraining {
-  std::string procedure = "stroke";
+  RecordingProcedure procedure = RecordingProcedure::stroke;
   std::optional<ContactOptions::BaselineAt> baseline_at;
   std::optional<ContactOptions::Electrodes> electrodes;
   std::optional<double> trim;      // checked by check_trim_fraction
@@ -130,7 +129,7 @@ struct ClassifierTraining {
   std::optional<int> kernel_degree;
   std::optional<double> c;
 };
-// Throw std::invalid_argument as default_recording_inputs and check_trim_fraction.
+// Throw std::invalid_argument as check_trim_fraction.
 RecordingInputOptions recording_inputs_for(const ClassifierTraining& training);
 SvmOptions svm_options_for(const ClassifierTraining& training);
 // A model of one class answers that class whatever it is given: not a classifier. Throws

@@ -1,0 +1,31 @@
+#pragma once
+// What `tactile bench capture` and `tactile bench prints` share on their command lines: an output
+// folder, the stability sweeps switch and the limits at which a sweep point fails.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+
+#include "number_checks.hpp"
+#include "tactile/capture/bench.hpp"
+
+namespace tactile::cli {
+
+struct BenchSweepOptions {
+  std::filesystem::path out;
+  bool sweeps = false;
+  capture::SweepLimits limits;
+};
+
+inline void add_bench_sweep_options(CLI::App& sub, BenchSweepOptions& opt) {
+  sub.add_option("--out", opt.out, "Output folder")->capture_default_str();
+  sub.add_flag("--sweeps", opt.sweeps, "Also run the stability sweeps (slow)");
+  sub.add_option("--max-rms", opt.limits.max_rms, "Sweep failure: strain RMS error above this")
+      ->check(positive())
+      ->capture_default_str();
+  sub.add_option("--min-points", opt.limits.min_points,
+                 "Sweep failure: median tracked landmarks per frame below this")
+      ->check(non_negative())
+      ->capture_default_str();
+}
+
+}  // namespace tactile::cli
