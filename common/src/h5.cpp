@@ -21,6 +21,7 @@
 #include "provenance_fields.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/value_checks.hpp"
+#include "utc_now.hpp"
 
 // Set by a sanitizer runtime when one is linked in (weak: absent otherwise). Its death callback
 // is how a fuzzer records a crash; in the reading child a crash is a finding about the file.
@@ -419,12 +420,7 @@ Provenance read_provenance(const H5::H5Object& obj, const std::string& where) {
 }
 
 std::string utc_now_iso8601() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
+  return tactile::utc_now_iso8601();
 }
 
 }  // namespace tactile::h5

@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+#include <ctime>
 #include <utility>
 
-#include "tactile/common/h5.hpp"
 #include "tactile/common/version.hpp"
+#include "utc_now.hpp"
 
 namespace tactile {
 
@@ -15,8 +17,17 @@ Provenance make_provenance(std::string input, std::string method, std::string pa
   p.program_version = kVersion;
   p.method = std::move(method);
   p.parameters_json = std::move(parameters_json);
-  p.created_utc = h5::utc_now_iso8601();
+  p.created_utc = utc_now_iso8601();
   return p;
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
 }
 
 std::string command_line_of(int argc, const char* const* argv) {
