@@ -29,14 +29,19 @@ add_executable(vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/vm_client.cpp
                ${vm_display_dir}/transports/libusb_transport.cpp
                ${vm_display_dir}/transports/hidapi_transport.cpp
                ${vm_display_dir}/transports/devices.cpp ${vm_firmware_sources}
-               ${PROJECT_SOURCE_DIR}/common/src/stop_signals.cpp)
+               ${PROJECT_SOURCE_DIR}/common/src/stop_signals.cpp
+               ${PROJECT_SOURCE_DIR}/common/src/provenance.cpp
+               ${PROJECT_SOURCE_DIR}/common/src/json.cpp)
 # common/include for its header-only names.hpp (display's mode enums) and, of common's sources,
-# only stop_signals.cpp (the player polls its descriptor); nothing that needs HDF5.
+# only stop_signals.cpp (the player polls its descriptor) and the provenance (the player and the
+# emulated device stamp their output); nothing that needs HDF5.
 target_include_directories(vm_client PRIVATE ${PROJECT_SOURCE_DIR}/display/include
                                              ${PROJECT_SOURCE_DIR}/movie/include
                                              ${PROJECT_SOURCE_DIR}/common/include
-                                             ${PROJECT_SOURCE_DIR}/firmware/include)
-target_link_libraries(vm_client PRIVATE tactile_warnings fmt::fmt PkgConfig::LIBUSB
+                                             ${PROJECT_SOURCE_DIR}/firmware/include
+                                             ${PROJECT_BINARY_DIR}/generated)
+target_link_libraries(vm_client PRIVATE tactile_warnings fmt::fmt nlohmann_json::nlohmann_json
+                                        PkgConfig::LIBUSB
                                         PkgConfig::HIDAPI Threads::Threads)
 target_compile_options(vm_client PRIVATE -fno-sanitize=all)
 target_link_options(vm_client PRIVATE -fno-sanitize=all)

@@ -18,8 +18,10 @@
 #include <csignal>
 #include <cstring>
 
+#include "provenance_fields.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/value_checks.hpp"
+#include "utc_now.hpp"
 
 // Set by a sanitizer runtime when one is linked in (weak: absent otherwise). Its death callback
 // is how a fuzzer records a crash; in the reading child a crash is a finding about the file.
@@ -425,13 +427,31 @@ H5::Group open_group(const H5::Group& parent, const std::string& name, const std
   }
 }
 
+void write_provenance(H5::H5Object& obj, const Provenance& provenance) {
+  Provenance p = provenance;
+  if (p.created_utc.empty()) p.created_utc = utc_now_iso8601();
+  for (const auto& f : kProvenanceFields)
+    write_attr(obj, std::string("provenance_") + f.name, p.*f.field);
+}
+
+Provenance read_provenance(const H5::H5Object& obj, const std::string& where) {
+  Provenance p;
+  for (const auto& f : kProvenanceFields) {
+    // The current name, else the former one, else empty.
+    for (const char* name : {f.name, f.former_name}) {
+      if (name == nullptr) continue;
+      const std::string attr = std::string("provenance_") + name;
+      if (has_attr(obj, attr)) {
+        p.*f.field = read_attr_string(obj, attr, where);
+        break;
+      }
+    }
+  }
+  return p;
+}
+
 std::string utc_now_iso8601() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
+  return tactile::utc_now_iso8601();
 }
 
 }  // namespace tactile::h5

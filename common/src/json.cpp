@@ -10,6 +10,8 @@
 #include <system_error>
 #include <vector>
 
+#include "provenance_fields.hpp"
+
 namespace tactile {
 
 void JsonOrigin::fail(const std::string& what) const {
@@ -128,6 +130,33 @@ std::string json_string(const JsonOrigin& at, const nlohmann::json& v, const std
     at.fail(fmt::format("'{}' must be a non-empty string, got {}", what, v.dump()));
   }
   return v.get<std::string>();
+}
+
+nlohmann::json provenance_json(const Provenance& provenance) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& f : kProvenanceFields) j[f.name] = provenance.*f.field;
+  return j;
+}
+
+Provenance read_provenance_json(const JsonOrigin& at, const nlohmann::json& j,
+                                const std::string& where) {
+  std::set<std::string> known;
+  for (const auto& f : kProvenanceFields) {
+    known.insert(f.name);
+    if (f.former_name != nullptr) known.insert(f.former_name);
+  }
+  json_only_keys(at, j, where, known);
+  Provenance p;
+  for (const auto& f : kProvenanceFields) {
+    // The current key, else the former one, else empty.
+    for (const char* key : {f.name, f.former_name}) {
+      if (key != nullptr && j.contains(key)) {
+        p.*f.field = json_field<std::string>(j, key, at.origin);
+        break;
+      }
+    }
+  }
+  return p;
 }
 
 }  // namespace tactile

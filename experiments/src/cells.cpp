@@ -50,8 +50,8 @@ std::string hash_hex(const std::string& text) {
 std::string source_input(const ExperimentSource& s) {
   if (s.kind == SourceKind::file)
     return fmt::format("source {}: {}", s.name, fs::weakly_canonical(s.path).string());
-  return fmt::format("source {}: {} {} scene, seed {}", s.name, to_string(s.kind), s.scene.scene,
-                     s.scene.seed);
+  return fmt::format("source {}: {} {} scene, seed {}", s.name, to_string(s.kind),
+                     to_string(s.scene.scene), s.scene.seed);
 }
 
 std::string manifest_line(const Cell& c) {

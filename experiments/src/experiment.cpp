@@ -24,13 +24,10 @@
 #include "tactile/movie/movie_io.hpp"
 #include "tactile/perception/recording.hpp"
 #include "tactile/perception/sensor_scene.hpp"
+#include "vocabulary.hpp"
 
 namespace tactile::experiments {
 
-// The composing layer: it speaks every module's vocabulary.
-using namespace tactile::capture;
-using namespace tactile::mapping;
-using namespace tactile::perception;
 namespace {
 
 using nlohmann::json;
@@ -62,7 +59,8 @@ capture::SceneSpec scene_spec(const Context& cx, const json& j, const std::strin
                   "contact_semi_x_mm", "noise", "seed"});
   capture::SceneSpec s;
   s.seed = default_seed;
-  s.scene = json_string(cx, json_required(cx, j, "scene", where), where + ".scene");
+  s.scene =
+      json_mode(cx, json_required(cx, j, "scene", where), where + ".scene", capture::parse_scene);
   if (j.contains("frames")) {
     const auto n = json_integer(cx, j["frames"], where + ".frames");
     if (n < 2 || n > 100000) cx.fail(fmt::format("{}.frames = {} is not in 2..100000", where, n));

@@ -16,13 +16,10 @@
 #include "tactile/experiments/experiment.hpp"
 #include "tactile/experiments/sensor_strain.hpp"
 #include "tactile/perception/movie_signals.hpp"
+#include "vocabulary.hpp"
 
 namespace tactile::experiments {
 
-// The composing layer: it speaks every module's vocabulary.
-using namespace tactile::capture;
-using namespace tactile::mapping;
-using namespace tactile::perception;
 namespace {
 
 namespace fs = std::filesystem;

@@ -25,13 +25,10 @@
 #include "tactile/experiments/experiment.hpp"
 #include "tactile/movie/layout_json.hpp"
 #include "tactile/movie/movie_io.hpp"
+#include "vocabulary.hpp"
 
 namespace tactile::experiments {
 
-// The composing layer: it speaks every module's vocabulary.
-using namespace tactile::capture;
-using namespace tactile::mapping;
-using namespace tactile::perception;
 namespace {
 
 namespace fs = std::filesystem;
@@ -49,8 +46,12 @@ capture::StrainMovie prepare_source(const ExperimentSource& s) {
   const auto sequence = capture::render_sequence(s.scene);
   auto movie =
       capture::measure_strain(sequence.frames, sequence.calibration, s.scene.frame_rate_hz);
-  movie.source = fmt::format("synthetic {} scene, {} mm/s, seed {}, measured by tactile capture",
-                             s.scene.scene, s.scene.speed_mm_per_s, s.scene.seed);
+  // Measured from frames rendered in memory: no input file; the scene is in the parameters.
+  auto settings = nlohmann::json::parse(movie.provenance.parameters_json);
+  settings["scene"] = to_string(s.scene.scene);
+  settings["speed_mm_per_s"] = s.scene.speed_mm_per_s;
+  settings["seed"] = s.scene.seed;
+  movie.provenance.parameters_json = settings.dump();
   return movie;
 }
 
@@ -76,7 +77,7 @@ nlohmann::json source_json(const ExperimentSource& s) {
   if (s.kind == SourceKind::file) {
     j["file"] = s.path.string();
   } else {
-    j["scene"] = {{"scene", s.scene.scene},
+    j["scene"] = {{"scene", to_string(s.scene.scene)},
                   {"frames", s.scene.frame_count},
                   {"frame_rate_hz", s.scene.frame_rate_hz},
                   {"speed_mm_per_s", s.scene.speed_mm_per_s},
@@ -137,9 +138,14 @@ MappedRun map_run(const Experiment& ex, std::size_t index, const capture::Strain
   std::string movie_file;
   if (ex.write_movies) {
     auto& movie = mapped.movie;
-    movie.provenance.source =
-        fmt::format("experiment '{}' ({}), run {}, source '{}': {}", ex.name, ex.origin, run.id,
-                    ex.sources[run.source].name, source.source);
+    // Made from the experiment file; which run of it, and which of its sources, is said with the
+    // mapping's parameters.
+    movie.provenance.input = ex.origin;
+    auto parameters = nlohmann::json::parse(movie.provenance.parameters_json);
+    parameters["experiment"] = ex.name;
+    parameters["run"] = run.id;
+    parameters["source"] = ex.sources[run.source].name;
+    movie.provenance.parameters_json = parameters.dump();
     movie.provenance.created_utc = created;
     const fs::path file = out_dir / "movies" / (run.id + ".h5");
     fs::create_directories(file.parent_path());

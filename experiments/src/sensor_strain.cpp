@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -76,12 +78,16 @@ StrainMovie simulate_skin_strain(const SurfaceFeature& feature, Procedure proced
   movie.field_width_mm = 2 * o.half_length_mm;
   movie.field_height_mm = 2 * o.half_width_mm;
   movie.calibration.method = "skin model (pad coordinates)";
-  movie.source = fmt::format("skin strain of simulated {} trial {} of {} feature {:+g} mm{}",
-                             procedure_name(procedure), seed,
-                             feature.curvature == Curvature::planar    ? "planar"
-                             : feature.curvature == Curvature::conical ? "conical"
-                                                                       : "spherical",
-                             feature.signed_footprint_mm(), o.from_rest ? ", from rest" : "");
+  movie.provenance = make_provenance(
+      {}, "skin strain of the simulated fingertip",
+      nlohmann::json{{"procedure", procedure_name(procedure)},
+                     {"trial", seed},
+                     {"curvature", feature.curvature == Curvature::planar    ? "planar"
+                                   : feature.curvature == Curvature::conical ? "conical"
+                                                                             : "spherical"},
+                     {"signed_footprint_mm", feature.signed_footprint_mm()},
+                     {"from_rest", o.from_rest}}
+          .dump());
 
   // The skin surface of every frame: lateral position (rest position + drag) and indentation.
   const auto skin_at = [&](const contact::Pose& p, double drag_mm, std::vector<SkinPoint>& out) {

@@ -18,7 +18,7 @@ capture::StrainMovie accumulate_along_tracks(const capture::StrainMovie& movie,
     throw std::invalid_argument(fmt::format(
         "accumulate: strain movie '{}' has no tracks to follow (accumulated strain needs the "
         "tracked positions)",
-        movie.source));
+        origin_of(movie.provenance)));
   }
   if (!(movie.frame_rate_hz > 0)) {
     throw std::invalid_argument(
@@ -63,8 +63,9 @@ capture::StrainMovie accumulate_along_tracks(const capture::StrainMovie& movie,
   out.field_width_mm = movie.field_width_mm;
   out.field_height_mm = movie.field_height_mm;
   out.calibration = movie.calibration;
-  out.source = fmt::format("{} (accumulated along tracks from frame {})", movie.source, reference);
-  out.program_version = movie.program_version;
+  out.provenance = movie.provenance;
+  out.provenance.method =
+      fmt::format("{}, accumulated along tracks from frame {}", movie.provenance.method, reference);
   out.tracks = movie.tracks;
   for (std::int32_t f = reference + 1; f <= last_frame; ++f) {
     capture::StrainFrame sf;

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "tactile/common/parallel_for.hpp"
-#include "tactile/common/version.hpp"
+#include "tactile/common/provenance.hpp"
 #include "tactile/mapping/methods.hpp"
 #include "tactile/mapping/resample.hpp"
 
@@ -71,8 +71,8 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const movie::
                                 const MappingParams& requested) {
   const MappingParams params = resolve_mapping_params(requested, layout);
   if (movie.frames.empty()) {
-    throw std::invalid_argument(
-        fmt::format("mapping: strain movie '{}' has no strain frames", movie.source));
+    throw std::invalid_argument(fmt::format("mapping: strain movie '{}' has no strain frames",
+                                            origin_of(movie.provenance)));
   }
   for (std::size_t k = 1; k < movie.frames.size(); ++k) {
     if (!(movie.frames[k].t_s > movie.frames[k - 1].t_s)) {
@@ -123,11 +123,10 @@ MappingResult map_strain_frames(const capture::StrainMovie& movie, const movie::
   out.rate_hz = *params.rate_hz;
   out.frame_count = static_cast<std::int32_t>(display_frames.t_s.size());
   out.deflection_um.assign(display_frames.values.begin(), display_frames.values.end());
-  out.provenance.program_version =
-      params.program_version.empty() ? std::string(kVersion) : params.program_version;
-  out.provenance.source = movie.source;
-  out.provenance.mapping_method = to_string(params.method);
-  out.provenance.mapping_parameters_json = parameters_json(params, placement, factor);
+  // The strain movie's file, if it came from one, is the caller's to name as the input.
+  out.provenance =
+      make_provenance({}, to_string(params.method), parameters_json(params, placement, factor));
+  if (!params.program_version.empty()) out.provenance.program_version = params.program_version;
   MappingResult result;
   result.movie = apply_limits(std::move(out), params.slew_limit_um_per_s);
   result.placement = placement;

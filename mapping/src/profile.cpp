@@ -45,9 +45,9 @@ SurfaceProfile profile_of_scene(const capture::SceneSpec& spec) {
   capture::validate_scene(spec);
   SurfaceProfile p;
   // Every scene but the bump and the hole is on flat glass.
-  p.shape = spec.scene == "bump"   ? ProfileShape::bump
-            : spec.scene == "hole" ? ProfileShape::hole
-                                   : ProfileShape::flat;
+  p.shape = spec.scene == capture::Scene::bump   ? ProfileShape::bump
+            : spec.scene == capture::Scene::hole ? ProfileShape::hole
+                                                 : ProfileShape::flat;
   p.height_mm = spec.feature_height_mm;
   p.width_mm = spec.feature_width_mm;
   const auto cal = capture::true_calibration(spec);

@@ -68,7 +68,7 @@ std::optional<std::filesystem::path> find_source_strain(
     const std::filesystem::path& explicit_path) {
   namespace fs = std::filesystem;
   if (!explicit_path.empty()) return explicit_path;
-  const fs::path source = movie.provenance.source;
+  const fs::path source = movie.provenance.input;
   if (source.empty()) return std::nullopt;
   for (const fs::path& candidate : {source, movie_path.parent_path() / source.filename()}) {
     std::error_code ec;

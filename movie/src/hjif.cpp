@@ -44,15 +44,6 @@ const std::vector<std::string> kFingertip = {"Finger", "Third Phalanx"};
 // left-hand fingers bit 21.
 constexpr std::uint32_t kFingersOfEitherHand = (1U << 20) | (1U << 21);
 
-std::string provenance_json(const Provenance& p) {
-  return json{{"program_version", p.program_version},
-              {"created_utc", p.created_utc},
-              {"source", p.source},
-              {"mapping_method", p.mapping_method},
-              {"mapping_parameters_json", p.mapping_parameters_json}}
-      .dump();
-}
-
 // `text` cut into pieces of at most `bytes`, never inside a UTF-8 sequence.
 std::vector<std::string> pieces(const std::string& text, std::size_t bytes) {
   std::vector<std::string> out;
@@ -213,7 +204,7 @@ HjifSummary write_hjif_to(const TactileMovie& movie, const HjifOptions& options,
                      {"lower_frequency_limit", 0},
                      {"upper_frequency_limit", rate / 2}};
   const std::vector<std::string> provenance =
-      pieces(provenance_json(movie.provenance), kProvenancePieceBytes);
+      pieces(provenance_json(movie.provenance).dump(), kProvenancePieceBytes);
   const std::vector<std::int32_t> starts = effect_starts(movie.frame_count, per_effect);
 
   std::string out = open_object(head);
@@ -609,14 +600,7 @@ TactileMovie parse_hjif(const std::string& text, const std::string& where,
   if (!provenance.empty()) {
     const JsonOrigin at{fmt::format("{}: provenance in the channel descriptions", where)};
     const json j = parse_json(at, provenance);
-    json_only_keys(
-        at, j, "provenance",
-        {"program_version", "created_utc", "source", "mapping_method", "mapping_parameters_json"});
-    const auto text_of = [&](const char* key) {
-      return j.contains(key) ? json_field<std::string>(j, key, at.origin) : std::string();
-    };
-    movie.provenance = {text_of("program_version"), text_of("created_utc"), text_of("source"),
-                        text_of("mapping_method"), text_of("mapping_parameters_json")};
+    movie.provenance = read_provenance_json(at, j, "provenance");
   }
   try {
     validate_movie(movie);

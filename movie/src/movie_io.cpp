@@ -81,12 +81,6 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
   return l;
 }
 
-// Provenance is optional on reading: a movie made by another tool may lack it.
-std::string optional_string(const H5::H5File& file, const std::string& name,
-                            const std::string& where) {
-  return h5::has_attr(file, name) ? h5::read_attr_string(file, name, where) : std::string();
-}
-
 }  // namespace
 
 void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie) {
@@ -98,13 +92,7 @@ void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& 
     h5::write_attr(file, "frame_count", std::int64_t{movie.frame_count});
     h5::write_attr(file, "units", "um");
     write_layout(file, movie.layout);
-    const Provenance& p = movie.provenance;
-    h5::write_attr(file, "provenance_program_version", p.program_version);
-    h5::write_attr(file, "provenance_created_utc",
-                   p.created_utc.empty() ? h5::utc_now_iso8601() : p.created_utc);
-    h5::write_attr(file, "provenance_source", p.source);
-    h5::write_attr(file, "provenance_mapping_method", p.mapping_method);
-    h5::write_attr(file, "provenance_mapping_parameters_json", p.mapping_parameters_json);
+    h5::write_provenance(file, movie.provenance);
     h5::write_dataset(
         file, kDataset, movie.deflection_um,
         {static_cast<hsize_t>(movie.frame_count), static_cast<hsize_t>(movie.layout.rows),
@@ -157,12 +145,7 @@ TactileMovie read_checked(const std::filesystem::path& path) {
                                   movie.layout.cols));
   }
   movie.frame_count = static_cast<std::int32_t>(frames);
-  movie.provenance.program_version = optional_string(file, "provenance_program_version", where);
-  movie.provenance.created_utc = optional_string(file, "provenance_created_utc", where);
-  movie.provenance.source = optional_string(file, "provenance_source", where);
-  movie.provenance.mapping_method = optional_string(file, "provenance_mapping_method", where);
-  movie.provenance.mapping_parameters_json =
-      optional_string(file, "provenance_mapping_parameters_json", where);
+  movie.provenance = h5::read_provenance(file, where);
   try {
     validate_movie(movie);  // NaN values and layout ranges
   } catch (const std::invalid_argument& e) {

@@ -75,8 +75,7 @@ std::shared_ptr<capture::StrainMovie> capture_movie(
     if (capture::measured_no_strain(*movie)) {
       throw std::runtime_error(capture::no_strain_reason(*movie, settings, source));
     }
-    movie->source = source.string();
-    movie->program_version = kVersion;
+    movie->provenance.input = source.string();
     return movie;
   });
 }

@@ -123,7 +123,7 @@ py::object train(const fs::path& recordings, const fs::path& labels, std::option
                  std::optional<double> c, bool select, std::optional<int> cv, int threads) {
   check_threads(threads);
   perception::ClassifierTraining training;
-  training.procedure = procedure;
+  training.procedure = perception::parse_recording_procedure(procedure);
   training.trim = trim;
   training.kernel_degree = kernel_degree;
   training.c = c;

@@ -37,8 +37,6 @@ std::shared_ptr<movie::TactileMovie> map_strain(
   py::gil_scoped_release unlocked;
   auto out =
       std::make_shared<movie::TactileMovie>(mapping::map_strain_movie(strain, layout, params));
-  out->provenance.source = strain.source;
-  out->provenance.created_utc = h5::utc_now_iso8601();
   return out;
 }
 

@@ -134,13 +134,15 @@ void bind_movies(py::module_& m) {
       [](const std::string& text) { return movie::parse_layout_json(text, "layout JSON"); },
       py::arg("text"), "A layout from its JSON text (schema in docs/formats.md).");
 
-  py::class_<movie::Provenance>(m, "Provenance", "How a movie was made.")
+  py::class_<movie::Provenance>(m, "Provenance",
+                                "How a movie was made (each field as in docs/formats.md).")
       .def(py::init<>())
+      .def_readwrite("input", &movie::Provenance::input)
       .def_readwrite("program_version", &movie::Provenance::program_version)
-      .def_readwrite("created_utc", &movie::Provenance::created_utc)
-      .def_readwrite("source", &movie::Provenance::source)
-      .def_readwrite("mapping_method", &movie::Provenance::mapping_method)
-      .def_readwrite("mapping_parameters_json", &movie::Provenance::mapping_parameters_json);
+      .def_readwrite("command_line", &movie::Provenance::command_line)
+      .def_readwrite("method", &movie::Provenance::method)
+      .def_readwrite("parameters_json", &movie::Provenance::parameters_json)
+      .def_readwrite("created_utc", &movie::Provenance::created_utc);
 
   py::class_<TactileMovie, std::shared_ptr<TactileMovie>>(
       m, "Movie",

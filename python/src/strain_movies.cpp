@@ -192,7 +192,7 @@ std::shared_ptr<StrainMovie> make_strain_movie(
   m->field_width_mm = field_width_mm;
   m->field_height_mm = field_height_mm;
   if (calibration) m->calibration = *calibration;
-  m->source = std::move(source);
+  m->provenance = make_provenance(std::move(source), "built from arrays in Python");
   return m;
 }
 
@@ -258,8 +258,7 @@ void bind_strain_movies(py::module_& m) {
       .def_readonly("field_width_mm", &StrainMovie::field_width_mm)
       .def_readonly("field_height_mm", &StrainMovie::field_height_mm)
       .def_readonly("calibration", &StrainMovie::calibration)
-      .def_readwrite("source", &StrainMovie::source)
-      .def_readonly("program_version", &StrainMovie::program_version)
+      .def_readwrite("provenance", &StrainMovie::provenance)
       .def_property_readonly(
           "tracks",
           [](py::object self) {

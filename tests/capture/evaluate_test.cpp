@@ -145,6 +145,11 @@ TEST_F(Evaluate, BadGroundTruthFoldersAreNamedErrors) {
   expect_format_error(dir.path(), "tactile-synthetic-scene");
   put(dir.path(), "scene.json", R"({"format": "tactile-synthetic-scene", "spec": {"scene": 3}})");
   expect_format_error(dir.path(), "'scene' has the wrong type");
+  put(dir.path(), "scene.json",
+      R"({"format": "tactile-synthetic-scene", "spec": {"scene": "cube"}})");
+  expect_format_error(dir.path(),
+                      "spec: unknown scene 'cube' (known: bump, hole, flat-slide, flat-rotate, "
+                      "flat-stick-slip)");
 
   write_sequence(dir.path(), *sequence_);  // a good folder, then break its landmarks
   put(dir.path(), "landmarks.csv", "");
@@ -164,7 +169,7 @@ TEST_F(Evaluate, BadGroundTruthFoldersAreNamedErrors) {
 // tracks must move by that many pixels per frame, and their strain must be near zero.
 TEST(Baselines, TrackARigidSlideAtTheTrueSpeed) {
   SceneSpec spec;
-  spec.scene = "flat-slide";
+  spec.scene = Scene::flat_slide;
   spec.frame_count = 36;
   const SyntheticSequence seq = render_sequence(spec);
   const double px_per_frame =

@@ -25,8 +25,12 @@ StrainMovie sample_movie() {
   m.field_height_mm = 10.9;
   m.calibration = uniform_calibration(62.5, 640, 484);
   m.calibration.px_to_mm[6] = 1e-6;  // a perspective term must survive too
-  m.source = "unit test";
-  m.program_version = "0.1.0-test";
+  m.provenance.input = "unit test";
+  m.provenance.program_version = "0.1.0-test";
+  m.provenance.command_line = "tactile capture 'unit test'";
+  m.provenance.method = "capture";
+  m.provenance.parameters_json = R"({"span_frames":2})";
+  m.provenance.created_utc = "2026-11-25T12:00:00Z";
   for (std::int32_t id = 0; id < 4; ++id) {
     for (std::int32_t f = 0; f < 5; ++f) {
       m.tracks.push_back({id, f, id == 3 ? FeatureType::bifurcation : FeatureType::pore,
@@ -76,8 +80,12 @@ TEST(StrainMovieIo, RoundTripKeepsEveryValue) {
   EXPECT_EQ(r.calibration.mm_per_px, m.calibration.mm_per_px);
   EXPECT_EQ(r.calibration.image_width_px, 640);
   EXPECT_EQ(r.calibration.method, m.calibration.method);
-  EXPECT_EQ(r.source, m.source);
-  EXPECT_EQ(r.program_version, m.program_version);
+  EXPECT_EQ(r.provenance.input, m.provenance.input);
+  EXPECT_EQ(r.provenance.program_version, m.provenance.program_version);
+  EXPECT_EQ(r.provenance.command_line, m.provenance.command_line);
+  EXPECT_EQ(r.provenance.method, m.provenance.method);
+  EXPECT_EQ(r.provenance.parameters_json, m.provenance.parameters_json);
+  EXPECT_EQ(r.provenance.created_utc, m.provenance.created_utc);
   ASSERT_EQ(r.tracks.size(), m.tracks.size());
   for (std::size_t i = 0; i < m.tracks.size(); ++i) expect_same_point(r.tracks[i], m.tracks[i]);
   ASSERT_EQ(r.frames.size(), m.frames.size());
@@ -173,6 +181,30 @@ class Tampered : public ::testing::Test {
   TempDir dir_;
 };
 
+// Strain movies written before the provenance attributes held what the frames came from as
+// `source`, and the writer's version and time unprefixed: they still read, as the provenance's
+// input, program version and time (no method, parameters or command line were recorded).
+TEST_F(Tampered, OlderFilesWithoutTheProvenanceAttributesAreRead) {
+  {
+    H5::H5File f(path().string(), H5F_ACC_RDWR);
+    H5::Group root = f.openGroup("/");
+    for (const char* name : {"provenance_input", "provenance_program_version",
+                             "provenance_command_line", "provenance_method",
+                             "provenance_parameters_json", "provenance_created_utc"})
+      root.removeAttr(name);
+    h5::write_attr(root, "source", "/data/prints/seq1");
+    h5::write_attr(root, "program_version", "0.3.0");
+    h5::write_attr(root, "created_utc", "2026-10-01T08:00:00Z");
+  }
+  const StrainMovie m = read_strain_movie(path());
+  EXPECT_EQ(m.provenance.input, "/data/prints/seq1");
+  EXPECT_EQ(m.provenance.program_version, "0.3.0");
+  EXPECT_EQ(m.provenance.created_utc, "2026-10-01T08:00:00Z");
+  EXPECT_EQ(m.provenance.method, "");
+  EXPECT_EQ(m.provenance.command_line, "");
+  EXPECT_EQ(m.frames.size(), 3u);
+}
+
 TEST_F(Tampered, OtherFormatIsNamed) {
   {
     H5::H5File f(path().string(), H5F_ACC_RDWR);
@@ -262,7 +294,7 @@ TEST_F(Tampered, HostileNumbersInEveryAttributeAreNamed) {
 TEST_F(Tampered, MissingOrMistypedAttributesAreNamed) {
   const auto original = tactile::testing::file_bytes(path());
   for (const char* name : {"frame_rate_hz", "span_frames", "camera_frame_count", "field_width_mm",
-                           "field_height_mm", "source"}) {
+                           "field_height_mm"}) {
     tactile::testing::write_bytes(path(), original);
     {
       H5::H5File f(path().string(), H5F_ACC_RDWR);
@@ -270,7 +302,6 @@ TEST_F(Tampered, MissingOrMistypedAttributesAreNamed) {
       root.removeAttr(name);
     }
     EXPECT_THAT(read_error(path()), HasSubstr(std::string("'") + name + "' is missing"));
-    if (std::string(name) == "source") continue;
     tactile::testing::write_bytes(path(), original);
     {
       H5::H5File f(path().string(), H5F_ACC_RDWR);

@@ -244,7 +244,7 @@ TEST(Pipeline, CalibrationForAnotherImageSizeIsRejected) {
 // The hole scene through the same pipeline: consecutive-frame error well below the true strain.
 TEST(Pipeline, HoleSceneStrainBeatsTheTruthSignal) {
   SceneSpec spec;
-  spec.scene = "hole";
+  spec.scene = Scene::hole;
   spec.frame_count = 40;
   const auto seq = render_sequence(spec);
   CaptureParams p;
@@ -266,7 +266,7 @@ class SceneAcceptance : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SceneAcceptance, ConsecutiveFrameErrorAndYieldMeetTheIssueTargets) {
   SceneSpec spec;
-  spec.scene = GetParam();
+  spec.scene = parse_scene(GetParam());
   spec.frame_count = 60;
   const auto seq = render_sequence(spec);
   for (int span : {1, 10}) {

@@ -12,7 +12,7 @@ using tactile::test::TempDir;
 // The demo's bump scene, shortened to keep the tests fast.
 inline SceneSpec short_bump_scene(int frames) {
   SceneSpec spec;
-  spec.scene = "bump";
+  spec.scene = Scene::bump;
   spec.frame_count = frames;
   return spec;
 }

@@ -238,6 +238,11 @@ TEST(ClassifyCli, UsageErrors) {
                              kMaterials + "/labels.csv --out /tmp/x.json --inputs means,colour");
   EXPECT_EQ(g.exit_code, 2);
   EXPECT_NE(g.output.find("colour"), std::string::npos) << g.output;
+  const auto p = run_tactile("classify train --recordings " + kMaterials + " --labels " +
+                             kMaterials + "/labels.csv --out /tmp/x.json --procedure tap");
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("--procedure: tap not in"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("stroke,static,dp,ru,roll"), std::string::npos) << p.output;
   EXPECT_EQ(run_tactile("classify train --recordings " + kMaterials + " --labels " + kMaterials +
                         "/labels.csv --out /tmp/x.json --cv 1")
                 .exit_code,

@@ -73,6 +73,11 @@ TEST_F(DemoTest, WritesEveryFileAskedFor) {
 TEST_F(DemoTest, StrainMovieCoversTheScene) {
   const auto strain = tactile::capture::read_strain_movie(out_ / "strain.h5");
   EXPECT_DOUBLE_EQ(strain.frame_rate_hz, 60.0);
+  // Measured from frames rendered in memory: no input file; the scene is with the parameters.
+  EXPECT_EQ(strain.provenance.input, "");
+  EXPECT_EQ(strain.provenance.method, "capture");
+  EXPECT_THAT(strain.provenance.parameters_json, HasSubstr("\"scene\":\"bump\""));
+  EXPECT_THAT(strain.provenance.command_line, HasSubstr(" demo "));
   // 180 camera frames at span 1 give at most 179 frame pairs.
   EXPECT_GE(strain.frames.size(), 150u);
   EXPECT_LE(strain.frames.size(), 179u);
@@ -91,8 +96,9 @@ TEST_F(DemoTest, MovieHasTheStressShapeRateAndDuration) {
   EXPECT_GT(movie.duration_s(), 2.5);
   EXPECT_LE(movie.duration_s(), 3.01);
   EXPECT_EQ(movie.deflection_um.size(), static_cast<std::size_t>(movie.frame_count) * 100u);
-  EXPECT_THAT(movie.provenance.mapping_method, ::testing::Not(::testing::IsEmpty()));
-  EXPECT_THAT(movie.provenance.source, HasSubstr("strain.h5"));
+  EXPECT_THAT(movie.provenance.method, ::testing::Not(::testing::IsEmpty()));
+  EXPECT_EQ(movie.provenance.input, (out_ / "strain.h5").string());
+  EXPECT_THAT(movie.provenance.command_line, HasSubstr(" demo "));
 }
 
 TEST_F(DemoTest, ActivityRisesAndFallsAsTheBumpPasses) {

@@ -84,7 +84,7 @@ TEST(ExperimentCli, MapTakesACustomLayoutFileAndRefusesABadOne) {
   EXPECT_EQ(movie.layout.name, "lab");
   EXPECT_EQ(movie.layout.cols, 7);
   EXPECT_EQ(movie.layout.axis, tactile::movie::DeflectionAxis::y);
-  EXPECT_THAT(movie.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"accumulated\""));
+  EXPECT_THAT(movie.provenance.parameters_json, HasSubstr("\"strain\":\"accumulated\""));
 }
 
 TEST(ExperimentCli, BenchMapPrintsItsFigures) {

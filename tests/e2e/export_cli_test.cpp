@@ -36,8 +36,8 @@ TEST(ExportCli, HjifRoundTripKeepsTheDemoMovie) {
   ASSERT_EQ(a.frame_count, b.frame_count);
   EXPECT_EQ(a.rate_hz, b.rate_hz);
   EXPECT_EQ(a.layout.name, b.layout.name);
-  EXPECT_EQ(a.provenance.source, b.provenance.source);
-  EXPECT_EQ(a.provenance.mapping_parameters_json, b.provenance.mapping_parameters_json);
+  EXPECT_EQ(a.provenance.input, b.provenance.input);
+  EXPECT_EQ(a.provenance.parameters_json, b.provenance.parameters_json);
   double worst = 0;
   for (std::size_t i = 0; i < a.deflection_um.size(); ++i) {
     worst = std::max(worst, std::abs(double(a.deflection_um[i]) - b.deflection_um[i]));

@@ -67,7 +67,7 @@ fs::path write_movie(const fs::path& dir, const tactile::movie::Layout& layout, 
     }
   }
   m.provenance.program_version = "test";
-  m.provenance.source = "sine";
+  m.provenance.input = "sine";
   const fs::path path = dir / (layout.name + ".h5");
   tactile::movie::write_tactile_movie(path, m);
   return path;

@@ -118,9 +118,15 @@ TEST(Experiment, WritesItsFolderTheSameWayOnOneOrTwoThreads) {
   const auto a = movie::read_tactile_movie(one / "movies/002-bump-stress-integrated-per-frame.h5");
   const auto b = movie::read_tactile_movie(two / "movies/002-bump-stress-integrated-per-frame.h5");
   EXPECT_EQ(a.deflection_um, b.deflection_um);
-  EXPECT_THAT(a.provenance.source, HasSubstr("experiment 'small'"));
-  EXPECT_THAT(a.provenance.mapping_parameters_json, HasSubstr("\"strain\":\"per-frame\""));
-  EXPECT_EQ(a.provenance.mapping_method, "integrated");
+  // Made from the experiment file; its name, the run and the source are with the parameters.
+  EXPECT_EQ(a.provenance.input, "small.json");
+  EXPECT_THAT(a.provenance.parameters_json, HasSubstr("\"experiment\":\"small\""));
+  EXPECT_THAT(a.provenance.parameters_json,
+              HasSubstr("\"run\":\"002-bump-stress-integrated-per-frame\""));
+  EXPECT_THAT(a.provenance.parameters_json, HasSubstr("\"source\":\"bump\""));
+  EXPECT_EQ(a.provenance.command_line, "");
+  EXPECT_THAT(a.provenance.parameters_json, HasSubstr("\"strain\":\"per-frame\""));
+  EXPECT_EQ(a.provenance.method, "integrated");
   // 11 strain frames at 60 Hz (1/60 .. 11/60 s) at 200 Hz: floor(10/60 * 200) + 1 frames.
   EXPECT_EQ(a.frame_count, 34);
   ASSERT_EQ(report.results.size(), 8u);
@@ -178,7 +184,9 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
   refused(edit("\"rate_hz\": 200", "\"gain\": 2"), "unknown field 'gain'");
   refused(edit("\"frames\": 12}", "\"frames\": 12, \"frame_rate_hz\": 900}"),
           "source 'bump' runs at 900 Hz, faster than layout 'stress' can play (700 Hz");
-  refused(edit("\"scene\": \"bump\"", "\"scene\": \"ridge\""), "scene 'ridge' is not one of");
+  refused(edit("\"scene\": \"bump\"", "\"scene\": \"ridge\""),
+          "sources[0].ground_truth.scene: unknown scene 'ridge' (known: bump, hole, flat-slide, "
+          "flat-rotate, flat-stick-slip)");
   refused(edit("\"frames\": 12", "\"frames\": 1"), "frames = 1 is not in 2..100000");
   refused(edit("\"ground_truth\"", "\"groundtruth\""), "unknown field 'groundtruth'");
   refused(edit("\"name\": \"bump\", ", "\"name\": \"bump\", \"file\": \"x.h5\", "),

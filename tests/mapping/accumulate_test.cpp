@@ -20,7 +20,7 @@ capture::StrainMovie stretching_slide(double rate, double slide_mm, int frames) 
   capture::StrainMovie movie;
   movie.frame_rate_hz = 60;
   movie.camera_frame_count = frames;
-  movie.source = "stretching slide";
+  movie.provenance.input = "stretching slide";
   int id = 0;
   for (int j = 0; j < 12; ++j) {
     for (int i = 0; i < 12; ++i, ++id) {
@@ -86,7 +86,7 @@ TEST(AccumulateAlongTracks, DefaultReferenceIsTheFirstStrainFrame) {
 
 TEST(AccumulateAlongTracks, RefusesMoviesWithoutTracksAndBadReferences) {
   capture::StrainMovie empty;
-  empty.source = "no tracks here";
+  empty.provenance.input = "no tracks here";
   try {
     accumulate_along_tracks(empty);
     FAIL();

@@ -88,10 +88,13 @@ TEST(MapStrainMovie, ShapeRateDurationAndProvenance) {
   EXPECT_NEAR(out.duration_s(), 106.0 / 700.0, 1e-12);
   EXPECT_EQ(out.layout.rows, 8);
   EXPECT_EQ(out.layout.name, "test");
-  EXPECT_EQ(out.provenance.mapping_method, "integrated");  // the default method
-  EXPECT_EQ(out.provenance.source, "synthetic test grid");
+  EXPECT_EQ(out.provenance.method, "integrated");  // the default method
+  // The strain movie's file is the caller's to name; the library knows no file.
+  EXPECT_EQ(out.provenance.input, "");
+  EXPECT_EQ(out.provenance.command_line, "");
+  EXPECT_FALSE(out.provenance.created_utc.empty());
   EXPECT_EQ(out.provenance.program_version, "9.9.9-test");
-  const auto& json = out.provenance.mapping_parameters_json;
+  const auto& json = out.provenance.parameters_json;
   EXPECT_THAT(json, HasSubstr("\"method\":\"integrated\""));
   EXPECT_THAT(json, HasSubstr("\"gain_um_per_strain\":1000.0"));
   EXPECT_THAT(json, HasSubstr("\"centre_x_mm\":5.0"));
@@ -292,7 +295,7 @@ TEST(MapStrainMovie, PeakNormalisationScalesTheLargestDeflectionToTheRange) {
   float peak = 0;
   for (const float d : out.deflection_um) peak = std::max(peak, std::abs(d));
   EXPECT_NEAR(peak, 40.0, 1e-3);
-  EXPECT_THAT(out.provenance.mapping_parameters_json, HasSubstr("\"normalisation\":\"peak\""));
+  EXPECT_THAT(out.provenance.parameters_json, HasSubstr("\"normalisation\":\"peak\""));
 }
 
 TEST(MapStrainMovie, P99NormalisationIgnoresRareOutliers) {

@@ -87,7 +87,7 @@ TEST(Profile, SceneProfileCentresTheFingerPathOnTheFeature) {
   const double travel = 2.4 * 179 / 60.0;
   EXPECT_NEAR(p.finger_x0_mm + p.velocity_x_mm_per_s * 179 / 60.0 / 2, p.feature_x_mm, 1e-9);
   EXPECT_NEAR(p.feature_x_mm - p.finger_x0_mm, travel / 2, 1e-9);
-  spec.scene = "flat-slide";
+  spec.scene = capture::Scene::flat_slide;
   EXPECT_EQ(profile_of_scene(spec).shape, ProfileShape::flat);
 }
 

@@ -98,14 +98,14 @@ TEST(StrainPanel, SourceStrainIsTheExplicitOneElseTheProvenancesIfItIsAStrainMov
   EXPECT_EQ(find_source_strain(movie, movie_path, "/any/explicit.h5"),
             std::filesystem::path("/any/explicit.h5"));
   EXPECT_EQ(find_source_strain(movie, movie_path, {}), std::nullopt);  // no provenance
-  movie.provenance.source = (dir / "strain.h5").string();
+  movie.provenance.input = (dir / "strain.h5").string();
   EXPECT_EQ(find_source_strain(movie, movie_path, {}), dir / "strain.h5");
   // Recorded where it was made, since moved beside the movie.
-  movie.provenance.source = "/elsewhere/strain.h5";
+  movie.provenance.input = "/elsewhere/strain.h5";
   EXPECT_EQ(find_source_strain(movie, movie_path, {}), dir / "strain.h5");
-  movie.provenance.source = (dir / "notes.h5").string();
+  movie.provenance.input = (dir / "notes.h5").string();
   EXPECT_EQ(find_source_strain(movie, movie_path, {}), std::nullopt);
-  movie.provenance.source = "synthetic bump scene";
+  movie.provenance.input = "synthetic bump scene";
   EXPECT_EQ(find_source_strain(movie, movie_path, {}), std::nullopt);
 }
 

@@ -60,7 +60,7 @@ capture::StrainMovie make_movie(const GridSpec& grid, const Displacement& displa
   movie.camera_frame_count = frames + 1;
   movie.field_width_mm = grid.width_mm;
   movie.field_height_mm = grid.height_mm;
-  movie.source = "synthetic test grid";
+  movie.provenance.input = "synthetic test grid";
   for (std::int32_t k = 1; k <= frames; ++k) {
     movie.frames.push_back(make_frame(grid, displacement, k / frame_rate_hz, k - 1, k));
   }

@@ -201,9 +201,10 @@ void expect_same_movie(const TactileMovie& a, const TactileMovie& b, double tole
   EXPECT_LE(worst, tolerance_um);
   EXPECT_EQ(a.provenance.program_version, b.provenance.program_version);
   EXPECT_EQ(a.provenance.created_utc, b.provenance.created_utc);
-  EXPECT_EQ(a.provenance.source, b.provenance.source);
-  EXPECT_EQ(a.provenance.mapping_method, b.provenance.mapping_method);
-  EXPECT_EQ(a.provenance.mapping_parameters_json, b.provenance.mapping_parameters_json);
+  EXPECT_EQ(a.provenance.input, b.provenance.input);
+  EXPECT_EQ(a.provenance.command_line, b.provenance.command_line);
+  EXPECT_EQ(a.provenance.method, b.provenance.method);
+  EXPECT_EQ(a.provenance.parameters_json, b.provenance.parameters_json);
 }
 
 TEST(Hjif, RoundTripKeepsLayoutRateProvenanceAndDeflections) {
@@ -212,7 +213,7 @@ TEST(Hjif, RoundTripKeepsLayoutRateProvenanceAndDeflections) {
     TactileMovie m = movie_on(l, 257);
     m.provenance.created_utc = "2026-01-02T03:04:05Z";
     // Longer than one description may hold: it travels in pieces over the channels.
-    m.provenance.mapping_parameters_json = json{{"note", std::string(700, 'x') + "é"}}.dump();
+    m.provenance.parameters_json = json{{"note", std::string(700, 'x') + "é"}}.dump();
     const TactileMovie back = parse_hjif(hjif_text(m), "test");
     // Amplitudes are written in steps of 1e-6 of the full scale (100 um at most here).
     expect_same_movie(m, back, 1e-4);

@@ -71,9 +71,30 @@ TEST_F(MovieIo, RoundTripKeepsEverything) {
   EXPECT_EQ(r.deflection_um, m.deflection_um);  // float32 on disk: bit-exact
   EXPECT_EQ(r.provenance.program_version, "test");
   EXPECT_EQ(r.provenance.created_utc, "2026-11-22T20:00:00Z");
-  EXPECT_EQ(r.provenance.source, "sine");
-  EXPECT_EQ(r.provenance.mapping_method, "none");
-  EXPECT_EQ(r.provenance.mapping_parameters_json, R"({"amplitude_um":1})");
+  EXPECT_EQ(r.provenance.input, "sine");
+  EXPECT_EQ(r.provenance.method, "none");
+  EXPECT_EQ(r.provenance.parameters_json, R"({"amplitude_um":1})");
+  EXPECT_EQ(r.provenance.command_line, "tactile test --sine");
+}
+
+// Movies written before the provenance's fields were renamed hold provenance_source,
+// provenance_mapping_method and provenance_mapping_parameters_json (and no command line): they
+// still read, as input, method and parameters.
+TEST_F(MovieIo, OlderFilesWithTheFormerProvenanceNamesAreRead) {
+  const auto p = edited("old-provenance.h5", [](H5::H5File& f) {
+    for (const char* name : {"provenance_input", "provenance_command_line", "provenance_method",
+                             "provenance_parameters_json"})
+      f.removeAttr(name);
+    h5::write_attr(f, "provenance_source", "/data/strain.h5");
+    h5::write_attr(f, "provenance_mapping_method", "proportional");
+    h5::write_attr(f, "provenance_mapping_parameters_json", R"({"gain_um_per_strain":500})");
+  });
+  const TactileMovie m = read_tactile_movie(p);
+  EXPECT_EQ(m.provenance.input, "/data/strain.h5");
+  EXPECT_EQ(m.provenance.method, "proportional");
+  EXPECT_EQ(m.provenance.parameters_json, R"({"gain_um_per_strain":500})");
+  EXPECT_EQ(m.provenance.command_line, "");
+  EXPECT_EQ(m.provenance.program_version, "test");
 }
 
 TEST_F(MovieIo, SchemaIsWhatFormatMdDocuments) {
@@ -84,6 +105,9 @@ TEST_F(MovieIo, SchemaIsWhatFormatMdDocuments) {
   EXPECT_EQ(h5::read_attr_int(f, "format_version", "t"), 1);
   EXPECT_EQ(h5::read_attr_string(f, "units", "t"), "um");
   EXPECT_FALSE(h5::read_attr_string(f, "provenance_created_utc", "t").empty());
+  EXPECT_EQ(h5::read_attr_string(f, "provenance_input", "t"), "sine");
+  EXPECT_EQ(h5::read_attr_string(f, "provenance_method", "t"), "none");
+  EXPECT_EQ(h5::read_attr_string(f, "provenance_command_line", "t"), "tactile test --sine");
   H5::DataSet ds = f.openDataSet("deflection_um");
   EXPECT_EQ(ds.getTypeClass(), H5T_FLOAT);
   EXPECT_EQ(ds.getFloatType().getSize(), 4u);
@@ -324,7 +348,7 @@ void make_strings_variable_length(H5::H5File& f) {
   H5::StrType vlen(H5::PredType::C_S1, H5T_VARIABLE);
   vlen.setCset(H5T_CSET_UTF8);
   for (const char* name : {"format", "units", "layout_name", "layout_axis",
-                           "provenance_program_version", "provenance_mapping_method"}) {
+                           "provenance_program_version", "provenance_method"}) {
     const std::string value = h5::read_attr_string(f, name, "edit");
     f.removeAttr(name);
     f.createAttribute(name, vlen, H5::DataSpace()).write(vlen, value);
@@ -338,7 +362,7 @@ TEST_F(MovieIo, OlderFilesWithVariableLengthStringsAreRead) {
   const TactileMovie m = read_tactile_movie(p);
   EXPECT_EQ(m.layout.name, "stress");
   EXPECT_EQ(m.frame_count, 7);
-  EXPECT_EQ(m.provenance.mapping_method, "none");
+  EXPECT_EQ(m.provenance.method, "none");
 }
 
 // Bytes scrambled inside a valid file, with fixed- and (older files) variable-length strings:

@@ -26,9 +26,10 @@ inline TactileMovie sine_movie(const Layout& layout, double rate_hz, std::int32_
     }
   }
   m.provenance.program_version = "test";
-  m.provenance.source = "sine";
-  m.provenance.mapping_method = "none";
-  m.provenance.mapping_parameters_json = R"({"amplitude_um":1})";
+  m.provenance.input = "sine";
+  m.provenance.command_line = "tactile test --sine";
+  m.provenance.method = "none";
+  m.provenance.parameters_json = R"({"amplitude_um":1})";
   return m;
 }
 

@@ -284,11 +284,11 @@ TEST(Classifier, LearnsRealMaterialsBetterThanChance) {
 TEST(Classifier, SlideDefaultsLearnRealMaterials) {
   const tactile::test::TempDir dir_tmp("learn_slide");
   const std::filesystem::path& dir = dir_tmp.path();
-  const auto options = perception::default_recording_inputs("stroke");
+  const auto options = perception::default_recording_inputs(perception::RecordingProcedure::stroke);
   const auto train =
       perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "12"), options, {}, 2);
-  const auto model =
-      perception::make_classifier_model(train, perception::default_svm_options("stroke"));
+  const auto model = perception::make_classifier_model(
+      train, perception::default_svm_options(perception::RecordingProcedure::stroke));
   const auto test = perception::load_labelled_recordings(kMaterials, labels_of_trials(dir, "34"),
                                                          options, model.class_names, 2);
   const auto t = perception::test_classifier(perception::Classifier(model), 4, test);
@@ -316,20 +316,28 @@ TEST(Classifier, CrossValidationIsStratifiedAndPooled) {
 }
 
 // A procedure's name reads back as itself: stroke and static are real recordings' (all contact
-// is feature contact), dp, ru and roll the paper's scenes (feature contact from kinematics).
+// is feature contact), dp, ru and roll the paper's scenes (feature contact from kinematics), named
+// as their inputs are; any other name is refused with the list of the known ones.
 TEST(RecordingInputs, ProcedureNamesRoundTrip) {
   for (const char* name : {"stroke", "static", "dp", "ru", "roll"}) {
     perception::RecordingInputOptions o;
-    perception::set_recording_procedure(o, name);
-    EXPECT_EQ(perception::recording_procedure_name(o), name);
+    perception::set_recording_procedure(o, perception::parse_recording_procedure(name));
+    EXPECT_EQ(to_string(perception::recording_procedure(o)), name);
   }
   perception::RecordingInputOptions o;
-  perception::set_recording_procedure(o, "ru");
+  perception::set_recording_procedure(o, perception::RecordingProcedure::radial_ulnar);
   EXPECT_TRUE(o.contact.feature_from_kinematics);
   EXPECT_EQ(perception::recording_input_names(o).front(), "ru.w1.pressure");
-  perception::set_recording_procedure(o, "stroke");
+  EXPECT_EQ(to_string(perception::RecordingProcedure::radial_ulnar),
+            perception::procedure_short_name(perception::Procedure::radial_ulnar));
+  perception::set_recording_procedure(o, perception::RecordingProcedure::stroke);
   EXPECT_FALSE(o.contact.feature_from_kinematics);
-  EXPECT_THROW(perception::set_recording_procedure(o, "tap"), std::invalid_argument);
+  try {
+    perception::parse_recording_procedure("tap");
+    ADD_FAILURE() << "'tap' was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "unknown procedure 'tap' (known: stroke, static, dp, ru, roll)");
+  }
 }
 
 // Input groups are named in model files and on the command line: names round-trip, keep their
@@ -370,26 +378,30 @@ TEST(RecordingInputs, StdsAreTheSpreadOfEachSignalOverTheContact) {
 // The paper's scenes keep the paper's inputs by default; real slides get theirs.
 TEST(RecordingInputs, DefaultsByProcedure) {
   using perception::ContactOptions;
-  for (const char* scene : {"dp", "ru", "roll"}) {
-    const auto o = perception::default_recording_inputs(scene);
+  for (const auto procedure :
+       {perception::RecordingProcedure::distal_proximal,
+        perception::RecordingProcedure::radial_ulnar, perception::RecordingProcedure::roll}) {
+    const auto scene = to_string(procedure);
+    const auto o = perception::default_recording_inputs(procedure);
     EXPECT_EQ(tactile::names_of(o.groups), (std::vector<std::string>{"means", "rates", "hht"}))
         << scene;
     EXPECT_EQ(o.contact.electrodes, ContactOptions::Electrodes::clusters) << scene;
     EXPECT_EQ(o.contact.trim_fraction, 0.0) << scene;
     EXPECT_EQ(perception::recording_input_names(o).size(), 23u) << scene;
   }
-  EXPECT_EQ(perception::recording_input_names(perception::default_recording_inputs("static")),
+  EXPECT_EQ(perception::recording_input_names(perception::default_recording_inputs(
+                perception::RecordingProcedure::static_contact)),
             perception::procedure_input_names(perception::Procedure::static_contact));
-  const auto slide = perception::default_recording_inputs("stroke");
+  const auto slide = perception::default_recording_inputs(perception::RecordingProcedure::stroke);
   EXPECT_EQ(tactile::names_of(slide.groups), (std::vector<std::string>{"means", "bands"}));
   EXPECT_EQ(slide.contact.baseline_at, ContactOptions::BaselineAt::none);
   EXPECT_EQ(slide.contact.electrodes, ContactOptions::Electrodes::clusters);
   EXPECT_EQ(slide.contact.trim_fraction, 0.2);
   EXPECT_EQ(perception::recording_input_names(slide).size(), 14u + 7u);
-  EXPECT_EQ(perception::default_svm_options("stroke").c, 100.0);
-  EXPECT_EQ(perception::default_svm_options("dp").c, 1.0);
-  EXPECT_EQ(perception::default_svm_options("stroke").degree, 1);
-  EXPECT_THROW(perception::default_recording_inputs("tap"), std::invalid_argument);
+  EXPECT_EQ(perception::default_svm_options(perception::RecordingProcedure::stroke).c, 100.0);
+  EXPECT_EQ(perception::default_svm_options(perception::RecordingProcedure::distal_proximal).c,
+            1.0);
+  EXPECT_EQ(perception::default_svm_options(perception::RecordingProcedure::stroke).degree, 1);
 }
 
 // A training's options: unset ones are the procedure's defaults, set ones replace them, and a
@@ -397,7 +409,7 @@ TEST(RecordingInputs, DefaultsByProcedure) {
 TEST(ClassifierTraining, SetOptionsReplaceTheProceduresDefaults) {
   using perception::ContactOptions;
   perception::ClassifierTraining defaults;
-  defaults.procedure = "dp";
+  defaults.procedure = perception::RecordingProcedure::distal_proximal;
   const auto in = perception::recording_inputs_for(defaults);
   EXPECT_EQ(tactile::names_of(in.groups), (std::vector<std::string>{"means", "rates", "hht"}));
   EXPECT_EQ(in.contact.baseline_at, ContactOptions::BaselineAt::end);
@@ -418,9 +430,6 @@ TEST(ClassifierTraining, SetOptionsReplaceTheProceduresDefaults) {
   EXPECT_EQ(perception::svm_options_for(set).c, 3.5);
   set.trim = 0.5;
   EXPECT_THROW(perception::recording_inputs_for(set), std::invalid_argument);
-  set.trim.reset();
-  set.procedure = "tap";
-  EXPECT_THROW(perception::recording_inputs_for(set), std::invalid_argument);
 }
 
 // Model files of version 1 (before trim and electrodes) read as clusters without trim; the new
@@ -428,7 +437,7 @@ TEST(ClassifierTraining, SetOptionsReplaceTheProceduresDefaults) {
 TEST(ClassifierModel, ReadsVersionOneAndChecksTheNewFields) {
   const tactile::test::TempDir dir_tmp("model_v1");
   const std::filesystem::path& dir = dir_tmp.path();
-  const auto options = perception::default_recording_inputs("stroke");
+  const auto options = perception::default_recording_inputs(perception::RecordingProcedure::stroke);
   const auto good = model_file_json(dir, options);
   const auto back = perception::read_classifier_model(dir / "m.json");
   EXPECT_EQ(back.options.contact.electrodes, options.contact.electrodes);
@@ -509,7 +518,7 @@ TEST(ModelSelection, ChoosesByInnerFoldsAndScoresByOuterFolds) {
   const tactile::test::TempDir dir_tmp("select");
   const auto data =
       perception::read_labelled_recordings(kMaterials, kMaterials / "labels.csv", {}, 2);
-  auto grid = perception::default_selection_grid("stroke");
+  auto grid = perception::default_selection_grid(perception::RecordingProcedure::stroke);
   grid.input_sets = {{perception::InputGroup::hht}, {perception::InputGroup::stats}};
   grid.baselines = {perception::ContactOptions::BaselineAt::none};
   grid.electrodes = {perception::ContactOptions::Electrodes::clusters};
@@ -517,7 +526,7 @@ TEST(ModelSelection, ChoosesByInnerFoldsAndScoresByOuterFolds) {
   grid.degrees = {1};
   grid.cs = {1, 10};
   ASSERT_EQ(grid.size(), 4u);
-  const auto base = perception::default_recording_inputs("stroke");
+  const auto base = perception::default_recording_inputs(perception::RecordingProcedure::stroke);
   const auto nested = perception::nested_cross_validate(data, base, grid, 4, 5, 2);
   EXPECT_EQ(nested.outer.tested, 16);
   ASSERT_EQ(nested.chosen.size(), 4u);
@@ -561,7 +570,7 @@ TEST(ModelSelection, ChoosesByInnerFoldsAndScoresByOuterFolds) {
 TEST(ModelSelection, ScoresAreEachCandidatesCrossValidation) {
   const auto data =
       perception::read_labelled_recordings(kMaterials, kMaterials / "labels.csv", {}, 2);
-  auto grid = perception::default_selection_grid("stroke");
+  auto grid = perception::default_selection_grid(perception::RecordingProcedure::stroke);
   grid.input_sets = {{perception::InputGroup::stats},
                      {perception::InputGroup::means, perception::InputGroup::bands}};
   grid.baselines = {perception::ContactOptions::BaselineAt::none};
@@ -569,7 +578,7 @@ TEST(ModelSelection, ScoresAreEachCandidatesCrossValidation) {
   grid.trims = {0.1};
   grid.degrees = {1, 2};
   grid.cs = {0.01, 1, 1000};
-  const auto base = perception::default_recording_inputs("stroke");
+  const auto base = perception::default_recording_inputs(perception::RecordingProcedure::stroke);
   std::vector<std::size_t> first_three;
   for (std::size_t i = 0; i < data.files.size(); ++i)
     if (data.files[i].find("_4_") == std::string::npos) first_three.push_back(i);
@@ -595,9 +604,9 @@ TEST(ModelSelection, ScoresAreEachCandidatesCrossValidation) {
 // The default grid reaches past the slide default's C on both sides: a default chosen at the
 // grid's end would not say whether a larger or smaller C is better still.
 TEST(ModelSelection, SlideDefaultCIsInsideTheGrid) {
-  const auto grid = perception::default_selection_grid("stroke");
+  const auto grid = perception::default_selection_grid(perception::RecordingProcedure::stroke);
   const auto [lo, hi] = std::minmax_element(grid.cs.begin(), grid.cs.end());
-  const double c = perception::default_svm_options("stroke").c;
+  const double c = perception::default_svm_options(perception::RecordingProcedure::stroke).c;
   EXPECT_LT(*lo, c);
   EXPECT_GT(*hi, c);
   EXPECT_NE(std::find(grid.cs.begin(), grid.cs.end(), c), grid.cs.end());

@@ -28,7 +28,7 @@ int trial_of(const std::string& file) {
 int correct_when_changed(const Change& change) {
   static const auto data =
       perception::read_labelled_recordings(kMaterials, kMaterials / "labels.csv", {}, 2);
-  const auto options = perception::default_recording_inputs("stroke");
+  const auto options = perception::default_recording_inputs(perception::RecordingProcedure::stroke);
   const auto inputs = perception::analyse_recordings(data, options, 2);
   int correct = 0;
   for (int trial = 1; trial <= 4; ++trial) {
@@ -36,7 +36,8 @@ int correct_when_changed(const Change& change) {
     for (std::size_t i = 0; i < data.files.size(); ++i)
       if (trial_of(data.files[i]) != trial) train.push_back(i);
     const perception::Classifier c(perception::make_classifier_model(
-        perception::subset(inputs, train), perception::default_svm_options("stroke")));
+        perception::subset(inputs, train),
+        perception::default_svm_options(perception::RecordingProcedure::stroke)));
     for (std::size_t i = 0; i < data.files.size(); ++i) {
       if (trial_of(data.files[i]) != trial) continue;
       auto r = data.recordings[i];

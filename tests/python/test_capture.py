@@ -44,7 +44,7 @@ def test_capture_matches_the_command_line(frames, cli, tmp_path, capsys):
     assert len(strain.frames) == len(expected.frames) > 0
     np.testing.assert_array_equal(strain.tracks["track_id"], expected.tracks["track_id"])
     np.testing.assert_allclose(strain.tracks["x_mm"], expected.tracks["x_mm"])
-    assert strain.source == str(images)
+    assert strain.provenance.input == str(images) and strain.provenance.method == "capture"
 
 
 def test_capture_a_range(frames):

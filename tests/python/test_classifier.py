@@ -34,7 +34,7 @@ def test_classifier_bad_input(tmp_path, data_dir):
     rec = data_dir / "biotac-materials"
     with pytest.raises(FileNotFoundError):
         tactile.train(rec, tmp_path / "absent.csv")
-    with pytest.raises(ValueError, match="procedure 'sideways' is not stroke"):
+    with pytest.raises(ValueError, match=r"unknown procedure 'sideways' \(known: stroke, static, dp, ru, roll\)"):
         tactile.train(rec, rec / "labels.csv", procedure="sideways")
     with pytest.raises(ValueError, match="trim"):
         tactile.train(rec, rec / "labels.csv", trim=0.7)

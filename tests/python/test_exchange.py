@@ -13,7 +13,7 @@ def sine_movie(frames=50):
     phase = np.arange(100, dtype=np.float32).reshape(1, 10, 10) / 10.0
     d = (20.0 * np.sin(2 * np.pi * t / 25.0 + phase)).astype(np.float32)
     movie = tactile.Movie(d, "stress")
-    movie.provenance.source = "a sine made in a test"
+    movie.provenance.input = "a sine made in a test"
     return movie, d
 
 
@@ -26,7 +26,7 @@ def test_hjif_round_trip_keeps_deflections_layout_rate_and_provenance(tmp_path):
     assert summary["timescale"] == 700
     back = tactile.import_hjif(tmp_path / "m.hjif")
     assert back.layout.name == "stress" and back.rate_hz == 700
-    assert back.provenance.source == "a sine made in a test"
+    assert back.provenance.input == "a sine made in a test"
     # Within the documented quantisation (1e-6 of full scale) and well within 0.1 um.
     assert np.max(np.abs(back.deflection_um - d)) < 0.1
 

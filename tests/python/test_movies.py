@@ -20,12 +20,12 @@ def test_create_write_read_round_trip(tmp_path):
     movie, d = ramp_movie()
     assert movie.rate_hz == 700  # the layout's own rate when none is given
     assert movie.frame_count == 5 and movie.layout.rows == 10
-    movie.provenance.source = "made in a test"
+    movie.provenance.input = "made in a test"
     tactile.write_movie(tmp_path / "m.h5", movie)
     back = tactile.read_movie(str(tmp_path / "m.h5"))
     np.testing.assert_array_equal(back.deflection_um, d)
     assert back.deflection_um.dtype == np.float32
-    assert back.provenance.source == "made in a test"
+    assert back.provenance.input == "made in a test"
     assert back.layout.name == "stress" and back.rate_hz == 700
 
 

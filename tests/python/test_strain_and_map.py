@@ -13,7 +13,7 @@ def test_strain_movie_round_trip_and_views(tmp_path, strain):
     assert strain.camera_frame_count == 12 and len(strain.frames) == 11
     tactile.write_strain_movie(tmp_path / "s.h5", strain)
     back = tactile.read_strain_movie(tmp_path / "s.h5")
-    assert back.frame_rate_hz == 60 and back.source == "stretched grid"
+    assert back.frame_rate_hz == 60 and back.provenance.input == "stretched grid"
     np.testing.assert_allclose(back.tracks["x_mm"], strain.tracks["x_mm"])
     f = back.frames[3]
     assert (f.frame_from, f.frame_to) == (3, 4)
@@ -61,7 +61,7 @@ def test_integrated_imposes_the_known_strain(strain):
     # Uniform e_xx = 0.01 and 1 mm pitch: neighbouring contactors along x differ by
     # 1000 um/strain * 0.01 * 1 mm = 10 um (methods.hpp), in every row.
     movie = tactile.map(strain, "stress", method="integrated")
-    assert movie.rate_hz == 700 and movie.provenance.mapping_method == "integrated"
+    assert movie.rate_hz == 700 and movie.provenance.method == "integrated"
     middle = movie.deflection_um[movie.frame_count // 2]
     np.testing.assert_allclose(np.diff(middle, axis=1), 10.0, atol=0.05)
     proportional = tactile.map(strain, "stress", method="proportional", gain_um_per_strain=2000)

@@ -114,7 +114,7 @@ const std::map<std::string, Reader>& readers() {
           m.layout.rows = 2;
           m.layout.cols = 2;
           m.deflection_um.resize(20);
-          m.provenance.mapping_parameters_json = R"({"gain":1})";
+          m.provenance.parameters_json = R"({"gain":1})";
           write_text(dir / "small.hjif", movie::hjif_text(m));
           m.frame_count = 1;
           m.deflection_um.resize(4);

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_sweep_options.hpp"
 #include "command.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/bench.hpp"
@@ -33,13 +34,13 @@ std::string load_average() {
 
 void print_row(const capture::SceneBenchResult& r, const std::string& extra = {}) {
   if (!r.error.empty()) {
-    fmt::print("{:<20} {:<15} {}failed: {}\n", r.method, r.scene, extra, r.error);
+    fmt::print("{:<20} {:<15} {}failed: {}\n", r.method, to_string(r.scene), extra, r.error);
     return;
   }
   fmt::print("{:<20} {:<15} {}{:>8.0f} {:>8.2f} {:>9.5f} {:>9.5f} {:>7.0f} {:>7.4f} {:>6}\n",
-             r.method, r.scene, extra, r.frames_per_s(), r.cpu_ms_per_frame(), r.eval.rms_error,
-             r.eval.rms_truth, r.eval.median_tracked_points, r.eval.localisation_rms_mm,
-             r.eval.track_count);
+             r.method, to_string(r.scene), extra, r.frames_per_s(), r.cpu_ms_per_frame(),
+             r.eval.rms_error, r.eval.rms_truth, r.eval.median_tracked_points,
+             r.eval.localisation_rms_mm, r.eval.track_count);
 }
 
 }  // namespace
@@ -47,11 +48,9 @@ void print_row(const capture::SceneBenchResult& r, const std::string& extra = {}
 void add_bench_capture(CLI::App& bench, Action& action) {
   struct Options {
     int frames = 90;
-    fs::path out = "bench-capture";
-    bool sweeps = false;
     bool quick = false;
-    double max_rms = 0.005;
-    double min_points = 100;
+    BenchSweepOptions common{
+        .out = "bench-capture", .sweeps = false, .limits = {.max_rms = 0.005, .min_points = 100}};
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = bench.add_subcommand(
@@ -66,20 +65,11 @@ void add_bench_capture(CLI::App& bench, Action& action) {
   sub->add_option("--frames", opt->frames, "Frames per sequence")
       ->check(within(35, 2000))
       ->capture_default_str();
-  sub->add_option("--out", opt->out, "Output folder")->capture_default_str();
-  sub->add_flag("--sweeps", opt->sweeps, "Also run the stability sweeps (slow)");
+  add_bench_sweep_options(*sub, opt->common);
   sub->add_flag("--quick", opt->quick, "Only the default pipeline and the two baselines");
-  // A strain RMS error: 1 (100 % strain) already means any result passes.
-  sub->add_option("--max-rms", opt->max_rms, "Sweep failure: strain RMS error above this")
-      ->check(within(1e-6, 1.0))
-      ->capture_default_str();
-  sub->add_option("--min-points", opt->min_points,
-                  "Sweep failure: median tracked landmarks per frame below this")
-      ->check(within(0.0, 1000000.0))
-      ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
-      fs::create_directories(opt->out);
+      fs::create_directories(opt->common.out);
       const auto all = capture::scene_bench_methods(opt->quick);
       fmt::print("load average before the run: {} ({} cores)\n", load_average(),
                  std::thread::hardware_concurrency());
@@ -87,7 +77,7 @@ void add_bench_capture(CLI::App& bench, Action& action) {
                  "frames/s", "cpu_ms/f", "rms_err", "rms_true", "points", "loc_mm", "tracks");
       const auto results = capture::bench_scenes(
           opt->frames, all, [](const capture::SceneBenchResult& r) { print_row(r); });
-      const auto csv_path = opt->out / "bench_capture.csv";
+      const auto csv_path = opt->common.out / "bench_capture.csv";
       auto csv = csv::open_with_header(
           csv_path,
           "method,scene,frames,seconds,frames_per_s,cpu_ms_per_frame,rms_error,rms_truth,edges,"
@@ -103,9 +93,10 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       for (const auto& r : results) {
         csv << fmt::format(
             "\"{}\",{},{},{:.4f},{:.1f},{:.3f},{:.6g},{:.6g},{},{:.0f},{:.5f},{},{:.0f},\"{}\"\n",
-            r.method, r.scene, r.frames, r.seconds, r.frames_per_s(), r.cpu_ms_per_frame(),
-            r.eval.rms_error, r.eval.rms_truth, r.eval.edges, r.eval.median_tracked_points,
-            r.eval.localisation_rms_mm, r.eval.track_count, r.eval.median_track_frames, r.error);
+            r.method, to_string(r.scene), r.frames, r.seconds, r.frames_per_s(),
+            r.cpu_ms_per_frame(), r.eval.rms_error, r.eval.rms_truth, r.eval.edges,
+            r.eval.median_tracked_points, r.eval.localisation_rms_mm, r.eval.track_count,
+            r.eval.median_track_frames, r.error);
         if (!r.error.empty()) continue;
         // One series per method, so that a method's five scenes share a colour.
         auto it = std::find_if(chart.series.begin(), chart.series.end(),
@@ -115,24 +106,23 @@ void add_bench_capture(CLI::App& bench, Action& action) {
         it->y.push_back(r.eval.rms_error);
       }
       csv::finish(csv, csv_path);
-      const ChartFiles plot = write_scatter_chart(opt->out / "speed_accuracy.png", chart);
+      const ChartFiles plot = write_scatter_chart(opt->common.out / "speed_accuracy.png", chart);
       fmt::print("load average after the run: {}\n", load_average());
       fmt::print("bench capture: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
                  plot.svg.string());
 
-      if (!opt->sweeps) return 0;
+      if (!opt->common.sweeps) return 0;
       const auto& pipeline = all.front();
-      const auto sweep_path = opt->out / "sweeps.csv";
+      const auto sweep_path = opt->common.out / "sweeps.csv";
       auto sw = csv::open_with_header(sweep_path,
                                       "condition,value,frames_per_s,rms_error,rms_truth,"
                                       "median_tracked_points,passes");
       const int sweep_frames = std::min(opt->frames, 60);
       fmt::print("\nstability sweeps (bump, {} frames; failure: rms error > {} or < {} points)\n",
-                 sweep_frames, opt->max_rms, opt->min_points);
+                 sweep_frames, opt->common.limits.max_rms, opt->common.limits.min_points);
       for (const auto& s : capture::scene_sweeps()) {
         const auto failures = capture::run_scene_sweep(
-            s, pipeline, sweep_frames, {opt->max_rms, opt->min_points},
-            [&](const capture::SceneSweepPoint& p) {
+            s, pipeline, sweep_frames, opt->common.limits, [&](const capture::SceneSweepPoint& p) {
               const auto& r = p.result;
               print_row(r, fmt::format("{:<34} {:>6g} ", s.name, p.value));
               sw << fmt::format("\"{}\",{},{:.1f},{:.6g},{:.6g},{:.0f},{}\n", s.name, p.value,

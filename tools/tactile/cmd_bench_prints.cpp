@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_sweep_options.hpp"
 #include "command.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/bench.hpp"
@@ -37,15 +38,13 @@ void print_row(const capture::PrintBenchRow& r, const std::string& lead) {
 void add_bench_prints(CLI::App& bench, Action& action) {
   struct Options {
     fs::path prints;
-    fs::path out = "bench-prints";
     std::vector<std::string> held_out = {"11", "12", "13", "14", "15"};
     int frames = 30;
     double px_per_mm = 47;
     bool quick = false;
     bool touch = false;
-    bool sweeps = false;
-    double max_rms = 0.0025;
-    double min_points = 150;
+    BenchSweepOptions common{
+        .out = "bench-prints", .sweeps = false, .limits = {.max_rms = 0.0025, .min_points = 150}};
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = bench.add_subcommand(
@@ -61,7 +60,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
   sub->add_option("PRINTS_DIR", opt->prints, "Folder of marked prints")
       ->required()
       ->check(CLI::ExistingDirectory);
-  sub->add_option("--out", opt->out, "Output folder")->capture_default_str();
+  add_bench_sweep_options(*sub, opt->common);
   sub->add_option("--held-out", opt->held_out,
                   "Numbers NN of the prints kept out of tuning (reported apart)")
       ->delimiter(',')
@@ -78,26 +77,17 @@ void add_bench_prints(CLI::App& bench, Action& action) {
                 "Instead of the wave and the other quasi-static patterns, the other motions of "
                 "the fast scene (8 %, 25 mm/s, 60 Hz): pulse, ridge, stick-slip, kernels, and "
                 "the wave with a loss of contact");
-  sub->add_flag("--sweeps", opt->sweeps, "Also the stability sweeps (slow)");
-  // A strain RMS error: 1 (100 % strain) already means any result passes.
-  sub->add_option("--max-rms", opt->max_rms, "Sweep failure: strain RMS error above this")
-      ->check(within(1e-6, 1.0))
-      ->capture_default_str();
-  sub->add_option("--min-points", opt->min_points,
-                  "Sweep failure: median tracked landmarks per frame below this")
-      ->check(within(0.0, 1000000.0))
-      ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
       refuse_output_over_input(
           {output_folder(
-              "--out", opt->out,
+              "--out", opt->common.out,
               {"bench_prints.csv", "speed_accuracy_prints.png", "speed_accuracy_prints.svg",
                "prints_sweeps.csv", "accuracy_speed_prints.png", "accuracy_speed_prints.svg",
                "fps_accuracy_prints.png", "fps_accuracy_prints.svg"})},
           {{"PRINTS_DIR", opt->prints}});
       const auto prints = capture::read_pore_training_prints(opt->prints);
-      fs::create_directories(opt->out);
+      fs::create_directories(opt->common.out);
       const auto all = capture::print_bench_methods();
       capture::PrintBenchOptions bench;
       bench.held_out = opt->held_out;
@@ -127,7 +117,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
                    m.correlation, m.min_correlation, m.frames_per_s, m.cpu_ms_per_frame);
       }
 
-      const auto csv_path = opt->out / "bench_prints.csv";
+      const auto csv_path = opt->common.out / "bench_prints.csv";
       auto csv = csv::open_with_header(
           csv_path,
           "print,group,pattern,strain,method,frames_per_s,rms_error,rms_truth,correlation,"
@@ -151,17 +141,18 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         it->y.push_back(r.eval.rms_error);
       }
       csv::finish(csv, csv_path);
-      const ChartFiles plot = write_scatter_chart(opt->out / "speed_accuracy_prints.png", chart);
+      const ChartFiles plot =
+          write_scatter_chart(opt->common.out / "speed_accuracy_prints.png", chart);
       fmt::print("bench prints: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
                  plot.svg.string());
-      if (!opt->sweeps) return 0;
+      if (!opt->common.sweeps) return 0;
 
       const std::set<std::string> held(opt->held_out.begin(), opt->held_out.end());
       const auto first_held = std::find_if(prints.begin(), prints.end(), [&](const auto& p) {
         return held.count(capture::print_number(p.name)) > 0;
       });
       const auto& print = first_held != prints.end() ? *first_held : prints.front();
-      const auto sweep_path = opt->out / "prints_sweeps.csv";
+      const auto sweep_path = opt->common.out / "prints_sweeps.csv";
       auto sw = csv::open_with_header(sweep_path,
                                       "condition,method,value,rms_error,rms_truth,correlation,"
                                       "median_tracked_points,frames_per_s,"
@@ -169,12 +160,12 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       fmt::print(
           "\nstability sweeps ({} wave 4 %, {} frames; failure: rms error > {} or < {} "
           "points)\n",
-          print.name, opt->frames, opt->max_rms, opt->min_points);
+          print.name, opt->frames, opt->common.limits.max_rms, opt->common.limits.min_points);
       // Accuracy against exploration speed, and frames/s against accuracy, for every method.
       XYChart by_speed{.title = "Strain error at the speed of touch (8 % wave, 60 Hz)",
                        .x = {.label = "exploration speed (mm/s)"},
                        .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
-                       .y_targets = {{.value = opt->max_rms, .label = "failure"}},
+                       .y_targets = {{.value = opt->common.limits.max_rms, .label = "failure"}},
                        .width = 960,
                        .height = 600};
       XYChart fps_error{.title = "Frames per second against strain error (speed and rate sweeps)",
@@ -194,8 +185,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         const std::size_t method_count = s.every_method ? all.size() : 1;
         for (std::size_t k = 0; k < method_count; ++k) {
           const auto failures = capture::run_print_sweep(
-              s, all[k], print, bench, {opt->max_rms, opt->min_points},
-              [&](const capture::PrintSweepPoint& p) {
+              s, all[k], print, bench, opt->common.limits, [&](const capture::PrintSweepPoint& p) {
                 const auto& r = p.row;
                 print_row(r, fmt::format("{:<34} {:>6g}", s.name, p.value));
                 sw << fmt::format("\"{}\",\"{}\",{},{:.6g},{:.6g},{:.5f},{:.0f},{:.2f},{}\n",
@@ -213,9 +203,9 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         }
       }
       const ChartFiles speed_plot =
-          write_line_chart(opt->out / "accuracy_speed_prints.png", by_speed);
+          write_line_chart(opt->common.out / "accuracy_speed_prints.png", by_speed);
       const ChartFiles fps_plot =
-          write_scatter_chart(opt->out / "fps_accuracy_prints.png", fps_error);
+          write_scatter_chart(opt->common.out / "fps_accuracy_prints.png", fps_error);
       fmt::print("bench prints: wrote {}, {}\n", speed_plot.png.string(), fps_plot.png.string());
       csv::finish(sw, sweep_path);
       fmt::print("bench prints: wrote {}\n", sweep_path.string());

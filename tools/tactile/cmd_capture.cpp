@@ -238,7 +238,7 @@ void add_features(CLI::App& app, Action& action) {
   });
 }
 
-void add_capture(CLI::App& app, Action& action) {
+void add_capture(CLI::App& app, Action& action, const std::string& command_line) {
   struct Options {
     fs::path image_dir;
     std::optional<fs::path> calib;
@@ -313,11 +313,11 @@ void add_capture(CLI::App& app, Action& action) {
                   "confidence, Hungarian method)")
       ->check(CLI::IsMember({"greedy", "optimal"}))
       ->capture_default_str();
-  sub->callback([opt, rate, &action] {
+  sub->callback([opt, rate, &action, &command_line] {
     require_calibration(opt->calib, opt->px_per_mm);
     require_ridge_blob_for_model(opt->pores, opt->pore_model);
     const bool rate_given = rate->count() > 0;
-    action = [opt, rate_given] {
+    action = [opt, rate_given, &command_line] {
       capture::FrameRange input(opt->image_dir, opt->start, opt->frames);
       if (const std::string range = input.range_error(); !range.empty()) {
         fmt::print(stderr, "tactile capture: error: {}\n", range);
@@ -374,8 +374,8 @@ void add_capture(CLI::App& app, Action& action) {
       }
       const double cpu_s = process_cpu_s() - cpu0;
       const int n = movie.camera_frame_count;
-      movie.source = opt->image_dir.string();
-      movie.program_version = kVersion;
+      movie.provenance.input = opt->image_dir.string();
+      movie.provenance.command_line = command_line;
       capture::write_strain_movie(opt->out, movie);
       fmt::print(
           "capture: {} frames in {:.2f} s ({:.0f} frames/s; CPU {:.2f} ms per frame), {} strain "

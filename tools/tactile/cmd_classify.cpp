@@ -51,8 +51,9 @@ struct TrainOptions {
 // --select on the project's 200 recordings, so plain cross-validation of them on those
 // recordings scores the choice on the data it was made on.
 bool uses_chosen_defaults(const perception::ClassifierTraining& t) {
-  return t.procedure == "stroke" && (t.inputs.empty() || !t.baseline_at || !t.electrodes ||
-                                     !t.trim || !t.kernel_degree || !t.c);
+  return t.procedure == perception::RecordingProcedure::stroke &&
+         (t.inputs.empty() || !t.baseline_at || !t.electrodes || !t.trim || !t.kernel_degree ||
+          !t.c);
 }
 
 int train(const TrainOptions& o) {
@@ -86,8 +87,9 @@ int train(const TrainOptions& o) {
         "classify train: {} recordings, {} classes, {} inputs ({} as {}; baseline {}, "
         "electrodes {}, trim {:g}), analysed in {:.2f} s\n",
         model.rows.size(), model.class_names.size(), model.input_names.size(),
-        fmt::join(names_of(in.groups), ","), t.procedure, to_string(in.contact.baseline_at),
-        to_string(in.contact.electrodes), in.contact.trim_fraction, run.analysis_s);
+        fmt::join(names_of(in.groups), ","), to_string(t.procedure),
+        to_string(in.contact.baseline_at), to_string(in.contact.electrodes),
+        in.contact.trim_fraction, run.analysis_s);
     if (run.cv) {
       const auto& cv = *run.cv;
       fmt::print(
@@ -193,11 +195,9 @@ void add_classify(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::ExistingFile);
   tr->add_option("--out", t->out, "Model file to write (JSON)")->required();
-  tr->add_option("--procedure", t->training.procedure,
-                 "What a recording is: stroke (a slide over a texture), static (a press), or a "
-                 "scene of the paper: dp, ru, roll (feature contact from its kinematics)")
-      ->check(CLI::IsMember({"stroke", "static", "dp", "ru", "roll"}))
-      ->capture_default_str();
+  add_mode_option(*tr, "--procedure", t->training.procedure, perception::kRecordingProcedureNames,
+                  "What a recording is: stroke (a slide over a texture), static (a press), or a "
+                  "scene of the paper: dp, ru, roll (feature contact from its kinematics)");
   add_optional_mode_option(
       *tr, "--baseline-at", t->training.baseline_at, perception::kBaselineAtNames,
       "Where the free-air baseline is: end (recordings that begin in contact), start, "

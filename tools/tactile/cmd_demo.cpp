@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -62,7 +64,7 @@ class StageTimer {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-int run_demo(DemoOptions& opt) {
+int run_demo(DemoOptions& opt, const std::string& command_line) {
   const movie::Layout layout = movie::layout_by_name(opt.layout);
   capture::validate_scene(opt.scene);
   mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
@@ -71,15 +73,16 @@ int run_demo(DemoOptions& opt) {
   StageTimer timer;
   const auto total_start = std::chrono::steady_clock::now();
 
-  fmt::print("demo: {} scene, {} frames at {:g} Hz, sliding at {:g} mm/s\n", opt.scene.scene,
-             opt.scene.frame_count, opt.scene.frame_rate_hz, opt.scene.speed_mm_per_s);
+  fmt::print("demo: {} scene, {} frames at {:g} Hz, sliding at {:g} mm/s\n",
+             to_string(opt.scene.scene), opt.scene.frame_count, opt.scene.frame_rate_hz,
+             opt.scene.speed_mm_per_s);
   const capture::SyntheticSequence seq = capture::render_sequence(
       opt.scene, [&](int done, int total) { progress("synthesise", done, total); });
   progress.finish();
   timer.report(1, "synthesise",
                fmt::format("{} frames of {} x {} px", seq.frames.size(), opt.scene.width_px,
                            opt.scene.height_px));
-  if (opt.keep) capture::write_sequence(opt.out / "frames", seq);
+  if (opt.keep) capture::write_sequence(opt.out / "frames", seq, command_line);
 
   // Calibrate from the dot grid image, as a user would: the true calibration is not used.
   const capture::Calibration calibration = capture::calibrate_dot_grid(seq.dot_grid, 0.5);
@@ -91,9 +94,12 @@ int run_demo(DemoOptions& opt) {
       seq.frames, calibration, opt.scene.frame_rate_hz, capture::CaptureParams{},
       [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
   progress.finish();
-  strain.source =
-      fmt::format("tactile demo: synthetic {} scene, seed {}", opt.scene.scene, opt.scene.seed);
-  strain.program_version = kVersion;
+  // Measured from frames rendered in memory: no input file; the scene is in the parameters.
+  auto settings = nlohmann::json::parse(strain.provenance.parameters_json);
+  settings["scene"] = to_string(opt.scene.scene);
+  settings["seed"] = opt.scene.seed;
+  strain.provenance.parameters_json = settings.dump();
+  strain.provenance.command_line = command_line;
   std::size_t edges = 0;
   for (const auto& f : strain.frames) edges += f.edges.size();
   const std::size_t tracks = [&] {
@@ -117,8 +123,8 @@ int run_demo(DemoOptions& opt) {
   const capture::StrainMovie source = mapping::strain_source(strain, opt.mapping);
   mapping::MappingResult mapped = mapping::map_strain_frames(source, layout, opt.mapping);
   movie::TactileMovie& movie = mapped.movie;
-  movie.provenance.source = strain_path.string();
-  movie.provenance.created_utc = h5::utc_now_iso8601();
+  movie.provenance.input = strain_path.string();
+  movie.provenance.command_line = command_line;
   timer.report(
       4, "map",
       fmt::format("{} frames of {} x {} ({}) at {:g} Hz, method {}", movie.frame_count, layout.rows,
@@ -151,7 +157,7 @@ int run_demo(DemoOptions& opt) {
 
 }  // namespace
 
-void add_demo(CLI::App& app, Action& action) {
+void add_demo(CLI::App& app, Action& action, const std::string& command_line) {
   auto opt = std::make_shared<DemoOptions>();
   CLI::App* sub = app.add_subcommand(
       "demo",
@@ -172,7 +178,9 @@ void add_demo(CLI::App& app, Action& action) {
                   "Mapping method (see tactile map --help); the demo prints how well the movie\n"
                   "reproduces the measured strain");
   add_scene_options(*sub, opt->scene);
-  sub->callback([opt, &action] { action = [opt] { return run_demo(*opt); }; });
+  sub->callback([opt, &action, &command_line] {
+    action = [opt, &command_line] { return run_demo(*opt, command_line); };
+  });
 }
 
 }  // namespace tactile::cli

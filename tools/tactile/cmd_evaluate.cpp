@@ -67,7 +67,7 @@ void add_evaluate(CLI::App& app, Action& action) {
       const std::string scene =
           truth.warp ? fmt::format("{} warp of the print {}",
                                    capture::to_string(truth.warp->pattern), truth.warp->source)
-                     : truth.spec.scene;
+                     : to_string(truth.spec.scene);
       fmt::print("evaluate: scene {} ({} frames), {} strain frames, span {}\n", scene, truth_frames,
                  movie.frames.size(), movie.span_frames);
       fmt::print("  edge strain RMS error      {:.5f}  (true strain RMS {:.5f}, {} edges)\n",

@@ -65,7 +65,7 @@ void add_export(CLI::App& app, Action& action) {
   });
 }
 
-void add_import(CLI::App& app, Action& action) {
+void add_import(CLI::App& app, Action& action, const std::string& command_line) {
   struct Options {
     fs::path in;
     fs::path out;
@@ -83,8 +83,8 @@ void add_import(CLI::App& app, Action& action) {
   sub->add_option("--layout", opt->layout,
                   "Display layout: stress, stress2, latero or FILE.json (default: the layout the\n"
                   "file carries; required for files from other tools)");
-  sub->callback([opt, &action] {
-    action = [opt] {
+  sub->callback([opt, &action, &command_line] {
+    action = [opt, &command_line] {
       std::vector<NamedPath> inputs = {{"IN_HJIF", opt->in}};
       if (opt->layout && fs::path(*opt->layout).extension() == ".json") {
         inputs.push_back({"--layout", *opt->layout});
@@ -93,9 +93,11 @@ void add_import(CLI::App& app, Action& action) {
       movie::HjifImportOptions options;
       if (opt->layout) options.layout = movie::resolve_layout(*opt->layout);
       movie::TactileMovie movie = movie::read_hjif(opt->in, options);
-      if (movie.provenance.source.empty()) {
-        // A file from another tool: say where this movie came from.
-        movie.provenance = {kVersion, h5::utc_now_iso8601(), opt->in.string(), "hjif import", ""};
+      // A file this program wrote carries the provenance of the movie it holds (with the
+      // program's version); a file from another tool gets one that says it was imported.
+      if (movie.provenance.program_version.empty()) {
+        movie.provenance = make_provenance(opt->in.string(), "hjif import");
+        movie.provenance.command_line = command_line;
       }
       movie::write_tactile_movie(opt->out, movie);
       fmt::print("import: {} x {} contactors ({}), {} frames at {:g} Hz ({:.2f} s) -> {}\n",

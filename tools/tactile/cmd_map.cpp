@@ -21,7 +21,7 @@
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
-void add_map(CLI::App& app, Action& action) {
+void add_map(CLI::App& app, Action& action, const std::string& command_line) {
   struct Options {
     fs::path strain;
     fs::path out;
@@ -69,8 +69,8 @@ void add_map(CLI::App& app, Action& action) {
                   "e.g. stress 700 Hz, latero 750 Hz)")
       ->check(playable_rate());
   sub->add_option("--csv", opt->csv, "Also export the movie as CSV");
-  sub->callback([opt, &action] {
-    action = [opt] {
+  sub->callback([opt, &action, &command_line] {
+    action = [opt, &command_line] {
       std::vector<NamedPath> inputs = {{"STRAIN_H5", opt->strain}};
       if (fs::path(opt->layout).extension() == ".json") inputs.push_back({"--layout", opt->layout});
       std::vector<Output> outputs = {output_file("--out", opt->out)};
@@ -89,8 +89,8 @@ void add_map(CLI::App& app, Action& action) {
       movie::TactileMovie movie = mapping::map_strain_movie(strain, layout, opt->params);
       const double ms =
           1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      movie.provenance.source = opt->strain.string();
-      movie.provenance.created_utc = h5::utc_now_iso8601();
+      movie.provenance.input = opt->strain.string();
+      movie.provenance.command_line = command_line;
       movie::write_tactile_movie(opt->out, movie);
       fmt::print(
           "map: {} strain frames -> {} frames of {} x {} at {:g} Hz ({:.2f} s) in {:.1f} ms -> "

@@ -196,11 +196,11 @@ void add_info(CLI::App& app, Action& action) {
             "{:.0f} edges per frame, field {:.2f} x {:.2f} mm, calibration: {}, source: {}\n",
             file->string(), m.camera_frame_count, m.frame_rate_hz, m.span_frames, m.frames.size(),
             m.frames.empty() ? 0.0 : static_cast<double>(edges) / m.frames.size(), m.field_width_mm,
-            m.field_height_mm, m.calibration.method, m.source);
+            m.field_height_mm, m.calibration.method, origin_of(m.provenance));
         return 0;
       }
       const movie::TactileMovie movie = movie::read_tactile_movie(*file);
-      fmt::print("{}: tactile movie, {}\n", file->string(), movie.provenance.mapping_method);
+      fmt::print("{}: tactile movie, {}\n", file->string(), movie.provenance.method);
       fmt::print("{}", display::format_summary(display::summarize(movie)));
       return 0;
     };

@@ -63,7 +63,8 @@ void refuse_stale_frames(const std::filesystem::path& out_dir, int frame_count) 
 }
 
 int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem::path& image,
-                     std::optional<std::filesystem::path> marks, capture::PrintWarpSpec warp) {
+                     std::optional<std::filesystem::path> marks, capture::PrintWarpSpec warp,
+                     const std::string& command_line) {
   if (!marks) marks = marks_beside(image);
   std::vector<std::filesystem::path> writes = {"landmarks.csv", "scene.json"};
   for (int f = 0; f < warp.frame_count; ++f) {
@@ -80,7 +81,7 @@ int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem
   if (marks) pores = capture::read_pore_marks(*marks, print.width_px, print.height_px);
   const auto t0 = std::chrono::steady_clock::now();
   const capture::PrintSequence seq = capture::render_print_sequence(warp, print, pores);
-  capture::write_print_sequence(out_dir, seq);
+  capture::write_print_sequence(out_dir, seq, image, command_line);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print(
       "synth: {} frames of {} x {} px from {} ({} warp, {:.1f} % peak strain, {} marked pores{}) "
@@ -93,7 +94,7 @@ int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem
 
 }  // namespace
 
-void add_synth(CLI::App& app, Action& action) {
+void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
   struct Options {
     std::filesystem::path out_dir;
     capture::SceneSpec spec;
@@ -205,7 +206,7 @@ void add_synth(CLI::App& app, Action& action) {
                               "--from-print: rotation in degrees/s (instead of --turn)")
                   ->check(within(-10000.0, 10000.0))
                   ->excludes("--turn"));
-  sub->callback([opt, &action, sub] {
+  sub->callback([opt, &action, sub, &command_line] {
     if (opt->print) {
       for (const char* scene_only :
            {"--scene", "--speed", "--height", "--width", "--contact-semi-x", "--rotation",
@@ -222,11 +223,13 @@ void add_synth(CLI::App& app, Action& action) {
       const double duration_s = capture::sequence_duration_s(opt->warp);
       if (opt->slide_speed_mm_per_s) opt->warp.slide_x_mm = *opt->slide_speed_mm_per_s * duration_s;
       if (opt->turn_rate_deg_per_s) opt->warp.rotation_deg = *opt->turn_rate_deg_per_s * duration_s;
-      action = [opt] { return synth_from_print(opt->out_dir, *opt->print, opt->marks, opt->warp); };
+      action = [opt, &command_line] {
+        return synth_from_print(opt->out_dir, *opt->print, opt->marks, opt->warp, command_line);
+      };
       return;
     }
     if (sub->count("--rate") > 0) throw CLI::RequiresError("--rate", "--from-print");
-    action = [opt] {
+    action = [opt, &command_line] {
       capture::validate_scene(opt->spec);
       refuse_stale_frames(opt->out_dir, opt->spec.frame_count);
       Progress progress;
@@ -235,11 +238,11 @@ void add_synth(CLI::App& app, Action& action) {
           opt->spec, [&](int done, int total) { progress("render", done, total); });
       progress.finish();
       std::filesystem::create_directories(opt->out_dir);
-      capture::write_sequence(opt->out_dir, seq);
+      capture::write_sequence(opt->out_dir, seq, command_line);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       fmt::print(
           "synth: {} frames of {} x {} px ({} scene) and {} landmark positions -> {} ({:.1f} s)\n",
-          seq.frames.size(), opt->spec.width_px, opt->spec.height_px, opt->spec.scene,
+          seq.frames.size(), opt->spec.width_px, opt->spec.height_px, to_string(opt->spec.scene),
           seq.landmarks.size(), opt->out_dir.string(), s);
       return 0;
     };

@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/common/output_paths.hpp"
+#include "tactile/common/provenance.hpp"
 #include "tactile/common/version.hpp"
 
 int main(int argc, char** argv) {
@@ -25,14 +26,15 @@ int main(int argc, char** argv) {
   app.fallthrough(false);
 
   tactile::cli::Action action;
-  tactile::cli::add_demo(app, action);
-  tactile::cli::add_synth(app, action);
+  const std::string command_line = tactile::command_line_of(argc, argv);
+  tactile::cli::add_demo(app, action, command_line);
+  tactile::cli::add_synth(app, action, command_line);
   tactile::cli::add_calibrate(app, action);
   tactile::cli::add_features(app, action);
-  tactile::cli::add_capture(app, action);
+  tactile::cli::add_capture(app, action, command_line);
   tactile::cli::add_train_pores(app, action);
   tactile::cli::add_evaluate(app, action);
-  tactile::cli::add_map(app, action);
+  tactile::cli::add_map(app, action, command_line);
   tactile::cli::add_experiment(app, action);
   tactile::cli::add_perceive(app, action);
   tactile::cli::add_classify(app, action);
@@ -41,7 +43,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_devices(app, action);
   tactile::cli::add_info(app, action);
   tactile::cli::add_export(app, action);
-  tactile::cli::add_import(app, action);
+  tactile::cli::add_import(app, action, command_line);
   tactile::cli::add_emulate(app, action);
   tactile::cli::add_bench(app, action);
 

@@ -3,18 +3,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/synth.hpp"
 
 namespace tactile::cli {
 
 inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
-  sub.add_option("--scene", spec.scene,
-                 "Scene: bump, hole, flat-slide (slide over a feature or flat glass), "
-                 "flat-rotate (press and twist), flat-stick-slip (push back and forth with a "
-                 "sticking centre)")
-      ->check(CLI::IsMember(capture::scene_names()))
-      ->capture_default_str();
+  add_mode_option(sub, "--scene", spec.scene, capture::kSceneNames,
+                  "Scene: bump, hole, flat-slide (slide over a feature or flat glass), "
+                  "flat-rotate (press and twist), flat-stick-slip (push back and forth with a "
+                  "sticking centre)");
   sub.add_option("--frames", spec.frame_count, "Number of camera frames")
       ->check(within(2, 100000))
       ->capture_default_str();

@@ -84,7 +84,7 @@ std::vector<SceneBenchResult> bench_scenes(
     int frame_count, const std::vector<SceneBenchMethod>& methods,
     const std::function<void(const SceneBenchResult&)>& on_result) {
   std::vector<SceneBenchResult> results;
-  for (const std::string& scene : scene_names()) {
+  for (const Scene scene : kScenes) {
     SceneSpec spec;
     spec.scene = scene;
     spec.frame_count = frame_count;
@@ -144,7 +144,7 @@ SweepFailures run_scene_sweep(const SceneSweep& sweep, const SceneBenchMethod& m
     } catch (const std::exception& e) {  // a spec the renderer refuses
       p.result.error = e.what();
     }
-    p.result.scene = "bump";
+    p.result.scene = spec.scene;
     p.result.frames = frame_count;
     const auto& r = p.result;
     p.accurate = r.error.empty() && r.eval.edges > 0 && r.eval.rms_error <= limits.max_rms;

@@ -3,8 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include "tactile/capture/capture.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tactile/common/provenance.hpp"
 
 namespace tactile::capture {
 
@@ -232,6 +235,17 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
           : tracks_from_detections(next_frame, first, cal, params, progress, expected_frames, n);
   StrainMovie movie =
       strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio);
+  // The settings that decide what is measured; the frames' file is the caller's to name.
+  const nlohmann::json settings = {{"frame_rate_hz", frame_rate_hz},
+                                   {"mm_per_px", cal.mm_per_px},
+                                   {"pore_detector", to_string(params.features.pore_detector)},
+                                   {"refine", params.refine},
+                                   {"smoothing_half_window", params.smoothing_half_window},
+                                   {"span_frames", params.span_frames},
+                                   {"min_track_frames", params.min_track_frames},
+                                   {"assignment", to_string(params.assignment)},
+                                   {"match_radius_mm", params.match_radius_mm}};
+  movie.provenance = make_provenance({}, "capture", settings.dump());
   if (progress) progress("strain", 1, 1);
   return movie;
 }

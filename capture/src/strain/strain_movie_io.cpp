@@ -58,9 +58,7 @@ void write_strain_movie(const std::filesystem::path& path, const StrainMovie& mo
     h5::write_attr(root, "field_height_mm", movie.field_height_mm);
     h5::write_attr(root, "units", "position: mm (and px); time: s; rel_change: dimensionless");
     h5::write_attr(root, "feature_types", "0=pore,1=ending,2=bifurcation");
-    h5::write_attr(root, "source", movie.source);
-    h5::write_attr(root, "program_version", movie.program_version);
-    h5::write_attr(root, "created_utc", h5::utc_now_iso8601());
+    h5::write_provenance(root, movie.provenance);
 
     H5::Group cal = file.createGroup("/calibration");
     const Calibration& c = movie.calibration;
@@ -269,8 +267,18 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
                                       kMaxAbsPositionMm, r.where("/"), "field_width_mm");
   m.field_height_mm = checks::in_range(h5::read_attr_double(root, "field_height_mm", r.where("/")),
                                        0, kMaxAbsPositionMm, r.where("/"), "field_height_mm");
-  m.source = h5::read_attr_string(root, "source", r.where("/"));
-  m.program_version = h5::read_attr_string(root, "program_version", r.where("/"));
+  m.provenance = h5::read_provenance(root, r.where("/"));
+  // Files written before the provenance attributes held what the frames came from as `source`
+  // and the writer's version and time unprefixed.
+  if (!h5::has_attr(root, "provenance_input")) {
+    const auto old = [&](const char* name, std::string& field) {
+      if (field.empty() && h5::has_attr(root, name))
+        field = h5::read_attr_string(root, name, r.where("/"));
+    };
+    old("source", m.provenance.input);
+    old("program_version", m.provenance.program_version);
+    old("created_utc", m.provenance.created_utc);
+  }
 
   H5::Group cal = h5::open_group(root, "calibration", r.where("/calibration"));
   const auto hm = r.read<double>(cal, "/calibration", "px_to_mm", 3, 3);

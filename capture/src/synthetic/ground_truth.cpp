@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -24,8 +26,13 @@ StrainMovie ground_truth_strain_movie(const SceneSpec& spec, double grid_spacing
   movie.field_width_mm = spec.field_width_mm;
   movie.field_height_mm = spec.field_height_mm;
   movie.calibration = capture::true_calibration(spec);
-  movie.source = fmt::format("ground truth: synthetic {} scene, {} mm/s, seed {}", spec.scene,
-                             spec.speed_mm_per_s, spec.seed);
+  movie.provenance = make_provenance({}, "synthetic ground truth",
+                                     nlohmann::json{{"scene", to_string(spec.scene)},
+                                                    {"speed_mm_per_s", spec.speed_mm_per_s},
+                                                    {"frames", spec.frame_count},
+                                                    {"seed", spec.seed},
+                                                    {"grid_spacing_mm", h}}
+                                         .dump());
   // The skin that ever enters the field: the field itself plus the distance slid, with a margin.
   const double slide_mm = std::abs(spec.speed_mm_per_s) * spec.frame_count / spec.frame_rate_hz;
   const int nx = static_cast<int>((spec.field_width_mm + slide_mm + 2) / h) + 1;

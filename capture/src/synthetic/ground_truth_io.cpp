@@ -68,7 +68,11 @@ void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   const auto s = json_field<nlohmann::json>(j, "spec", where);
   const std::string w = where + " spec";
   SceneSpec& spec = gt.spec;
-  spec.scene = json_field<std::string>(s, "scene", w);
+  try {
+    spec.scene = parse_scene(json_field<std::string>(s, "scene", w));
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", w, e.what()));
+  }
   spec.speed_mm_per_s = json_field<double>(s, "speed_mm_per_s", w);
   spec.feature_height_mm = json_field<double>(s, "feature_height_mm", w);
   spec.feature_width_mm = json_field<double>(s, "feature_width_mm", w);

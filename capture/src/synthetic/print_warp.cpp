@@ -15,6 +15,7 @@
 
 #include "camera/cv_image.hpp"
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/json.hpp"
 #include "tactile/common/stats.hpp"
 
 namespace tactile::capture {
@@ -437,7 +438,8 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   return seq;
 }
 
-void write_print_sequence(const std::filesystem::path& dir, const PrintSequence& seq) {
+void write_print_sequence(const std::filesystem::path& dir, const PrintSequence& seq,
+                          const std::filesystem::path& print, const std::string& command_line) {
   write_frames(dir, seq.frames);
   write_landmarks_csv(dir / "landmarks.csv", seq.landmarks);
   const PrintWarpSpec& s = seq.spec;
@@ -464,6 +466,9 @@ void write_print_sequence(const std::filesystem::path& dir, const PrintSequence&
                {"supersample", s.supersample},
                {"contact_loss", s.contact_loss},
                {"seed", s.seed}};
+  Provenance provenance = make_provenance(print.string(), "print warp", j["warp"].dump());
+  provenance.command_line = command_line;
+  j["provenance"] = provenance_json(provenance);
   j["marks"] = seq.marks_px.size();
   j["frames"] = fmt::format("frame_000.png .. frame_{:03d}.png",
                             seq.frames.empty() ? 0 : seq.frames.size() - 1);

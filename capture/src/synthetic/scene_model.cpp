@@ -17,20 +17,18 @@ double smoothstep(double lo, double hi, double v) {
 }
 }  // namespace
 
-const std::vector<std::string>& scene_names() {
-  static const std::vector<std::string> names{"bump", "hole", "flat-slide", "flat-rotate",
-                                              "flat-stick-slip"};
-  return names;
+std::string to_string(Scene scene) {
+  return name_in(kSceneNames, scene);
+}
+
+Scene parse_scene(std::string_view name) {
+  return parse_name("scene", name, kSceneNames);
 }
 
 void validate_scene(const SceneSpec& spec) {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("invalid scene: " + what);
   };
-  const auto& names = scene_names();
-  if (std::find(names.begin(), names.end(), spec.scene) == names.end()) {
-    fail(fmt::format("scene '{}' is not one of {}", spec.scene, fmt::join(names, ", ")));
-  }
   if (spec.frame_count < 1) fail("frame_count must be >= 1");
   if (!(spec.frame_rate_hz > 0)) fail("frame_rate_hz must be > 0");
   if (spec.width_px < 16 || spec.height_px < 16) fail("image must be at least 16x16 px");
@@ -59,11 +57,11 @@ void validate_scene(const SceneSpec& spec) {
   const double a_min = std::min(spec.contact_semi_x_mm, spec.contact_semi_y_mm);
   const double a_max = std::max(spec.contact_semi_x_mm, spec.contact_semi_y_mm);
   const double slope = 1.5 / ((1 - spec.stick_ratio) * a_min);
-  if (spec.scene == "flat-rotate" &&
+  if (spec.scene == Scene::flat_rotate &&
       std::abs(spec.rotation_deg) * std::numbers::pi / 180 * a_max * slope > 0.8) {
     fail("rotation_deg too large for the slip annulus (skin would fold)");
   }
-  if (spec.scene == "flat-stick-slip" && std::abs(spec.lateral_amplitude_mm) * slope > 0.8) {
+  if (spec.scene == Scene::flat_stick_slip && std::abs(spec.lateral_amplitude_mm) * slope > 0.8) {
     fail("lateral_amplitude_mm too large for the slip annulus (skin would fold)");
   }
 }
@@ -77,24 +75,20 @@ SceneModel::SceneModel(const SceneSpec& spec) : spec_(spec) {
   const double h_mm = (spec.height_px - 1) * mm_per_px_y_;
   feature_centre_ = {w_mm / 2, h_mm / 2};
   // The finger's path is centred on the feature so the feature crosses the whole patch.
-  kind_ = spec.scene == "bump"              ? Kind::bump
-          : spec.scene == "hole"            ? Kind::hole
-          : spec.scene == "flat-rotate"     ? Kind::flat_rotate
-          : spec.scene == "flat-stick-slip" ? Kind::flat_stick_slip
-                                            : Kind::flat_slide;
+  kind_ = spec.scene;
   const double travel_mm = slide(spec.frame_count - 1).x_mm;
   finger_centre0_ = {w_mm / 2 - travel_mm / 2, h_mm / 2};
   sigma_mm_ = spec.feature_width_mm / (2 * std::sqrt(2 * std::log(2.0)));
   const double a = spec.displacement_per_height * spec.feature_height_mm;
-  amplitude_mm_ = kind_ == Kind::bump ? a : kind_ == Kind::hole ? -a : 0.0;
+  amplitude_mm_ = kind_ == Scene::bump ? a : kind_ == Scene::hole ? -a : 0.0;
   // Largest skin motion beyond the field: the feature's push, the rim's twist about the centre
   // (at most the half-diagonal), or the rim's lateral slip.
   const double half_diagonal = std::hypot(w_mm, h_mm) / 2;
   skin_margin_mm_ = std::abs(amplitude_mm_);
-  if (kind_ == Kind::flat_rotate) {
+  if (kind_ == Scene::flat_rotate) {
     skin_margin_mm_ = std::abs(spec.rotation_deg) * std::numbers::pi / 180 * half_diagonal;
   }
-  if (kind_ == Kind::flat_stick_slip) skin_margin_mm_ = std::abs(spec.lateral_amplitude_mm);
+  if (kind_ == Scene::flat_stick_slip) skin_margin_mm_ = std::abs(spec.lateral_amplitude_mm);
 }
 
 PointMm SceneModel::slide(int frame) const {
@@ -105,12 +99,12 @@ PointMm SceneModel::slide(int frame) const {
 
 double SceneModel::partial_slip_load(int frame) const {
   const double n = std::max(1, spec_.frame_count - 1);
-  if (kind_ == Kind::flat_rotate) {
+  if (kind_ == Scene::flat_rotate) {
     // Twist grows from rest to rotation_deg with zero angular speed at both ends.
     return spec_.rotation_deg * std::numbers::pi / 180 *
            (1 - std::cos(std::numbers::pi * frame / n)) / 2;
   }
-  if (kind_ == Kind::flat_stick_slip) {
+  if (kind_ == Scene::flat_stick_slip) {
     // One back-and-forth cycle: out along +x, back through rest to -x, back to rest.
     return spec_.lateral_amplitude_mm * std::sin(2 * std::numbers::pi * frame / n);
   }
@@ -124,7 +118,7 @@ double SceneModel::slip_fraction(PointMm x) const {
 }
 
 double SceneModel::indentation(int frame) const {
-  if (kind_ != Kind::bump && kind_ != Kind::hole) return 0.0;
+  if (kind_ != Scene::bump && kind_ != Scene::hole) return 0.0;
   const PointMm u = slide(frame);
   const double dx =
       (feature_centre_.x_mm - finger_centre0_.x_mm - u.x_mm) / spec_.contact_semi_x_mm;
@@ -143,11 +137,11 @@ PointMm SceneModel::unit_displacement(PointMm x) const {
 }
 
 double SceneModel::unit_gap(PointMm x) const {
-  if (kind_ != Kind::bump && kind_ != Kind::hole) return 0.0;
+  if (kind_ != Scene::bump && kind_ != Scene::hole) return 0.0;
   const double dx = x.x_mm - feature_centre_.x_mm;
   const double dy = x.y_mm - feature_centre_.y_mm;
   const double r = std::sqrt(dx * dx + dy * dy);
-  if (kind_ == Kind::bump) {
+  if (kind_ == Scene::bump) {
     // Skin bridges from the bump's flank to the glass: a ring without contact.
     const double z = (r - 2.0 * sigma_mm_) / (0.45 * sigma_mm_);
     return std::exp(-z * z);
@@ -176,10 +170,10 @@ PointMm rotate_about(PointMm p, PointMm centre, double angle) {
 }  // namespace
 
 PointMm SceneModel::to_skin(PointMm image, int frame) const {
-  if (kind_ == Kind::flat_rotate) {
+  if (kind_ == Scene::flat_rotate) {
     return rotate_about(image, finger_centre0_, -partial_slip_load(frame) * slip_fraction(image));
   }
-  if (kind_ == Kind::flat_stick_slip) {
+  if (kind_ == Scene::flat_stick_slip) {
     return {image.x_mm - partial_slip_load(frame) * slip_fraction(image), image.y_mm};
   }
   const PointMm u = slide(frame);
@@ -193,10 +187,10 @@ PointMm SceneModel::to_image(PointMm skin, int frame) const {
   // the feature; the slip field's gradient is bounded in validate_scene()), so fixed-point
   // iteration converges geometrically.
   auto step = [&](PointMm x) -> PointMm {
-    if (kind_ == Kind::flat_rotate) {
+    if (kind_ == Scene::flat_rotate) {
       return rotate_about(skin, finger_centre0_, partial_slip_load(frame) * slip_fraction(x));
     }
-    if (kind_ == Kind::flat_stick_slip) {
+    if (kind_ == Scene::flat_stick_slip) {
       return {skin.x_mm + partial_slip_load(frame) * slip_fraction(x), skin.y_mm};
     }
     const PointMm u = slide(frame);

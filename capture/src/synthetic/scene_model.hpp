@@ -8,8 +8,6 @@ namespace tactile::capture {
 
 class SceneModel {
  public:
-  enum class Kind { flat_slide, bump, hole, flat_rotate, flat_stick_slip };
-
   explicit SceneModel(const SceneSpec& spec);
 
   double mm_per_px_x() const { return mm_per_px_x_; }
@@ -30,7 +28,9 @@ class SceneModel {
   double slip_fraction(PointMm x) const;
   // Whether the image <-> skin map is the static field of the feature scaled by the indentation
   // and shifted by the slide (so the renderer can precompute it), rather than partial slip.
-  bool is_sliding_scene() const { return kind_ <= Kind::hole; }
+  bool is_sliding_scene() const {
+    return kind_ == Scene::flat_slide || kind_ == Scene::bump || kind_ == Scene::hole;
+  }
   // Loss-of-contact strength per unit indentation at image position x, 0..1.
   double unit_gap(PointMm x) const;
   // Contact 0..1 at image position x in `frame` (patch edge and loss of contact).
@@ -54,7 +54,7 @@ class SceneModel {
   PointMm finger_centre0_;
   double sigma_mm_;
   double amplitude_mm_;  // signed: + pushes skin outward (bump), - inward (hole)
-  Kind kind_;
+  Scene kind_;
   double skin_margin_mm_;  // how far skin may move beyond the field (texture sizing)
 };
 

@@ -15,6 +15,7 @@
 #include "synthetic/scene_model.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/json.hpp"
 
 namespace tactile::capture {
 
@@ -189,7 +190,8 @@ SyntheticSequence render_sequence(const SceneSpec& spec,
   return seq;
 }
 
-void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence) {
+void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence,
+                    const std::string& command_line) {
   write_frames(dir, sequence.frames);
   // The dot grid goes in its own folder so that `tactile capture DIR` sees only the frames.
   std::filesystem::create_directories(dir / "calibration");
@@ -202,7 +204,7 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
   nlohmann::json j;
   j["format"] = "tactile-synthetic-scene";
   j["format_version"] = 1;
-  j["spec"] = {{"scene", s.scene},
+  j["spec"] = {{"scene", to_string(s.scene)},
                {"speed_mm_per_s", s.speed_mm_per_s},
                {"feature_height_mm", s.feature_height_mm},
                {"feature_width_mm", s.feature_width_mm},
@@ -227,6 +229,9 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
                {"lateral_amplitude_mm", s.lateral_amplitude_mm},
                {"stick_ratio", s.stick_ratio},
                {"seed", s.seed}};
+  Provenance provenance = make_provenance({}, "synthetic scene", j["spec"].dump());
+  provenance.command_line = command_line;
+  j["provenance"] = provenance_json(provenance);
   j["calibration"] = {{"px_to_mm", c.px_to_mm},
                       {"mm_per_px", c.mm_per_px},
                       {"image_width_px", c.image_width_px},

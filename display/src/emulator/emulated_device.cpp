@@ -200,7 +200,7 @@ movie::TactileMovie EmulatedDevice::recording() const {
   m.rate_hz = impl_->recording_rate_hz;
   m.frame_count = static_cast<std::int32_t>(impl_->recorded_ticks);
   m.deflection_um = impl_->recorded;
-  m.provenance.source = "emulated device output";
+  m.provenance = make_provenance({}, "emulated device output");
   return m;
 }
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tactile/common/json.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/movie/limits.hpp"
@@ -234,10 +235,10 @@ movie::TactileMovie render_through_device(const movie::TactileMovie& movie,
   if (states != nullptr) *states = emulator.recorded_states();
   movie::TactileMovie out = emulator.recording();
   out.layout = movie.layout;
-  out.provenance = movie.provenance;
-  out.provenance.source =
-      "emulated device output of: " +
-      (movie.provenance.source.empty() ? std::string("movie") : movie.provenance.source);
+  // The movie played is in memory, its file unknown here: its whole provenance is a parameter.
+  out.provenance =
+      make_provenance({}, "emulated device output",
+                      nlohmann::json{{"played", provenance_json(movie.provenance)}}.dump());
   return out;
 }
 

@@ -55,8 +55,6 @@ class HidapiTransport final : public Transport {
   }
 
   ~HidapiTransport() override { close(); }
-  HidapiTransport(const HidapiTransport&) = delete;
-  HidapiTransport& operator=(const HidapiTransport&) = delete;
 
   DeviceInfo info() override { return info_; }
 

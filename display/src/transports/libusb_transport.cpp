@@ -43,8 +43,6 @@ class LibusbTransport final : public Transport {
   }
 
   ~LibusbTransport() override { close(); }
-  LibusbTransport(const LibusbTransport&) = delete;
-  LibusbTransport& operator=(const LibusbTransport&) = delete;
 
   DeviceInfo info() override { return info_; }
 

@@ -236,9 +236,9 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
   return m;
 }
 
-SvmOptions default_svm_options(std::string_view procedure) {
+SvmOptions default_svm_options(RecordingProcedure procedure) {
   SvmOptions svm;
-  if (recording_procedure_name(default_recording_inputs(procedure)) == "stroke") svm.c = 100.0;
+  if (procedure == RecordingProcedure::stroke) svm.c = 100.0;
   return svm;
 }
 
@@ -275,7 +275,7 @@ void write_classifier_model(const std::filesystem::path& path, const ClassifierM
   nlohmann::json j;
   j["format"] = "tactile classifier model";
   j["version"] = m.version;
-  j["procedure"] = recording_procedure_name(m.options);
+  j["procedure"] = to_string(recording_procedure(m.options));
   j["input_groups"] = names_of(m.options.groups);
   j["contact"] = {{"baseline_at", to_string(m.options.contact.baseline_at)},
                   {"baseline_s", m.options.contact.baseline_s},
@@ -334,9 +334,10 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         where, version.get<int>(), kClassifierModelVersion));
   ClassifierModel m;
   try {
-    set_recording_procedure(
-        m.options,
-        field(j, "procedure", where, &nlohmann::json::is_string, "a string").get<std::string>());
+    set_recording_procedure(m.options,
+                            parse_recording_procedure(
+                                field(j, "procedure", where, &nlohmann::json::is_string, "a string")
+                                    .get<std::string>()));
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
@@ -392,7 +393,7 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         "{}: mismatched inputs: the model has {} inputs ({}), this program computes {} for {} "
         "with groups {} ({}): retrain the model",
         where, m.input_names.size(), fmt::join(m.input_names, ","), expected.size(),
-        recording_procedure_name(m.options), fmt::join(names_of(m.options.groups), ","),
+        to_string(recording_procedure(m.options)), fmt::join(names_of(m.options.groups), ","),
         fmt::join(expected, ",")));
   m.class_names = array_of<std::string>(j, "class_names", where);
   const auto& svm = field(j, "svm", where, &nlohmann::json::is_object, "an object");

@@ -205,7 +205,7 @@ std::vector<std::size_t> all_rows(std::size_t n) {
 
 }  // namespace
 
-SelectionGrid default_selection_grid(std::string_view procedure) {
+SelectionGrid default_selection_grid(RecordingProcedure procedure) {
   auto o = default_recording_inputs(procedure);
   SelectionGrid g;
   using G = InputGroup;

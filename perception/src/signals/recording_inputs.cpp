@@ -31,7 +31,7 @@ void check_groups(const RecordingInputOptions& o, bool whole) {
   for (const auto& g : o.groups)
     if (std::find(known.begin(), known.end(), g) == known.end())
       throw std::invalid_argument(fmt::format("input group '{}' does not apply to {} (has: {})",
-                                              to_string(g), recording_procedure_name(o),
+                                              to_string(g), to_string(recording_procedure(o)),
                                               fmt::join(names_of(known), ", ")));
   if (!whole) return;
   if (o.groups.empty()) throw std::invalid_argument("no input groups selected");
@@ -124,30 +124,49 @@ InputGroup parse_input_group(std::string_view name) {
   return parse_name("input group", name, kInputGroupNames);
 }
 
-void set_recording_procedure(RecordingInputOptions& o, std::string_view name) {
-  if (name == "stroke" || name == "static") {
-    o.procedure = name == "stroke" ? Procedure::distal_proximal : Procedure::static_contact;
-    o.contact.feature_from_kinematics = false;
-    return;
+std::string to_string(RecordingProcedure procedure) {
+  return name_in(kRecordingProcedureNames, procedure);
+}
+
+RecordingProcedure parse_recording_procedure(std::string_view name) {
+  return parse_name("procedure", name, kRecordingProcedureNames);
+}
+
+void set_recording_procedure(RecordingInputOptions& o, RecordingProcedure procedure) {
+  switch (procedure) {
+    case RecordingProcedure::static_contact:
+      o.procedure = Procedure::static_contact;
+      break;
+    case RecordingProcedure::stroke:  // a slide: the distal-proximal inputs
+    case RecordingProcedure::distal_proximal:
+      o.procedure = Procedure::distal_proximal;
+      break;
+    case RecordingProcedure::radial_ulnar:
+      o.procedure = Procedure::radial_ulnar;
+      break;
+    case RecordingProcedure::roll:
+      o.procedure = Procedure::roll;
+      break;
   }
-  for (const Procedure p : {Procedure::distal_proximal, Procedure::radial_ulnar, Procedure::roll})
-    if (name == procedure_short_name(p)) {
-      o.procedure = p;
-      o.contact.feature_from_kinematics = true;
-      return;
-    }
-  throw std::invalid_argument(fmt::format(
-      "procedure '{}' is not stroke (a slide), static (a press), dp, ru or roll (the paper's "
-      "scenes)",
-      name));
+  // A stroke's and a press's kinematics are unknown: all their contact is feature contact.
+  o.contact.feature_from_kinematics =
+      procedure != RecordingProcedure::stroke && procedure != RecordingProcedure::static_contact;
 }
 
-std::string recording_procedure_name(const RecordingInputOptions& o) {
-  if (is_static(o.procedure)) return "static";
-  return o.contact.feature_from_kinematics ? procedure_short_name(o.procedure) : "stroke";
+RecordingProcedure recording_procedure(const RecordingInputOptions& o) {
+  if (is_static(o.procedure)) return RecordingProcedure::static_contact;
+  if (!o.contact.feature_from_kinematics) return RecordingProcedure::stroke;
+  switch (o.procedure) {
+    case Procedure::radial_ulnar:
+      return RecordingProcedure::radial_ulnar;
+    case Procedure::roll:
+      return RecordingProcedure::roll;
+    default:
+      return RecordingProcedure::distal_proximal;
+  }
 }
 
-RecordingInputOptions default_recording_inputs(std::string_view procedure) {
+RecordingInputOptions default_recording_inputs(RecordingProcedure procedure) {
   RecordingInputOptions o;
   set_recording_procedure(o, procedure);
   if (is_static(o.procedure)) {

@@ -53,7 +53,7 @@ std::vector<SceneBenchMethod> scene_bench_methods(bool quick);
 
 struct SceneBenchResult {
   std::string method;
-  std::string scene;
+  Scene scene = Scene::bump;
   int frames = 0;
   double seconds = 0;
   double cpu_seconds = 0;  // every thread of the process: the machine may be shared
@@ -67,7 +67,7 @@ struct SceneBenchResult {
 // Times the method on the sequence (rendering excluded) and scores it against its truth.
 SceneBenchResult run_scene_bench(const SceneBenchMethod& method, const SyntheticSequence& sequence);
 
-// Every scene of scene_names() with frame_count frames, through every method in order;
+// Every scene of kScenes with frame_count frames, through every method in order;
 // on_result sees each result as soon as it is measured.
 std::vector<SceneBenchResult> bench_scenes(
     int frame_count, const std::vector<SceneBenchMethod>& methods,

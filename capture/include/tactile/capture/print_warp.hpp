@@ -118,8 +118,11 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
                                     const std::vector<std::array<double, 2>>& marks_px = {});
 
 // frame_NNN.png, landmarks.csv (the marks through the warp) and scene.json (format
-// tactile-print-warp: the spec and the calibration), so that DIR is a `tactile capture` input and
-// a `tactile evaluate` ground truth.
-void write_print_sequence(const std::filesystem::path& dir, const PrintSequence& sequence);
+// tactile-print-warp: the spec, the calibration and the provenance: input `print`, method "print
+// warp", the spec as parameters, and `command_line`), so that DIR is a `tactile capture` input
+// and a `tactile evaluate` ground truth.
+void write_print_sequence(const std::filesystem::path& dir, const PrintSequence& sequence,
+                          const std::filesystem::path& print = {},
+                          const std::string& command_line = {});
 
 }  // namespace tactile::capture

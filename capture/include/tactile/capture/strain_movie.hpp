@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "tactile/common/provenance.hpp"
+
 namespace tactile::capture {
 
 enum class FeatureType : std::uint8_t { pore = 0, ending = 1, bifurcation = 2 };
@@ -85,8 +87,7 @@ struct StrainMovie {
   double field_width_mm = 0;
   double field_height_mm = 0;
   Calibration calibration;
-  std::string source;           // what the frames came from (folder, scene name)
-  std::string program_version;  // tactile version that wrote it
+  Provenance provenance;  // what it was measured from, how and by which program
   // Every smoothed point of every kept track, ordered by track, then frame.
   std::vector<TrackedPoint> tracks;
   std::vector<StrainFrame> frames;

@@ -4,20 +4,38 @@
 // sideways with a sticking central patch, filmed by a camera fixed to the glass.
 // The model and its assumptions are written in docs/capture-models.md.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/common/names.hpp"
 
 namespace tactile::capture {
 
+// What the fingertip does: slide over a Gaussian bump, a hole or flat glass, or press on flat glass
+// and twist or push sideways with a sticking centre. The names are those of `--scene` and of
+// scene and experiment files.
+enum class Scene { bump, hole, flat_slide, flat_rotate, flat_stick_slip };
+inline constexpr std::array<Named<Scene>, 5> kSceneNames = {{
+    {Scene::bump, "bump"},
+    {Scene::hole, "hole"},
+    {Scene::flat_slide, "flat-slide"},
+    {Scene::flat_rotate, "flat-rotate"},
+    {Scene::flat_stick_slip, "flat-stick-slip"},
+}};
+inline constexpr auto kScenes = values_of(kSceneNames);
+std::string to_string(Scene scene);
+// Throws std::invalid_argument naming the bad name and the accepted ones.
+Scene parse_scene(std::string_view name);
+
 struct SceneSpec {
-  // "bump" | "hole" | "flat-slide" | "flat-rotate" | "flat-stick-slip" (scene_names())
-  std::string scene = "bump";
+  Scene scene = Scene::bump;
   double speed_mm_per_s = 2.4;     // finger speed along +x over the glass
   double feature_height_mm = 0.5;  // bump height or hole depth
   double feature_width_mm = 3.0;   // full width at half maximum of the Gaussian profile
@@ -70,9 +88,6 @@ struct SyntheticSequence {
   std::vector<TruthLandmark> landmarks;  // every landmark in contact and in view, every frame
 };
 
-// Every scene name `SceneSpec::scene` accepts.
-const std::vector<std::string>& scene_names();
-
 // Throws std::invalid_argument naming the first bad field.
 void validate_scene(const SceneSpec& spec);
 
@@ -96,9 +111,11 @@ Calibration true_calibration(const SceneSpec& spec);
 SyntheticSequence render_sequence(const SceneSpec& spec,
                                   const std::function<void(int done, int total)>& progress = {});
 
-// Writes frame_000.png ..., calibration/dot_grid.png, landmarks.csv and scene.json (spec +
-// calibration). Only the frames are images at the top level, so DIR is a valid capture input.
-void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence);
+// Writes frame_000.png ..., calibration/dot_grid.png, landmarks.csv and scene.json (spec,
+// calibration and provenance: no input, method "synthetic scene", the spec as parameters, and
+// `command_line`). Only the frames are images at the top level, so DIR is a valid capture input.
+void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& sequence,
+                    const std::string& command_line = {});
 
 // landmarks.csv: id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm, one row per landmark and frame.
 void write_landmarks_csv(const std::filesystem::path& path,

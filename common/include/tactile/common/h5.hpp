@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+
 #include <vector>
+#include "tactile/common/provenance.hpp"
 
 #include "tactile/common/error.hpp"
 
@@ -72,5 +74,14 @@ H5::Group open_group(const H5::Group& parent, const std::string& name, const std
 
 // Current UTC time as ISO 8601, for provenance attributes.
 std::string utc_now_iso8601();
+
+// A provenance as the attributes provenance_input, provenance_program_version,
+// provenance_command_line, provenance_method, provenance_parameters_json and
+// provenance_created_utc (the time of writing when created_utc is empty).
+void write_provenance(H5::H5Object& obj, const Provenance& provenance);
+// Reads them back. An attribute that is absent reads as empty (a file from another tool may have
+// none); files written before these names held provenance_source, provenance_mapping_method and
+// provenance_mapping_parameters_json, read as input, method and parameters_json.
+Provenance read_provenance(const H5::H5Object& obj, const std::string& where);
 
 }  // namespace tactile::h5

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "tactile/common/error.hpp"
+#include "tactile/common/provenance.hpp"
 
 namespace tactile {
 
@@ -59,5 +60,13 @@ T json_field(const nlohmann::json& j, const char* name, const std::string& where
     throw FormatError(fmt::format("{}: field '{}' has the wrong type", where, name));
   }
 }
+
+// A provenance as a JSON object of its six fields, named as the struct's.
+nlohmann::json provenance_json(const Provenance& provenance);
+// Reads one back: every key optional (absent reads as empty), strings only, no unknown key
+// ("<where>: unknown field ..."). Objects written before the six names held source,
+// mapping_method and mapping_parameters_json, read as input, method and parameters_json.
+Provenance read_provenance_json(const JsonOrigin& at, const nlohmann::json& j,
+                                const std::string& where);
 
 }  // namespace tactile

@@ -44,8 +44,6 @@ class EmulatedDevice final : public Transport {
   // Throws std::invalid_argument when the options do not make a valid firmware configuration.
   explicit EmulatedDevice(const EmulatedDeviceOptions& options = {});
   ~EmulatedDevice() override;
-  EmulatedDevice(const EmulatedDevice&) = delete;
-  EmulatedDevice& operator=(const EmulatedDevice&) = delete;
 
   DeviceInfo info() override;
   void start(double rate_hz) override;

@@ -80,8 +80,6 @@ class LateroTransport : public Transport {
   // start()). Throws TransportError when the name does not resolve.
   LateroTransport(LateroAddress address, LateroTransportOptions options = {});
   ~LateroTransport() override;
-  LateroTransport(const LateroTransport&) = delete;
-  LateroTransport& operator=(const LateroTransport&) = delete;
 
   // Probes the device with an IO request (blades untouched) and describes it: the Latero
   // layout, no FIFO (capacity 1), firmware = the status words. Throws TransportError when

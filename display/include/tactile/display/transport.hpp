@@ -75,6 +75,10 @@ struct DeviceStatus {
 
 class Transport {
  public:
+  // A transport owns its link to one device: copies would share it, so no transport copies.
+  Transport() = default;
+  Transport(const Transport&) = delete;
+  Transport& operator=(const Transport&) = delete;
   virtual ~Transport() = default;
   virtual DeviceInfo info() = 0;
   // Starts a stream at `rate_hz` (resets counters and sequence tracking, empties the FIFO).

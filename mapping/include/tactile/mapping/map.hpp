@@ -128,8 +128,9 @@ MappingResult map_strain_frames(const capture::StrainMovie& source, const movie:
 
 // Maps the strain movie onto the layout: map_strain_frames(strain_source(movie, params), ...).
 // Throws std::invalid_argument for bad parameters (see resolve_mapping_params), an empty strain
-// movie, or strain frame times that do not increase. Provenance gets method, parameters, source and
-// program version; created_utc is left to the caller.
+// movie, or strain frame times that do not increase. The provenance gets the method, its
+// parameters, the program version and the time; the input (the strain movie's file) is left to the
+// caller.
 movie::TactileMovie map_strain_movie(const capture::StrainMovie& movie, const movie::Layout& layout,
                                      const MappingParams& params);
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "tactile/common/provenance.hpp"
+
 namespace tactile::movie {
 
 enum class DeflectionAxis : std::uint8_t { x = 0, y = 1 };
@@ -30,13 +32,7 @@ struct Layout {
 };
 
 // How a movie was made; stored with it so every file says where it came from.
-struct Provenance {
-  std::string program_version;
-  std::string created_utc;     // ISO 8601
-  std::string source;          // e.g. the strain movie it was mapped from
-  std::string mapping_method;  // e.g. "proportional"
-  std::string mapping_parameters_json;
-};
+using Provenance = tactile::Provenance;
 
 struct TactileMovie {
   Layout layout;

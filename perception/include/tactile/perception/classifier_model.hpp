@@ -115,15 +115,14 @@ ClassifierModel make_classifier_model(const LabelledInputs& data, const SvmOptio
 
 // The SVM settings `classify train --procedure NAME` uses unless told otherwise: the paper's
 // (exponent 1, C = 1) for its scenes; for real slides ("stroke") C = 100, chosen with the inputs
-// by `--select` (default_recording_inputs). Throws std::invalid_argument as
-// set_recording_procedure.
-SvmOptions default_svm_options(std::string_view procedure);
+// by `--select` (default_recording_inputs).
+SvmOptions default_svm_options(RecordingProcedure procedure);
 
 // What `classify train` and the Python module's train() take: every option left unset is the
 // procedure's default (default_recording_inputs, default_svm_options), or with `select` searched
 // (train_classifier in model_selection.hpp).
 struct ClassifierTraining {
-  std::string procedure = "stroke";
+  RecordingProcedure procedure = RecordingProcedure::stroke;
   std::optional<ContactOptions::BaselineAt> baseline_at;
   std::optional<ContactOptions::Electrodes> electrodes;
   std::optional<double> trim;      // checked by check_trim_fraction
@@ -133,7 +132,7 @@ struct ClassifierTraining {
   bool select = false;  // choose every option left unset by cross-validation (--select)
   int cv_folds = 0;     // 0: none; K: also score by stratified K-fold (nested with select)
 };
-// Throw std::invalid_argument as default_recording_inputs and check_trim_fraction.
+// Throw std::invalid_argument as check_trim_fraction.
 RecordingInputOptions recording_inputs_for(const ClassifierTraining& training);
 SvmOptions svm_options_for(const ClassifierTraining& training);
 // A model of one class answers that class whatever it is given: not a classifier. Throws

@@ -39,8 +39,7 @@ struct SelectionGrid {
 // the paper's with stats); baseline none or at the end (recordings that begin in contact have no
 // free air at the start); clusters or each electrode; trim 0, 0.1, 0.2 (strokes); exponent 1 or
 // 2; C 0.01, 0.1, 1, 10, 100, 1000 (a choice at either end would say the range is too narrow).
-// Throws std::invalid_argument as set_recording_procedure.
-SelectionGrid default_selection_grid(std::string_view procedure);
+SelectionGrid default_selection_grid(RecordingProcedure procedure);
 
 // The candidate with the most rows correct over `folds` stratified folds of `rows` (all rows
 // when empty), every candidate of the grid scored; the record's candidates are in grid order.

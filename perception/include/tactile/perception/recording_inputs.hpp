@@ -56,22 +56,33 @@ struct RecordingInputOptions {
   }();
 };
 
-// What a recording is, by name: "stroke" (a slide over a texture: distal-proximal inputs, all
-// contact is feature contact), "static" (a press), or one of the paper's scenes "dp", "ru",
-// "roll" (feature contact from the paper's kinematics, as the 76 inputs of Table 2). Sets
-// `o.procedure` and `o.contact.feature_from_kinematics`; throws std::invalid_argument naming the
-// word for any other.
-void set_recording_procedure(RecordingInputOptions& o, std::string_view name);
-std::string recording_procedure_name(const RecordingInputOptions& o);
+// What a recording is: a slide over a texture ("stroke": distal-proximal inputs, all contact is
+// feature contact), a press ("static"), or one of the paper's scenes "dp", "ru", "roll" (feature
+// contact from the paper's kinematics, as the 76 inputs of Table 2). The names are those of
+// `classify train --procedure` and of model files.
+enum class RecordingProcedure { stroke, static_contact, distal_proximal, radial_ulnar, roll };
+inline constexpr std::array<Named<RecordingProcedure>, 5> kRecordingProcedureNames = {{
+    {RecordingProcedure::stroke, "stroke"},
+    {RecordingProcedure::static_contact, "static"},
+    {RecordingProcedure::distal_proximal, "dp"},
+    {RecordingProcedure::radial_ulnar, "ru"},
+    {RecordingProcedure::roll, "roll"},
+}};
+std::string to_string(RecordingProcedure procedure);
+// Throws std::invalid_argument naming the bad name and the accepted ones.
+RecordingProcedure parse_recording_procedure(std::string_view name);
+
+// Sets `o.procedure` and `o.contact.feature_from_kinematics` for what the recording is.
+void set_recording_procedure(RecordingInputOptions& o, RecordingProcedure procedure);
+RecordingProcedure recording_procedure(const RecordingInputOptions& o);
 
 // The inputs `classify train --procedure NAME` uses unless told otherwise. The paper's scenes
 // (dp, ru, roll, static): the paper's groups, clusters, no trim, baseline at the end. Real slides
 // ("stroke"): what `classify train --select` chooses on 200 real slides of 20 materials
 // (model_selection.hpp, docs/perception-models.md): groups means and bands, the 6 clusters, no
 // baseline (the files are tared by the recording software, and many end still in contact, so
-// their last 0.2 s is no baseline), 20 % trimmed at each end. Throws std::invalid_argument as
-// set_recording_procedure.
-RecordingInputOptions default_recording_inputs(std::string_view procedure);
+// their last 0.2 s is no baseline), 20 % trimmed at each end.
+RecordingInputOptions default_recording_inputs(RecordingProcedure procedure);
 
 // The groups a procedure has (all for strokes; means and stats for static).
 std::vector<InputGroup> recording_input_groups(Procedure p);
