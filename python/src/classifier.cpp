@@ -89,7 +89,7 @@ py::dict report_dict(const perception::ClassifierTrainingRun& run,
   py::dict out;
   out["recordings"] = m.files.size();
   out["class_names"] = m.class_names;
-  out["procedure"] = training.procedure;
+  out["procedure"] = perception::to_string(training.procedure);
   put_options(out, m.options, m.svm);
   out["input_count"] = m.input_names.size();
   out["values"] = !m.values.empty();  // one SVR per class for the value

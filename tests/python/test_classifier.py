@@ -96,9 +96,9 @@ def test_train_select_with_cv_is_nested_and_records_the_choice(tmp_path, data_di
     model = tactile.train(rec, labels, out=tmp_path / "py.json", select=True, cv=3, **named)
     report = model.report
     selection = report["selection"]
-    # Options named are not searched: 5 input sets x 2 electrode signals x 3 values of C, each
+    # Options named are not searched: 5 input sets x 2 electrode signals x 6 values of C, each
     # scored on all 12 recordings.
-    assert len(selection["candidates"]) == 30
+    assert len(selection["candidates"]) == 60
     for c in selection["candidates"]:
         assert (c["trim"], c["kernel_degree"], c["baseline_at"]) == (0.1, 1, "none")
         assert c["tested"] == 12
@@ -110,12 +110,12 @@ def test_train_select_with_cv_is_nested_and_records_the_choice(tmp_path, data_di
     assert tactile.read_classifier_model(tmp_path / "py.json").selection == selection
     cv = report["cv"]
     assert cv["nested"] and cv["folds"] == 3 and cv["inner_folds"] == 5
-    assert cv["candidates"] == 30 and len(cv["chosen"]) == 3 and cv["tested"] == 12
+    assert cv["candidates"] == 60 and len(cv["chosen"]) == 3 and cv["tested"] == 12
     out = subprocess.run([cli, "classify", "train", "--recordings", str(rec), "--labels",
                           str(labels), "--out", str(tmp_path / "cli.json"), "--select", "--cv",
                           "3", "--trim", "0.1", "--kernel-degree", "1", "--baseline-at", "none"],
                          check=True, capture_output=True, text=True).stdout
-    assert (f"among 30 candidates): accuracy {cv['mean']:.3f} +- {cv['spread']:.3f}") in out
+    assert (f"among 60 candidates): accuracy {cv['mean']:.3f} +- {cv['spread']:.3f}") in out
     assert f"pooled {cv['correct']}/12" in out
     for k, c in enumerate(cv["chosen"]):
         assert f"  fold {k + 1} chose {c['description']} (inner {c['accuracy']:.3f})" in out
