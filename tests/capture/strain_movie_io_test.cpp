@@ -188,9 +188,9 @@ TEST_F(Tampered, OlderFilesWithoutTheProvenanceAttributesAreRead) {
   {
     H5::H5File f(path().string(), H5F_ACC_RDWR);
     H5::Group root = f.openGroup("/");
-    for (const char* name : {"provenance_input", "provenance_program_version",
-                             "provenance_command_line", "provenance_method",
-                             "provenance_parameters_json", "provenance_created_utc"})
+    for (const char* name :
+         {"provenance_input", "provenance_program_version", "provenance_command_line",
+          "provenance_method", "provenance_parameters_json", "provenance_created_utc"})
       root.removeAttr(name);
     h5::write_attr(root, "source", "/data/prints/seq1");
     h5::write_attr(root, "program_version", "0.3.0");
