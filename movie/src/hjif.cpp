@@ -401,6 +401,15 @@ void sample_channel(const Reader& rd, const ChannelRead& ch, std::int64_t timesc
         if (k > 0 && tick <= prev_tick) {
           rd.fail(fmt::format("{}.relative_position {} does not increase", kp, rel));
         }
+        // The exporter's closing keyframe lies on the movie's end (sample sample_count); one
+        // past it would be a sample the movie does not have, dropped without a word.
+        if (tick * rate > frames * timescale) {
+          rd.fail(fmt::format(
+              "{}.relative_position {}: tick {} is sample {:g}, past the movie's end (sample_count "
+              "{})",
+              kp, rel, tick, static_cast<double>(tick * rate) / static_cast<double>(timescale),
+              frames));
+        }
         if (k == 0) {
           if ((tick * rate) % timescale == 0 && tick * rate / timescale < frames) {
             out[static_cast<std::size_t>(tick * rate / timescale * contactors + index)] += value;

@@ -375,6 +375,13 @@ TEST(Hjif, RefusesWhatAMovieCannotRepresentNamingTheField) {
         for (int i = 0; i < 4; ++i) channel(d, i)["sample_count"] = 2000000000;
       },
       "more than the limit");
+  // The 6-frame movie's keyframes reach sample 6 (the closing one): with 3 samples declared,
+  // those past sample 3 have nowhere to go.
+  expect_refused(
+      [](json& d) {
+        for (int i = 0; i < 4; ++i) channel(d, i)["sample_count"] = 3;
+      },
+      "past the movie's end (sample_count 3)");
   expect_refused([](json& d) { channel(d, 1)["frequency_sampling"] = 500; },
                  "must be those of channel 0");
   expect_refused([](json& d) { d["perceptions"][0]["description"] = "tactile-movie layout {"; },
