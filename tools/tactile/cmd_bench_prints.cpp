@@ -87,6 +87,14 @@ void add_bench_prints(CLI::App& bench, Action& action) {
                "fps_accuracy_prints.png", "fps_accuracy_prints.svg"})},
           {{"PRINTS_DIR", opt->prints}});
       const auto prints = capture::read_pore_training_prints(opt->prints);
+      // A held-out number that names no print would leave that group silently short.
+      for (const auto& nn : opt->held_out) {
+        if (std::none_of(prints.begin(), prints.end(),
+                         [&](const auto& p) { return capture::print_number(p.name) == nn; })) {
+          throw std::invalid_argument(fmt::format("--held-out {}: {} holds no print image_{}.*", nn,
+                                                  opt->prints.string(), nn));
+        }
+      }
       fs::create_directories(opt->common.out);
       const auto all = capture::print_bench_methods();
       capture::PrintBenchOptions bench;
