@@ -251,6 +251,23 @@ TEST_F(NoClobber, SynthRefusesAFolderWithFramesItWouldNotReplace) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+// Folder outputs given as a file: a usage error naming the option before any work, the file
+// left as it was (before, demo, synth and perceive ended with the standard library's
+// "filesystem error: cannot create directories").
+TEST_F(NoClobber, AFolderOutputThatIsAFileIsRefusedBeforeTheWork) {
+  const auto file = dir_ / "a-file";
+  std::ofstream(file) << "kept\n";
+  for (const std::string& command :
+       {"demo --out " + file.string(), "synth " + file.string() + " --frames 2",
+        "perceive --out " + file.string()}) {
+    const auto r = run_tactile(command);
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(file.string() + ": is a file, not a folder")) << command;
+    EXPECT_THAT(r.output, ::testing::Not(HasSubstr("filesystem error"))) << command;
+    EXPECT_EQ(bytes(file), "kept\n") << command;
+  }
+}
+
 // Found by the second hostile-input run: when no recording could be analysed, perceive replaced
 // the recordings.csv of an earlier run by an empty table.
 TEST_F(NoClobber, PerceiveOfNoReadableRecordingKeepsTheOldTable) {

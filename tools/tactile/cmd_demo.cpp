@@ -18,6 +18,7 @@
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/display/play_anywhere.hpp"
 #include "tactile/mapping/fidelity.hpp"
@@ -68,6 +69,7 @@ int run_demo(DemoOptions& opt, const std::string& command_line) {
   const movie::Layout layout = movie::layout_by_name(opt.layout);
   capture::validate_scene(opt.scene);
   mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
+  refuse_output_over_input({output_folder("--out", opt.out, {})}, {});
   fs::create_directories(opt.out);
   Progress progress;
   StageTimer timer;

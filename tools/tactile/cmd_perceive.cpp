@@ -170,6 +170,7 @@ void add_perceive(CLI::App& app, Action& action) {
         std::filesystem::create_directories(opt->out_dir);
         return analyse_recordings(files, opt->out_dir);
       }
+      refuse_output_over_input({output_folder("--out", opt->out_dir, {})}, {});
       std::filesystem::create_directories(opt->out_dir);
       std::vector<perception::SurfaceFeature> features;
       for (const auto& f : perception::paper_features())

@@ -231,6 +231,7 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
     if (sub->count("--rate") > 0) throw CLI::RequiresError("--rate", "--from-print");
     action = [opt, &command_line] {
       capture::validate_scene(opt->spec);
+      refuse_output_over_input({output_folder("OUT_DIR", opt->out_dir, {})}, {});
       refuse_stale_frames(opt->out_dir, opt->spec.frame_count);
       Progress progress;
       const auto t0 = std::chrono::steady_clock::now();
