@@ -13,7 +13,7 @@ namespace tactile::capture {
 
 StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_frame_count,
                                const Calibration& calibration, double frame_rate_hz,
-                               int span_frames, double max_edge_ratio) {
+                               int span_frames, double max_edge_ratio, int threads) {
   if (span_frames < 1) throw std::invalid_argument("span_frames must be >= 1");
   if (!(frame_rate_hz > 0)) throw std::invalid_argument("frame_rate_hz must be > 0");
   StrainMovie movie;
@@ -37,7 +37,7 @@ StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_fram
   }
   // Each frame's triangulation is its own: frames in parallel.
   movie.frames.resize(static_cast<std::size_t>(std::max(0, camera_frame_count - span_frames)));
-  parallel_for(movie.frames.size(), worker_count(0), [&](std::size_t k) {
+  parallel_for(movie.frames.size(), worker_count(threads), [&](std::size_t k) {
     const int from = static_cast<int>(k);
     StrainFrame& sf = movie.frames[k];
     sf.frame_from = from;
@@ -233,8 +233,8 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
       params.refine
           ? tracks_by_alignment(next_frame, first, cal, params, progress, expected_frames, n)
           : tracks_from_detections(next_frame, first, cal, params, progress, expected_frames, n);
-  StrainMovie movie =
-      strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio);
+  StrainMovie movie = strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames,
+                                         params.max_edge_ratio, params.threads);
   // The settings that decide what is measured; the frames' file is the caller's to name.
   const nlohmann::json settings = {{"frame_rate_hz", frame_rate_hz},
                                    {"mm_per_px", cal.mm_per_px},

@@ -37,7 +37,7 @@ struct CaptureParams {
   int span_frames = 1;  // strain between frame i and frame i + span_frames
   // Edges longer than this multiple of the frame's median edge are hull slivers, not skin.
   double max_edge_ratio = 3.0;
-  int threads = 0;  // feature extraction workers (frames in parallel); 0 = one per core
+  int threads = 0;  // workers (frames, tracks, triangulations in parallel); 0 = one per core
   // With refinement, landmarks are detected only on the first frame and then every this many
   // frames, or sooner when a fifth of the tracks have ended since the last detection; between
   // detections they are followed by alignment alone (AlignmentTracker).
@@ -54,10 +54,11 @@ void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector
                         double max_edge_ratio, std::vector<StrainEdge>& edges,
                         std::vector<StrainTriangle>& triangles);
 
-// Strain movie from tracks already made: one StrainFrame per frame pair (i, i + span).
+// Strain movie from tracks already made: one StrainFrame per frame pair (i, i + span), the
+// frames triangulated on `threads` workers (0: one per core).
 StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_frame_count,
                                const Calibration& calibration, double frame_rate_hz,
-                               int span_frames, double max_edge_ratio);
+                               int span_frames, double max_edge_ratio, int threads = 0);
 
 // Settings that fit the image, chosen on its first frame: the pore detector that finds more
 // pores there, and refinement with it when that is the ridge-blob detector. The paper's blobs
