@@ -320,9 +320,9 @@ TEST(RealPrintStrain, TheChoicesFirstFrameLandmarksAreTheCapturesOwn) {
 // (the refinement was tuned on prints 01-10; the shipped pore model was trained on all 15).
 // Asserted on the 8 % travelling wave and the 4 % bump: >= 150 tracked landmarks per frame, edge
 // strain RMS error <= 0.0025, correlation with the exact warp >= 0.96, and better than
-// Lucas-Kanade on the same frames in both error and correlation. The weakest sequences (1 %
-// wave, 4 % stretch) reach 0.96 on most prints but not all (0.937-0.956 on three of the 15;
-// docs/capture-models.md), so they are not asserted; the figures over 5 frames are printed.
+// Lucas-Kanade on the same frames in both error and correlation. The figures over 5 frames are
+// printed. The still patterns are asserted below; the 1 % wave, whose strain changes over the
+// sequence's own length, reaches 0.94-0.96 (docs/capture-models.md) and is not asserted.
 TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
   for (const auto& [nn, pattern, strain] :
        {std::tuple{"12", WarpPattern::wave, 0.08}, std::tuple{"14", WarpPattern::wave, 0.08},
@@ -359,6 +359,32 @@ TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
     EXPECT_GE(ours.correlation, 0.96) << nn;
     EXPECT_LT(ours.rms_error, lk.rms_error) << nn;
     EXPECT_GT(ours.correlation, lk.correlation) << nn;
+  }
+}
+
+// The quasi-static figures on the same two held-out prints: a stretch and a compression of 4 %
+// rising and falling over 30 frames, where the true frame-to-frame strain is only about 0.0007
+// RMS, so the trackers' noise is most of what is measured: edge strain RMS error <= 0.0003 and
+// correlation with the exact warp >= 0.97.
+TEST(RealPrintStrain, HeldOutPrintsKeepTheQuasiStaticFigures) {
+  for (const auto& [nn, pattern] :
+       {std::pair{"12", WarpPattern::stretch}, std::pair{"14", WarpPattern::stretch},
+        std::pair{"12", WarpPattern::compress}, std::pair{"14", WarpPattern::compress}}) {
+    SCOPED_TRACE(fmt::format("print {}, {}", nn, to_string(pattern)));
+    const GrayImage print = read_image(print_path(nn, "image_"));
+    const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
+    const PrintSequence seq = render_print_sequence(spec_for(print, pattern, 0.04), print, marks);
+    const CaptureParams params =
+        with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
+    const Evaluation ours = evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params),
+                                            ground_truth_of(seq));
+    std::printf("print %s, %s: tracked %.0f rms %.5f corr %.4f (true strain rms %.5f)\n", nn,
+                std::string(to_string(pattern)).c_str(), ours.median_tracked_points, ours.rms_error,
+                ours.correlation, ours.rms_truth);
+    EXPECT_LT(ours.rms_truth, 0.0015);  // or this is not the quasi-static sequence
+    EXPECT_GE(ours.median_tracked_points, 150);
+    EXPECT_LE(ours.rms_error, 0.0003);
+    EXPECT_GE(ours.correlation, 0.97);
   }
 }
 

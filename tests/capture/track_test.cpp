@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -79,6 +82,54 @@ TEST(Track, BadParametersAreRejected) {
   Calibration no_scale;
   no_scale.mm_per_px = 0;
   EXPECT_THROW(track_features({}, no_scale, TrackParams{}), std::invalid_argument);
+}
+
+// A 20 x 15 grid of tracks 14 px apart over 30 frames, all sliding 1 px a frame, with white
+// position noise of noise_px; a strain wave of `strain` along x with a wavelength of 141 px
+// travels past them with a period of period_frames (0: no wave).
+std::vector<Track> grid_tracks(double noise_px, double strain, double period_frames) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, noise_px);
+  const double k = 2 * std::numbers::pi / 141.0;
+  std::vector<Track> tracks;
+  for (int r = 0; r < 15; ++r) {
+    for (int c = 0; c < 20; ++c) {
+      Track t;
+      t.id = static_cast<std::int32_t>(tracks.size());
+      const double x0 = 20 + 14.0 * c, y0 = 20 + 14.0 * r;
+      for (int f = 0; f < 30; ++f) {
+        const double phase = period_frames > 0 ? 2 * std::numbers::pi * f / period_frames : 0;
+        const double wave = strain / k * std::sin(k * x0 - phase);
+        t.x_px.push_back(x0 + f + wave + noise(rng));
+        t.y_px.push_back(y0 + noise(rng));
+      }
+      tracks.push_back(std::move(t));
+    }
+  }
+  return tracks;
+}
+
+TEST(Track, SmoothingIsAsLongAsTheNoiseAllowsAndNoLongerThanTheStrainAllows) {
+  constexpr double kMaxResidualPx = 0.06, kMaxNoiseRatio = 1.05;
+  // White noise alone leaves the same scaled residual at every window: the longest is taken.
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 12, kMaxResidualPx, kMaxNoiseRatio), 12);
+  // ... and never longer than asked.
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 6, kMaxResidualPx, kMaxNoiseRatio), 6);
+  // A 2 % wave changing over 5 frames (0.28 px between neighbours against 0.01 px of noise)
+  // is bent by every window: no smoothing.
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0.02, 5), 12, kMaxResidualPx, kMaxNoiseRatio), 0);
+  // Over a 30-frame period a 25-frame window flattens the wave, a few frames' window does not.
+  const int slow =
+      smoothing_that_fits(grid_tracks(0.01, 0.02, 30), 12, kMaxResidualPx, kMaxNoiseRatio);
+  EXPECT_GE(slow, 3);
+  EXPECT_LT(slow, 12);
+  // More noise on the same motion (with what smoothing removes still under the 0.06 px bound on
+  // how far it may move a track): at least as long a window.
+  EXPECT_GE(smoothing_that_fits(grid_tracks(0.02, 0.02, 30), 12, kMaxResidualPx, kMaxNoiseRatio),
+            slow);
+  // Noise beyond that bound: no window may move the tracks so far.
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.2, 0, 0), 12, kMaxResidualPx, kMaxNoiseRatio), 0);
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 0, kMaxResidualPx, kMaxNoiseRatio), 0);
 }
 
 }  // namespace

@@ -304,9 +304,12 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
                   "gradients better, larger averages more noise)")
       ->check(within(0.1, 5.0))
       ->capture_default_str();
-  sub->add_option("--smoothing", opt->smoothing,
-                  "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
-                  "0 = none); default 3, or 5 with refinement")
+  sub->add_option(
+         "--smoothing", opt->smoothing,
+         "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
+         "0 = none); default 3; with refinement the longest tried (default 12): the\n"
+         "capture takes the longest of H, 10, 8, 7, 6, 5, 4, 3 that leaves only noise between\n"
+         "neighbouring tracks, or none")
       ->check(within(0, 50));
   sub->add_option("--assignment", opt->assignment,
                   "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -127,24 +128,102 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window) {
   }
 }
 
-int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px) {
-  if (half_window <= 0) return half_window;
-  // The smoother's residual is the trackers' noise where the skin moves smoothly over the
-  // window, and the motion itself where it does not (a strain wave crossing in a few frames).
-  std::vector<double> residuals;
-  for (const auto& t : tracks) {
-    if (static_cast<int>(t.x_px.size()) < 2 * half_window + 1) continue;
-    const auto sx = smooth(t.x_px, half_window), sy = smooth(t.y_px, half_window);
-    double sum = 0;
-    for (std::size_t k = 0; k < sx.size(); ++k) {
-      sum += std::pow(sx[k] - t.x_px[k], 2) + std::pow(sy[k] - t.y_px[k], 2);
-    }
-    residuals.push_back(std::sqrt(sum / static_cast<double>(sx.size())));
+namespace {
+
+// RMS over frames of what smoothing by h removes from a series, for both coordinates.
+double smoothing_residual(const std::vector<double>& dx, const std::vector<double>& dy, int h) {
+  const auto sx = smooth(dx, h), sy = smooth(dy, h);
+  double sum = 0;
+  for (std::size_t k = 0; k < dx.size(); ++k) {
+    sum += std::pow(sx[k] - dx[k], 2) + std::pow(sy[k] - dy[k], 2);
   }
-  if (residuals.empty()) return half_window;
-  auto mid = residuals.begin() + static_cast<long>(residuals.size() / 2);
-  std::nth_element(residuals.begin(), mid, residuals.end());
-  return *mid <= max_residual_px ? half_window : 0;
+  return std::sqrt(sum / static_cast<double>(dx.size()));
+}
+
+// The relative position of each track and its nearest neighbour over the frames both cover:
+// motion common to both (slide, rotation) cancels and what remains is the strain between them
+// plus the trackers' noise, which is what the smoother trades against each other.
+struct NeighbourSeries {
+  std::vector<double> dx, dy;
+};
+std::vector<NeighbourSeries> neighbour_series(const std::vector<Track>& tracks,
+                                              std::size_t min_frames) {
+  auto at = [](const Track& t, std::int32_t f, const std::vector<double>& v) {
+    return v[static_cast<std::size_t>(f - t.first_frame)];
+  };
+  std::vector<NeighbourSeries> out;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const Track& a = tracks[i];
+    if (a.x_px.size() < min_frames) continue;
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t best_j = i;
+    for (std::size_t j = 0; j < tracks.size(); ++j) {
+      const Track& b = tracks[j];
+      const std::int32_t lo = std::max(a.first_frame, b.first_frame);
+      const std::int32_t hi = std::min(a.last_frame(), b.last_frame());
+      if (j == i || hi - lo + 1 < static_cast<std::int32_t>(min_frames)) continue;
+      const double d =
+          std::hypot(at(a, lo, a.x_px) - at(b, lo, b.x_px), at(a, lo, a.y_px) - at(b, lo, b.y_px));
+      if (d < best) {
+        best = d;
+        best_j = j;
+      }
+    }
+    if (best_j == i) continue;
+    const Track& b = tracks[best_j];
+    NeighbourSeries s;
+    for (std::int32_t f = std::max(a.first_frame, b.first_frame);
+         f <= std::min(a.last_frame(), b.last_frame()); ++f) {
+      s.dx.push_back(at(a, f, a.x_px) - at(b, f, b.x_px));
+      s.dy.push_back(at(a, f, a.y_px) - at(b, f, b.y_px));
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// Savitzky-Golay central weight: smoothing white noise by h leaves sqrt(1 - w0) of it.
+double central_weight(int h) {
+  return 3.0 * (3.0 * h * h + 3.0 * h - 1) / ((2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3));
+}
+
+}  // namespace
+
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
+                        double max_noise_ratio) {
+  if (half_window <= 0) return half_window;
+  // Candidates from the longest allowed down; none that fits means no smoothing.
+  std::vector<int> candidates;
+  for (int h : {half_window, 10, 8, 7, 6, 5, 4, 3}) {
+    if (h <= half_window && (candidates.empty() || h < candidates.back())) candidates.push_back(h);
+  }
+  constexpr int kNoiseWindow = 2;  // short enough to follow every motion the tests have seen
+  constexpr std::size_t kMinSeries = 20;
+  for (const int h : candidates) {
+    // The smoother's residual is the trackers' noise where the skin moves smoothly over the
+    // window, and the motion itself where it does not (a strain wave crossing in a few frames).
+    std::vector<double> residuals;
+    for (const auto& t : tracks) {
+      if (static_cast<int>(t.x_px.size()) < 2 * h + 1) continue;
+      residuals.push_back(smoothing_residual(t.x_px, t.y_px, h));
+    }
+    if (residuals.empty() || median(residuals) > max_residual_px) continue;
+    if (h <= kNoiseWindow) return h;
+    // Between neighbours, a residual that grows faster with the window than white noise's
+    // sqrt(1 - w0) is strain that the window flattens: the longest window whose residual is
+    // still noise is the one that averages most noise without bending the strain.
+    const auto series = neighbour_series(tracks, static_cast<std::size_t>(2 * h + 1));
+    if (series.size() < kMinSeries) continue;
+    std::vector<double> ratios;
+    for (const auto& s : series) {
+      const double noise = smoothing_residual(s.dx, s.dy, kNoiseWindow) /
+                           std::sqrt(1 - central_weight(kNoiseWindow));
+      const double at_h = smoothing_residual(s.dx, s.dy, h) / std::sqrt(1 - central_weight(h));
+      if (noise > 0) ratios.push_back(at_h / noise);
+    }
+    if (ratios.size() >= kMinSeries && median(ratios) <= max_noise_ratio) return h;
+  }
+  return 0;
 }
 
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,

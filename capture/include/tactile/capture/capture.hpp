@@ -70,10 +70,11 @@ inline bool refinement_for(PoreDetector detector) {
   return detector == PoreDetector::ridge_blob;
 }
 // The trajectory smoothing that goes with refinement or without it. Refined positions carry
-// independent errors from frame to frame, so a longer fit averages more of them (half-window 5
-// against 8 and 12: longer helps still strain patterns and blurs travelling ones).
+// independent errors from frame to frame, so a longer fit averages more of them; but a longer
+// fit also flattens strain that changes within it, so with refinement this is the longest
+// window tried, and the tracks themselves choose (smoothing_that_fits).
 inline int smoothing_half_window_for(bool refine) {
-  return refine ? 5 : CaptureParams{}.smoothing_half_window;
+  return refine ? 12 : CaptureParams{}.smoothing_half_window;
 }
 
 struct CaptureChoice {
