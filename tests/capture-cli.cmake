@@ -144,3 +144,7 @@ print_warp_cli_expect(bench_prints_no_prints 1 "no marked prints" bench prints $
                       --out ${pw_dir}/bench)
 print_warp_cli_expect(bench_prints_bad_frames 2 "--frames: 5 is out of range" bench prints
                       ${pw_dir} --frames 5)
+print_warp_cli_expect(bench_prints_small_frame 2 "--frame-px: 8 is out of range" bench prints
+                      ${pw_dir} --frame-px 640 8)
+print_warp_cli_expect(bench_prints_one_frame_side 2 "--frame-px" bench prints ${pw_dir}
+                      --frame-px 640)

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
 namespace tactile::capture {
 namespace {
 
@@ -47,6 +51,54 @@ TEST(CaptureBench, FastSceneSlidesAtTwoAndAHalfMillimetresPerSecond) {
   s.frame_rate_hz = 1000;  // the exposure cannot be longer than a frame
   set_fast_scene(s, 25);
   EXPECT_DOUBLE_EQ(s.exposure_s, 1 / 1000.0);
+}
+
+// A 3 x 2 print whose pixels are numbered 0..5 row by row, mirrored into 7 x 5: the copies
+// alternate forward and backward in each direction, and a mark keeps the pixel it was on.
+TEST(CaptureBench, MirroredPrintRepeatsThePrintAndItsMarksAboutItsEdges) {
+  PoreTrainingPrint p;
+  p.name = "image_01.png";
+  p.image.width_px = 3;
+  p.image.height_px = 2;
+  p.image.pixels = {0, 1, 2, 3, 4, 5};
+  p.pores_px = {{0, 0}, {2, 1}, {1.25, 0.5}};
+  const PoreTrainingPrint m = mirrored_to_size(p, 7, 5);
+  ASSERT_EQ(m.image.width_px, 7);
+  ASSERT_EQ(m.image.height_px, 5);
+  EXPECT_EQ(m.name, p.name);
+  const std::vector<int> row0 = {0, 1, 2, 2, 1, 0, 0};  // forward, backward, forward
+  for (int x = 0; x < 7; ++x) {
+    EXPECT_EQ(m.image.at(x, 0), row0[static_cast<std::size_t>(x)]) << x;
+    EXPECT_EQ(m.image.at(x, 1), row0[static_cast<std::size_t>(x)] + 3) << x;
+    EXPECT_EQ(m.image.at(x, 2), row0[static_cast<std::size_t>(x)] + 3) << x;  // backward in y
+    EXPECT_EQ(m.image.at(x, 3), row0[static_cast<std::size_t>(x)]) << x;
+    EXPECT_EQ(m.image.at(x, 4), row0[static_cast<std::size_t>(x)]) << x;  // forward again
+  }
+  for (const auto& [x, y] : m.pores_px) {
+    ASSERT_GE(x, 0);
+    ASSERT_GE(y, 0);
+    ASSERT_LE(x, 6);
+    ASSERT_LE(y, 4);
+    // Marks on pixel centres sit on the pixel of the same value as in the print.
+    if (x == std::floor(x) && y == std::floor(y)) {
+      const int v = m.image.at(static_cast<int>(x), static_cast<int>(y));
+      EXPECT_TRUE(v == 0 || v == 5) << x << "," << y;
+    }
+  }
+  // 3 copies across (the third cut to one column) x 3 down (the third cut to one row): the
+  // corner mark (0, 0) is in all 9 copies, the other two marks only in the 2 x 2 whole ones.
+  const auto count = [&](double x, double y) {
+    return std::count_if(m.pores_px.begin(), m.pores_px.end(),
+                         [&](const auto& q) { return q[0] == x && q[1] == y; });
+  };
+  EXPECT_EQ(count(0, 0), 1);
+  EXPECT_EQ(count(5, 0), 1);       // mirrored in x: 2 w - 1 - 0
+  EXPECT_EQ(count(6, 0), 1);       // third copy, forward again
+  EXPECT_EQ(count(5, 3), 1);       // mirrored in both
+  EXPECT_EQ(count(3.75, 2.5), 1);  // the fractional mark, mirrored in both: (5 - 1.25, 3 - 0.5)
+  EXPECT_EQ(m.pores_px.size(), 9u + 4u + 4u);
+  EXPECT_THROW(mirrored_to_size(p, 0, 5), std::invalid_argument);
+  EXPECT_THROW(mirrored_to_size(p, 7, 20000), std::invalid_argument);
 }
 
 TEST(CaptureBench, ScenesRunEveryMethodAndReportFailuresAsRows) {

@@ -43,6 +43,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
     double px_per_mm = 47;
     bool quick = false;
     bool touch = false;
+    std::vector<int> frame_px;  // empty: each print's own size
     BenchSweepOptions common{
         .out = "bench-prints", .sweeps = false, .limits = {.max_rms = 0.0025, .min_points = 150}};
   };
@@ -71,6 +72,12 @@ void add_bench_prints(CLI::App& bench, Action& action) {
   sub->add_option("--px-per-mm", opt->px_per_mm, "Scale of the prints")
       ->check(within(5.0, 500.0))
       ->capture_default_str();
+  sub->add_option("--frame-px", opt->frame_px,
+                  "Film W x H px frames: each print mirrored about its edges until it fills them\n"
+                  "(marks mirrored too), e.g. --frame-px 640 484 for a 640 x 484 camera; default:\n"
+                  "each print's own size")
+      ->expected(2)
+      ->check(within(16, 4096));
   sub->add_flag("--quick", opt->quick,
                 "Only the 4 % wave and the fast 8 % wave, landmarks and Lucas-Kanade");
   sub->add_flag("--touch", opt->touch,
@@ -86,7 +93,10 @@ void add_bench_prints(CLI::App& bench, Action& action) {
                "prints_sweeps.csv", "accuracy_speed_prints.png", "accuracy_speed_prints.svg",
                "fps_accuracy_prints.png", "fps_accuracy_prints.svg"})},
           {{"PRINTS_DIR", opt->prints}});
-      const auto prints = capture::read_pore_training_prints(opt->prints);
+      auto prints = capture::read_pore_training_prints(opt->prints);
+      if (!opt->frame_px.empty()) {
+        for (auto& p : prints) p = capture::mirrored_to_size(p, opt->frame_px[0], opt->frame_px[1]);
+      }
       // A held-out number that names no print would leave that group silently short.
       for (const auto& nn : opt->held_out) {
         if (std::none_of(prints.begin(), prints.end(),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <stdexcept>
 
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/bench.hpp"
@@ -80,6 +81,46 @@ PrintWarpSpec print_bench_spec(const PoreTrainingPrint& print, double px_per_mm,
   s.height_px = print.image.height_px;
   s.frame_count = frame_count;
   return s;
+}
+
+PoreTrainingPrint mirrored_to_size(const PoreTrainingPrint& print, int width_px, int height_px) {
+  constexpr int kMaxSide = 10000;
+  if (width_px < 1 || width_px > kMaxSide || height_px < 1 || height_px > kMaxSide) {
+    throw std::invalid_argument(
+        fmt::format("frame size {} x {} px is outside 1 to {} px", width_px, height_px, kMaxSide));
+  }
+  const int w = print.image.width_px, h = print.image.height_px;
+  if (w < 1 || h < 1) throw std::invalid_argument(print.name + ": empty image");
+  // Index i of the mirrored line in a source line of n: copies alternate forward and backward.
+  auto source = [](int i, int n) {
+    const int in_pair = i % (2 * n);
+    return in_pair < n ? in_pair : 2 * n - 1 - in_pair;
+  };
+  PoreTrainingPrint out;
+  out.name = print.name;
+  out.image.width_px = width_px;
+  out.image.height_px = height_px;
+  out.image.pixels.resize(static_cast<std::size_t>(width_px) * static_cast<std::size_t>(height_px));
+  for (int y = 0; y < height_px; ++y) {
+    for (int x = 0; x < width_px; ++x) {
+      out.image.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_px) +
+                       static_cast<std::size_t>(x)] = print.image.at(source(x, w), source(y, h));
+    }
+  }
+  // A mark at x (pixel centres at integers) lies at t w + x in a forward copy t and at
+  // t w + (w - 1 - x) in a mirrored one.
+  for (int ty = 0; ty * h < height_px; ++ty) {
+    for (int tx = 0; tx * w < width_px; ++tx) {
+      for (const auto& [x, y] : print.pores_px) {
+        const double mx = tx * w + (tx % 2 == 0 ? x : w - 1 - x);
+        const double my = ty * h + (ty % 2 == 0 ? y : h - 1 - y);
+        if (mx >= 0 && my >= 0 && mx <= width_px - 1 && my <= height_px - 1) {
+          out.pores_px.push_back({mx, my});
+        }
+      }
+    }
+  }
+  return out;
 }
 
 std::string print_number(const std::string& file_name) {

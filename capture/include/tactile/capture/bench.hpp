@@ -159,6 +159,12 @@ struct PrintBenchOptions {
   std::size_t method_count = 3;  // the first this many of `methods`
 };
 
+// The print mirrored about its edges (as its mirror image, the next copy as itself, and so on)
+// until it fills width_px x height_px, its marks mirrored with it: real ridge and pore texture
+// over a camera's whole frame when the prints are smaller than the frame. Throws
+// std::invalid_argument for a size outside 1 to 10000 px.
+PoreTrainingPrint mirrored_to_size(const PoreTrainingPrint& print, int width_px, int height_px);
+
 // Every print x case x method, in that order; on_row sees each row as soon as it is measured.
 std::vector<PrintBenchRow> bench_prints(const std::vector<PoreTrainingPrint>& prints,
                                         const std::vector<PrintBenchMethod>& methods,
