@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
@@ -31,47 +32,71 @@ struct Candidate {
 };
 
 // Least-squares quadratic through the positions within +-h frames, evaluated at the centre; it
-// keeps constant-acceleration motion unbiased while averaging localisation noise.
-double quadratic_fit_at(const std::vector<double>& v, int i, int lo, int hi) {
-  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
-  for (int k = lo; k <= hi; ++k) {
-    const double t = k - i;
-    const Eigen::Vector3d a(1, t, t * t);
-    ata += a * a.transpose();
-    atb += a * v[static_cast<std::size_t>(k)];
-  }
-  const int count = hi - lo + 1;
-  if (count < 3) return atb[0] / count;
-  return ata.ldlt().solve(atb)[0];
-}
-
-std::vector<double> smooth(const std::vector<double>& v, int h) {
-  if (h <= 0 || v.size() < 3) return v;
-  const int n = static_cast<int>(v.size());
-  std::vector<double> out(v.size());
-  // Inside the track the window is symmetric and the fit's value at the centre is a fixed
-  // weighted sum (Savitzky-Golay): w_j = (3(3h^2 + 3h - 1) - 15 j^2) / ((2h - 1)(2h + 1)(2h + 3)).
-  std::vector<double> w(static_cast<std::size_t>(2 * h + 1));
-  const double denom = (2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3);
-  for (int j = -h; j <= h; ++j) {
-    w[static_cast<std::size_t>(j + h)] = (3.0 * (3 * h * h + 3 * h - 1) - 15.0 * j * j) / denom;
-  }
-  for (int i = 0; i < n; ++i) {
-    const int lo = std::max(0, i - h);
-    const int hi = std::min(n - 1, i + h);
-    if (hi - lo == 2 * h) {
-      double sum = 0;
-      for (int k = lo; k <= hi; ++k) {
-        sum += w[static_cast<std::size_t>(k - lo)] * v[static_cast<std::size_t>(k)];
-      }
-      out[static_cast<std::size_t>(i)] = sum;
-    } else {
-      out[static_cast<std::size_t>(i)] = quadratic_fit_at(v, i, lo, hi);
+// keeps constant-acceleration motion unbiased while averaging localisation noise. The value is a
+// fixed weighted sum of the positions, whose weights depend only on the window's place in the
+// track, so they are computed once per track length and shared by every track of that length.
+class QuadraticSmoother {
+ public:
+  explicit QuadraticSmoother(int h) : h_(h) {
+    // Inside the track the window is symmetric (Savitzky-Golay):
+    // w_j = (3(3h^2 + 3h - 1) - 15 j^2) / ((2h - 1)(2h + 1)(2h + 3)).
+    const double denom = (2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3);
+    for (int j = -h; j <= h; ++j) {
+      inside_.push_back((3.0 * (3 * h * h + 3 * h - 1) - 15.0 * j * j) / denom);
     }
   }
-  return out;
-}
+
+  std::vector<double> operator()(const std::vector<double>& v) {
+    if (h_ <= 0 || v.size() < 3) return v;
+    const int n = static_cast<int>(v.size());
+    const auto& ends = end_weights(n);
+    std::vector<double> out(v.size());
+    for (int i = 0; i < n; ++i) {
+      const int lo = std::max(0, i - h_), hi = std::min(n - 1, i + h_);
+      const bool inside = hi - lo == 2 * h_;
+      const double* w = inside ? inside_.data() : ends[static_cast<std::size_t>(i)].data();
+      double sum = 0;
+      for (int k = lo; k <= hi; ++k) sum += w[k - lo] * v[static_cast<std::size_t>(k)];
+      out[static_cast<std::size_t>(i)] = sum;
+    }
+    return out;
+  }
+
+ private:
+  // For a track of n positions, the weights at every position whose window the track cuts.
+  const std::vector<std::vector<double>>& end_weights(int n) {
+    auto [it, added] = ends_.try_emplace(n);
+    if (!added) return it->second;
+    it->second.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      const int lo = std::max(0, i - h_), hi = std::min(n - 1, i + h_);
+      if (hi - lo == 2 * h_) continue;
+      Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+      for (int k = lo; k <= hi; ++k) {
+        const double t = k - i;
+        const Eigen::Vector3d a(1, t, t * t);
+        ata += a * a.transpose();
+      }
+      auto& w = it->second[static_cast<std::size_t>(i)];
+      const int count = hi - lo + 1;
+      if (count < 3) {
+        w.assign(static_cast<std::size_t>(count), 1.0 / count);
+        continue;
+      }
+      // Row 0 of (A^T A)^-1 A^T: the fit's value at the centre from each position.
+      const Eigen::Vector3d row0 = ata.ldlt().solve(Eigen::Vector3d::UnitX());
+      for (int k = lo; k <= hi; ++k) {
+        const double t = k - i;
+        w.push_back(row0[0] + row0[1] * t + row0[2] * t * t);
+      }
+    }
+    return it->second;
+  }
+
+  int h_;
+  std::vector<double> inside_;
+  std::map<int, std::vector<std::vector<double>>> ends_;
+};
 
 // Cuts a trajectory wherever a position lies more than gate_px from the least-squares line
 // through the (up to) 6 positions before it in the same piece.
@@ -122,17 +147,19 @@ std::vector<Track> split_at_jumps(const Track& t, double gate_px) {
 }  // namespace
 
 void smooth_tracks(std::vector<Track>& tracks, int half_window) {
+  QuadraticSmoother smooth(half_window);
   for (auto& t : tracks) {
-    t.x_px = smooth(t.x_px, half_window);
-    t.y_px = smooth(t.y_px, half_window);
+    t.x_px = smooth(t.x_px);
+    t.y_px = smooth(t.y_px);
   }
 }
 
 namespace {
 
 // RMS over frames of what smoothing by h removes from a series, for both coordinates.
-double smoothing_residual(const std::vector<double>& dx, const std::vector<double>& dy, int h) {
-  const auto sx = smooth(dx, h), sy = smooth(dy, h);
+double smoothing_residual(const std::vector<double>& dx, const std::vector<double>& dy,
+                          QuadraticSmoother& smooth) {
+  const auto sx = smooth(dx), sy = smooth(dy);
   double sum = 0;
   for (std::size_t k = 0; k < dx.size(); ++k) {
     sum += std::pow(sx[k] - dx[k], 2) + std::pow(sy[k] - dy[k], 2);
@@ -199,27 +226,36 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   }
   constexpr int kNoiseWindow = 2;  // short enough to follow every motion the tests have seen
   constexpr std::size_t kMinSeries = 20;
+  QuadraticSmoother noise_smoother(kNoiseWindow);
+  std::vector<NeighbourSeries> series;  // made when first needed, for every window
+  std::vector<double> noise;            // each series' white-noise level
   for (const int h : candidates) {
+    QuadraticSmoother smoother(h);
     // The smoother's residual is the trackers' noise where the skin moves smoothly over the
     // window, and the motion itself where it does not (a strain wave crossing in a few frames).
     std::vector<double> residuals;
     for (const auto& t : tracks) {
       if (static_cast<int>(t.x_px.size()) < 2 * h + 1) continue;
-      residuals.push_back(smoothing_residual(t.x_px, t.y_px, h));
+      residuals.push_back(smoothing_residual(t.x_px, t.y_px, smoother));
     }
     if (residuals.empty() || median(residuals) > max_residual_px) continue;
     if (h <= kNoiseWindow) return h;
     // Between neighbours, a residual that grows faster with the window than white noise's
     // sqrt(1 - w0) is strain that the window flattens: the longest window whose residual is
     // still noise is the one that averages most noise without bending the strain.
-    const auto series = neighbour_series(tracks, static_cast<std::size_t>(2 * h + 1));
-    if (series.size() < kMinSeries) continue;
+    if (series.empty()) {
+      series = neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1));
+      for (const auto& s : series) {
+        noise.push_back(smoothing_residual(s.dx, s.dy, noise_smoother) /
+                        std::sqrt(1 - central_weight(kNoiseWindow)));
+      }
+    }
     std::vector<double> ratios;
-    for (const auto& s : series) {
-      const double noise = smoothing_residual(s.dx, s.dy, kNoiseWindow) /
-                           std::sqrt(1 - central_weight(kNoiseWindow));
-      const double at_h = smoothing_residual(s.dx, s.dy, h) / std::sqrt(1 - central_weight(h));
-      if (noise > 0) ratios.push_back(at_h / noise);
+    for (std::size_t k = 0; k < series.size(); ++k) {
+      if (static_cast<int>(series[k].dx.size()) < 2 * h + 1 || !(noise[k] > 0)) continue;
+      const double at_h = smoothing_residual(series[k].dx, series[k].dy, smoother) /
+                          std::sqrt(1 - central_weight(h));
+      ratios.push_back(at_h / noise[k]);
     }
     if (ratios.size() >= kMinSeries && median(ratios) <= max_noise_ratio) return h;
   }
