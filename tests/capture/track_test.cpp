@@ -110,26 +110,24 @@ std::vector<Track> grid_tracks(double noise_px, double strain, double period_fra
 }
 
 TEST(Track, SmoothingIsAsLongAsTheNoiseAllowsAndNoLongerThanTheStrainAllows) {
-  constexpr double kMaxResidualPx = 0.06, kMaxNoiseRatio = 1.05;
+  constexpr double kMaxResidualPx = 0.06;
   // White noise alone leaves the same scaled residual at every window: the longest is taken.
-  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 12, kMaxResidualPx, kMaxNoiseRatio), 12);
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 12, kMaxResidualPx), 12);
   // ... and never longer than asked.
-  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 6, kMaxResidualPx, kMaxNoiseRatio), 6);
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 6, kMaxResidualPx), 6);
   // A 2 % wave changing over 5 frames (0.28 px between neighbours against 0.01 px of noise)
   // is bent by every window: no smoothing.
-  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0.02, 5), 12, kMaxResidualPx, kMaxNoiseRatio), 0);
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0.02, 5), 12, kMaxResidualPx), 0);
   // Over a 30-frame period a 25-frame window flattens the wave, a few frames' window does not.
-  const int slow =
-      smoothing_that_fits(grid_tracks(0.01, 0.02, 30), 12, kMaxResidualPx, kMaxNoiseRatio);
+  const int slow = smoothing_that_fits(grid_tracks(0.01, 0.02, 30), 12, kMaxResidualPx);
   EXPECT_GE(slow, 3);
   EXPECT_LT(slow, 12);
   // More noise on the same motion (with what smoothing removes still under the 0.06 px bound on
   // how far it may move a track): at least as long a window.
-  EXPECT_GE(smoothing_that_fits(grid_tracks(0.02, 0.02, 30), 12, kMaxResidualPx, kMaxNoiseRatio),
-            slow);
+  EXPECT_GE(smoothing_that_fits(grid_tracks(0.02, 0.02, 30), 12, kMaxResidualPx), slow);
   // Noise beyond that bound: no window may move the tracks so far.
-  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.2, 0, 0), 12, kMaxResidualPx, kMaxNoiseRatio), 0);
-  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 0, kMaxResidualPx, kMaxNoiseRatio), 0);
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.2, 0, 0), 12, kMaxResidualPx), 0);
+  EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 0, kMaxResidualPx), 0);
 }
 
 }  // namespace

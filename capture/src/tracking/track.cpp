@@ -209,57 +209,121 @@ std::vector<NeighbourSeries> neighbour_series(const std::vector<Track>& tracks,
   return out;
 }
 
-// Savitzky-Golay central weight: smoothing white noise by h leaves sqrt(1 - w0) of it.
-double central_weight(int h) {
-  return 3.0 * (3.0 * h * h + 3.0 * h - 1) / ((2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3));
+// For the smoother on n samples (S) and the frame-to-frame difference (D), the squared Frobenius
+// norms of I - S, of D (I - S) and of D S: how much white noise of unit variance the smoother
+// removes, and what of it the frame-to-frame changes of the removed and of the kept part hold.
+struct SmootherNoise {
+  double removed = 0, removed_change = 0, kept_change = 0;
+};
+SmootherNoise smoother_noise(QuadraticSmoother& smooth, int n) {
+  SmootherNoise out;
+  std::vector<double> unit(static_cast<std::size_t>(n), 0.0);
+  for (int j = 0; j < n; ++j) {
+    unit[static_cast<std::size_t>(j)] = 1;
+    const auto column = smooth(unit);
+    for (int i = 0; i < n; ++i) {
+      const double removed = (i == j ? 1.0 : 0.0) - column[static_cast<std::size_t>(i)];
+      out.removed += removed * removed;
+      if (i == 0) continue;
+      const double kept_change =
+          column[static_cast<std::size_t>(i)] - column[static_cast<std::size_t>(i - 1)];
+      const double change = (i == j ? 1.0 : 0.0) - (i - 1 == j ? 1.0 : 0.0);
+      out.kept_change += kept_change * kept_change;
+      out.removed_change += (change - kept_change) * (change - kept_change);
+    }
+    unit[static_cast<std::size_t>(j)] = 0;
+  }
+  return out;
+}
+
+// Sum over both coordinates of the squared removed part and of its frame-to-frame changes.
+struct Removed {
+  double sum_sq = 0, change_sq = 0;
+};
+Removed removed_by(const NeighbourSeries& s, QuadraticSmoother& smooth) {
+  Removed r;
+  for (const auto* v : {&s.dx, &s.dy}) {
+    const auto kept = smooth(*v);
+    double previous = 0;
+    for (std::size_t k = 0; k < v->size(); ++k) {
+      const double removed = (*v)[k] - kept[k];
+      r.sum_sq += removed * removed;
+      if (k > 0) r.change_sq += (removed - previous) * (removed - previous);
+      previous = removed;
+    }
+  }
+  return r;
 }
 
 }  // namespace
 
-int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
-                        double max_noise_ratio) {
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px) {
   if (half_window <= 0) return half_window;
-  // Candidates from the longest allowed down; none that fits means no smoothing.
   std::vector<int> candidates;
   for (int h : {half_window, 10, 8, 7, 6, 5, 4, 3}) {
     if (h <= half_window && (candidates.empty() || h < candidates.back())) candidates.push_back(h);
   }
-  constexpr int kNoiseWindow = 2;  // short enough to follow every motion the tests have seen
+  // Between a track and its nearest neighbour the common motion cancels, and what is left is
+  // the strain between them plus the trackers' noise. For each window the expected squared
+  // error of the smoothed frame-to-frame changes (what the strain is made of) is estimated
+  // without the truth (Stein's unbiased risk estimate): the changes of what the window removes,
+  // less the noise's share of them, plus the noise that the kept changes still carry. The noise
+  // is measured by the half-window 2 smoother, which bends only the fastest motions. The window
+  // with the least estimated error is taken, 0 (no smoothing) included.
+  constexpr int kNoiseWindow = 2;
+  constexpr std::size_t kMaxFrames = 256;  // enough frames of each series to choose by
   constexpr std::size_t kMinSeries = 20;
+  auto series = neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1));
+  if (series.size() < kMinSeries) return 0;
+  for (auto& s : series) {
+    if (s.dx.size() > kMaxFrames) {
+      s.dx.resize(kMaxFrames);
+      s.dy.resize(kMaxFrames);
+    }
+  }
   QuadraticSmoother noise_smoother(kNoiseWindow);
-  std::vector<NeighbourSeries> series;  // made when first needed, for every window
-  std::vector<double> noise;            // each series' white-noise level
+  std::map<int, SmootherNoise> noise_norms;
+  std::vector<double> noise_variance;
+  for (const auto& s : series) {
+    const int n = static_cast<int>(s.dx.size());
+    auto it = noise_norms.find(n);
+    if (it == noise_norms.end())
+      it = noise_norms.emplace(n, smoother_noise(noise_smoother, n)).first;
+    noise_variance.push_back(removed_by(s, noise_smoother).sum_sq / (2 * it->second.removed));
+  }
+  // No smoothing: every change carries the noise of two frames.
+  std::vector<double> error;
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    error.push_back(noise_variance[k] * 2 * 2);  // per change
+  }
+  int best = 0;
+  double best_error = median(error);
   for (const int h : candidates) {
     QuadraticSmoother smoother(h);
-    // The smoother's residual is the trackers' noise where the skin moves smoothly over the
-    // window, and the motion itself where it does not (a strain wave crossing in a few frames).
+    // A window may not move a whole track by more than max_residual_px (RMS, median track).
     std::vector<double> residuals;
     for (const auto& t : tracks) {
       if (static_cast<int>(t.x_px.size()) < 2 * h + 1) continue;
       residuals.push_back(smoothing_residual(t.x_px, t.y_px, smoother));
     }
     if (residuals.empty() || median(residuals) > max_residual_px) continue;
-    if (h <= kNoiseWindow) return h;
-    // Between neighbours, a residual that grows faster with the window than white noise's
-    // sqrt(1 - w0) is strain that the window flattens: the longest window whose residual is
-    // still noise is the one that averages most noise without bending the strain.
-    if (series.empty()) {
-      series = neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1));
-      for (const auto& s : series) {
-        noise.push_back(smoothing_residual(s.dx, s.dy, noise_smoother) /
-                        std::sqrt(1 - central_weight(kNoiseWindow)));
-      }
-    }
-    std::vector<double> ratios;
+    std::map<int, SmootherNoise> norms;
     for (std::size_t k = 0; k < series.size(); ++k) {
-      if (static_cast<int>(series[k].dx.size()) < 2 * h + 1 || !(noise[k] > 0)) continue;
-      const double at_h = smoothing_residual(series[k].dx, series[k].dy, smoother) /
-                          std::sqrt(1 - central_weight(h));
-      ratios.push_back(at_h / noise[k]);
+      const int n = static_cast<int>(series[k].dx.size());
+      auto it = norms.find(n);
+      if (it == norms.end()) it = norms.emplace(n, smoother_noise(smoother, n)).first;
+      const Removed r = removed_by(series[k], smoother);
+      error[k] = (r.change_sq +
+                  2 * noise_variance[k] * (it->second.kept_change - it->second.removed_change)) /
+                 static_cast<double>(n - 1);
     }
-    if (ratios.size() >= kMinSeries && median(ratios) <= max_noise_ratio) return h;
+    const double e = median(error);
+    if (e < best_error) {
+      best_error = e;
+      best = h;
+    }
   }
-  return 0;
+  return best;
 }
 
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,

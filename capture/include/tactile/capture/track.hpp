@@ -60,14 +60,12 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
 // Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none).
 void smooth_tracks(std::vector<Track>& tracks, int half_window);
 
-// The longest of half_window, 10, 8, 7, 6, 5, 4, 3 (none longer than half_window) that the tracks
-// allow, else 0: a smoother over several frames must not flatten motion that changes within them. A
-// window is allowed if smoothing by it moves the median track by at most max_residual_px (RMS),
-// and if, between each track and its nearest neighbour, the residual it leaves is at most
-// max_noise_ratio times that of white noise (measured by the half-window 2 smoother, scaled by
-// the Savitzky-Golay noise factor of each window): more than that is strain being flattened.
-int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
-                        double max_noise_ratio);
+// The smoothing window (half-window half_window, 10, 8, 7, 6, 5, 4, 3, none longer than
+// half_window, or 0 for none) whose frame-to-frame changes between neighbouring tracks have the
+// least error, as estimated from the tracks themselves: a longer window averages more of the
+// trackers' noise, but flattens strain that changes within it. A window that moves the median
+// track by more than max_residual_px (RMS) is not taken.
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px);
 
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
@@ -98,11 +96,6 @@ struct RefineParams {
   // Trajectories are smoothed only where the smoother moves the median track by at most this
   // (RMS): about twice the refined positions' noise.
   double max_smoothing_residual_px = 0.06;
-  // ... and only as long as the residual between neighbours stays within this multiple of the
-  // noise's. On tuning prints 01, 03, 05 and 07 the still patterns stayed at 1.00-1.02 for
-  // every window, and the strain of the 1 % wave was best kept (correlation 0.940-0.964) by
-  // 1.05, against 0.897-0.964 at 1.15, which let a 21-frame window flatten it.
-  double max_smoothing_noise_ratio = 1.05;
 };
 
 struct RefineStats {
