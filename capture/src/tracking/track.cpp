@@ -173,13 +173,22 @@ double smoothing_residual(const std::vector<double>& dx, const std::vector<doubl
 struct NeighbourSeries {
   std::vector<double> dx, dy;
 };
+// Every track but at most `most` of them, evenly spread: a median over a few hundred tracks
+// chooses the smoothing as well as one over all of a large frame's.
+std::vector<std::size_t> spread_sample(std::size_t count, std::size_t most) {
+  const std::size_t step = std::max<std::size_t>(1, (count + most - 1) / most);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < count; i += step) out.push_back(i);
+  return out;
+}
+
 std::vector<NeighbourSeries> neighbour_series(const std::vector<Track>& tracks,
-                                              std::size_t min_frames) {
+                                              std::size_t min_frames, std::size_t most) {
   auto at = [](const Track& t, std::int32_t f, const std::vector<double>& v) {
     return v[static_cast<std::size_t>(f - t.first_frame)];
   };
   std::vector<NeighbourSeries> out;
-  for (std::size_t i = 0; i < tracks.size(); ++i) {
+  for (const std::size_t i : spread_sample(tracks.size(), most)) {
     const Track& a = tracks[i];
     if (a.x_px.size() < min_frames) continue;
     double best = std::numeric_limits<double>::infinity();
@@ -189,8 +198,8 @@ std::vector<NeighbourSeries> neighbour_series(const std::vector<Track>& tracks,
       const std::int32_t lo = std::max(a.first_frame, b.first_frame);
       const std::int32_t hi = std::min(a.last_frame(), b.last_frame());
       if (j == i || hi - lo + 1 < static_cast<std::int32_t>(min_frames)) continue;
-      const double d =
-          std::hypot(at(a, lo, a.x_px) - at(b, lo, b.x_px), at(a, lo, a.y_px) - at(b, lo, b.y_px));
+      const double d = std::pow(at(a, lo, a.x_px) - at(b, lo, b.x_px), 2) +
+                       std::pow(at(a, lo, a.y_px) - at(b, lo, b.y_px), 2);
       if (d < best) {
         best = d;
         best_j = j;
@@ -272,8 +281,9 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   // with the least estimated error is taken, 0 (no smoothing) included.
   constexpr int kNoiseWindow = 2;
   constexpr std::size_t kMaxFrames = 256;  // enough frames of each series to choose by
-  constexpr std::size_t kMinSeries = 20;
-  auto series = neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1));
+  constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;
+  auto series =
+      neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1), kMaxSeries);
   if (series.size() < kMinSeries) return 0;
   for (auto& s : series) {
     if (s.dx.size() > kMaxFrames) {
@@ -302,7 +312,8 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
     QuadraticSmoother smoother(h);
     // A window may not move a whole track by more than max_residual_px (RMS, median track).
     std::vector<double> residuals;
-    for (const auto& t : tracks) {
+    for (const std::size_t i : spread_sample(tracks.size(), kMaxSeries)) {
+      const Track& t = tracks[i];
       if (static_cast<int>(t.x_px.size()) < 2 * h + 1) continue;
       residuals.push_back(smoothing_residual(t.x_px, t.y_px, smoother));
     }
