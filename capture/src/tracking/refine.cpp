@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -849,6 +850,117 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   s.live = std::move(still);
 }
 
+namespace {
+
+// The second moment along one axis of a reference window's weights (px^2): Gaussian of sigma
+// half_side over offsets -half_side..half_side.
+double window_moment_px2(int half_side) {
+  double sw = 0, swu2 = 0;
+  for (int u = -half_side; u <= half_side; ++u) {
+    const double w = std::exp(-0.5 * u * u / (double(half_side) * half_side));
+    sw += w;
+    swu2 += w * u * u;
+  }
+  return swu2 / sw;
+}
+
+// An affine window aligned to skin whose motion is curved across it finds the weighted mean of
+// that motion, not the motion at its centre: position + (M / 2) (laplacian of the map from the
+// reference), with M the weights' second moment. On a strain wave this shrinks the measured
+// strain in proportion to the true one (about 7 % for a 3 mm wave and the 0.7 mm window). The
+// laplacian at each track and frame comes from a weighted quadratic fit of the positions of the
+// tracks around it (those alive in its reference frame and in this one) against their
+// positions in the reference frame; each correction is limited to max_px.
+void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, double radius_px,
+                              double max_px, int threads) {
+  // 16 / 24 / 32 nearest on tuning print 02: fast scene 0.00146 / 0.00142 / 0.00142, 4 % bump
+  // correlation 0.981 / 0.983 / 0.983 (0.984 uncorrected).
+  constexpr std::size_t kNearest = 32;
+  constexpr std::size_t kFewest = 8;
+  const auto at = [](const Track& t, int f, Eigen::Vector2d& p) {
+    const int k = f - t.first_frame;
+    if (k < 0 || k >= static_cast<int>(t.x_px.size())) return false;
+    p = {t.x_px[static_cast<std::size_t>(k)], t.y_px[static_cast<std::size_t>(k)]};
+    return true;
+  };
+  std::vector<std::vector<Eigen::Vector2d>> correction(tracks.size());
+  parallel_for(tracks.size(), worker_count(threads), [&](std::size_t i) {
+    const Track& t = tracks[i];
+    const int first = t.first_frame;
+    const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
+    std::vector<std::tuple<double, std::size_t, Eigen::Vector2d>> near;
+    for (std::size_t j = 0; j < tracks.size(); ++j) {
+      Eigen::Vector2d p;
+      if (!at(tracks[j], first, p)) continue;
+      const double d2 = (p - centre).squaredNorm();
+      if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, p);
+    }
+    const auto by_distance = [](const auto& a, const auto& b) {
+      return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
+    };
+    std::sort(near.begin(), near.end(), by_distance);
+    if (near.size() > kNearest) near.resize(kNearest);
+    auto& out = correction[i];
+    out.assign(t.x_px.size(), Eigen::Vector2d::Zero());
+    if (near.size() < kFewest) return;
+    const double scale = radius_px / 2;
+    // The fit is linear in the positions: the laplacian is sum_j alpha_j x position_j, with
+    // weights that change only when the set of neighbours alive in the frame does.
+    std::vector<Vector6> rows(near.size());
+    std::vector<double> weights(near.size());
+    for (std::size_t n = 0; n < near.size(); ++n) {
+      const Eigen::Vector2d o = (std::get<2>(near[n]) - centre) / scale;
+      weights[n] = std::exp(-0.5 * o.squaredNorm());
+      rows[n] << 1, o.x(), o.y(), o.x() * o.x(), o.x() * o.y(), o.y() * o.y();
+    }
+    Vector6 laplacian_of_coefficients = Vector6::Zero();
+    laplacian_of_coefficients(3) = laplacian_of_coefficients(5) = 2 / (scale * scale);
+    std::vector<char> alive(near.size(), 0), alive_before;
+    std::vector<double> alpha(near.size(), 0.0);
+    bool fits = false;
+    std::vector<Eigen::Vector2d> to(near.size());
+    for (std::size_t k = 1; k < t.x_px.size(); ++k) {
+      const int f = first + static_cast<int>(k);
+      std::size_t used = 0;
+      for (std::size_t n = 0; n < near.size(); ++n) {
+        alive[n] = at(tracks[std::get<1>(near[n])], f, to[n]);
+        used += alive[n] ? 1 : 0;
+      }
+      if (used < kFewest) continue;
+      if (alive != alive_before) {
+        alive_before = alive;
+        Matrix6 a = Matrix6::Zero();
+        for (std::size_t n = 0; n < near.size(); ++n) {
+          if (alive[n]) a += weights[n] * rows[n] * rows[n].transpose();
+        }
+        const Eigen::LDLT<Matrix6> ldlt(a);
+        const Vector6 g = ldlt.solve(laplacian_of_coefficients);
+        fits = ldlt.info() == Eigen::Success && g.allFinite();
+        for (std::size_t n = 0; n < near.size(); ++n) {
+          alpha[n] = alive[n] ? weights[n] * g.dot(rows[n]) : 0.0;
+        }
+      }
+      if (!fits) continue;
+      Eigen::Vector2d laplacian = Eigen::Vector2d::Zero();
+      for (std::size_t n = 0; n < near.size(); ++n) {
+        if (alive[n]) laplacian += alpha[n] * to[n];
+      }
+      Eigen::Vector2d dc = -0.5 * moment_px2 * laplacian;
+      if (!dc.allFinite()) continue;
+      if (dc.norm() > max_px) dc *= max_px / dc.norm();
+      out[k] = dc;
+    }
+  });
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    for (std::size_t k = 0; k < tracks[i].x_px.size(); ++k) {
+      tracks[i].x_px[k] += correction[i][k].x();
+      tracks[i].y_px[k] += correction[i][k].y();
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
   State& s = *state_;
   std::vector<Track> all = std::move(s.ended);
@@ -865,6 +977,10 @@ std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
     }
     t.id = static_cast<std::int32_t>(kept.size());
     kept.push_back(std::move(t));
+  }
+  if (s.params.curvature_correction) {
+    correct_window_curvature(kept, window_moment_px2(s.half_side),
+                             s.params.neighbour_radius_mm * s.px_per_mm, 0.5, s.threads);
   }
   if (stats) *stats = s.stats;
   s.stats = {};

@@ -103,6 +103,11 @@ struct RefineParams {
   // A confirmed position further than this from its neighbours' motion is checked again (0 =
   // never).
   double neighbour_check_px = 1.5;
+  // Streaming tracker: each position corrected for the affine window's bias where the skin's
+  // motion is curved across it (the weighted mean of the motion over the window, not its value
+  // at the landmark), from a quadratic fit of the neighbouring tracks (within
+  // neighbour_radius_mm).
+  bool curvature_correction = true;
 };
 
 struct RefineStats {
