@@ -451,5 +451,25 @@ TEST(RealPrintStrain, HeldOutPrintsHoldAtThreeTimesTheSpeedOfTouch) {
   }
 }
 
+// The neighbours' rounds and the curvature correction read only what earlier rounds and frames
+// settled, so the tracks are the same on one worker as on three.
+TEST(RealPrintStrain, FastMotionTracksDoNotDependOnTheWorkerCount) {
+  const PrintSequence seq = fast_scene("12", 70, 12);
+  CaptureParams params =
+      with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
+  params.min_track_frames = seq.spec.frame_count;
+  params.threads = 1;
+  const auto one = tracks_of(measure_strain(seq.frames, seq.calibration, 60, params));
+  params.threads = 3;
+  const auto three = tracks_of(measure_strain(seq.frames, seq.calibration, 60, params));
+  ASSERT_GE(one.size(), 150u);
+  ASSERT_EQ(one.size(), three.size());
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].first_frame, three[i].first_frame);
+    EXPECT_EQ(one[i].x_px, three[i].x_px);
+    EXPECT_EQ(one[i].y_px, three[i].y_px);
+  }
+}
+
 }  // namespace
 }  // namespace tactile::capture
