@@ -96,6 +96,21 @@ struct RefineParams {
   // Trajectories are smoothed only where the smoother moves the median track by at most this
   // (RMS): about twice the refined positions' noise.
   double max_smoothing_residual_px = 0.06;
+  // Streaming tracker (AlignmentTracker): where a track's own prediction fails, retry from its
+  // confirmed neighbours' motion in the same frame (within neighbour_radius_mm), in up to
+  // neighbour_rounds rounds (0 = never), when that start is neighbour_retry_px or more from the
+  // one tried.
+  int neighbour_rounds = 4;
+  double neighbour_radius_mm = 1.0;
+  double neighbour_retry_px = 0.5;
+  // A confirmed position further than this from its neighbours' motion is checked again (0 =
+  // never).
+  double neighbour_check_px = 1.5;
+  // Streaming tracker: each position corrected for the affine window's bias where the skin's
+  // motion is curved across it (the weighted mean of the motion over the window, not its value
+  // at the landmark), from a quadratic fit of the neighbouring tracks (within
+  // neighbour_radius_mm).
+  bool curvature_correction = true;
 };
 
 struct RefineStats {
