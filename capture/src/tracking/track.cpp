@@ -245,6 +245,14 @@ SmootherNoise smoother_noise(QuadraticSmoother& smooth, int n) {
   return out;
 }
 
+double trimmed_mean(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t cut = v.size() / 10;
+  double sum = 0;
+  for (std::size_t k = cut; k < v.size() - cut; ++k) sum += v[k];
+  return sum / static_cast<double>(v.size() - 2 * cut);
+}
+
 // Sum over both coordinates of the squared removed part and of its frame-to-frame changes.
 struct Removed {
   double sum_sq = 0, change_sq = 0;
@@ -278,7 +286,9 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   // without the truth (Stein's unbiased risk estimate): the changes of what the window removes,
   // less the noise's share of them, plus the noise that the kept changes still carry. The noise
   // is measured by the half-window 2 smoother, which bends only the fastest motions. The window
-  // with the least estimated error is taken, 0 (no smoothing) included.
+  // with the least estimated error is taken, 0 (no smoothing) included. The estimate is of the
+  // mean error over all pairs, so pairs are averaged (a tenth at each end left out, for the few
+  // whose tracks slipped), not their median taken: each pair's estimate is skewed.
   constexpr int kNoiseWindow = 2;
   constexpr std::size_t kMaxFrames = 256;  // enough frames of each series to choose by
   constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;
@@ -307,7 +317,7 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
     error.push_back(noise_variance[k] * 2 * 2);  // per change
   }
   int best = 0;
-  double best_error = median(error);
+  double best_error = trimmed_mean(error);
   for (const int h : candidates) {
     QuadraticSmoother smoother(h);
     // A window may not move a whole track by more than max_residual_px (RMS, median track).
@@ -328,7 +338,7 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
                   2 * noise_variance[k] * (it->second.kept_change - it->second.removed_change)) /
                  static_cast<double>(n - 1);
     }
-    const double e = median(error);
+    const double e = trimmed_mean(error);
     if (e < best_error) {
       best_error = e;
       best = h;
