@@ -238,6 +238,26 @@ void AtomicFile::commit() {
   }
 }
 
+int can_create_beside(const fs::path& path) noexcept {
+  try {
+    const SignalsBlocked blocked;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      const fs::path temp = temporary_name(path);
+      const int fd =
+          ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+      if (fd >= 0) {
+        ::close(fd);
+        ::unlink(temp.c_str());
+        return 0;
+      }
+      if (errno != EEXIST) return errno;
+    }
+    return EEXIST;
+  } catch (...) {
+    return ENOMEM;  // the name could not be made
+  }
+}
+
 void write_atomically(const fs::path& path, std::string_view bytes) {
   AtomicFile file(path);
   file.write(bytes);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -179,7 +180,18 @@ void add_calibrate(CLI::App& app, Action& action) {
       refuse_output_over_input({output_file("--out", opt->out)},
                                inputs_of("DOT_GRID_IMAGE", opt->image, {}, {}));
       const capture::GrayImage image = capture::read_image(opt->image);
-      const capture::Calibration c = capture::calibrate_dot_grid(image, opt->spacing_mm);
+      // The library knows the pixels, not the file: a user calibrating several images must
+      // learn which one had no grid.
+      const capture::Calibration c = [&] {
+        try {
+          return capture::calibrate_dot_grid(image, opt->spacing_mm);
+        } catch (const std::bad_alloc&) {
+          throw;
+        } catch (const std::exception& e) {
+          throw FormatError(fmt::format("{}: {}", opt->image.string(),
+                                        capture::opencv_error_text(e).value_or(e.what())));
+        }
+      }();
       capture::write_calibration_json(opt->out, c);
       fmt::print("calibrate: {:.2f} px/mm ({:.4f} mm/px) over {} x {} px, {} -> {}\n",
                  1.0 / c.mm_per_px, c.mm_per_px, c.image_width_px, c.image_height_px, c.method,

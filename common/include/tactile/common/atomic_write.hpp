@@ -46,6 +46,11 @@ class AtomicFile {
   int slot_ = -1;  // in the registry of temporary files removed on a signal; -1: none
 };
 
+// 0 if an AtomicFile for `path` could create its temporary file, else the operating system's
+// error (EACCES, EROFS; ENOENT in /proc). Tries it: the file is created and removed at once, with
+// SIGINT and SIGTERM held meanwhile so that a signal cannot leave it behind.
+int can_create_beside(const std::filesystem::path& path) noexcept;
+
 // `bytes` written to `path` through an AtomicFile.
 void write_atomically(const std::filesystem::path& path, std::string_view bytes);
 
