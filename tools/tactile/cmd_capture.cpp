@@ -25,6 +25,7 @@
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/video.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
@@ -388,14 +389,20 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       const int n = movie.camera_frame_count;
       movie.provenance.input = opt->image_dir.string();
       movie.provenance.command_line = command_line;
+      // The strain movie and its CSV files replace the old ones together (the maps, one file a
+      // frame, are too many to hold back: they follow).
+      CommitTogether together;
       capture::write_strain_movie(opt->out, movie);
+      if (opt->csv_dir) {
+        fs::create_directories(*opt->csv_dir);
+        capture::export_strain_csv(*opt->csv_dir, movie);
+      }
+      together.commit();
       fmt::print(
           "capture: {} frames in {:.2f} s ({:.0f} frames/s; CPU {:.2f} ms per frame), {} strain "
           "frames at {:.4g} Hz -> {}\n",
           n, s, n / s, 1e3 * cpu_s / n, movie.frames.size(), rate_hz, opt->out.string());
       if (opt->csv_dir) {
-        fs::create_directories(*opt->csv_dir);
-        capture::export_strain_csv(*opt->csv_dir, movie);
         fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", opt->csv_dir->string());
       }
       if (opt->maps_dir) write_maps(*opt->maps_dir, movie, progress);
