@@ -49,16 +49,18 @@ struct Output {
   bool folder = false;
   std::vector<std::filesystem::path> files;
   std::vector<std::filesystem::path> subfolders;
-  // A file output whose format its name decides (an image encoder picks it by the extension):
-  // the extension it must have (".png"), compared ignoring case; empty: any name.
+  // A file output whose format its name decides (an image encoder picks it by the extension;
+  // other tools pick their reader by it): the extension it must have (".png"), compared
+  // ignoring case; empty: any name.
   std::string extension;
 };
 
 // A file output at `path`, given by `option`.
 Output output_file(std::string option, std::filesystem::path path);
 
-// A file output whose name must end in `extension` (".png"): the encoder chooses the format by
-// the name, and a name without it ("preview", "/proc/version") could not be written.
+// A file output whose name must end in `extension` (".png"): an encoder chooses the format by
+// the name, so a name without it ("preview", "/proc/version") could not be written, and a file
+// misnamed (a WAV called x.hjif) is one that no other tool would open.
 Output output_file_ending(std::string option, std::filesystem::path path, std::string extension);
 
 // A folder output at `path` into which the command writes `files` and the contents of
