@@ -245,3 +245,39 @@ TEST(HostileInput, PlayPreviewThatCannotBeWrittenIsAUsageErrorBeforeAnyWork) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "preview.PNG"));
 }
+
+// Found by the third hostile-input run: `synth --seed -1` rendered with seed 18446744073709551615
+// (CLI11 wraps a negative number into an unsigned option) and wrote that into scene.json.
+TEST(HostileInput, ANegativeSeedIsAUsageError) {
+  const tactile::test::TempDir dir("seed");
+  const auto out = (dir.path() / "out").string();
+  for (const std::string& command :
+       {"synth " + out + " --frames 2", "demo --headless --frames 2 --out " + out,
+        "perceive --out " + out}) {
+    for (const char* seed : {"-1", "-0", "1.5", "1e3", "18446744073709551616"}) {
+      const auto r = run_tactile(command + " --seed " + seed);
+      EXPECT_EQ(r.exit_code, 2) << command << " --seed " << seed << ": " << r.output;
+      EXPECT_THAT(r.output, HasSubstr(std::string("--seed: ") + seed +
+                                      " is not a whole number from 0 to 2^64 - 1"))
+          << r.output;
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto r = run_tactile("synth " + out + " --frames 2 --seed 18446744073709551615");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// Found by the third hostile-input run: a print too small to warp was refused without naming it.
+TEST(HostileInput, SynthFromAPrintTooSmallNamesIt) {
+  const tactile::test::TempDir dir("tiny-print");
+  const auto png = dir.path() / "tiny.png";
+  tactile::capture::write_png(png, {1, 1, {0}});
+  const auto r = run_tactile("synth " + (dir.path() / "out").string() +
+                             " --frames 3 --from-print " + png.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--from-print " + png.string() +
+                                  ": invalid print warp: the print "
+                                  "is 1 x 1 px"))
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frame_000.png"));
+}

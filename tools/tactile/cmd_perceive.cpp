@@ -118,7 +118,7 @@ void add_perceive(CLI::App& app, Action& action) {
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
       ->check(within(2, 1000));
-  sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
+  sub->add_option("--seed", opt->seed, "Seed of the simulated trials")->check(seed_number());
   auto* seeds = sub->add_option("--seeds", opt->seeds,
                                 "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
                                 "the other files are those of the first")

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,14 @@ int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem
   std::vector<std::array<double, 2>> pores;
   if (marks) pores = capture::read_pore_marks(*marks, print.width_px, print.height_px);
   const auto t0 = std::chrono::steady_clock::now();
-  const capture::PrintSequence seq = capture::render_print_sequence(warp, print, pores);
+  // The warp's own checks know the print's size, not its file.
+  const capture::PrintSequence seq = [&] {
+    try {
+      return capture::render_print_sequence(warp, print, pores);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("--from-print {}: {}", image.string(), e.what()));
+    }
+  }();
   capture::write_print_sequence(out_dir, seq, image, command_line);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print(

@@ -55,6 +55,7 @@ inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
       ->check(within(0.0, 128.0))
       ->capture_default_str();
   sub.add_option("--seed", spec.seed, "Random seed (same seed, same images)")
+      ->check(seed_number())
       ->capture_default_str();
 }
 
