@@ -127,7 +127,72 @@ std::string reason(int error) {
   return std::strerror(error);
 }
 
+// The CommitTogether alive, if any: AtomicFile::commit must find it without every writer of the
+// project passing it along (it is the same process-wide registry as the slots').
+std::atomic<CommitTogether::Pending*> g_together{nullptr};
+
+void fsync_folder(const fs::path& path) {
+  // The rename is done; syncing the folder only makes it survive a power cut, so a failure here
+  // is not reported (some file systems refuse fsync on a folder).
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+
 }  // namespace
+
+struct CommitTogether::Pending {
+  struct File {
+    fs::path temp, path;
+    int slot = -1;
+  };
+  std::mutex mutex;
+  std::vector<File> files;
+
+  void remove_from(std::size_t first) noexcept {
+    for (std::size_t i = first; i < files.size(); ++i) {
+      ::unlink(files[i].temp.c_str());
+      release_slot(files[i].slot);
+    }
+    files.clear();
+  }
+};
+
+CommitTogether::CommitTogether() : pending_(std::make_unique<Pending>()) {
+  Pending* none = nullptr;
+  if (!g_together.compare_exchange_strong(none, pending_.get())) {
+    throw std::logic_error("CommitTogether: one is alive already");
+  }
+}
+
+CommitTogether::~CommitTogether() {
+  Pending* mine = pending_.get();
+  g_together.compare_exchange_strong(mine, nullptr);
+  const std::lock_guard lock(pending_->mutex);
+  pending_->remove_from(0);
+}
+
+void CommitTogether::commit() {
+  Pending* mine = pending_.get();
+  g_together.compare_exchange_strong(mine, nullptr);
+  const std::lock_guard lock(pending_->mutex);
+  const SignalsBlocked blocked;
+  auto& files = pending_->files;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (::rename(files[i].temp.c_str(), files[i].path.c_str()) != 0) {
+      const int error = errno;
+      const fs::path path = files[i].path;
+      pending_->remove_from(i);
+      throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), reason(error)));
+    }
+    release_slot(files[i].slot);
+  }
+  for (const auto& f : files) fsync_folder(f.path);
+  files.clear();
+}
 
 void remove_temporary_files() noexcept {
   for (auto& slot : g_slots) {
@@ -220,6 +285,14 @@ void AtomicFile::commit() {
     discard();
     fail("", error);
   }
+  if (CommitTogether::Pending* together = g_together.load()) {
+    // Handed over, still registered for removal on a signal.
+    const std::lock_guard lock(together->mutex);
+    together->files.push_back({temp_, path_, slot_});
+    temp_.clear();
+    slot_ = -1;
+    return;
+  }
   if (::rename(temp_.c_str(), path_.c_str()) != 0) {
     const int error = errno;
     discard();
@@ -228,13 +301,26 @@ void AtomicFile::commit() {
   temp_.clear();
   release_slot(slot_);
   slot_ = -1;
-  // The rename is done; syncing the folder only makes it survive a power cut, so a failure here
-  // is not reported (some file systems refuse fsync on a folder).
-  const fs::path folder = path_.parent_path().empty() ? fs::path(".") : path_.parent_path();
-  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir >= 0) {
-    ::fsync(dir);
-    ::close(dir);
+  fsync_folder(path_);
+}
+
+int can_create_beside(const fs::path& path) noexcept {
+  try {
+    const SignalsBlocked blocked;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      const fs::path temp = temporary_name(path);
+      const int fd =
+          ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+      if (fd >= 0) {
+        ::close(fd);
+        ::unlink(temp.c_str());
+        return 0;
+      }
+      if (errno != EEXIST) return errno;
+    }
+    return EEXIST;
+  } catch (...) {
+    return ENOMEM;  // the name could not be made
   }
 }
 

@@ -1,9 +1,13 @@
 #include "tactile/common/output_paths.hpp"
 
+#include "tactile/common/atomic_write.hpp"
+
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 
@@ -58,15 +62,31 @@ std::string describe(const Output& output, const fs::path& file) {
                      file.lexically_relative(output.path).string());
 }
 
+// Whether `p`'s extension is `extension`, ignoring ASCII case (".PNG" is a PNG too).
+bool ends_in(const fs::path& p, const std::string& extension) {
+  const std::string e = p.extension().string();
+  return e.size() == extension.size() &&
+         std::equal(e.begin(), e.end(), extension.begin(), [](char a, char b) {
+           return std::tolower(static_cast<unsigned char>(a)) ==
+                  std::tolower(static_cast<unsigned char>(b));
+         });
+}
+
 }  // namespace
 
 Output output_file(std::string option, fs::path path) {
-  return {std::move(option), std::move(path), false, {}, {}};
+  return {std::move(option), std::move(path), false, {}, {}, {}};
+}
+
+Output output_file_ending(std::string option, fs::path path, std::string extension) {
+  Output output = output_file(std::move(option), std::move(path));
+  output.extension = std::move(extension);
+  return output;
 }
 
 Output output_folder(std::string option, fs::path path, std::vector<fs::path> files,
                      std::vector<fs::path> subfolders) {
-  return {std::move(option), std::move(path), true, std::move(files), std::move(subfolders)};
+  return {std::move(option), std::move(path), true, std::move(files), std::move(subfolders), {}};
 }
 
 bool same_file(const fs::path& a, const fs::path& b) {
@@ -144,6 +164,10 @@ void refuse_unwritable_output(const Output& output) {
       refuse(
           fmt::format("cannot write in the folder {}: {}", folder.string(), std::strerror(errno)));
     }
+    if (const int error = can_create_beside(folder / "output"); error != 0) {
+      refuse(fmt::format("cannot create a file in the folder {}: {}", folder.string(),
+                         std::strerror(error)));
+    }
   };
   const auto parent_of = [](const fs::path& p) {
     const fs::path parent = spelled(p).parent_path();
@@ -153,6 +177,10 @@ void refuse_unwritable_output(const Output& output) {
   const auto status = fs::status(output.path, ec);
   if (!output.folder) {
     if (fs::is_directory(status)) refuse("is a folder; give a file name");
+    if (!output.extension.empty() && !ends_in(output.path, output.extension)) {
+      refuse(
+          fmt::format("the name must end in {} (the format it is written in)", output.extension));
+    }
     if (fs::exists(status) && !fs::is_regular_file(status)) {
       refuse("is not a regular file (a device, pipe or socket)");
     }

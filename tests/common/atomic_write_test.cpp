@@ -211,5 +211,75 @@ TEST_F(AtomicWrite, SigintDuringAWriteRemovesTheTemporaryFile) {
   expect_signal_cleans_up(dir_, SIGINT);
 }
 
+TEST_F(AtomicWrite, OutputsCommittedTogetherAppearOnlyAtTheEnd) {
+  write_atomically(dir_ / "a.h5", "old a");
+  write_atomically(dir_ / "b.csv", "old b");
+  {
+    CommitTogether together;
+    write_atomically(dir_ / "a.h5", "new a");
+    EXPECT_EQ(bytes(dir_ / "a.h5"), "old a") << "replaced before the end";
+    AtomicOstream csv(dir_ / "b.csv");
+    csv << "new b";
+    csv.commit();
+    write_atomically(dir_ / "c.json", "new c");
+    EXPECT_FALSE(fs::exists(dir_ / "c.json"));
+    EXPECT_EQ(names_in(dir_).size(), 5u) << "three temporary files beside the two old ones";
+    together.commit();
+    // After the end, each write is its own commit again.
+    write_atomically(dir_ / "d.txt", "d");
+    EXPECT_EQ(bytes(dir_ / "d.txt"), "d");
+  }
+  EXPECT_EQ(bytes(dir_ / "a.h5"), "new a");
+  EXPECT_EQ(bytes(dir_ / "b.csv"), "new b");
+  EXPECT_EQ(bytes(dir_ / "c.json"), "new c");
+  EXPECT_EQ(names_in(dir_), (std::set<std::string>{"a.h5", "b.csv", "c.json", "d.txt"}));
+}
+
+TEST_F(AtomicWrite, OutputsOfAFailedRunAreNeitherCommittedNorLeftBehind) {
+  write_atomically(dir_ / "a.h5", "old a");
+  {
+    CommitTogether together;
+    write_atomically(dir_ / "a.h5", "new a");
+    write_atomically(dir_ / "b.csv", "new b");
+    EXPECT_THROW(CommitTogether(), std::logic_error) << "one at a time";
+    // Destroyed without commit(): the run failed.
+  }
+  EXPECT_EQ(bytes(dir_ / "a.h5"), "old a");
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"a.h5"});
+}
+
+// A signal after the first output is complete, while the second is being written: neither
+// replaces the old one and no temporary file is left.
+TEST_F(AtomicWrite, SigtermBetweenOutputsCommittedTogetherReplacesNone) {
+  write_atomically(dir_ / "a.h5", "old a");
+  write_atomically(dir_ / "b.csv", "old b");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    CommitTogether together;
+    write_atomically(dir_ / "a.h5", "new a");
+    AtomicOstream csv(dir_ / "b.csv");
+    for (;;) {
+      csv << "new b\n";
+      csv.flush();
+      ::usleep(1000);
+    }
+  }
+  bool seen = false;
+  for (int i = 0; i < 5000 && !seen; ++i) {
+    seen = names_in(dir_).size() == 4;  // both temporary files
+    if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_TRUE(seen) << "the child never wrote both temporary files";
+  ::kill(child, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_EQ(bytes(dir_ / "a.h5"), "old a");
+  EXPECT_EQ(bytes(dir_ / "b.csv"), "old b");
+  EXPECT_EQ(names_in(dir_), (std::set<std::string>{"a.h5", "b.csv"}));
+}
+
 }  // namespace
 }  // namespace tactile

@@ -58,6 +58,18 @@ TEST(ExportCli, UsageErrorsAndBadFiles) {
   EXPECT_THAT(r.output, HasSubstr("give --hjif OUT.hjif, --wav OUT.wav or both"));
   r = run_tactile("export " + movie + " --hjif " + movie);
   EXPECT_EQ(r.exit_code, 2) << r.output;
+  // Found by the third hostile-input run: the names swapped wrote a WAV called x.hjif and an
+  // HJIF called x.wav, files no other tool opens. Refused before any work.
+  for (const std::string& args :
+       {" --hjif " + (dir / "x.wav").string(), " --wav " + (dir / "x.hjif").string(),
+        " --hjif " + (dir / "ok.hjif").string() + " --wav " + (dir / "x.mp3").string()}) {
+    r = run_tactile("export " + movie + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_THAT(r.output, ::testing::ContainsRegex("--(hjif|wav) [^ ]+: the name must end in "
+                                                   "\\.(hjif|wav)"))
+        << r.output;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args;
+  }
   const auto bad = dir / "bad.hjif";
   std::ofstream(bad) << R"({"version": "2023"})";
   r = run_tactile("import " + bad.string() + " --out " + (dir / "x.h5").string());

@@ -194,3 +194,90 @@ TEST(HostileInput, DamagedPngFrameGivesOnlyTheProgramsOneLineNamingIt) {
     EXPECT_FALSE(std::filesystem::exists(out));
   }
 }
+
+// Found by the third hostile-input run: calibrating an image with no dot grid, or too small to
+// hold one, said so without naming the image.
+TEST(HostileInput, CalibrateOfAnImageWithNoGridNamesItAndWritesNothing) {
+  const tactile::test::TempDir dir("no-grid");
+  const std::vector<std::uint8_t> white(200 * 150, 255);
+  const std::vector<std::pair<std::string, tactile::capture::GrayImage>> images = {
+      {"blank.png", {200, 150, white}}, {"one-pixel.png", {1, 1, {0}}}};
+  for (const auto& [name, image] : images) {
+    const auto png = dir.path() / name;
+    tactile::capture::write_png(png, image);
+    const auto out = dir.path() / (name + ".json");
+    const auto r = run_tactile("calibrate " + png.string() + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_THAT(r.output,
+                HasSubstr("tactile calibrate: error: " + png.string() + ": no dot grid found"))
+        << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << name;
+  }
+}
+
+// Found by the third hostile-input run: `play --preview /proc/version` played the whole movie and
+// then printed OpenCV's "could not find encoder for the specified extension". Every preview path
+// that cannot be written is a usage error naming --preview and why, before the movie is read.
+TEST(HostileInput, PlayPreviewThatCannotBeWrittenIsAUsageErrorBeforeAnyWork) {
+  const tactile::test::TempDir dir("preview");
+  const std::string movie = (demo_dir() / "movie.h5").string();
+  const auto d = dir.path().string();
+  const std::vector<std::pair<std::string, std::string>> previews = {
+      {"/proc/version", "the name must end in .png"},
+      {d + "/preview", "the name must end in .png"},
+      {d + "/preview.jpg", "the name must end in .png"},
+      {d, "is a folder; give a file name"},
+      {d + "/missing/preview.png", "the folder " + d + "/missing does not exist"},
+      // The superuser passes every permission check there; only trying tells.
+      {"/proc/preview.png", "/proc"},
+      {movie, "would write over the input MOVIE_H5"}};
+  for (const auto& [preview, why] : previews) {
+    const auto r = run_tactile("play --headless " + movie + " --preview " + preview);
+    EXPECT_EQ(r.exit_code, 2) << preview << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("tactile play: error: --preview " + preview)) << r.output;
+    EXPECT_THAT(r.output, HasSubstr(why)) << r.output;
+    EXPECT_THAT(r.output, ::testing::Not(HasSubstr("OpenCV"))) << r.output;
+    EXPECT_THAT(r.output, ::testing::Not(HasSubstr("frames played"))) << preview;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+  // The extension in capitals is still a PNG.
+  const auto r = run_tactile("play --headless " + movie + " --preview " + d + "/preview.PNG");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "preview.PNG"));
+}
+
+// Found by the third hostile-input run: `synth --seed -1` rendered with seed 18446744073709551615
+// (CLI11 wraps a negative number into an unsigned option) and wrote that into scene.json.
+TEST(HostileInput, ANegativeSeedIsAUsageError) {
+  const tactile::test::TempDir dir("seed");
+  const auto out = (dir.path() / "out").string();
+  for (const std::string& command :
+       {"synth " + out + " --frames 2", "demo --headless --frames 2 --out " + out,
+        "perceive --out " + out}) {
+    for (const char* seed : {"-1", "-0", "1.5", "1e3", "18446744073709551616"}) {
+      const auto r = run_tactile(command + " --seed " + seed);
+      EXPECT_EQ(r.exit_code, 2) << command << " --seed " << seed << ": " << r.output;
+      EXPECT_THAT(r.output, HasSubstr(std::string("--seed: ") + seed +
+                                      " is not a whole number from 0 to 2^64 - 1"))
+          << r.output;
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto r = run_tactile("synth " + out + " --frames 2 --seed 18446744073709551615");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// Found by the third hostile-input run: a print too small to warp was refused without naming it.
+TEST(HostileInput, SynthFromAPrintTooSmallNamesIt) {
+  const tactile::test::TempDir dir("tiny-print");
+  const auto png = dir.path() / "tiny.png";
+  tactile::capture::write_png(png, {1, 1, {0}});
+  const auto r = run_tactile("synth " + (dir.path() / "out").string() +
+                             " --frames 3 --from-print " + png.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--from-print " + png.string() +
+                                  ": invalid print warp: the print "
+                                  "is 1 x 1 px"))
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frame_000.png"));
+}

@@ -251,6 +251,31 @@ TEST_F(NoClobber, SynthRefusesAFolderWithFramesItWouldNotReplace) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+// Found by the third hostile-input run: `demo --keep` of 3 frames into the folder of an earlier
+// demo of 5 left frame_003 and frame_004 in its frames folder, mixing the two runs. Refused as
+// `synth` refuses, before any work.
+TEST_F(NoClobber, DemoRefusesAFramesFolderWithFramesItWouldNotReplace) {
+  const auto out = dir_ / "demo";
+  for (const char* f :
+       {"frame_000.png", "frame_001.png", "frame_002.png", "frame_003.png", "frame_004.png"}) {
+    copy(kDemo / "frames" / f, fs::path("demo/frames") / f);
+  }
+  const std::string last = bytes(out / "frames" / "frame_004.png");
+  auto r = run_tactile("demo --headless --keep --frames 3 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--out " + out.string() + ": its frames folder " +
+                                  (out / "frames").string() +
+                                  " already holds 2 image file(s) this run of 3 frames would not "
+                                  "replace (frame_003.png .. frame_004.png)"));
+  EXPECT_EQ(bytes(out / "frames" / "frame_004.png"), last);
+  for (const char* written : {"calibration.json", "strain.h5", "movie.h5", "frames/scene.json"}) {
+    EXPECT_FALSE(fs::exists(out / written)) << written;
+  }
+  // Without --keep no frame is written: the old ones are no obstacle.
+  r = run_tactile("demo --headless --frames 3 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
 // Folder outputs given as a file: a usage error naming the option before any work, the file
 // left as it was (before, demo, synth and perceive ended with the standard library's
 // "filesystem error: cannot create directories").

@@ -1,6 +1,7 @@
 // Numeric options out of range say so with the bounds a person would write, never the
 // 300-digit limits of a double.
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "run.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 using tactile::test::demo_dir;
 using tactile::test::run_tactile;
@@ -79,6 +81,26 @@ TEST(RangeErrors, OptionsANumberCanNoLongerEmptyOfMeaning) {
                               "--min-points: 1e308 is out of range: must be from 0 to 1000000");
   expect_readable_range_error("bench capture --max-rms 1e-300",
                               "--max-rms: 1e-300 is out of range: must be from 1e-06 to 1");
+}
+
+// Found by the third hostile-input run: a start beyond the movie's end opened the window at
+// the last frame as if nothing were wrong. Checked once the movie is read, before any window.
+TEST(RangeErrors, ViewAtBeyondTheMovieNamesItsLength) {
+  const auto path = demo_dir() / "movie.h5";
+  const auto movie = tactile::movie::read_tactile_movie(path);
+  const std::string lasts = fmt::format("{:g}", movie.frame_count / movie.rate_hz);
+  ASSERT_GT(movie.frame_count / movie.rate_hz, 1.0);
+  for (const std::string at : {"12.5", "1e308", "+1e300"}) {
+    expect_readable_range_error("view " + path.string() + " --at " + at,
+                                "--at: " + fmt::format("{:g}", std::stod(at)) +
+                                    " is out of range: " + path.string() + " lasts " + lasts +
+                                    " s (0 to " + lasts + ")");
+  }
+  for (const char* at : {"nan", "-nan", "inf", "-inf", "-1e-300"}) {
+    const auto r = run_tactile("view " + path.string() + " --at " + at);
+    EXPECT_EQ(r.exit_code, 2) << at << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--at")) << at;
+  }
 }
 
 TEST(RangeErrors, HelpShowsReadableBounds) {

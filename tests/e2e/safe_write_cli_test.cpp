@@ -217,4 +217,40 @@ TEST_F(SafeWrite, SigtermOrSigintDuringAnExperimentLeavesNoTemporaryFile) {
   for (const auto& [ms, sig] : moments) stop_experiment(dir_, std::chrono::milliseconds(ms), sig);
 }
 
+// Found by the third hostile-input run: SIGTERM to `map --out M.h5 --csv C.csv` while it wrote
+// the CSV left the new movie beside the old CSV (or none). Both outputs are now committed
+// together at the end: stopped before, neither is replaced and no temporary file is left.
+TEST_F(SafeWrite, SigtermWhileMapWritesItsCsvReplacesNeitherOutput) {
+  // 32 x 32 contactors at 1000 Hz for the demo's 3 s: a CSV of about 25 MB, long enough to
+  // be caught while it is written.
+  const fs::path layout = dir_ / "big.json";
+  std::ofstream(layout) << R"({"name": "big", "rows": 32, "cols": 32, "pitch_mm": [0.2, 0.2],
+    "contactor_size_mm": [0.1, 0.1], "deflection_axis": "x", "deflection_range_um": [-50, 50],
+    "max_rate_hz": 1000})";
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "M.h5") << "old movie";
+  std::ofstream(out / "C.csv") << "old csv";
+  Started map({"map", (kDemo / "strain.h5").string(), "--layout", layout.string(), "--rate-hz",
+               "1000", "--out", (out / "M.h5").string(), "--csv", (out / "C.csv").string()},
+              dir_ / "log.txt");
+  const auto csv_begun = [&] {
+    return std::ranges::any_of(temporary_files(out), [](const fs::path& p) {
+      return p.filename().string().starts_with(".C.csv.");
+    });
+  };
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!csv_begun() && std::chrono::steady_clock::now() < give_up) {
+  }
+  ASSERT_TRUE(csv_begun()) << "the CSV was never seen being written: " << bytes(dir_ / "log.txt");
+  map.signal(SIGTERM);
+  const Started::Ended end = map.wait(60);
+  ASSERT_TRUE(end.ended) << "still running 60 s after the signal";
+  ASSERT_EQ(end.killed_by, SIGTERM) << "ended otherwise: " << bytes(dir_ / "log.txt");
+  // Compared without printing: a replaced movie is megabytes of binary.
+  EXPECT_TRUE(bytes(out / "M.h5") == "old movie") << "M.h5 was replaced";
+  EXPECT_TRUE(bytes(out / "C.csv") == "old csv") << "C.csv was replaced";
+  EXPECT_THAT(temporary_files(out), ::testing::IsEmpty());
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,7 @@
 #include "tactile/capture/strain_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/video.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
@@ -179,7 +181,18 @@ void add_calibrate(CLI::App& app, Action& action) {
       refuse_output_over_input({output_file("--out", opt->out)},
                                inputs_of("DOT_GRID_IMAGE", opt->image, {}, {}));
       const capture::GrayImage image = capture::read_image(opt->image);
-      const capture::Calibration c = capture::calibrate_dot_grid(image, opt->spacing_mm);
+      // The library knows the pixels, not the file: a user calibrating several images must
+      // learn which one had no grid.
+      const capture::Calibration c = [&] {
+        try {
+          return capture::calibrate_dot_grid(image, opt->spacing_mm);
+        } catch (const std::bad_alloc&) {
+          throw;
+        } catch (const std::exception& e) {
+          throw FormatError(fmt::format("{}: {}", opt->image.string(),
+                                        capture::opencv_error_text(e).value_or(e.what())));
+        }
+      }();
       capture::write_calibration_json(opt->out, c);
       fmt::print("calibrate: {:.2f} px/mm ({:.4f} mm/px) over {} x {} px, {} -> {}\n",
                  1.0 / c.mm_per_px, c.mm_per_px, c.image_width_px, c.image_height_px, c.method,
@@ -379,14 +392,20 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       const int n = movie.camera_frame_count;
       movie.provenance.input = opt->image_dir.string();
       movie.provenance.command_line = command_line;
+      // The strain movie and its CSV files replace the old ones together (the maps, one file a
+      // frame, are too many to hold back: they follow).
+      CommitTogether together;
       capture::write_strain_movie(opt->out, movie);
+      if (opt->csv_dir) {
+        fs::create_directories(*opt->csv_dir);
+        capture::export_strain_csv(*opt->csv_dir, movie);
+      }
+      together.commit();
       fmt::print(
           "capture: {} frames in {:.2f} s ({:.0f} frames/s; CPU {:.2f} ms per frame), {} strain "
           "frames at {:.4g} Hz -> {}\n",
           n, s, n / s, 1e3 * cpu_s / n, movie.frames.size(), rate_hz, opt->out.string());
       if (opt->csv_dir) {
-        fs::create_directories(*opt->csv_dir);
-        capture::export_strain_csv(*opt->csv_dir, movie);
         fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", opt->csv_dir->string());
       }
       if (opt->maps_dir) write_maps(*opt->maps_dir, movie, progress);

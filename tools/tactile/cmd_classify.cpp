@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "mode_option.hpp"
 #include "number_checks.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/names.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stopwatch.hpp"
@@ -141,9 +142,12 @@ int test(const std::filesystem::path& model_path, const std::filesystem::path& r
   }
   fmt::print("accuracy {:.3f} ({}/{})\n", t.accuracy(), t.correct, t.tested);
   if (!csv_dir.empty()) {
+    // The four files describe one test: replaced together or not at all.
+    CommitTogether together;
     perception::write_confusion_report(csv_dir, model.class_names, t.confusion);
     perception::write_predictions_csv(csv_dir / "predictions.csv", model.class_names, data, t,
                                       values);
+    together.commit();
     fmt::print(
         "classify test: confusion.csv, confusion.svg, confusion.png, predictions.csv -> {}\n",
         csv_dir.string());

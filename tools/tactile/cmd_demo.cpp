@@ -70,6 +70,10 @@ int run_demo(DemoOptions& opt, const std::string& command_line) {
   capture::validate_scene(opt.scene);
   mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
   refuse_output_over_input({output_folder("--out", opt.out, {})}, {});
+  if (opt.keep) {
+    refuse_stale_frames(fmt::format("--out {}: its frames folder", opt.out.string()),
+                        opt.out / "frames", opt.scene.frame_count);
+  }
   fs::create_directories(opt.out);
   Progress progress;
   StageTimer timer;

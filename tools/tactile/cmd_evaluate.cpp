@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
@@ -80,7 +81,10 @@ void add_evaluate(CLI::App& app, Action& action) {
       fmt::print("  tracks                     {}  (length median {:.0f}, mean {:.1f} frames)\n",
                  ev.track_count, ev.median_track_frames, ev.mean_track_frames);
       if (opt->csv_dir) {
+        // The per-frame table and its summary replace the old pair together.
+        CommitTogether together;
         capture::write_evaluation_csv(*opt->csv_dir, ev);
+        together.commit();
         fmt::print("evaluate: wrote evaluation_frames.csv and evaluation_summary.csv in {}\n",
                    opt->csv_dir->string());
       }

@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
@@ -42,10 +43,12 @@ void add_export(CLI::App& app, Action& action) {
     }
     action = [opt] {
       std::vector<Output> outputs;
-      if (opt->hjif) outputs.push_back(output_file("--hjif", *opt->hjif));
-      if (opt->wav) outputs.push_back(output_file("--wav", *opt->wav));
+      // Other tools pick the reader by the name: a WAV named x.hjif is a file none can open.
+      if (opt->hjif) outputs.push_back(output_file_ending("--hjif", *opt->hjif, ".hjif"));
+      if (opt->wav) outputs.push_back(output_file_ending("--wav", *opt->wav, ".wav"));
       refuse_output_over_input(outputs, {{"MOVIE_H5", opt->movie}});
       const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
+      CommitTogether together;
       if (opt->hjif) {
         const movie::HjifSummary s = movie::write_hjif(movie, *opt->hjif);
         fmt::print(
@@ -60,6 +63,7 @@ void add_export(CLI::App& app, Action& action) {
                    movie.layout.contactor_count(), movie.rate_hz, movie.frame_count, scale,
                    opt->wav->string());
       }
+      together.commit();
       return 0;
     };
   });

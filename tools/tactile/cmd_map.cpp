@@ -11,6 +11,7 @@
 #include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
@@ -91,16 +92,18 @@ void add_map(CLI::App& app, Action& action, const std::string& command_line) {
           1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       movie.provenance.input = opt->strain.string();
       movie.provenance.command_line = command_line;
+      // The movie and its CSV export replace the old pair together: a run stopped while it
+      // writes the CSV must not leave a new movie beside the old CSV.
+      CommitTogether together;
       movie::write_tactile_movie(opt->out, movie);
+      if (opt->csv) movie::export_tactile_csv(*opt->csv, movie);
+      together.commit();
       fmt::print(
           "map: {} strain frames -> {} frames of {} x {} at {:g} Hz ({:.2f} s) in {:.1f} ms -> "
           "{}\n",
           strain.frames.size(), movie.frame_count, layout.rows, layout.cols, movie.rate_hz,
           movie.duration_s(), ms, opt->out.string());
-      if (opt->csv) {
-        movie::export_tactile_csv(*opt->csv, movie);
-        fmt::print("map: wrote {}\n", opt->csv->string());
-      }
+      if (opt->csv) fmt::print("map: wrote {}\n", opt->csv->string());
       return 0;
     };
   });

@@ -12,6 +12,7 @@
 #include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "progress.hpp"
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/perception/recording_csv.hpp"
@@ -117,7 +118,7 @@ void add_perceive(CLI::App& app, Action& action) {
   sub->add_option("--out", opt->out_dir, "Folder to write into (created if missing)")->required();
   sub->add_option("--trials", opt->trials, "Trials per feature and procedure (paper: 20)")
       ->check(within(2, 1000));
-  sub->add_option("--seed", opt->seed, "Seed of the simulated trials");
+  sub->add_option("--seed", opt->seed, "Seed of the simulated trials")->check(seed_number());
   auto* seeds = sub->add_option("--seeds", opt->seeds,
                                 "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
                                 "the other files are those of the first")
@@ -207,6 +208,9 @@ void add_perceive(CLI::App& app, Action& action) {
       for (const auto& row : rows)
         if (row.result.inputs == "all")
           fmt::print("  {}\n", perception::misclassified_line(row.result));
+      // The tables and their charts replace the old ones together (the exported recordings,
+      // hundreds of files, are too many to hold back: they follow).
+      CommitTogether together;
       perception::write_table2_csv(opt->out_dir / "table2.csv", rows);
       perception::write_figure7_csv(opt->out_dir / "figure7.csv", rows);
       for (const auto& row : rows)
@@ -218,6 +222,7 @@ void add_perceive(CLI::App& app, Action& action) {
       for (int degree : {1, 2})
         perception::write_accuracy_by_footprint_chart(
             opt->out_dir / fmt::format("accuracy_by_footprint_exp{}.svg", degree), rows, degree);
+      together.commit();
       if (opt->export_recordings) {
         const auto dir = opt->out_dir / "recordings";
         std::filesystem::create_directories(dir);

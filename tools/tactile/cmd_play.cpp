@@ -53,7 +53,7 @@ void add_play(CLI::App& app, Action& action) {
     action = [opt] {
       // Checked even if the movie ends up on a device: whether it plays headless (the one case
       // that writes the preview) is decided only while playing.
-      refuse_output_over_input({output_file("--preview", opt->choice.preview_png)},
+      refuse_output_over_input({output_file_ending("--preview", opt->choice.preview_png, ".png")},
                                {{"MOVIE_H5", opt->movie}});
       const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
       // Before any device is opened: the threads USB libraries and the window start inherit
@@ -106,6 +106,14 @@ void add_view(CLI::App& app, Action& action) {
   sub->callback([opt, &action] {
     action = [opt] {
       const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
+      // Only the movie knows its length; the viewer would clamp a later time to the end.
+      if (opt->viewer.start_s > movie.duration_s()) {
+        fmt::print(stderr,
+                   "tactile view: error: --at: {:g} is out of range: {} lasts {:g} s (0 to {:g})\n",
+                   opt->viewer.start_s, opt->movie.string(), movie.duration_s(),
+                   movie.duration_s());
+        return 2;
+      }
       if (!opt->screenshot.empty()) {
         opt->viewer.visible = false;
         opt->viewer.start_paused = true;
@@ -119,7 +127,8 @@ void add_view(CLI::App& app, Action& action) {
                               : mapping::find_source_strain(movie, opt->movie, opt->strain);
       if (source && opt->strain.empty()) inputs.push_back({"the movie's source", *source});
       if (!opt->screenshot.empty()) {
-        refuse_output_over_input({output_file("--screenshot", opt->screenshot)}, inputs);
+        refuse_output_over_input({output_file_ending("--screenshot", opt->screenshot, ".png")},
+                                 inputs);
       }
       if (source) {
         try {

@@ -6,9 +6,8 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <set>
+#include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "command.hpp"
@@ -19,7 +18,6 @@
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
 #include "tactile/capture/synth.hpp"
-#include "tactile/common/error.hpp"
 #include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
@@ -35,33 +33,6 @@ std::optional<std::filesystem::path> marks_beside(const std::filesystem::path& i
   return std::nullopt;
 }
 
-// `capture` and `evaluate` read every image of a folder as one sequence: frames left in OUT_DIR
-// by a longer earlier run, or any other image there, would silently join the `frame_count`
-// frames this run writes. Refused before any work; nothing is deleted for the user.
-void refuse_stale_frames(const std::filesystem::path& out_dir, int frame_count) {
-  std::error_code ec;
-  if (!std::filesystem::is_directory(out_dir, ec)) return;
-  std::set<std::string> written;
-  for (int f = 0; f < frame_count; ++f) {
-    written.insert(capture::frame_file_name(static_cast<std::size_t>(f)));
-  }
-  std::vector<std::string> stale;
-  try {
-    for (const auto& p : capture::list_frames(out_dir)) {
-      if (!written.contains(p.filename().string())) stale.push_back(p.filename().string());
-    }
-  } catch (const FormatError&) {
-    return;  // no image at all
-  }
-  if (stale.empty()) return;
-  throw OutputPathError(fmt::format(
-      "OUT_DIR {} already holds {} image file(s) this run of {} frames would not replace ({}{}): "
-      "`tactile capture` would read them as part of the sequence; remove them or choose another "
-      "folder",
-      out_dir.string(), stale.size(), frame_count, stale.front(),
-      stale.size() > 1 ? fmt::format(" .. {}", stale.back()) : std::string()));
-}
-
 int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem::path& image,
                      std::optional<std::filesystem::path> marks, capture::PrintWarpSpec warp,
                      const std::string& command_line) {
@@ -72,7 +43,7 @@ int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem
   }
   refuse_output_over_input({output_folder("OUT_DIR", out_dir, writes)},
                            {{"--from-print", image}, {"--marks", marks.value_or(image)}});
-  refuse_stale_frames(out_dir, warp.frame_count);
+  refuse_stale_frames("OUT_DIR", out_dir, warp.frame_count);
   const capture::GrayImage print = capture::read_image(image);
   warp.source = image.filename().string();
   warp.width_px = print.width_px;
@@ -80,7 +51,14 @@ int synth_from_print(const std::filesystem::path& out_dir, const std::filesystem
   std::vector<std::array<double, 2>> pores;
   if (marks) pores = capture::read_pore_marks(*marks, print.width_px, print.height_px);
   const auto t0 = std::chrono::steady_clock::now();
-  const capture::PrintSequence seq = capture::render_print_sequence(warp, print, pores);
+  // The warp's own checks know the print's size, not its file.
+  const capture::PrintSequence seq = [&] {
+    try {
+      return capture::render_print_sequence(warp, print, pores);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("--from-print {}: {}", image.string(), e.what()));
+    }
+  }();
   capture::write_print_sequence(out_dir, seq, image, command_line);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print(
@@ -232,7 +210,7 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
     action = [opt, &command_line] {
       capture::validate_scene(opt->spec);
       refuse_output_over_input({output_folder("OUT_DIR", opt->out_dir, {})}, {});
-      refuse_stale_frames(opt->out_dir, opt->spec.frame_count);
+      refuse_stale_frames("OUT_DIR", opt->out_dir, opt->spec.frame_count);
       Progress progress;
       const auto t0 = std::chrono::steady_clock::now();
       const capture::SyntheticSequence seq = capture::render_sequence(

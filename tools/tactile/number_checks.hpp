@@ -6,8 +6,11 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <system_error>
 #include <type_traits>
 #include <utility>
 
@@ -54,6 +57,24 @@ inline CLI::Validator non_negative() {
 inline CLI::Validator playable_rate() {
   return detail::number_check<double>([](double v) { return movie::is_playable_rate(v); },
                                       std::string(movie::kPlayableRateRule), "whole Hz");
+}
+
+// A random seed: a whole number from 0 to 2^64 - 1, as typed. CLI11 reads "-1" into an unsigned
+// option as 2^64 - 1, another seed than the one written, without a word.
+inline CLI::Validator seed_number() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        // from_chars, not CLI11's cast: it reports a number beyond 2^64 - 1 instead of clamping.
+        std::uint64_t v{};
+        const char* end = value.data() + value.size();
+        const auto [stop, error] = std::from_chars(value.data(), end, v);
+        if (value.empty() || value.find_first_not_of("0123456789") != std::string::npos ||
+            error != std::errc() || stop != end) {
+          return fmt::format("{} is not a whole number from 0 to 2^64 - 1", value);
+        }
+        return {};
+      },
+      "0 to 2^64 - 1");
 }
 
 // A number from `min` to `max`, both included; T is the option's type (int or double).

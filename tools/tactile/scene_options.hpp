@@ -3,11 +3,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+#include <string>
+
 #include "mode_option.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/synth.hpp"
 
 namespace tactile::cli {
+
+// Refuses, before any work, to write a sequence of `frame_count` frames into `dir` (given by
+// `option`) when it already holds images this run would not replace: `capture` and `evaluate`
+// read every image of a folder as one sequence, so frames left by a longer earlier run, or any
+// other image there, would silently join the new ones. Nothing is deleted for the user.
+void refuse_stale_frames(const std::string& option, const std::filesystem::path& dir,
+                         int frame_count);
 
 inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
   add_mode_option(sub, "--scene", spec.scene, capture::kSceneNames,
@@ -45,6 +55,7 @@ inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
       ->check(within(0.0, 128.0))
       ->capture_default_str();
   sub.add_option("--seed", spec.seed, "Random seed (same seed, same images)")
+      ->check(seed_number())
       ->capture_default_str();
 }
 

@@ -70,8 +70,9 @@ std::vector<Dot> find_dots(const cv::Mat& gray) {
 Calibration calibrate_dot_grid(const GrayImage& image, double spacing_mm) {
   if (!(spacing_mm > 0)) throw std::invalid_argument("dot grid spacing must be > 0 mm");
   if (image.width_px < 16 || image.height_px < 16) {
-    throw FormatError(fmt::format("dot grid image is {}x{} px, too small to hold a grid",
-                                  image.width_px, image.height_px));
+    throw FormatError(fmt::format(
+        "no dot grid found: the image is {}x{} px, too small to hold one (need at least 16x16 px)",
+        image.width_px, image.height_px));
   }
   const std::vector<Dot> dots = find_dots(as_mat(image));
   auto no_grid = [&](const std::string& why) {

@@ -46,6 +46,11 @@ class AtomicFile {
   int slot_ = -1;  // in the registry of temporary files removed on a signal; -1: none
 };
 
+// 0 if an AtomicFile for `path` could create its temporary file, else the operating system's
+// error (EACCES, EROFS; ENOENT in /proc). Tries it: the file is created and removed at once, with
+// SIGINT and SIGTERM held meanwhile so that a signal cannot leave it behind.
+int can_create_beside(const std::filesystem::path& path) noexcept;
+
 // `bytes` written to `path` through an AtomicFile.
 void write_atomically(const std::filesystem::path& path, std::string_view bytes);
 
@@ -67,6 +72,32 @@ class AtomicOstream : public std::ostream {
  private:
   class Buffer;
   std::unique_ptr<Buffer> buffer_;
+};
+
+// A command's outputs made visible together at its end, or not at all. While a CommitTogether
+// lives, AtomicFile::commit (in any thread) flushes and closes its temporary file but leaves it
+// under its temporary name; commit() then renames them all, in the order they were committed,
+// with SIGINT and SIGTERM held in the calling thread. Until then they are temporary files like
+// any other: a signal removes them, and so does destroying the CommitTogether uncommitted (the
+// command failed), so that a failed or stopped run replaces none of its outputs, not the first
+// few. One at a time in a process. For commands of a few outputs: a signal finds only as many
+// temporary files as the registry has room for (64), whether committed or being written.
+class CommitTogether {
+ public:
+  CommitTogether();
+  CommitTogether(const CommitTogether&) = delete;
+  CommitTogether& operator=(const CommitTogether&) = delete;
+  ~CommitTogether();
+
+  // Renames every output written since construction over its destination; later writes are
+  // committed one by one again. Throws "cannot write PATH: REASON" if a rename fails; the
+  // outputs not yet renamed are then removed.
+  void commit();
+
+  struct Pending;
+
+ private:
+  std::unique_ptr<Pending> pending_;
 };
 
 // Removes every temporary file being written. Async-signal-safe: a command that installs its

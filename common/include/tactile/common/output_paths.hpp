@@ -49,10 +49,19 @@ struct Output {
   bool folder = false;
   std::vector<std::filesystem::path> files;
   std::vector<std::filesystem::path> subfolders;
+  // A file output whose format its name decides (an image encoder picks it by the extension;
+  // other tools pick their reader by it): the extension it must have (".png"), compared
+  // ignoring case; empty: any name.
+  std::string extension;
 };
 
 // A file output at `path`, given by `option`.
 Output output_file(std::string option, std::filesystem::path path);
+
+// A file output whose name must end in `extension` (".png"): an encoder chooses the format by
+// the name, so a name without it ("preview", "/proc/version") could not be written, and a file
+// misnamed (a WAV called x.hjif) is one that no other tool would open.
+Output output_file_ending(std::string option, std::filesystem::path path, std::string extension);
 
 // A folder output at `path` into which the command writes `files` and the contents of
 // `subfolders`.
@@ -68,14 +77,18 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 // Throws OutputIsInputError if any file an output writes is one of `inputs` (files or folders),
 // if a folder output is an input that is not a folder, or if two outputs write the same file;
 // then UnwritableOutputError if an output cannot be written (see refuse_unwritable_output).
-// Touches nothing on disk but reads folder listings of existing sub-folders.
+// Changes nothing on disk (it reads folder listings of existing sub-folders, and tries whether
+// each output's folder takes a new file, removing it at once).
 void refuse_output_over_input(const std::vector<Output>& outputs,
                               const std::vector<NamedPath>& inputs);
 
 // Throws UnwritableOutputError if `output` cannot be written: a file output that is a folder or
-// not a regular file, or whose folder is missing, not a folder or not writable; a folder output
-// that is not a folder, or (when it does not exist yet) whose nearest existing parent cannot
-// take a new folder; a file a folder output writes that is a folder.
+// not a regular file, whose name lacks its required extension, or whose folder is missing, not a
+// folder or not writable; a folder output that is not a folder, or (when it does not exist yet)
+// whose nearest existing parent cannot take a new folder; a file a folder output writes that is
+// a folder. Whether a folder takes new files is tried (an empty file created and removed there,
+// as atomic_write.hpp's can_create_beside): permissions alone do not tell, for the superuser
+// passes them everywhere, and /proc or /sys refuse new files whatever they say.
 void refuse_unwritable_output(const Output& output);
 
 }  // namespace tactile
