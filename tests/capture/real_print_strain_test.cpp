@@ -406,6 +406,15 @@ PrintSequence fast_scene(const std::string& nn, double travel_mm_per_s, int fram
   return render_print_sequence(spec, print, marks);
 }
 
+// The capture's own choice of settings on the first frame, keeping only tracks over the whole
+// sequence.
+CaptureParams whole_sequence_tracks(const PrintSequence& seq) {
+  CaptureParams params =
+      with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
+  params.min_track_frames = seq.spec.frame_count;
+  return params;
+}
+
 // At the speed of touch: a strain wave of 8 % crossing at 25 mm/s, filmed at 60 Hz with a 2 ms
 // exposure by a camera that integrates each pixel's area, while the finger slides at 2.5 mm/s
 // and turns by 3 degrees. About 1.5 px of motion and 3 % of strain change a frame: a track's
@@ -417,8 +426,7 @@ TEST(RealPrintStrain, HeldOutPrintsHoldAtTheSpeedOfTouch) {
     const PrintWarpSpec& spec = seq.spec;
     const GroundTruth truth = ground_truth_of(seq);
 
-    CaptureParams params = with_choice({}, choose_capture_settings(seq.frames[0], spec.px_per_mm));
-    params.min_track_frames = spec.frame_count;
+    const CaptureParams params = whole_sequence_tracks(seq);
     const Evaluation ours =
         evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params), truth);
     LucasKanadeParams lk_params;
@@ -453,10 +461,8 @@ TEST(RealPrintStrain, HeldOutPrintsHoldAtThreeTimesTheSpeedOfTouch) {
   for (const char* nn : {"12", "14"}) {
     SCOPED_TRACE(fmt::format("print {}", nn));
     const PrintSequence seq = fast_scene(nn, 70, 20);
-    const PrintWarpSpec& spec = seq.spec;
     const GroundTruth truth = ground_truth_of(seq);
-    CaptureParams params = with_choice({}, choose_capture_settings(seq.frames[0], spec.px_per_mm));
-    params.min_track_frames = spec.frame_count;
+    const CaptureParams params = whole_sequence_tracks(seq);
     const Evaluation ours =
         evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params), truth);
     CaptureParams alone = params;
@@ -489,9 +495,7 @@ TEST(RealPrintStrain, HeldOutPrintsCorrectTheWindowsCurvatureBiasAtTwiceTheSpeed
     SCOPED_TRACE(fmt::format("print {}", nn));
     const PrintSequence seq = fast_scene(nn, 50, 20);
     const GroundTruth truth = ground_truth_of(seq);
-    CaptureParams params =
-        with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
-    params.min_track_frames = seq.spec.frame_count;
+    const CaptureParams params = whole_sequence_tracks(seq);
     const Evaluation ours =
         evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params), truth);
     CaptureParams uncorrected = params;
@@ -516,9 +520,7 @@ TEST(RealPrintStrain, HeldOutPrintsCorrectTheWindowsCurvatureBiasAtTwiceTheSpeed
 // settled, so the tracks are the same on one worker as on three.
 TEST(RealPrintStrain, FastMotionTracksDoNotDependOnTheWorkerCount) {
   const PrintSequence seq = fast_scene("12", 70, 12);
-  CaptureParams params =
-      with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
-  params.min_track_frames = seq.spec.frame_count;
+  CaptureParams params = whole_sequence_tracks(seq);
   params.threads = 1;
   const auto one = tracks_of(measure_strain(seq.frames, seq.calibration, 60, params));
   params.threads = 3;
