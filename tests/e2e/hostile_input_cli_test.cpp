@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/file_text.hpp"
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
 #include "tactile/capture/image.hpp"
@@ -22,6 +23,7 @@ using tactile::test::run_tactile;
 using tactile::test::test_data;
 using ::testing::AnyOf;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {
 
@@ -213,6 +215,33 @@ TEST(HostileInput, CalibrateOfAnImageWithNoGridNamesItAndWritesNothing) {
         << r.output;
     EXPECT_FALSE(std::filesystem::exists(out)) << name;
   }
+}
+
+// A calibration made for another image size (its image_width_px edited to 64) maps every pixel
+// wrong: `features` used it without a word and `capture` failed only after choosing its
+// detector, without naming the file. Both now name the calibration file and the image.
+TEST(HostileInput, CalibrationForAnotherImageSizeNamesTheFileBeforeAnyWork) {
+  const tactile::test::TempDir dir("calib-size");
+  std::string text = tactile::test::file_text(demo_dir() / "calibration.json");
+  const std::string width = "\"image_width_px\": 640";
+  const auto at = text.find(width);
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, width.size(), "\"image_width_px\": 64");
+  const auto calib = dir.path() / "narrow.json";
+  std::ofstream(calib) << text;
+  const std::string frame = (demo_dir() / "frames" / "frame_000.png").string();
+  const auto features = run_tactile("features " + frame + " --calib " + calib.string());
+  EXPECT_EQ(features.exit_code, 1) << features.output;
+  EXPECT_THAT(features.output,
+              HasSubstr(calib.string() + ": the calibration is for 64 x 484 px images, but " +
+                        frame + " is 640 x 484 px"));
+  const auto out = dir.path() / "strain.h5";
+  const auto capture = run_tactile("capture " + (demo_dir() / "frames").string() + " --calib " +
+                                   calib.string() + " --out " + out.string());
+  EXPECT_EQ(capture.exit_code, 1) << capture.output;
+  EXPECT_THAT(capture.output, HasSubstr(calib.string() + ": the calibration is for 64 x 484 px"));
+  EXPECT_THAT(capture.output, Not(HasSubstr("pores:"))) << "no detection before the check";
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 // Found by the third hostile-input run: `play --preview /proc/version` played the whole movie and

@@ -233,6 +233,10 @@ void add_features(CLI::App& app, Action& action) {
       const auto from_file = calibration_file(opt->calib);
       const auto model = pore_model_file(opt->pore_model);
       const capture::GrayImage image = capture::read_image(opt->image);
+      if (from_file) {
+        capture::check_calibration_fits(*from_file, image.width_px, image.height_px,
+                                        opt->calib->string(), opt->image.string());
+      }
       const capture::Calibration c =
           calibration_for(from_file, opt->px_per_mm, image.width_px, image.height_px);
       capture::FeatureParams fp;
@@ -371,6 +375,7 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       settings.min_track_frames = opt->min_track_frames;
       settings.assignment = parse_name("--assignment", opt->assignment, capture::kAssignmentNames);
       settings.pore_model = pore_model_file(opt->pore_model);
+      if (opt->calib) settings.calibration_source = opt->calib->string();
       const capture::CaptureMessages messages{
           .note = [](const std::string& text) { fmt::print("capture: {}\n", text); },
           .warning =

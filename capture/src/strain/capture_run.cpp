@@ -91,6 +91,11 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
                            const CaptureProgress& progress) {
   GrayImage first;
   frames.next(first);
+  // Before any detection: a calibration for another image size maps every pixel wrong.
+  if (calibration) {
+    check_calibration_fits(*calibration, first.width_px, first.height_px,
+                           settings.calibration_source, "the first frame");
+  }
   const Calibration c =
       calibration ? *calibration
                   : uniform_calibration(px_per_mm.value(), first.width_px, first.height_px);

@@ -32,6 +32,18 @@ PointMm to_mm(const Calibration& calibration, double x_px, double y_px) {
   return {(h[0] * x_px + h[1] * y_px + h[2]) / w, (h[3] * x_px + h[4] * y_px + h[5]) / w};
 }
 
+void check_calibration_fits(const Calibration& calibration, int width_px, int height_px,
+                            const std::string& calibration_source,
+                            const std::string& image_source) {
+  if ((calibration.image_width_px != 0 && calibration.image_width_px != width_px) ||
+      (calibration.image_height_px != 0 && calibration.image_height_px != height_px)) {
+    throw std::invalid_argument(
+        fmt::format("{}: the calibration is for {} x {} px images, but {} is {} x {} px",
+                    calibration_source, calibration.image_width_px, calibration.image_height_px,
+                    image_source, width_px, height_px));
+  }
+}
+
 Calibration uniform_calibration(double px_per_mm, int width_px, int height_px) {
   if (!(px_per_mm > 0)) {
     throw std::invalid_argument(fmt::format("px_per_mm must be positive, got {}", px_per_mm));

@@ -35,6 +35,12 @@ struct PointMm {
 PointMm to_mm(const Calibration& calibration, double x_px, double y_px);
 Calibration uniform_calibration(double px_per_mm, int width_px, int height_px);
 
+// Throws std::invalid_argument when the calibration names an image size (non-zero) other than
+// width_px x height_px: its mapping is for another camera or another crop. `calibration_source`
+// and `image_source` name the two in the message (e.g. the files).
+void check_calibration_fits(const Calibration& calibration, int width_px, int height_px,
+                            const std::string& calibration_source, const std::string& image_source);
+
 // A landmark found in one image.
 struct Feature {
   FeatureType type = FeatureType::pore;
