@@ -362,6 +362,12 @@ TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
   }
 }
 
+// The sequence captured at 60 Hz with `params`, scored against its exact warp.
+Evaluation strain_scored(const PrintSequence& seq, const CaptureParams& params) {
+  return evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params),
+                         ground_truth_of(seq));
+}
+
 // The quasi-static figures on the same two held-out prints: a stretch and a compression of 4 %
 // rising and falling over 30 frames, where the true frame-to-frame strain is only about 0.0007
 // RMS, so the trackers' noise is most of what is measured: edge strain RMS error <= 0.0003 and
@@ -376,8 +382,7 @@ TEST(RealPrintStrain, HeldOutPrintsKeepTheQuasiStaticFigures) {
     const PrintSequence seq = render_print_sequence(spec_for(print, pattern, 0.04), print, marks);
     const CaptureParams params =
         with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
-    const Evaluation ours = evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params),
-                                            ground_truth_of(seq));
+    const Evaluation ours = strain_scored(seq, params);
     std::printf("print %s, %s: tracked %.0f rms %.5f corr %.4f (true strain rms %.5f)\n", nn,
                 std::string(to_string(pattern)).c_str(), ours.median_tracked_points, ours.rms_error,
                 ours.correlation, ours.rms_truth);
@@ -427,8 +432,7 @@ TEST(RealPrintStrain, HeldOutPrintsHoldAtTheSpeedOfTouch) {
     const GroundTruth truth = ground_truth_of(seq);
 
     const CaptureParams params = whole_sequence_tracks(seq);
-    const Evaluation ours =
-        evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params), truth);
+    const Evaluation ours = strain_scored(seq, params);
     LucasKanadeParams lk_params;
     lk_params.min_track_frames = spec.frame_count;
     const Evaluation lk = evaluate_strain(
@@ -461,14 +465,11 @@ TEST(RealPrintStrain, HeldOutPrintsHoldAtThreeTimesTheSpeedOfTouch) {
   for (const char* nn : {"12", "14"}) {
     SCOPED_TRACE(fmt::format("print {}", nn));
     const PrintSequence seq = fast_scene(nn, 70, 20);
-    const GroundTruth truth = ground_truth_of(seq);
     const CaptureParams params = whole_sequence_tracks(seq);
-    const Evaluation ours =
-        evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params), truth);
+    const Evaluation ours = strain_scored(seq, params);
     CaptureParams alone = params;
     alone.refinement.neighbour_rounds = 0;
-    const Evaluation own =
-        evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, alone), truth);
+    const Evaluation own = strain_scored(seq, alone);
     std::printf(
         "print %s at 70 mm/s: tracked %.0f rms %.5f corr %.4f; each track on its own: tracked "
         "%.0f rms %.5f corr %.4f (true strain rms %.5f)\n",
@@ -494,14 +495,11 @@ TEST(RealPrintStrain, HeldOutPrintsCorrectTheWindowsCurvatureBiasAtTwiceTheSpeed
   for (const char* nn : {"12", "14"}) {
     SCOPED_TRACE(fmt::format("print {}", nn));
     const PrintSequence seq = fast_scene(nn, 50, 20);
-    const GroundTruth truth = ground_truth_of(seq);
     const CaptureParams params = whole_sequence_tracks(seq);
-    const Evaluation ours =
-        evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, params), truth);
+    const Evaluation ours = strain_scored(seq, params);
     CaptureParams uncorrected = params;
     uncorrected.refinement.curvature_correction = false;
-    const Evaluation plain =
-        evaluate_strain(measure_strain(seq.frames, seq.calibration, 60, uncorrected), truth);
+    const Evaluation plain = strain_scored(seq, uncorrected);
     std::printf(
         "print %s at 50 mm/s: tracked %.0f rms %.5f corr %.4f; uncorrected: tracked %.0f rms "
         "%.5f corr %.4f (true strain rms %.5f)\n",
