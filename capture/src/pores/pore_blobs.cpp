@@ -206,25 +206,27 @@ std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::M
       std::max(kMinNoise, robust_spread(response, deep, cv::Rect(0, 0, gray.cols, gray.rows), 1));
   const int block = std::max(8, static_cast<int>(std::lround(p.noise_block_mm * px_per_mm)));
   cv::Mat block_noise((gray.rows + block - 1) / block, (gray.cols + block - 1) / block, CV_64F);
-  for (int by = 0; by < block_noise.rows; ++by) {
-    for (int bx = 0; bx < block_noise.cols; ++bx) {
-      const cv::Rect roi =
-          cv::Rect(bx * block, by * block, block, block) & cv::Rect(0, 0, gray.cols, gray.rows);
-      const double s = robust_spread(response, deep, roi, 20);
-      block_noise.at<double>(by, bx) = s > 0 ? std::max(kMinNoise, s) : print_noise;
-    }
-  }
+  parallel_for(
+      static_cast<std::size_t>(block_noise.rows), std::max(1, p.threads), [&](std::size_t row) {
+        const int by = static_cast<int>(row);
+        for (int bx = 0; bx < block_noise.cols; ++bx) {
+          const cv::Rect roi =
+              cv::Rect(bx * block, by * block, block, block) & cv::Rect(0, 0, gray.cols, gray.rows);
+          const double s = robust_spread(response, deep, roi, 20);
+          block_noise.at<double>(by, bx) = s > 0 ? std::max(kMinNoise, s) : print_noise;
+        }
+      });
   // Blob size: scale-normalised Laplacian of the brightness above the ridge level, from a
   // dot of one pixel to one of about a tenth of a millimetre.
   constexpr std::array<double, 8> kScalesMm{0.011, 0.015, 0.019, 0.023, 0.028, 0.034, 0.043, 0.053};
   std::vector<cv::Mat> blob(kScalesMm.size());
-  for (std::size_t k = 0; k < kScalesMm.size(); ++k) {
+  parallel_for(kScalesMm.size(), std::max(1, p.threads), [&](std::size_t k) {
     const double s = kScalesMm[k] * px_per_mm;
     cv::Mat smoothed;
     cv::GaussianBlur(above, smoothed, cv::Size(0, 0), s);
     cv::Laplacian(smoothed, blob[k], CV_32F);
     blob[k] *= -s * s;
-  }
+  });
 
   // Candidates: 3 x 3 maxima of the response (a ramp rising towards a valley has none), deep
   // enough in a ridge.
@@ -298,13 +300,32 @@ std::vector<Feature> find_ridge_blob_pores(const cv::Mat& gray, const cv::Mat& a
   // Likeliest first; a candidate within the suppression radius of a kept pore is the same pore.
   std::sort(kept.begin(), kept.end(),
             [](const Scored& a, const Scored& b) { return a.log_odds > b.log_odds; });
+  // Kept pores are binned in cells of side r: any within r of a candidate lies in its cell or
+  // one of the eight around it.
   const double r = p.suppression_radius_mm * px_per_mm;
+  const double cell = std::max(r, 1.0);
+  const int cols = static_cast<int>(gray.cols / cell) + 1,
+            rows = static_cast<int>(gray.rows / cell) + 1;
+  std::vector<std::vector<std::size_t>> bins(static_cast<std::size_t>(cols) *
+                                             static_cast<std::size_t>(rows));
+  auto bin_of = [&](double v, int n) { return std::clamp(static_cast<int>(v / cell), 0, n - 1); };
   std::vector<Feature> pores;
   for (const auto& s : kept) {
-    const bool taken = std::any_of(pores.begin(), pores.end(), [&](const Feature& f) {
-      return std::hypot(f.x_px - s.feature.x_px, f.y_px - s.feature.y_px) < r;
-    });
-    if (!taken) pores.push_back(s.feature);
+    const int bx = bin_of(s.feature.x_px, cols), by = bin_of(s.feature.y_px, rows);
+    bool taken = false;
+    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1) && !taken; ++y) {
+      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1) && !taken; ++x) {
+        for (const std::size_t k : bins[static_cast<std::size_t>(y * cols + x)]) {
+          if (std::hypot(pores[k].x_px - s.feature.x_px, pores[k].y_px - s.feature.y_px) < r) {
+            taken = true;
+            break;
+          }
+        }
+      }
+    }
+    if (taken) continue;
+    bins[static_cast<std::size_t>(by * cols + bx)].push_back(pores.size());
+    pores.push_back(s.feature);
   }
   return pores;
 }

@@ -30,11 +30,16 @@ struct Reference {
   int left = 0, top = 0, cols = 0, rows = 0;
   double x_px = 0, y_px = 0;  // the landmark
   std::vector<float> grey, weight, gx, gy;
-  Vector6 sum_weighted_descent = Vector6::Zero();
-  Vector6 sum_weighted_grey_descent = Vector6::Zero();
-  Matrix6 hessian_inverse = Matrix6::Zero();
-  double total_weight = 0;
-  double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
+  // The sums that depend on the reference alone, over the whole window (all_rows) and over
+  // every other row of it (rows 0, 2, 4, ...: a first step at half the cost).
+  struct Sums {
+    Vector6 sum_weighted_descent = Vector6::Zero();
+    Vector6 sum_weighted_grey_descent = Vector6::Zero();
+    Matrix6 hessian_inverse = Matrix6::Zero();
+    double total_weight = 0;
+    double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
+    bool invertible = false;
+  } all_rows, even_rows;
   // Row prefix sums of the quantities a step needs over a window cut by the frame's border
   // (CutSum), made the first time the window is cut: with them a cut window's step costs what
   // a whole window's does instead of a per-pixel pass that builds the Hessian again.
@@ -179,6 +184,19 @@ void inside_columns(double x0, double y0, double dx, double dy, int cols, const 
   while (end < cols && inside(end)) ++end;
 }
 
+Reference::Sums reference_sums(const WindowSums& w) {
+  Reference::Sums s;
+  s.total_weight = w.sw;
+  s.sum_weighted_grey = w.swg;
+  s.sum_weighted_grey_squared = w.swgg;
+  s.sum_weighted_descent = w.swd;
+  s.sum_weighted_grey_descent = w.swgd;
+  const Eigen::FullPivLU<Matrix6> lu(w.full_hessian());
+  s.invertible = lu.isInvertible();
+  if (s.invertible) s.hessian_inverse = lu.inverse();
+  return s;
+}
+
 // The reference around (x, y) in a smoothed frame; false where too little of the window is
 // inside the frame or it holds too little texture to align.
 bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_side, int room_px,
@@ -213,7 +231,7 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
     const double ox = u - x_px;
     along_x[static_cast<std::size_t>(u - left)] = std::exp(-ox * ox / (2 * sigma * sigma));
   }
-  WindowSums sums;
+  WindowSums sums, even;
   for (int v = top; v <= bottom; ++v) {
     const double oy = v - y_px;
     const double along_y = std::exp(-oy * oy / (2 * sigma * sigma));
@@ -232,17 +250,13 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
       add_pixel_terms(w, row[u], gx, gy, u - x_px, t);
     }
     sums.add_row(t, oy);
+    if ((v - top) % 2 == 0) even.add_row(t, oy);
   }
-  ref.total_weight = sums.sw;
-  ref.sum_weighted_grey = sums.swg;
-  ref.sum_weighted_grey_squared = sums.swgg;
-  ref.sum_weighted_descent = sums.swd;
-  ref.sum_weighted_grey_descent = sums.swgd;
+  ref.all_rows = reference_sums(sums);
+  ref.even_rows = reference_sums(even);
   const double mean = sums.swg / sums.sw;
   const double spread = std::sqrt(std::max(0.0, sums.swgg / sums.sw - mean * mean));
-  const Eigen::FullPivLU<Matrix6> lu(sums.full_hessian());
-  if (!lu.isInvertible() || spread < 1e-3) return false;
-  ref.hessian_inverse = lu.inverse();
+  if (!ref.all_rows.invertible || spread < 1e-3) return false;
   return true;
 }
 
@@ -296,10 +310,14 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     WindowSums inside;
     const bool whole = warped_window_inside(ref, smooth, position, l);
     if (!whole && ref.cut_prefix.empty()) make_cut_prefix(ref);
+    // The first step from a start up to a pixel or so off needs only part of the window;
+    // the steps after it, and the convergence, see all of it.
+    const bool coarse = it == 0 && whole && ref.even_rows.invertible;
+    const int row_step = coarse ? 2 : 1;
     const std::size_t prefix_stride = static_cast<std::size_t>(ref.cols + 1) * kCutSums;
     const double l00 = l(0, 0), l01 = l(0, 1), l10 = l(1, 0), l11 = l(1, 1);
     const double ox0 = ref.left - ref.x_px;
-    for (int r = 0; r < ref.rows; ++r) {
+    for (int r = 0; r < ref.rows; r += row_step) {
       const double oy = ref.top + r - ref.y_px;
       const double x = position.x() + l00 * ox0 + l01 * oy;
       const double y = position.y() + l10 * ox0 + l11 * oy;
@@ -342,16 +360,17 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     }
     // The reference's own sums over the whole window are fixed; only a cut window needs them
     // from its inside part.
+    const Reference::Sums& fixed = coarse ? ref.even_rows : ref.all_rows;
     if (whole) {
-      sw = ref.total_weight;
-      swt = ref.sum_weighted_grey;
-      swtt = ref.sum_weighted_grey_squared;
+      sw = fixed.total_weight;
+      swt = fixed.sum_weighted_grey;
+      swtt = fixed.sum_weighted_grey_squared;
     } else {
       sw = inside.sw;
       swt = inside.swg;
       swtt = inside.swgg;
     }
-    if (2 * sw < ref.total_weight) return a;
+    if (2 * sw < fixed.total_weight) return a;
     const double mean = swi / sw, ref_mean = swt / sw;
     const double spread = std::sqrt(std::max(0.0, swii / sw - mean * mean));
     const double ref_spread = std::sqrt(std::max(0.0, swtt / sw - ref_mean * ref_mean));
@@ -363,9 +382,9 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     const double gain = ref_spread / spread;
     Vector6 p;
     if (whole) {
-      const Vector6 b = gain * swid + (ref_mean - gain * mean) * ref.sum_weighted_descent -
-                        ref.sum_weighted_grey_descent;
-      p = ref.hessian_inverse * b;
+      const Vector6 b = gain * swid + (ref_mean - gain * mean) * fixed.sum_weighted_descent -
+                        fixed.sum_weighted_grey_descent;
+      p = fixed.hessian_inverse * b;
     } else {
       const Vector6 b = gain * swid + (ref_mean - gain * mean) * inside.swd - inside.swgd;
       const Eigen::FullPivLU<Matrix6> lu(inside.full_hessian());
@@ -378,7 +397,7 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     // Inverse composition: W <- W o dW^-1.
     l = l * step_linear.inverse();
     position -= l * Eigen::Vector2d(p(4), p(5));
-    converged = std::hypot(p(4), p(5)) < params.stop_step_px &&
+    converged = !coarse && std::hypot(p(4), p(5)) < params.stop_step_px &&
                 p.head<4>().cwiseAbs().maxCoeff() < params.stop_step_px / 10;
   }
   a.x_px = position.x();
