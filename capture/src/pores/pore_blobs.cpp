@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <utility>
 
 #include <opencv2/imgproc.hpp>
 
+#include "pores/flank_levels.hpp"
 #include "pores/pore_model.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/common/stats.hpp"
@@ -16,79 +16,11 @@ namespace tactile::capture {
 
 namespace {
 
-// Anisotropic Gaussian, long axis at `angle_rad` (image x to the right, y down), unit sum,
-// with the middle band |along| < gap_px left out: the level it measures at a pixel comes from
-// either side of it along the ridge, so a pore does not lift its own ridge level.
-cv::Mat flank_kernel(double angle_rad, double along_px, double across_px, double gap_px) {
-  const int half = std::max(1, static_cast<int>(std::ceil(3.0 * along_px)));
-  cv::Mat k(2 * half + 1, 2 * half + 1, CV_32F);
-  const double c = std::cos(angle_rad);
-  const double s = std::sin(angle_rad);
-  double sum = 0;
-  for (int y = -half; y <= half; ++y) {
-    for (int x = -half; x <= half; ++x) {
-      const double u = x * c + y * s;
-      const double v = -x * s + y * c;
-      const double w =
-          std::abs(u) < gap_px
-              ? 0.0
-              : std::exp(-u * u / (2 * along_px * along_px) - v * v / (2 * across_px * across_px));
-      k.at<float>(y + half, x + half) = static_cast<float>(w);
-      sum += w;
-    }
-  }
-  return k / sum;
-}
-
-// The flank kernels, one per quantised ridge direction, as rows of taps. Each row keeps only
-// the span of taps that weigh anything (the kernel is a thin band across a square), widened to
-// whole groups of four so that a row is summed four taps at a time.
-struct FlankKernels {
-  static constexpr int kLanes = 4;
-  int half = 0;
-  int stride = 0;                          // floats per kernel row, a multiple of kLanes
-  std::vector<float> taps;                 // kernel k, row r at (k * rows + r) * stride
-  std::vector<std::pair<int, int>> spans;  // [begin, end) of each row, multiples of kLanes
-};
-
-FlankKernels flank_kernels(int n, double along_px, double across_px, double gap_px) {
-  FlankKernels f;
-  const double step = std::numbers::pi / n;
-  const int rows = 2 * std::max(1, static_cast<int>(std::ceil(3.0 * along_px))) + 1;
-  f.half = rows / 2;
-  f.stride = (rows + FlankKernels::kLanes - 1) / FlankKernels::kLanes * FlankKernels::kLanes;
-  f.taps.assign(static_cast<std::size_t>(n * rows * f.stride), 0.0F);
-  for (int k = 0; k < n; ++k) {
-    const cv::Mat kernel = flank_kernel(k * step, along_px, across_px, gap_px);
-    // Taps under 1e-7 of the sum: together they move a level by far less than the float
-    // rounding of the sum itself.
-    for (int r = 0; r < rows; ++r) {
-      float* row = &f.taps[static_cast<std::size_t>((k * rows + r) * f.stride)];
-      int begin = rows, end = 0;
-      for (int c = 0; c < rows; ++c) {
-        const float w = kernel.at<float>(r, c);
-        if (w < 1e-7F) continue;
-        row[c] = w;
-        begin = std::min(begin, c);
-        end = c + 1;
-      }
-      if (begin >= end) {
-        f.spans.emplace_back(0, 0);
-        continue;
-      }
-      begin -= begin % FlankKernels::kLanes;
-      end = std::min(
-          f.stride, (end + FlankKernels::kLanes - 1) / FlankKernels::kLanes * FlankKernels::kLanes);
-      f.spans.emplace_back(begin, end);
-    }
-  }
-  return f;
-}
-
 // Grey level of the ridge (or valley) each pixel lies on, measured along the local ridge
 // direction (from the structure tensor) on both sides of the pixel. Each pixel is filtered
 // with its own direction's kernel only: filtering the whole image with every direction's kernel
-// and then picking one per pixel gave the same levels at twelve times the work.
+// and then picking one per pixel gave the same levels at twelve times the work. The direction
+// field is smooth, so most runs of eight pixels share one kernel and are filtered together.
 cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams& p) {
   cv::Mat gx, gy;
   cv::Sobel(gray, gx, CV_32F, 1, 0);
@@ -106,14 +38,15 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
   cv::Mat padded;
   cv::copyMakeBorder(gray, padded, kernels.half, kernels.half, kernels.half,
                      kernels.half + kernels.stride - rows, cv::BORDER_REFLECT);
-  using Lanes = float __attribute__((vector_size(16)));
   cv::Mat out(gray.size(), CV_32F);
+  const bool eight_at_once = has_flank_levels_of_eight();
   // Bands of rows, a few per worker so that an uneven band does not hold the others up.
   const int workers = std::max(1, p.threads);
   const int bands = workers == 1 ? 1 : std::min(gray.rows, 4 * workers);
   parallel_for(static_cast<std::size_t>(bands), workers, [&](std::size_t band) {
     const int y_begin = static_cast<int>(band) * gray.rows / bands;
     const int y_end = (static_cast<int>(band) + 1) * gray.rows / bands;
+    std::vector<int> direction(static_cast<std::size_t>(gray.cols));
     for (int y = y_begin; y < y_end; ++y) {
       const float* a = jxx.ptr<float>(y);
       const float* b = jyy.ptr<float>(y);
@@ -122,21 +55,24 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
       for (int x = 0; x < gray.cols; ++x) {
         // The dominant gradient is across the ridges; the ridge runs at right angles to it.
         const double ridge = 0.5 * std::atan2(2.0 * d[x], a[x] - b[x]) + std::numbers::pi / 2;
-        const int k = ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
-        const float* taps = &kernels.taps[static_cast<std::size_t>(k * rows * kernels.stride)];
-        const auto* spans = &kernels.spans[static_cast<std::size_t>(k * rows)];
-        Lanes sum = {0, 0, 0, 0};
-        for (int r = 0; r < rows; ++r) {
-          const float* w = taps + r * kernels.stride;
-          const float* v = padded.ptr<float>(y + r) + x;
-          for (int c = spans[r].first; c < spans[r].second; c += FlankKernels::kLanes) {
-            Lanes wl, vl;
-            std::memcpy(&wl, w + c, sizeof wl);
-            std::memcpy(&vl, v + c, sizeof vl);
-            sum += wl * vl;
+        direction[static_cast<std::size_t>(x)] =
+            ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
+      }
+      int x = 0;
+      if (eight_at_once) {
+        for (; x + 8 <= gray.cols; x += 8) {
+          const auto first = direction.begin() + x;
+          if (std::all_of(first + 1, first + 8, [&](int k) { return k == *first; })) {
+            flank_levels_of_eight(kernels, *first, padded, y, x, o + x);
+          } else {
+            for (int u = x; u < x + 8; ++u) {
+              o[u] = flank_level(kernels, direction[static_cast<std::size_t>(u)], padded, y, u);
+            }
           }
         }
-        o[x] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+      }
+      for (; x < gray.cols; ++x) {
+        o[x] = flank_level(kernels, direction[static_cast<std::size_t>(x)], padded, y, x);
       }
     }
   });
