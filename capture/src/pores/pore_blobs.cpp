@@ -1,6 +1,7 @@
 #include "pores/pore_blobs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -27,7 +28,10 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
   cv::Sobel(gray, gy, CV_32F, 0, 1);
   cv::Mat jxx = gx.mul(gx), jyy = gy.mul(gy), jxy = gx.mul(gy);
   const double ts = p.orientation_sigma_mm * px_per_mm;
-  for (cv::Mat* m : {&jxx, &jyy, &jxy}) cv::GaussianBlur(*m, *m, cv::Size(0, 0), ts);
+  const std::array<cv::Mat*, 3> tensor = {&jxx, &jyy, &jxy};
+  parallel_for(tensor.size(), std::max(1, p.threads), [&](std::size_t k) {
+    cv::GaussianBlur(*tensor[k], *tensor[k], cv::Size(0, 0), ts);
+  });
   const int n = std::max(2, p.orientations);
   const double step = std::numbers::pi / n;
   const FlankKernels kernels = flank_kernels(
