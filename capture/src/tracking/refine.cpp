@@ -832,25 +832,28 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     l.track.y_px.push_back(result[i].y_px);
     l.linear = result[i].linear;
   }
-  std::vector<State::Live> still;
-  still.reserve(s.live.size() + seeds.size());
-  for (auto& l : s.live) {
-    if (l.ended) {
+  // Ended tracks leave in place, the others keep their order: a frame where none ended moves
+  // nothing.
+  std::size_t still = 0;
+  for (std::size_t i = 0; i < s.live.size(); ++i) {
+    if (s.live[i].ended) {
       ++s.stats.cut;
-      s.ended.push_back(std::move(l.track));
-    } else {
-      still.push_back(std::move(l));
+      s.ended.push_back(std::move(s.live[i].track));
+      continue;
     }
+    if (still != i) s.live[still] = std::move(s.live[i]);
+    ++still;
   }
+  s.live.resize(still);
   // New tracks only where no live track is: one landmark, one track.
   const double min_separation_px = 0.5 * s.max_offset_px;
-  const std::size_t tracked = still.size();
+  const std::size_t tracked = s.live.size();
   std::vector<State::Live> started(seeds.size());
   std::vector<char> ok(seeds.size(), 0);
   parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
     const Feature& f = seeds[j];
     for (std::size_t i = 0; i < tracked; ++i) {
-      const Track& t = still[i].track;
+      const Track& t = s.live[i].track;
       if (std::hypot(t.x_px.back() - f.x_px, t.y_px.back() - f.y_px) < min_separation_px) return;
     }
     State::Live& l = started[j];
@@ -864,9 +867,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   for (std::size_t j = 0; j < seeds.size(); ++j) {
     if (!ok[j]) continue;
     started[j].track.id = s.next_id++;
-    still.push_back(std::move(started[j]));
+    s.live.push_back(std::move(started[j]));
   }
-  s.live = std::move(still);
 }
 
 namespace {
