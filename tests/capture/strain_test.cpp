@@ -237,8 +237,8 @@ TEST(Pipeline, CalibrationForAnotherImageSizeIsRejected) {
   std::vector<GrayImage> frames(3, GrayImage{64, 48, std::vector<std::uint8_t>(64 * 48, 100)});
   EXPECT_THAT([&] { measure_strain(frames, uniform_calibration(60, 640, 484), 60.0); },
               ::testing::ThrowsMessage<std::invalid_argument>(
-                  ::testing::HasSubstr("calibration is for 640x484 px images but the frames are "
-                                       "64x48 px")));
+                  ::testing::HasSubstr("the calibration is for 640 x 484 px images, but the "
+                                       "first frame is 64 x 48 px")));
 }
 
 // The hole scene through the same pipeline: consecutive-frame error well below the true strain.

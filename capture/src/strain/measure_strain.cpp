@@ -107,12 +107,9 @@ void check_frame_size(const GrayImage& frame, int index, const GrayImage& first,
         fmt::format("measure_strain: frame {} is {}x{} px, frame 0 is {}x{} px", index,
                     frame.width_px, frame.height_px, first.width_px, first.height_px));
   }
-  if (index == 0 &&
-      ((calibration.image_width_px != 0 && calibration.image_width_px != frame.width_px) ||
-       (calibration.image_height_px != 0 && calibration.image_height_px != frame.height_px))) {
-    throw std::invalid_argument(fmt::format(
-        "measure_strain: the calibration is for {}x{} px images but the frames are {}x{} px",
-        calibration.image_width_px, calibration.image_height_px, frame.width_px, frame.height_px));
+  if (index == 0) {
+    check_calibration_fits(calibration, frame.width_px, frame.height_px, "measure_strain",
+                           "the first frame");
   }
 }
 

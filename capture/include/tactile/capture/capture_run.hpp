@@ -74,8 +74,9 @@ struct CaptureSettings {
   int min_track_frames = 30;
   Assignment assignment = Assignment::greedy;
   std::optional<PoreModelFile> pore_model;  // a ridge-blob model (pores auto then means it)
-  // Where the calibration came from (e.g. its file), named when it does not fit the frames.
-  std::string calibration_source = "the calibration";
+  // Where the calibration came from (e.g. its file), named when it does not fit the frames
+  // (without a file, the capture itself).
+  std::string calibration_source = "capture";
 };
 
 // What a person is told while capturing: `note` (what auto chose), `warning`.
