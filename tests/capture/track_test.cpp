@@ -131,5 +131,62 @@ TEST(Track, SmoothingIsAsLongAsTheNoiseAllowsAndNoLongerThanTheStrainAllows) {
   EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 0, kMaxResidualPx), 0);
 }
 
+// A local quadratic fit reproduces a quadratic whatever its weights, inside the track and where
+// the track cuts the window.
+TEST(Track, BothSmoothingKernelsKeepAConstantAcceleration) {
+  for (const SmoothingKernel kernel : {SmoothingKernel::uniform, SmoothingKernel::epanechnikov}) {
+    Track t;
+    for (int f = 0; f < 30; ++f) {
+      t.x_px.push_back(5 + 0.8 * f + 0.01 * f * f);
+      t.y_px.push_back(9 - 0.3 * f);
+    }
+    std::vector<Track> tracks{t};
+    smooth_tracks(tracks, 8, kernel);
+    for (int f = 0; f < 30; ++f) {
+      EXPECT_NEAR(tracks[0].x_px[static_cast<std::size_t>(f)], t.x_px[static_cast<std::size_t>(f)],
+                  1e-9);
+      EXPECT_NEAR(tracks[0].y_px[static_cast<std::size_t>(f)], t.y_px[static_cast<std::size_t>(f)],
+                  1e-9);
+    }
+  }
+}
+
+// Frame-to-frame changes between neighbouring tracks (what strain is made of) against the
+// noise-free motion, RMS over the grid's horizontal neighbours.
+double change_error(const std::vector<Track>& smoothed, const std::vector<Track>& truth) {
+  double sum = 0;
+  int count = 0;
+  for (std::size_t i = 0; i + 1 < smoothed.size(); ++i) {
+    if ((i + 1) % 20 == 0) continue;  // the next track starts the next row
+    for (std::size_t f = 0; f + 1 < smoothed[i].x_px.size(); ++f) {
+      auto change = [&](const std::vector<Track>& v) {
+        return (v[i + 1].x_px[f + 1] - v[i].x_px[f + 1]) - (v[i + 1].x_px[f] - v[i].x_px[f]);
+      };
+      sum += std::pow(change(smoothed) - change(truth), 2);
+      ++count;
+    }
+  }
+  return std::sqrt(sum / count);
+}
+
+// The slow wave of the test above, at the window each kernel's own estimate chooses: the
+// falling weights leave less error in the changes than equal ones.
+TEST(Track, FallingWeightsFollowASlowWaveWithLessError) {
+  const auto truth = grid_tracks(0.0, 0.02, 30);
+  const auto noisy = grid_tracks(0.01, 0.02, 30);
+  double error[2];
+  int k = 0;
+  for (const SmoothingKernel kernel : {SmoothingKernel::uniform, SmoothingKernel::epanechnikov}) {
+    auto smoothed = noisy;
+    const int h = smoothing_that_fits(noisy, 16, 0.06, kernel);
+    EXPECT_GT(h, 0);
+    smooth_tracks(smoothed, h, kernel);
+    error[k++] = change_error(smoothed, truth);
+  }
+  EXPECT_LT(error[1], 0.95 * error[0]);
+  // Both well below the unsmoothed changes' noise (two positions of 0.01 px on each track).
+  EXPECT_LT(error[0], 0.02);
+}
+
 }  // namespace
 }  // namespace tactile::capture

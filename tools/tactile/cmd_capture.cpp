@@ -324,9 +324,10 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
   sub->add_option(
          "--smoothing", opt->smoothing,
          "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
-         "0 = none); default 3; with refinement the longest tried (default 12): the\n"
-         "capture takes the longest of H, 10, 8, 7, 6, 5, 4, 3 that leaves only noise between\n"
-         "neighbouring tracks, or none")
+         "0 = none); default 3; with refinement the longest tried (default 16, weights\n"
+         "falling towards the window's ends): the capture takes whichever of H, 14, 12, 10,\n"
+         "8, 7, 6, 5, 4, 3 or none leaves the least error it estimates from the changes\n"
+         "between neighbouring tracks")
       ->check(within(0, 50));
   sub->add_option("--assignment", opt->assignment,
                   "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "

@@ -37,13 +37,10 @@ struct Candidate {
 // track, so they are computed once per track length and shared by every track of that length.
 class QuadraticSmoother {
  public:
-  explicit QuadraticSmoother(int h) : h_(h) {
-    // Inside the track the window is symmetric (Savitzky-Golay):
-    // w_j = (3(3h^2 + 3h - 1) - 15 j^2) / ((2h - 1)(2h + 1)(2h + 3)).
-    const double denom = (2.0 * h - 1) * (2.0 * h + 1) * (2.0 * h + 3);
-    for (int j = -h; j <= h; ++j) {
-      inside_.push_back((3.0 * (3 * h * h + 3 * h - 1) - 15.0 * j * j) / denom);
-    }
+  QuadraticSmoother(int h, SmoothingKernel kernel) : h_(h), kernel_(kernel) {
+    if (h <= 0) return;
+    // Inside the track the window is symmetric; with equal weights these are Savitzky-Golay's.
+    inside_ = fit_weights(-h, h);
   }
 
   std::vector<double> operator()(const std::vector<double>& v) {
@@ -63,6 +60,31 @@ class QuadraticSmoother {
   }
 
  private:
+  // The fit's weight on each frame of a window of frames t = lo..hi from the frame fitted (its
+  // value there from each position): row 0 of (A^T K A)^-1 A^T K for A's rows (1, t, t^2) and
+  // the kernel's weights K. Fewer than 3 frames: their mean.
+  std::vector<double> fit_weights(int lo, int hi) const {
+    const int count = hi - lo + 1;
+    if (count < 3) return std::vector<double>(static_cast<std::size_t>(count), 1.0 / count);
+    Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+    for (int t = lo; t <= hi; ++t) {
+      const Eigen::Vector3d a(1, t, double(t) * t);
+      ata += weight(t) * a * a.transpose();
+    }
+    const Eigen::Vector3d row0 = ata.ldlt().solve(Eigen::Vector3d::UnitX());
+    std::vector<double> w;
+    for (int t = lo; t <= hi; ++t) {
+      w.push_back(weight(t) * (row0[0] + row0[1] * t + row0[2] * double(t) * t));
+    }
+    return w;
+  }
+
+  double weight(int t) const {
+    if (kernel_ == SmoothingKernel::uniform) return 1.0;
+    const double u = t / (h_ + 1.0);
+    return 1 - u * u;
+  }
+
   // For a track of n positions, the weights at every position whose window the track cuts.
   const std::vector<std::vector<double>>& end_weights(int n) {
     auto [it, added] = ends_.try_emplace(n);
@@ -71,29 +93,13 @@ class QuadraticSmoother {
     for (int i = 0; i < n; ++i) {
       const int lo = std::max(0, i - h_), hi = std::min(n - 1, i + h_);
       if (hi - lo == 2 * h_) continue;
-      Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
-      for (int k = lo; k <= hi; ++k) {
-        const double t = k - i;
-        const Eigen::Vector3d a(1, t, t * t);
-        ata += a * a.transpose();
-      }
-      auto& w = it->second[static_cast<std::size_t>(i)];
-      const int count = hi - lo + 1;
-      if (count < 3) {
-        w.assign(static_cast<std::size_t>(count), 1.0 / count);
-        continue;
-      }
-      // Row 0 of (A^T A)^-1 A^T: the fit's value at the centre from each position.
-      const Eigen::Vector3d row0 = ata.ldlt().solve(Eigen::Vector3d::UnitX());
-      for (int k = lo; k <= hi; ++k) {
-        const double t = k - i;
-        w.push_back(row0[0] + row0[1] * t + row0[2] * t * t);
-      }
+      it->second[static_cast<std::size_t>(i)] = fit_weights(lo - i, hi - i);
     }
     return it->second;
   }
 
   int h_;
+  SmoothingKernel kernel_;
   std::vector<double> inside_;
   std::map<int, std::vector<std::vector<double>>> ends_;
 };
@@ -146,8 +152,8 @@ std::vector<Track> split_at_jumps(const Track& t, double gate_px) {
 
 }  // namespace
 
-void smooth_tracks(std::vector<Track>& tracks, int half_window) {
-  QuadraticSmoother smooth(half_window);
+void smooth_tracks(std::vector<Track>& tracks, int half_window, SmoothingKernel kernel) {
+  QuadraticSmoother smooth(half_window, kernel);
   for (auto& t : tracks) {
     t.x_px = smooth(t.x_px);
     t.y_px = smooth(t.y_px);
@@ -274,10 +280,11 @@ Removed removed_by(const NeighbourSeries& s, QuadraticSmoother& smooth) {
 
 }  // namespace
 
-int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px) {
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
+                        SmoothingKernel kernel) {
   if (half_window <= 0) return half_window;
   std::vector<int> candidates;
-  for (int h : {half_window, 10, 8, 7, 6, 5, 4, 3}) {
+  for (int h : {half_window, 14, 12, 10, 8, 7, 6, 5, 4, 3}) {
     if (h <= half_window && (candidates.empty() || h < candidates.back())) candidates.push_back(h);
   }
   // Between a track and its nearest neighbour the common motion cancels, and what is left is
@@ -301,7 +308,7 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
       s.dy.resize(kMaxFrames);
     }
   }
-  QuadraticSmoother noise_smoother(kNoiseWindow);
+  QuadraticSmoother noise_smoother(kNoiseWindow, kernel);
   std::map<int, SmootherNoise> noise_norms;
   std::vector<double> noise_variance;
   for (const auto& s : series) {
@@ -319,7 +326,7 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   int best = 0;
   double best_error = trimmed_mean(error);
   for (const int h : candidates) {
-    QuadraticSmoother smoother(h);
+    QuadraticSmoother smoother(h, kernel);
     // A window may not move a whole track by more than max_residual_px (RMS, median track).
     std::vector<double> residuals;
     for (const std::size_t i : spread_sample(tracks.size(), kMaxSeries)) {

@@ -72,9 +72,10 @@ inline bool refinement_for(PoreDetector detector) {
 // The trajectory smoothing that goes with refinement or without it. Refined positions carry
 // independent errors from frame to frame, so a longer fit averages more of them; but a longer
 // fit also flattens strain that changes within it, so with refinement this is the longest
-// window tried, and the tracks themselves choose (smoothing_that_fits).
+// window tried, and the tracks themselves choose (smoothing_that_fits, with the falling weights
+// of RefineParams::smoothing_kernel).
 inline int smoothing_half_window_for(bool refine) {
-  return refine ? 12 : CaptureParams{}.smoothing_half_window;
+  return refine ? 16 : CaptureParams{}.smoothing_half_window;
 }
 
 struct CaptureChoice {

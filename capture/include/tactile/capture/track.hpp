@@ -57,15 +57,23 @@ struct Track {
 std::vector<Track> track_features(const std::vector<std::vector<Feature>>& features_per_frame,
                                   const Calibration& calibration, const TrackParams& params = {});
 
-// Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none).
-void smooth_tracks(std::vector<Track>& tracks, int half_window);
+// How the local quadratic fit of a trajectory weighs the frames of its window: all alike, or
+// falling with the distance t from the frame fitted as 1 - (t / (h + 1))^2 (Epanechnikov). For
+// the same noise left, the falling weights flatten a changing motion less (the local fit's
+// least squared error among weightings), so they go with the longer windows the tracks choose.
+enum class SmoothingKernel { uniform, epanechnikov };
 
-// The smoothing window (half-window half_window, 10, 8, 7, 6, 5, 4, 3, none longer than
+// Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none).
+void smooth_tracks(std::vector<Track>& tracks, int half_window,
+                   SmoothingKernel kernel = SmoothingKernel::uniform);
+
+// The smoothing window (half-window half_window, 14, 12, 10, 8, 7, 6, 5, 4, 3, none longer than
 // half_window, or 0 for none) whose frame-to-frame changes between neighbouring tracks have the
 // least error, as estimated from the tracks themselves: a longer window averages more of the
 // trackers' noise, but flattens strain that changes within it. A window that moves the median
 // track by more than max_residual_px (RMS) is not taken.
-int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px);
+int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
+                        SmoothingKernel kernel = SmoothingKernel::uniform);
 
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
@@ -96,6 +104,8 @@ struct RefineParams {
   // Trajectories are smoothed only where the smoother moves the median track by at most this
   // (RMS): about twice the refined positions' noise.
   double max_smoothing_residual_px = 0.06;
+  // The weights of that smoothing's local fits.
+  SmoothingKernel smoothing_kernel = SmoothingKernel::epanechnikov;
   // Streaming tracker (AlignmentTracker): where a track's own prediction fails, retry from its
   // confirmed neighbours' motion in the same frame (within neighbour_radius_mm), in up to
   // neighbour_rounds rounds (0 = never), when that start is neighbour_retry_px or more from the
