@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <string>
 #include <tuple>
@@ -368,6 +369,26 @@ Evaluation strain_scored(const PrintSequence& seq, const CaptureParams& params) 
                          ground_truth_of(seq));
 }
 
+// A capture scored with `params` (ours) and with one of its settings changed (other), both
+// printed under `label` with `other_name` for the second.
+struct ScoredAgainst {
+  Evaluation ours, other;
+};
+ScoredAgainst scored_against(const PrintSequence& seq, const CaptureParams& params,
+                             const std::function<void(CaptureParams&)>& change,
+                             const std::string& label, const std::string& other_name) {
+  CaptureParams changed = params;
+  change(changed);
+  const ScoredAgainst s{strain_scored(seq, params), strain_scored(seq, changed)};
+  std::printf(
+      "%s: tracked %.0f rms %.5f corr %.4f; %s: tracked %.0f rms %.5f corr %.4f (true "
+      "strain rms %.5f)\n",
+      label.c_str(), s.ours.median_tracked_points, s.ours.rms_error, s.ours.correlation,
+      other_name.c_str(), s.other.median_tracked_points, s.other.rms_error, s.other.correlation,
+      s.ours.rms_truth);
+  return s;
+}
+
 // The quasi-static figures on the same two held-out prints: a stretch and a compression of 4 %
 // rising and falling over 30 frames, where the true frame-to-frame strain is only about 0.0007
 // RMS, so the trackers' noise is most of what is measured: edge strain RMS error <= 0.0003 and
@@ -465,16 +486,10 @@ TEST(RealPrintStrain, HeldOutPrintsHoldAtThreeTimesTheSpeedOfTouch) {
   for (const char* nn : {"12", "14"}) {
     SCOPED_TRACE(fmt::format("print {}", nn));
     const PrintSequence seq = fast_scene(nn, 70, 20);
-    const CaptureParams params = whole_sequence_tracks(seq);
-    const Evaluation ours = strain_scored(seq, params);
-    CaptureParams alone = params;
-    alone.refinement.neighbour_rounds = 0;
-    const Evaluation own = strain_scored(seq, alone);
-    std::printf(
-        "print %s at 70 mm/s: tracked %.0f rms %.5f corr %.4f; each track on its own: tracked "
-        "%.0f rms %.5f corr %.4f (true strain rms %.5f)\n",
-        nn, ours.median_tracked_points, ours.rms_error, ours.correlation, own.median_tracked_points,
-        own.rms_error, own.correlation, ours.rms_truth);
+    const auto [ours, own] = scored_against(
+        seq, whole_sequence_tracks(seq),
+        [](CaptureParams& p) { p.refinement.neighbour_rounds = 0; },
+        fmt::format("print {} at 70 mm/s", nn), "each track on its own");
     EXPECT_GT(ours.rms_truth, 0.035);
     EXPECT_GE(ours.median_tracked_points, 150);
     EXPECT_LE(ours.rms_error, ours.rms_truth / 8);
@@ -495,16 +510,10 @@ TEST(RealPrintStrain, HeldOutPrintsCorrectTheWindowsCurvatureBiasAtTwiceTheSpeed
   for (const char* nn : {"12", "14"}) {
     SCOPED_TRACE(fmt::format("print {}", nn));
     const PrintSequence seq = fast_scene(nn, 50, 20);
-    const CaptureParams params = whole_sequence_tracks(seq);
-    const Evaluation ours = strain_scored(seq, params);
-    CaptureParams uncorrected = params;
-    uncorrected.refinement.curvature_correction = false;
-    const Evaluation plain = strain_scored(seq, uncorrected);
-    std::printf(
-        "print %s at 50 mm/s: tracked %.0f rms %.5f corr %.4f; uncorrected: tracked %.0f rms "
-        "%.5f corr %.4f (true strain rms %.5f)\n",
-        nn, ours.median_tracked_points, ours.rms_error, ours.correlation,
-        plain.median_tracked_points, plain.rms_error, plain.correlation, ours.rms_truth);
+    const auto [ours, plain] = scored_against(
+        seq, whole_sequence_tracks(seq),
+        [](CaptureParams& p) { p.refinement.curvature_correction = false; },
+        fmt::format("print {} at 50 mm/s", nn), "uncorrected");
     EXPECT_GT(ours.rms_truth, 0.03);
     EXPECT_GE(ours.median_tracked_points, 150);
     EXPECT_GE(ours.correlation, 0.96);
