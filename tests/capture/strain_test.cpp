@@ -4,7 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include <Eigen/Dense>
 
 #include "tactile/capture/capture.hpp"
 #include "tactile/capture/synth.hpp"
@@ -116,6 +121,92 @@ TEST(Strain, FarOutlierEdgesAreDroppedWithTheirTriangles) {
     for (auto k : t.point_index) EXPECT_NE(k, 16);
   }
   EXPECT_EQ(triangles.size(), 2u * 16 - 2 - 12);
+}
+
+// Two-frame tracks on a sheared grid (pixels) whose frame-1 positions are `motion` of their
+// frame-0 ones, each carrying the deformation gradients `at0` and `at1` (none if empty).
+std::vector<Track> moved_grid(const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& motion,
+                              const std::vector<Eigen::Matrix2d>& gradients) {
+  std::vector<Track> tracks;
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector2d p0(40 + 20 * i + 1.25 * j, 30 + 20 * j);
+      const Eigen::Vector2d p1 = motion(p0);
+      Track t;
+      t.id = static_cast<std::int32_t>(tracks.size());
+      t.x_px = {p0.x(), p1.x()};
+      t.y_px = {p0.y(), p1.y()};
+      for (const auto& g : gradients) t.gradient.push_back({g(0, 0), g(0, 1), g(1, 0), g(1, 1)});
+      tracks.push_back(t);
+    }
+  }
+  return tracks;
+}
+
+// The edges of the tracks' one strain frame, in the order of their tracks (a, b).
+std::vector<StrainEdge> edges_of(const std::vector<Track>& tracks, double share) {
+  const StrainMovie movie =
+      strain_from_tracks(tracks, 2, uniform_calibration(50, 320, 240), 60, 1, 3.0, 1, share);
+  auto edges = movie.frames.at(0).edges;
+  std::sort(edges.begin(), edges.end(), [](const StrainEdge& a, const StrainEdge& b) {
+    return std::tie(a.track_a, a.track_b) < std::tie(b.track_a, b.track_b);
+  });
+  return edges;
+}
+
+TEST(Strain, WindowGradientsThatAgreeWithThePositionsChangeNothing) {
+  // Skin sheared and turned before frame 0, then stretched by 6 % along x and moved: each
+  // window's gradient from frame 0 to 1 is the stretch whatever it was at frame 0.
+  Eigen::Matrix2d before;
+  before << 1.02, 0.03, -0.05, 0.97;
+  const Eigen::Matrix2d stretch = Eigen::Vector2d(1.06, 1.0).asDiagonal();
+  const auto tracks = moved_grid(
+      [&](const Eigen::Vector2d& p) {
+        return Eigen::Vector2d(stretch * p + Eigen::Vector2d(3, -2));
+      },
+      {before, stretch * before});
+  const auto blended = edges_of(tracks, 0.3), plain = edges_of(tracks, 0.0);
+  ASSERT_EQ(blended.size(), plain.size());
+  ASSERT_GT(blended.size(), 50u);
+  for (std::size_t k = 0; k < blended.size(); ++k) {
+    EXPECT_NEAR(blended[k].rel_change, plain[k].rel_change, 1e-12);
+    EXPECT_GT(plain[k].rel_change, -1e-12);  // a stretch lengthens or keeps every edge
+  }
+}
+
+TEST(Strain, WindowGradientsAreBlendedInTheirShareAndTheLengthFollows) {
+  // Positions stretched by 5 % along x; the windows saw no deformation at all: the blend keeps
+  // (1 - share) of the positions' strain.
+  const auto stretched = [](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(1.05 * p.x(), p.y());
+  };
+  const Eigen::Matrix2d none = Eigen::Matrix2d::Identity();
+  const auto plain = edges_of(moved_grid(stretched, {none, none}), 0.0);
+  const auto blended = edges_of(moved_grid(stretched, {none, none}), 0.3);
+  ASSERT_EQ(blended.size(), plain.size());
+  for (std::size_t k = 0; k < blended.size(); ++k) {
+    EXPECT_NEAR(blended[k].rel_change, 0.7 * plain[k].rel_change, 1e-12);
+    EXPECT_NEAR(blended[k].length_to_mm, blended[k].length_from_mm * (1 + blended[k].rel_change),
+                1e-12);
+  }
+  // Tracks that carry no gradients keep the positions' strain at any share.
+  const auto without = edges_of(moved_grid(stretched, {}), 0.3);
+  ASSERT_EQ(without.size(), plain.size());
+  for (std::size_t k = 0; k < without.size(); ++k) {
+    EXPECT_EQ(without[k].rel_change, plain[k].rel_change);
+  }
+}
+
+TEST(Strain, WindowGradientShareOutsideZeroToOneIsRefused) {
+  const auto tracks = moved_grid([](const Eigen::Vector2d& p) { return p; }, {});
+  for (const double share : {-0.1, 1.5}) {
+    try {
+      edges_of(tracks, share);
+      ADD_FAILURE() << "share " << share << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("window_gradient_share must be 0 to 1"));
+    }
+  }
 }
 
 TEST(Strain, FewerThanThreePointsGiveNoEdges) {

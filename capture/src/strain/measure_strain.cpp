@@ -13,8 +13,12 @@ namespace tactile::capture {
 
 StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_frame_count,
                                const Calibration& calibration, double frame_rate_hz,
-                               int span_frames, double max_edge_ratio, int threads) {
+                               int span_frames, double max_edge_ratio, int threads,
+                               double window_gradient_share) {
   if (span_frames < 1) throw std::invalid_argument("span_frames must be >= 1");
+  if (!(window_gradient_share >= 0 && window_gradient_share <= 1)) {
+    throw std::invalid_argument("window_gradient_share must be 0 to 1");
+  }
   if (!(frame_rate_hz > 0)) throw std::invalid_argument("frame_rate_hz must be > 0");
   StrainMovie movie;
   movie.frame_rate_hz = frame_rate_hz;
@@ -35,6 +39,8 @@ StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_fram
   for (const auto& t : tracks) {
     for (int f = t.first_frame; f <= t.last_frame(); ++f) movie.tracks.push_back(point_of(t, f));
   }
+  TracksById by_id;
+  for (const auto& t : tracks) by_id.emplace(t.id, &t);
   // Each frame's triangulation is its own: frames in parallel.
   movie.frames.resize(static_cast<std::size_t>(std::max(0, camera_frame_count - span_frames)));
   parallel_for(movie.frames.size(), worker_count(threads), [&](std::size_t k) {
@@ -50,6 +56,7 @@ StrainMovie strain_from_tracks(const std::vector<Track>& tracks, int camera_fram
       }
     }
     triangulate_strain(sf.points_from, sf.points_to, max_edge_ratio, sf.edges, sf.triangles);
+    blend_window_gradients(sf, by_id, calibration, window_gradient_share);
   });
   return movie;
 }
@@ -233,18 +240,22 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
       params.refine
           ? tracks_by_alignment(next_frame, first, cal, params, progress, expected_frames, n)
           : tracks_from_detections(next_frame, first, cal, params, progress, expected_frames, n);
-  StrainMovie movie = strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames,
-                                         params.max_edge_ratio, params.threads);
+  StrainMovie movie =
+      strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio,
+                         params.threads, params.window_gradient_share);
   // The settings that decide what is measured; the frames' file is the caller's to name.
-  const nlohmann::json settings = {{"frame_rate_hz", frame_rate_hz},
-                                   {"mm_per_px", cal.mm_per_px},
-                                   {"pore_detector", to_string(params.features.pore_detector)},
-                                   {"refine", params.refine},
-                                   {"smoothing_half_window", params.smoothing_half_window},
-                                   {"span_frames", params.span_frames},
-                                   {"min_track_frames", params.min_track_frames},
-                                   {"assignment", to_string(params.assignment)},
-                                   {"match_radius_mm", params.match_radius_mm}};
+  const nlohmann::json settings = {
+      {"frame_rate_hz", frame_rate_hz},
+      {"mm_per_px", cal.mm_per_px},
+      {"pore_detector", to_string(params.features.pore_detector)},
+      {"refine", params.refine},
+      {"smoothing_half_window", params.smoothing_half_window},
+      {"span_frames", params.span_frames},
+      {"min_track_frames", params.min_track_frames},
+      {"assignment", to_string(params.assignment)},
+      {"match_radius_mm", params.match_radius_mm},
+      // Only aligned tracks carry the windows' deformation.
+      {"window_gradient_share", params.refine ? params.window_gradient_share : 0.0}};
   movie.provenance = make_provenance({}, "capture", settings.dump());
   if (progress) progress("strain", 1, 1);
   return movie;

@@ -460,6 +460,8 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
         params.follow_past_detections ? static_cast<std::size_t>(n - detected.first_frame) : seen;
     t.x_px.assign(1, detected.x_px[0]);
     t.y_px.assign(1, detected.y_px[0]);
+    // Renewed references would make the warps' linear parts relative to different frames.
+    t.gradient.clear();
     Reference ref;
     int ref_frame = detected.first_frame;
     if (!make_reference(frame_at(ref_frame), t.x_px[0], t.y_px[0], half_side, room_px, ref)) {
@@ -831,6 +833,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     l.track.x_px.push_back(result[i].x_px);
     l.track.y_px.push_back(result[i].y_px);
     l.linear = result[i].linear;
+    l.track.gradient.push_back({l.linear(0, 0), l.linear(0, 1), l.linear(1, 0), l.linear(1, 1)});
   }
   // Ended tracks leave in place, the others keep their order: a frame where none ended moves
   // nothing.
@@ -862,6 +865,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     l.track.first_frame = frame;
     l.track.x_px = {f.x_px};
     l.track.y_px = {f.y_px};
+    l.track.gradient = {{1.0, 0.0, 0.0, 1.0}};
     ok[j] = 1;
   });
   for (std::size_t j = 0; j < seeds.size(); ++j) {

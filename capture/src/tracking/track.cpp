@@ -157,6 +157,14 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window, SmoothingKernel 
   for (auto& t : tracks) {
     t.x_px = smooth(t.x_px);
     t.y_px = smooth(t.y_px);
+    if (t.gradient.size() != t.x_px.size()) continue;
+    // The deformation gradient carries the same frames' noise as the positions.
+    std::vector<double> entry(t.gradient.size());
+    for (std::size_t c = 0; c < 4; ++c) {
+      for (std::size_t k = 0; k < entry.size(); ++k) entry[k] = t.gradient[k][c];
+      entry = smooth(entry);
+      for (std::size_t k = 0; k < entry.size(); ++k) t.gradient[k][c] = entry[k];
+    }
   }
 }
 

@@ -44,6 +44,11 @@ struct Track {
   std::int32_t first_frame = 0;
   std::vector<double> x_px;
   std::vector<double> y_px;
+  // Where the landmark was followed by aligning the image around it (AlignmentTracker): for
+  // every frame, the linear part of that alignment's affine warp, the skin's deformation
+  // gradient across the window from first_frame (row-major: dx/dX, dx/dY, dy/dX, dy/dY, in
+  // pixels). Empty where the tracker does not measure it.
+  std::vector<std::array<double, 4>> gradient;
 
   std::int32_t last_frame() const {
     return first_frame + static_cast<std::int32_t>(x_px.size()) - 1;
