@@ -466,6 +466,21 @@ CaptureParams whole_sequence_tracks(const PrintSequence& seq) {
   return params;
 }
 
+// The windows' deformation at the speed of touch, where the motion curves across each window:
+// corrected for that like the positions, its share lowers the strain error there too.
+TEST(RealPrintStrain, HeldOutPrintsFastSceneGainsFromTheWindowsCorrectedDeformation) {
+  for (const char* nn : {"12", "14"}) {
+    SCOPED_TRACE(fmt::format("print {}", nn));
+    const PrintSequence seq = fast_scene(nn, 25, 16);
+    const auto [ours, positions] = scored_against(
+        seq, whole_sequence_tracks(seq), [](CaptureParams& p) { p.window_gradient_share = 0; },
+        fmt::format("print {}, 8 % at 25 mm/s", nn), "positions alone");
+    EXPECT_GT(ours.rms_truth, 0.01);  // or this is not the fast scene
+    EXPECT_LT(ours.rms_error, positions.rms_error);
+    EXPECT_GT(ours.correlation, positions.correlation);
+  }
+}
+
 // At the speed of touch: a strain wave of 8 % crossing at 25 mm/s, filmed at 60 Hz with a 2 ms
 // exposure by a camera that integrates each pixel's area, while the finger slides at 2.5 mm/s
 // and turns by 3 degrees. About 1.5 px of motion and 3 % of strain change a frame: a track's

@@ -21,14 +21,17 @@ inline FeatureParams pores_only() {
 }
 
 // Where landmarks are followed by aligning the image around them, each alignment window also
-// measures the skin's deformation across it (Track::gradient). An edge's length change carried
-// by the mean deformation of the windows at its two ends is a second measurement, its noise
-// only partly shared with that of the two positions; this share of it is blended into each
-// edge's strain. Chosen on tuning prints 01, 03 and 07 (0.2 / 0.3 / 0.4 / 0.5): every
-// sequence's correlation rose, the 1 % wave's most (0.9626 -> 0.9660 / 0.9669 / 0.9674 /
-// 0.9672 on print 01), and from 0.3 on no error grew (8 % wave at 25 mm/s on print 01: 0.00167
-// -> 0.00160 / 0.00163 / 0.00171 / 0.00182). The windows' deformation is their weighted mean where
-// it curves across them, so more of it would bias the strain of a curved motion.
+// measures the skin's deformation across it (Track::gradient, corrected like the positions for
+// motion that curves across the window). An edge's length change carried by the mean
+// deformation of the windows at its two ends is a second measurement, its noise only partly
+// shared with that of the two positions; this share of it is blended into each edge's strain.
+// Chosen on tuning prints 01, 03 and 07: without the gradients' curvature correction, shares
+// 0.2 / 0.3 / 0.4 / 0.5 raised the 1 % wave's correlation on print 01 from 0.9626 to 0.9660 /
+// 0.9669 / 0.9674 / 0.9672 and took the fast scene's error (8 % at 25 mm/s) from 0.00167 to
+// 0.00160 / 0.00163 / 0.00171 / 0.00182; with it, shares 0.3 / 0.4 / 0.5 / 0.6 gave 0.9673 /
+// 0.9678 / 0.9678 / 0.9673 and 0.00150 / 0.00152 / 0.00157 / 0.00165. A window's deformation is
+// still its weighted mean where the motion changes faster than a quadratic across it, so more
+// of it would bias the strain of fast, curved motion.
 inline constexpr double kWindowGradientShare = 0.3;
 
 struct CaptureParams {
