@@ -130,12 +130,12 @@ TEST(RefineTracks, RecoversTheExactMotionFromNoisyDetections) {
 }
 
 TEST(RefineTracks, WindowsCutByTheFrameBorderFollowTheMotionToo) {
-  // Landmarks whose 0.7 mm window (33 px) reaches past the frame's border: their references
-  // are cut to the part inside, and the slide carries some of them further out, so the
-  // alignment sums over a window cut differently at every step.
+  // Landmarks whose window (0.8 mm, 39 px, by default) reaches past the frame's border: their
+  // references are cut to the part inside, and the slide carries some of them further out, so
+  // the alignment sums over a window cut differently at every step.
   Case c = make_case(WarpPattern::rigid, 0.0, 0.5);
   const int w = c.seq.spec.width_px, h = c.seq.spec.height_px;
-  const double half_side_px = 0.7 * c.seq.spec.px_per_mm / 2;
+  const double half_side_px = RefineParams{}.window_mm * c.seq.spec.px_per_mm / 2;
   std::vector<Track> near_border, truth;
   for (std::size_t i = 0; i < c.truth.size(); ++i) {
     const double x = c.truth[i].x_px[0], y = c.truth[i].y_px[0];

@@ -72,7 +72,9 @@ void add_row_sums(const FloatRows& image, const RowSpan& row, RowSums& s);
 // Whether add_row_sums_vector has vector instructions to run on (AVX2 and FMA on x86-64).
 bool has_vector_row_sums();
 
-// The same sums eight samples at a time where has_vector_row_sums(), else add_row_sums.
+// The same sums eight samples at a time where has_vector_row_sums(), else add_row_sums (each
+// sample's two neighbours along x gathered as one pair; a row's last two to seven samples as one
+// more group of eight with the rest left out).
 // Positions are taken relative to the row's first whole pixel, so single precision keeps them
 // to about 4e-6 px; each row's sums are of at most a few dozen terms before they join the
 // double-precision totals, so they agree with add_row_sums to about 1e-6 relative.

@@ -892,7 +892,7 @@ double window_moment_px2(int half_side) {
 // An affine window aligned to skin whose motion is curved across it finds the weighted mean of
 // that motion, not the motion at its centre: position + (M / 2) (laplacian of the map from the
 // reference), with M the weights' second moment. On a strain wave this shrinks the measured
-// strain in proportion to the true one (about 7 % for a 3 mm wave and the 0.7 mm window). The
+// strain in proportion to the true one (about 7 % for a 3 mm wave and a 0.7 mm window). The
 // laplacian at each track and frame comes from a weighted quadratic fit of the positions of the
 // tracks around it (those alive in its reference frame and in this one) against their
 // positions in the reference frame; each correction is limited to max_px. The window's
