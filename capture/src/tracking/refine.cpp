@@ -899,9 +899,9 @@ double window_moment_px2(int half_side) {
 // deformation gradient (Track::gradient) is the weighted mean of the gradient over the window in
 // the same way: the same fit of the neighbours' gradients (from the track's reference frame on)
 // corrects it, each entry limited to max_px over the weights' radius of gyration. On the 8 %
-// wave (tuning prints 01 / 07) that took the strain error, with the gradients' share blended in,
-// from 0.00050 / 0.00052 to 0.00045 / 0.00048, and at 25 mm/s from 0.00163 / 0.00180 to
-// 0.00150 / 0.00169.
+// wave (tuning prints 01 / 07, 0.7 mm windows) that took the strain error, with the gradients'
+// share blended in, from 0.00050 / 0.00052 to 0.00045 / 0.00048, and at 25 mm/s from 0.00163 /
+// 0.00180 to 0.00150 / 0.00169.
 void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, double radius_px,
                               double max_px, int threads) {
   // 16 / 24 / 32 nearest on tuning print 02: fast scene 0.00146 / 0.00142 / 0.00142, 4 % bump
