@@ -851,13 +851,22 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   // New tracks only where no live track is: one landmark, one track.
   const double min_separation_px = 0.5 * s.max_offset_px;
   const std::size_t tracked = s.live.size();
+  std::vector<Eigen::Vector2d> live_at(tracked);
+  for (std::size_t i = 0; i < tracked; ++i) {
+    live_at[i] = {s.live[i].track.x_px.back(), s.live[i].track.y_px.back()};
+  }
+  // Only the live tracks within the separation along x can be within it: a search in the
+  // tracks sorted by x, not a pass over all of them for every seed.
+  const Confirmed live_by_x(live_at, std::vector<char>(tracked, 1));
   std::vector<State::Live> started(seeds.size());
   std::vector<char> ok(seeds.size(), 0);
   parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
     const Feature& f = seeds[j];
-    for (std::size_t i = 0; i < tracked; ++i) {
-      const Track& t = s.live[i].track;
-      if (std::hypot(t.x_px.back() - f.x_px, t.y_px.back() - f.y_px) < min_separation_px) return;
+    auto it = std::lower_bound(live_by_x.by_x.begin(), live_by_x.by_x.end(),
+                               std::pair<double, std::size_t>(f.x_px - min_separation_px, 0));
+    for (; it != live_by_x.by_x.end() && it->first <= f.x_px + min_separation_px; ++it) {
+      const Eigen::Vector2d& p = live_at[it->second];
+      if (std::hypot(p.x() - f.x_px, p.y() - f.y_px) < min_separation_px) return;
     }
     State::Live& l = started[j];
     if (!make_reference(s.smooth, f.x_px, f.y_px, s.half_side, s.room_px, l.reference)) return;
