@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "tactile/capture/capture.hpp"
+#include "tracking/track_gradient.hpp"
 
 namespace tactile::capture {
 
@@ -19,13 +20,6 @@ Eigen::Matrix2d mm_per_px_at(const Calibration& calibration, const Eigen::Vector
   Eigen::Matrix2d j;
   j << x1.x_mm - x0.x_mm, y1.x_mm - y0.x_mm, x1.y_mm - x0.y_mm, y1.y_mm - y0.y_mm;
   return j / (2 * h);
-}
-
-Eigen::Matrix2d gradient_at(const Track& t, int frame) {
-  const auto& g = t.gradient[static_cast<std::size_t>(frame - t.first_frame)];
-  Eigen::Matrix2d m;
-  m << g[0], g[1], g[2], g[3];
-  return m;
 }
 
 Eigen::Vector2d position_at(const Track& t, int frame) {
@@ -47,7 +41,7 @@ void blend_window_gradients(StrainFrame& frame, const TracksById& tracks,
     if (it == tracks.end()) return nullptr;
     const Track& t = *it->second;
     const bool covers = t.first_frame <= from && t.last_frame() >= to;
-    return covers && t.gradient.size() == t.x_px.size() ? &t : nullptr;
+    return covers && has_gradients(t) ? &t : nullptr;
   };
   for (auto& e : frame.edges) {
     const Track* a = measured(e.track_a);

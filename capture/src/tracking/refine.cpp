@@ -12,6 +12,7 @@
 #include "tactile/capture/track.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tracking/align_rows.hpp"
+#include "tracking/track_gradient.hpp"
 
 namespace tactile::capture {
 namespace {
@@ -925,11 +926,6 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
   };
   std::vector<std::vector<Eigen::Vector2d>> correction(tracks.size());
   std::vector<std::vector<Eigen::Matrix2d>> gradient_correction(tracks.size());
-  const auto has_gradients = [](const Track& t) { return t.gradient.size() == t.x_px.size(); };
-  const auto gradient_at = [](const Track& t, int f) {
-    const auto& g = t.gradient[static_cast<std::size_t>(f - t.first_frame)];
-    return (Eigen::Matrix2d() << g[0], g[1], g[2], g[3]).finished();
-  };
   parallel_for(tracks.size(), worker_count(threads), [&](std::size_t i) {
     const Track& t = tracks[i];
     const int first = t.first_frame;

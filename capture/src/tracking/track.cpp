@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "tracking/assignment.hpp"
+#include "tracking/track_gradient.hpp"
 
 namespace tactile::capture {
 
@@ -157,7 +158,7 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window, SmoothingKernel 
   for (auto& t : tracks) {
     t.x_px = smooth(t.x_px);
     t.y_px = smooth(t.y_px);
-    if (t.gradient.size() != t.x_px.size()) continue;
+    if (!has_gradients(t)) continue;
     // The deformation gradient carries the same frames' noise as the positions.
     std::vector<double> entry(t.gradient.size());
     for (std::size_t c = 0; c < 4; ++c) {
