@@ -11,56 +11,123 @@
 namespace tactile::capture {
 namespace {
 
-TEST(AlignRows, VectorSumsAgreeWithThePlainLoop) {
-  std::mt19937 rng(7);
+struct TestImage {
+  std::vector<float> pixels;
+  FloatRows rows;
+};
+
+// Random grey levels in rows padded as OpenCV may pad them; the buffer ends where the last row
+// does, so that a read past it is one past the allocation.
+TestImage random_image(std::mt19937& rng, int cols, int rows, std::size_t stride) {
   std::uniform_real_distribution<float> grey(0.f, 255.f);
-  const int cols = 80, rows = 60;
-  const std::size_t stride = 83;  // rows padded, as OpenCV may
-  std::vector<float> pixels(stride * rows);
-  for (auto& p : pixels) p = grey(rng);
-  const FloatRows image{pixels.data(), stride, cols, rows};
-  const int n = 37;  // not a multiple of 8: the tail is summed too
-  std::vector<float> weight(n), ref(n), gx(n), gy(n);
-  std::uniform_real_distribution<float> unit(-1.f, 1.f);
+  TestImage t;
+  t.pixels.resize(stride * static_cast<std::size_t>(rows - 1) + static_cast<std::size_t>(cols));
+  for (auto& p : t.pixels) p = grey(rng);
+  t.rows = FloatRows{t.pixels.data(), stride, cols, rows};
+  return t;
+}
+
+struct Reference {
+  std::vector<float> weight, grey, gx, gy;
+};
+
+// The reference's n pixels seen from (x0, y0) on, (dx, dy) apart.
+RowSpan span_of(const Reference& ref, int n, double x0, double y0, double dx, double dy,
+                double ox0) {
+  return {
+      ref.weight.data(), ref.grey.data(), ref.gx.data(), ref.gy.data(), 0, n, x0, y0, dx, dy, ox0};
+}
+
+Reference random_reference(std::mt19937& rng, int n) {
+  std::uniform_real_distribution<float> grey(0.f, 255.f), unit(-1.f, 1.f);
+  Reference r;
   for (int k = 0; k < n; ++k) {
-    weight[k] = 0.4f + 0.3f * (unit(rng) + 1.f);
-    ref[k] = grey(rng);
-    gx[k] = 20.f * unit(rng);
-    gy[k] = 20.f * unit(rng);
+    r.weight.push_back(0.4f + 0.3f * (unit(rng) + 1.f));
+    r.grey.push_back(grey(rng));
+    r.gx.push_back(20.f * unit(rng));
+    r.gy.push_back(20.f * unit(rng));
   }
-  std::uniform_real_distribution<double> step(-0.25, 0.25);
-  for (int trial = 0; trial < 50; ++trial) {
-    // A row turned and stretched by up to a quarter, starting at a fraction of a pixel.
-    const double dx = 1 + step(rng), dy = step(rng);
-    const double x0 = 1.3 + 4 * (step(rng) + 0.25), y0 = 20 + 40 * (step(rng) + 0.25);
-    const RowSpan row{weight.data(), ref.data(), gx.data(), gy.data(), 0, n, x0, y0, dx, dy, -18.4};
-    RowSums plain, vector;
-    add_row_sums(image, row, plain);
-    add_row_sums_vector(image, row, vector);
-    // Single precision loses about 1e-7 of the largest terms, which cancel in these sums: the
-    // tolerance is a few times that of the sum of the terms' magnitudes bounds.
-    const double sample = n * 255.0, gradient = sample * 20, offset = gradient * 20;
-    auto near = [](double a, double b, double scale) { return std::abs(a - b) <= 5e-7 * scale; };
-    EXPECT_PRED3(near, vector.i, plain.i, sample);
-    EXPECT_PRED3(near, vector.ii, plain.ii, sample * 255);
-    EXPECT_PRED3(near, vector.it, plain.it, sample * 255);
-    EXPECT_PRED3(near, vector.a, plain.a, gradient);
-    EXPECT_PRED3(near, vector.a_ox, plain.a_ox, offset);
-    EXPECT_PRED3(near, vector.c, plain.c, gradient);
-    EXPECT_PRED3(near, vector.c_ox, plain.c_ox, offset);
+  return r;
+}
+
+// Single precision loses about 1e-7 of the largest terms, which cancel in these sums: the
+// tolerance is a few times that of the sum of the terms' magnitudes bounds.
+void expect_same_sums(const RowSums& vector, const RowSums& plain, int n) {
+  const double sample = n * 255.0, gradient = sample * 20, offset = gradient * 20;
+  auto near = [](double a, double b, double scale) { return std::abs(a - b) <= 5e-7 * scale; };
+  EXPECT_PRED3(near, vector.i, plain.i, sample);
+  EXPECT_PRED3(near, vector.ii, plain.ii, sample * 255);
+  EXPECT_PRED3(near, vector.it, plain.it, sample * 255);
+  EXPECT_PRED3(near, vector.a, plain.a, gradient);
+  EXPECT_PRED3(near, vector.a_ox, plain.a_ox, offset);
+  EXPECT_PRED3(near, vector.c, plain.c, gradient);
+  EXPECT_PRED3(near, vector.c_ox, plain.c_ox, offset);
+}
+
+const char* name(RowSumsVersion v) {
+  switch (v) {
+    case RowSumsVersion::plain:
+      return "plain";
+    case RowSumsVersion::avx2:
+      return "avx2";
+    case RowSumsVersion::avx512:
+      return "avx512";
   }
-  // Starting part-way along the row sums only the rest.
-  RowSums all, head_then_rest;
-  const RowSpan row{weight.data(), ref.data(), gx.data(), gy.data(), 0,  n,
-                    2.5,           30.25,      1.1,       0.1,       -18};
-  add_row_sums(image, row, all);
-  RowSpan head = row, rest = row;
-  head.cols = 11;
-  rest.first = 11;
-  add_row_sums_vector(image, head, head_then_rest);
-  add_row_sums_vector(image, rest, head_then_rest);
-  EXPECT_NEAR(head_then_rest.i, all.i, 5e-7 * n * 255.0);
-  EXPECT_NEAR(head_then_rest.c_ox, all.c_ox, 5e-7 * n * 255.0 * 400);
+  return "?";
+}
+
+TEST(AlignRows, EveryVersionHereAgreesWithThePlainLoop) {
+  std::mt19937 rng(7);
+  const TestImage image = random_image(rng, 80, 60, 83);
+  const int n = 37;  // not a multiple of 8: the tail is summed too
+  const Reference ref = random_reference(rng, n);
+  std::uniform_real_distribution<double> step(-0.25, 0.25), unit(0, 1);
+  for (const RowSumsVersion version : row_sums_versions_here()) {
+    SCOPED_TRACE(name(version));
+    for (int trial = 0; trial < 150; ++trial) {
+      // A row turned and stretched by up to a quarter, starting at a fraction of a pixel: a
+      // third turned by more than 8 degrees, a third by less (eight samples then span at most
+      // two rows), and a third by less ending next to the image's last row and column, where
+      // rows of 16 floats from a group's first sample would run past the buffer.
+      const int kind = trial % 3;
+      const double dx = 1 + step(rng), dy = kind == 0 ? step(rng) : 0.5 * step(rng);
+      double x0 = 1.3 + 2 * unit(rng), y0 = 20 + 20 * unit(rng);
+      if (kind == 2) {
+        x0 = image.rows.cols - 1.01 - (n - 1) * dx - unit(rng);
+        y0 = image.rows.rows - 1.01 - std::max(0.0, (n - 1) * dy) - 3 * unit(rng);
+      }
+      const RowSpan row = span_of(ref, n, x0, y0, dx, dy, -18.4);
+      RowSums plain, vector;
+      add_row_sums(image.rows, row, plain);
+      add_row_sums_by(version, image.rows, row, vector);
+      expect_same_sums(vector, plain, n);
+    }
+    // Starting part-way along the row sums only the rest.
+    RowSums all, head_then_rest;
+    const RowSpan row = span_of(ref, n, 2.5, 30.25, 1.1, 0.1, -18);
+    add_row_sums(image.rows, row, all);
+    RowSpan head = row, rest = row;
+    head.cols = 11;
+    rest.first = 11;
+    add_row_sums_by(version, image.rows, head, head_then_rest);
+    add_row_sums_by(version, image.rows, rest, head_then_rest);
+    EXPECT_NEAR(head_then_rest.i, all.i, 5e-7 * n * 255.0);
+    EXPECT_NEAR(head_then_rest.c_ox, all.c_ox, 5e-7 * n * 255.0 * 400);
+  }
+}
+
+TEST(AlignRows, TheDefaultIsTheFastestVersionHere) {
+  std::mt19937 rng(11);
+  const TestImage image = random_image(rng, 80, 60, 80);
+  const int n = 29;
+  const Reference ref = random_reference(rng, n);
+  const RowSpan row = span_of(ref, n, 3.7, 12.2, 1.03, 0.05, -14);
+  RowSums fastest, vector;
+  add_row_sums_by(row_sums_versions_here().back(), image.rows, row, fastest);
+  add_row_sums_vector(image.rows, row, vector);
+  // The same instructions in the same order give the same bits.
+  EXPECT_EQ(vector.i, fastest.i);
+  EXPECT_EQ(vector.c_ox, fastest.c_ox);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // Kept apart so that the vector version can be tested against the plain one.
 
 #include <cstddef>
+#include <vector>
 
 namespace tactile::capture {
 
@@ -69,15 +70,26 @@ struct RowSpan {
 // Adds the row's sums to s, in double precision.
 void add_row_sums(const FloatRows& image, const RowSpan& row, RowSums& s);
 
-// Whether add_row_sums_vector has vector instructions to run on (AVX2 and FMA on x86-64).
-bool has_vector_row_sums();
+// The ways add_row_sums can run: the plain loop, eight samples at a time with AVX2 and FMA
+// (each sample's two neighbours along x gathered as one pair; a row's last two to seven samples
+// as one more group of eight with the rest left out), and the same with AVX-512, which takes the
+// neighbours of eight samples that lie within 15 columns and two rows of the first (rows
+// stretched by at most 1.8 and turned by at most 8 degrees) from contiguous loads of those rows by
+// permutes instead of gathers.
+enum class RowSumsVersion { plain, avx2, avx512 };
 
-// The same sums eight samples at a time where has_vector_row_sums(), else add_row_sums (each
-// sample's two neighbours along x gathered as one pair; a row's last two to seven samples as one
-// more group of eight with the rest left out).
+// The versions this machine runs, plain first and fastest last.
+std::vector<RowSumsVersion> row_sums_versions_here();
+
+// add_row_sums by one of row_sums_versions_here().
 // Positions are taken relative to the row's first whole pixel, so single precision keeps them
 // to about 4e-6 px; each row's sums are of at most a few dozen terms before they join the
-// double-precision totals, so they agree with add_row_sums to about 1e-6 relative.
+// double-precision totals, so the vector versions agree with add_row_sums to about 1e-6
+// relative.
+void add_row_sums_by(RowSumsVersion version, const FloatRows& image, const RowSpan& row,
+                     RowSums& s);
+
+// add_row_sums by the fastest version here.
 void add_row_sums_vector(const FloatRows& image, const RowSpan& row, RowSums& s);
 
 }  // namespace tactile::capture
