@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 namespace tactile::capture {
@@ -38,6 +39,26 @@ RowSpan span_of(const Reference& ref, int n, double x0, double y0, double dx, do
       ref.weight.data(), ref.grey.data(), ref.gx.data(), ref.gy.data(), 0, n, x0, y0, dx, dy, ox0};
 }
 
+// The reference as a window of rows x cols pixels (see WindowSpan).
+WindowSpan window_of(const Reference& ref, int cols, int rows, int row_step, double x0, double y0,
+                     double dx, double dy, double rx, double ry, double ox0, double oy0) {
+  return {ref.weight.data(),
+          ref.grey.data(),
+          ref.gx.data(),
+          ref.gy.data(),
+          cols,
+          rows,
+          row_step,
+          x0,
+          y0,
+          dx,
+          dy,
+          rx,
+          ry,
+          ox0,
+          oy0};
+}
+
 Reference random_reference(std::mt19937& rng, int n) {
   std::uniform_real_distribution<float> grey(0.f, 255.f), unit(-1.f, 1.f);
   Reference r;
@@ -51,10 +72,15 @@ Reference random_reference(std::mt19937& rng, int n) {
 }
 
 // Single precision loses about 1e-7 of the largest terms, which cancel in these sums: the
-// tolerance is a few times that of the sum of the terms' magnitudes bounds.
-void expect_same_sums(const RowSums& vector, const RowSums& plain, int n) {
+// tolerance is a few times that of the sum of the terms' magnitudes bounds (n samples, offsets up
+// to 20 px).
+bool near(double a, double b, double scale) {
+  return std::abs(a - b) <= 5e-7 * scale;
+}
+
+template <class Sums>
+void expect_same_sums(const Sums& vector, const Sums& plain, int n) {
   const double sample = n * 255.0, gradient = sample * 20, offset = gradient * 20;
-  auto near = [](double a, double b, double scale) { return std::abs(a - b) <= 5e-7 * scale; };
   EXPECT_PRED3(near, vector.i, plain.i, sample);
   EXPECT_PRED3(near, vector.ii, plain.ii, sample * 255);
   EXPECT_PRED3(near, vector.it, plain.it, sample * 255);
@@ -62,6 +88,10 @@ void expect_same_sums(const RowSums& vector, const RowSums& plain, int n) {
   EXPECT_PRED3(near, vector.a_ox, plain.a_ox, offset);
   EXPECT_PRED3(near, vector.c, plain.c, gradient);
   EXPECT_PRED3(near, vector.c_ox, plain.c_ox, offset);
+  if constexpr (std::is_same_v<Sums, WindowSampleSums>) {
+    EXPECT_PRED3(near, vector.a_oy, plain.a_oy, offset);
+    EXPECT_PRED3(near, vector.c_oy, plain.c_oy, offset);
+  }
 }
 
 const char* name(RowSumsVersion v) {
@@ -128,6 +158,68 @@ TEST(AlignRows, TheDefaultIsTheFastestVersionHere) {
   // The same instructions in the same order give the same bits.
   EXPECT_EQ(vector.i, fastest.i);
   EXPECT_EQ(vector.c_ox, fastest.c_ox);
+}
+
+TEST(AlignRows, WindowSumsAreTheSumsOfTheirRows) {
+  std::mt19937 rng(5);
+  const TestImage image = random_image(rng, 90, 70, 93);
+  const int cols = 13, rows = 9;
+  const Reference ref = random_reference(rng, cols * rows);
+  const WindowSpan w = window_of(ref, cols, rows, 2, 20.3, 30.6, 1.02, 0.07, -0.06, 0.98, -6, -4);
+  WindowSampleSums sums;
+  add_window_sums(image.rows, w, sums);
+  // Sample by sample, rows 0, 2, 4, 6 and 8.
+  double a_oy = 0, c = 0, ii = 0;
+  for (int r = 0; r < rows; r += 2) {
+    for (int k = 0; k < cols; ++k) {
+      const auto q = static_cast<std::size_t>(r * cols + k);
+      double v = 0;
+      ASSERT_TRUE(sample(image.rows, w.x0 + k * w.dx + r * w.rx, w.y0 + k * w.dy + r * w.ry, v));
+      a_oy += ref.weight[q] * v * ref.gx[q] * (w.oy0 + r);
+      c += ref.weight[q] * v * ref.gy[q];
+      ii += ref.weight[q] * v * v;
+    }
+  }
+  EXPECT_NEAR(sums.a_oy, a_oy, 1e-9 * std::abs(a_oy) + 1e-6);
+  EXPECT_NEAR(sums.c, c, 1e-9 * std::abs(c) + 1e-6);
+  EXPECT_NEAR(sums.ii, ii, 1e-9 * ii);
+}
+
+TEST(AlignRows, EveryVersionHereSumsWindowsAsThePlainLoop) {
+  std::mt19937 rng(3);
+  const TestImage image = random_image(rng, 100, 80, 104);
+  std::uniform_real_distribution<double> step(-0.25, 0.25), unit(0, 1);
+  for (const RowSumsVersion version : row_sums_versions_here()) {
+    SCOPED_TRACE(name(version));
+    for (int trial = 0; trial < 60; ++trial) {
+      // Windows of 39 x 39 (a whole number of groups and a partial one to a row) and 40 x 21,
+      // every row or every other one, turned by more than 8 degrees, by less, and by less next
+      // to the image's last row and column.
+      const int cols = trial % 2 == 0 ? 39 : 40, rows = trial % 2 == 0 ? 39 : 21;
+      const int row_step = trial % 4 < 2 ? 1 : 2;
+      const Reference ref = random_reference(rng, cols * rows);
+      const int kind = trial % 3;
+      const double dx = 1 + step(rng), dy = kind == 0 ? step(rng) : 0.5 * step(rng);
+      const double rx = -dy, ry = dx;  // rows at right angles to the row, as in an alignment
+      const double span_x = (cols - 1) * dx + (rows - 1) * rx;
+      const double span_y = (cols - 1) * dy + (rows - 1) * ry;
+      const double min_x = std::min({0.0, (cols - 1) * dx, (rows - 1) * rx, span_x});
+      const double max_x = std::max({0.0, (cols - 1) * dx, (rows - 1) * rx, span_x});
+      const double min_y = std::min({0.0, (cols - 1) * dy, (rows - 1) * ry, span_y});
+      const double max_y = std::max({0.0, (cols - 1) * dy, (rows - 1) * ry, span_y});
+      double x0 = 0.5 - min_x + 2 * unit(rng), y0 = 0.5 - min_y + 2 * unit(rng);
+      if (kind == 2) {
+        x0 = image.rows.cols - 1.01 - max_x - unit(rng);
+        y0 = image.rows.rows - 1.01 - max_y - unit(rng);
+      }
+      const WindowSpan w =
+          window_of(ref, cols, rows, row_step, x0, y0, dx, dy, rx, ry, -19.2, -18.7);
+      WindowSampleSums plain, vector;
+      add_window_sums(image.rows, w, plain);
+      add_window_sums_by(version, image.rows, w, vector);
+      expect_same_sums(vector, plain, cols * rows);
+    }
+  }
 }
 
 }  // namespace

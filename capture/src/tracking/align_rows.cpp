@@ -18,6 +18,36 @@ void add_row_sums(const FloatRows& image, const RowSpan& row, RowSums& s) {
   }
 }
 
+void add_window_sums(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s) {
+  const auto cols = static_cast<std::size_t>(window.cols);
+  for (int r = 0; r < window.rows; r += window.row_step) {
+    const std::size_t row0 = static_cast<std::size_t>(r) * cols;
+    const RowSpan row{window.weight + row0,
+                      window.grey + row0,
+                      window.gx + row0,
+                      window.gy + row0,
+                      0,
+                      window.cols,
+                      window.x0 + r * window.rx,
+                      window.y0 + r * window.ry,
+                      window.dx,
+                      window.dy,
+                      window.ox0};
+    RowSums rs;
+    add_row_sums(image, row, rs);
+    const double oy = window.oy0 + r;
+    s.i += rs.i;
+    s.ii += rs.ii;
+    s.it += rs.it;
+    s.a += rs.a;
+    s.a_ox += rs.a_ox;
+    s.a_oy += rs.a * oy;
+    s.c += rs.c;
+    s.c_ox += rs.c_ox;
+    s.c_oy += rs.c * oy;
+  }
+}
+
 #ifdef TACTILE_VECTOR_ROWS
 
 namespace {
@@ -68,6 +98,25 @@ void add_row_sums_by(RowSumsVersion version, const FloatRows& image, const RowSp
   add_row_sums(image, row, s);
 }
 
+void add_window_sums_by(RowSumsVersion version, const FloatRows& image, const WindowSpan& window,
+                        WindowSampleSums& s) {
+  switch (version) {
+    case RowSumsVersion::avx512:
+      avx512::add_window_sums_simd(image, window, s);
+      return;
+    case RowSumsVersion::avx2:
+      avx2::add_window_sums_simd(image, window, s);
+      return;
+    case RowSumsVersion::plain:
+      break;
+  }
+  add_window_sums(image, window, s);
+}
+
+void add_window_sums_vector(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s) {
+  add_window_sums_by(row_sums_versions_here().back(), image, window, s);
+}
+
 void add_row_sums_vector(const FloatRows& image, const RowSpan& row, RowSums& s) {
   if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {
     add_row_sums(image, row, s);
@@ -90,6 +139,15 @@ void add_row_sums_by(RowSumsVersion, const FloatRows& image, const RowSpan& row,
 
 void add_row_sums_vector(const FloatRows& image, const RowSpan& row, RowSums& s) {
   add_row_sums(image, row, s);
+}
+
+void add_window_sums_by(RowSumsVersion, const FloatRows& image, const WindowSpan& window,
+                        WindowSampleSums& s) {
+  add_window_sums(image, window, s);
+}
+
+void add_window_sums_vector(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s) {
+  add_window_sums(image, window, s);
 }
 
 #endif

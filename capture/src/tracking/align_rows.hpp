@@ -1,7 +1,8 @@
 #pragma once
 // The innermost loop of the track alignment (refine.cpp): bilinear samples of a frame along
-// one row of a warped reference window, and the sums one Gauss-Newton step needs from them.
-// Kept apart so that the vector version can be tested against the plain one.
+// the rows of a warped reference window, and the sums one Gauss-Newton step needs from them, a
+// row at a time (a window cut by the frame's border) or a whole window in one pass. Kept apart
+// so that the vector versions can be tested against the plain one.
 
 #include <cstddef>
 #include <vector>
@@ -70,6 +71,24 @@ struct RowSpan {
 // Adds the row's sums to s, in double precision.
 void add_row_sums(const FloatRows& image, const RowSpan& row, RowSums& s);
 
+// A whole window: rows 0, row_step, 2 row_step, ... below `rows` of `cols` pixels each (weights,
+// grey levels and gradients row after row, `cols` to a row), pixel k of row r seen at
+// (x0 + k dx + r rx, y0 + k dy + r ry), every one inside [0, cols - 1) x [0, rows - 1) of the
+// frame, with offsets ox0 + k along x and oy0 + r along y.
+struct WindowSpan {
+  const float *weight, *grey, *gx, *gy;
+  int cols, rows, row_step;
+  double x0, y0, dx, dy, rx, ry, ox0, oy0;
+};
+
+// RowSums over a window, with the gradients' sums also times the offset along y (a_oy, c_oy).
+struct WindowSampleSums {
+  double i = 0, ii = 0, it = 0, a = 0, a_ox = 0, a_oy = 0, c = 0, c_ox = 0, c_oy = 0;
+};
+
+// Adds the window's sums to s: add_row_sums row by row.
+void add_window_sums(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s);
+
 // The ways add_row_sums can run: the plain loop, eight samples at a time with AVX2 and FMA
 // (each sample's two neighbours along x gathered as one pair; a row's last two to seven samples
 // as one more group of eight with the rest left out), and the same with AVX-512, which takes the
@@ -88,6 +107,16 @@ std::vector<RowSumsVersion> row_sums_versions_here();
 // relative.
 void add_row_sums_by(RowSumsVersion version, const FloatRows& image, const RowSpan& row,
                      RowSums& s);
+
+// add_window_sums by one of row_sums_versions_here(). The vector versions keep a window's sums
+// in single precision for four rows at a time (a few dozen terms, as a row's in
+// add_row_sums_by) and add them to double-precision totals after each four, so they agree with
+// add_window_sums to about 1e-6 relative too.
+void add_window_sums_by(RowSumsVersion version, const FloatRows& image, const WindowSpan& window,
+                        WindowSampleSums& s);
+
+// add_window_sums by the fastest version here.
+void add_window_sums_vector(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s);
 
 // add_row_sums by the fastest version here.
 void add_row_sums_vector(const FloatRows& image, const RowSpan& row, RowSums& s);

@@ -317,17 +317,39 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     const int row_step = coarse ? 2 : 1;
     const std::size_t prefix_stride = static_cast<std::size_t>(ref.cols + 1) * kCutSums;
     const double l00 = l(0, 0), l01 = l(0, 1), l10 = l(1, 0), l11 = l(1, 1);
-    const double ox0 = ref.left - ref.x_px;
-    for (int r = 0; r < ref.rows; r += row_step) {
-      const double oy = ref.top + r - ref.y_px;
+    const double ox0 = ref.left - ref.x_px, oy0 = ref.top - ref.y_px;
+    if (whole) {
+      // The whole window in one pass, its sums kept in vector registers from row to row.
+      const WindowSpan window{ref.weight.data(),
+                              ref.grey.data(),
+                              ref.gx.data(),
+                              ref.gy.data(),
+                              ref.cols,
+                              ref.rows,
+                              row_step,
+                              position.x() + l00 * ox0 + l01 * oy0,
+                              position.y() + l10 * ox0 + l11 * oy0,
+                              l00,
+                              l10,
+                              l01,
+                              l11,
+                              ox0,
+                              oy0};
+      WindowSampleSums ws;
+      add_window_sums_vector(smooth, window, ws);
+      swi = ws.i;
+      swii = ws.ii;
+      swit = ws.it;
+      swid << ws.a_ox, ws.c_ox, ws.a_oy, ws.c_oy, ws.a, ws.c;
+    }
+    for (int r = 0; r < ref.rows && !whole; ++r) {
+      const double oy = oy0 + r;
       const double x = position.x() + l00 * ox0 + l01 * oy;
       const double y = position.y() + l10 * ox0 + l11 * oy;
       const std::size_t row0 = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.cols);
       int first = 0, end = ref.cols;
-      if (!whole) {
-        inside_columns(x, y, l00, l10, ref.cols, smooth, first, end);
-        if (first == end) continue;
-      }
+      inside_columns(x, y, l00, l10, ref.cols, smooth, first, end);
+      if (first == end) continue;
       RowSums rs;
       const RowSpan span{ref.weight.data() + row0,
                          ref.grey.data() + row0,
@@ -350,7 +372,6 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
       swid(3) += rs.c * oy;
       swid(4) += rs.a;
       swid(5) += rs.c;
-      if (whole) continue;
       const double* row_prefix =
           ref.cut_prefix.data() + static_cast<std::size_t>(r) * prefix_stride;
       const double* before = row_prefix + static_cast<std::size_t>(first) * kCutSums;
