@@ -66,8 +66,29 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
       if (eight_at_once) {
         for (; x + 8 <= gray.cols; x += 8) {
           const auto first = direction.begin() + x;
-          if (std::all_of(first + 1, first + 8, [&](int k) { return k == *first; })) {
+          // Eight pixels of at most three directions (the field turns slowly: mostly one or
+          // two) are filtered eight at a time once per direction, each pixel keeping its own
+          // direction's level: the same bits as one pixel at a time, for less work.
+          std::array<int, 3> seen{};
+          int distinct = 0;
+          for (auto d = first; d != first + 8 && distinct <= 3; ++d) {
+            if (std::find(seen.begin(), seen.begin() + std::min(distinct, 3), *d) ==
+                seen.begin() + std::min(distinct, 3)) {
+              if (distinct < 3) seen[static_cast<std::size_t>(distinct)] = *d;
+              ++distinct;
+            }
+          }
+          if (distinct == 1) {
             flank_levels_of_eight(kernels, *first, padded, y, x, o + x);
+          } else if (distinct <= 3) {
+            std::array<float, 8> level{};
+            for (int q = 0; q < distinct; ++q) {
+              const int k = seen[static_cast<std::size_t>(q)];
+              flank_levels_of_eight(kernels, k, padded, y, x, level.data());
+              for (int u = 0; u < 8; ++u) {
+                if (first[u] == k) o[x + u] = level[static_cast<std::size_t>(u)];
+              }
+            }
           } else {
             for (int u = x; u < x + 8; ++u) {
               o[u] = flank_level(kernels, direction[static_cast<std::size_t>(u)], padded, y, u);
