@@ -444,24 +444,9 @@ void check_refine_params(double px_per_mm, const RefineParams& params) {
 }
 
 // A little smoothing takes noise out of the gradients that the alignment follows.
-// The frame in float, smoothed. On more than one worker the smoothing runs in bands of rows: a
-// band of a matrix reads the rows around it from the whole, so every pixel comes out as from
-// one pass over the frame (a streamed frame's alignment waits for this).
-void smoothed_frame(const GrayImage& frame, double presmoothing_px, cv::Mat& out, int threads = 1) {
-  if (!(presmoothing_px > 0)) {
-    as_mat(frame).convertTo(out, CV_32F);
-    return;
-  }
-  cv::Mat grey;
-  as_mat(frame).convertTo(grey, CV_32F);
-  out.create(grey.size(), CV_32F);
-  const int bands = threads > 1 ? std::min(grey.rows, 2 * threads) : 1;
-  parallel_for(static_cast<std::size_t>(bands), threads, [&](std::size_t band) {
-    const cv::Range rows(static_cast<int>(band) * grey.rows / bands,
-                         (static_cast<int>(band) + 1) * grey.rows / bands);
-    cv::Mat into = out.rowRange(rows);
-    cv::GaussianBlur(grey.rowRange(rows), into, {0, 0}, presmoothing_px);
-  });
+void smoothed_frame(const GrayImage& frame, double presmoothing_px, cv::Mat& out) {
+  as_mat(frame).convertTo(out, CV_32F);
+  if (presmoothing_px > 0) cv::GaussianBlur(out, out, {0, 0}, presmoothing_px);
 }
 
 }  // namespace
@@ -726,7 +711,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
         fmt::format("AlignmentTracker: frame {} is {}x{} px, frame 0 is {}x{} px", s.frames,
                     image.width_px, image.height_px, s.width_px, s.height_px));
   }
-  smoothed_frame(image, s.params.presmoothing_px, s.smooth, worker_count(s.threads));
+  smoothed_frame(image, s.params.presmoothing_px, s.smooth);
   const int frame = s.frames++;
   const std::size_t n = s.live.size();
   // Each track's start: its own last step carried on (standing still on its second frame).
