@@ -220,10 +220,10 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
   ref.x_px = x_px;
   ref.y_px = y_px;
   const auto n = static_cast<std::size_t>(ref.cols * ref.rows);
-  ref.grey.reserve(n);
-  ref.weight.reserve(n);
-  ref.gx.reserve(n);
-  ref.gy.reserve(n);
+  ref.grey.resize(n);
+  ref.weight.resize(n);
+  ref.gx.resize(n);
+  ref.gy.resize(n);
   // Gaussian weights favour the landmark's own surroundings where the skin's strain varies
   // across the window; the Gaussian is the product of one along x and one along y.
   const double sigma = half_side;
@@ -232,23 +232,29 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
     const double ox = u - x_px;
     along_x[static_cast<std::size_t>(u - left)] = std::exp(-ox * ox / (2 * sigma * sigma));
   }
+  const auto cols = static_cast<std::size_t>(ref.cols);
   WindowSums sums, even;
   for (int v = top; v <= bottom; ++v) {
     const double oy = v - y_px;
     const double along_y = std::exp(-oy * oy / (2 * sigma * sigma));
-    const float* row = smooth.ptr<float>(v);
-    const float* up = smooth.ptr<float>(v - 1);
-    const float* down = smooth.ptr<float>(v + 1);
+    const float* row = smooth.ptr<float>(v) + left;
+    const float* up = smooth.ptr<float>(v - 1) + left;
+    const float* down = smooth.ptr<float>(v + 1) + left;
+    const std::size_t row0 = static_cast<std::size_t>(v - top) * cols;
+    float* weight = ref.weight.data() + row0;
+    float* grey = ref.grey.data() + row0;
+    float* gx = ref.gx.data() + row0;
+    float* gy = ref.gy.data() + row0;
+    for (std::size_t c = 0; c < cols; ++c) {
+      weight[c] = static_cast<float>(along_x[c] * along_y);
+      grey[c] = row[c];
+      gx[c] = 0.5f * (row[c + 1] - row[c - 1]);
+      gy[c] = 0.5f * (down[c] - up[c]);
+    }
+    // The row's values first, in loops the compiler vectorises, then their terms.
     double t[kCutSums] = {};
-    for (int u = left; u <= right; ++u) {
-      const auto w = static_cast<float>(along_x[static_cast<std::size_t>(u - left)] * along_y);
-      const float gx = 0.5f * (row[u + 1] - row[u - 1]);
-      const float gy = 0.5f * (down[u] - up[u]);
-      ref.grey.push_back(row[u]);
-      ref.weight.push_back(w);
-      ref.gx.push_back(gx);
-      ref.gy.push_back(gy);
-      add_pixel_terms(w, row[u], gx, gy, u - x_px, t);
+    for (std::size_t c = 0; c < cols; ++c) {
+      add_pixel_terms(weight[c], grey[c], gx[c], gy[c], left + static_cast<double>(c) - x_px, t);
     }
     sums.add_row(t, oy);
     if ((v - top) % 2 == 0) even.add_row(t, oy);
