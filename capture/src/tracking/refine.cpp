@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <tuple>
@@ -951,6 +952,21 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
     p = {t.x_px[static_cast<std::size_t>(k)], t.y_px[static_cast<std::size_t>(k)]};
     return true;
   };
+  // The tracks alive in each frame a track starts in, sorted by x there: a track's neighbours
+  // come from a range search, not a pass over every track.
+  struct AliveIn {
+    std::vector<Eigen::Vector2d> at;
+    std::vector<char> alive;
+    std::vector<std::pair<double, std::size_t>> by_x;
+  };
+  std::map<int, AliveIn> alive_in;
+  for (const Track& t : tracks) alive_in.emplace(t.first_frame, AliveIn{});
+  for (auto& [frame, a] : alive_in) {
+    a.at.resize(tracks.size());
+    a.alive.assign(tracks.size(), 0);
+    for (std::size_t j = 0; j < tracks.size(); ++j) a.alive[j] = at(tracks[j], frame, a.at[j]);
+    a.by_x = Confirmed(a.at, a.alive).by_x;
+  }
   std::vector<std::vector<Eigen::Vector2d>> correction(tracks.size());
   std::vector<std::vector<Eigen::Matrix2d>> gradient_correction(tracks.size());
   parallel_for(tracks.size(), worker_count(threads), [&](std::size_t i) {
@@ -958,9 +974,15 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
     const int first = t.first_frame;
     const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
     std::vector<std::tuple<double, std::size_t, Eigen::Vector2d>> near;
-    for (std::size_t j = 0; j < tracks.size(); ++j) {
-      Eigen::Vector2d p;
-      if (!at(tracks[j], first, p)) continue;
+    const AliveIn& in_first = alive_in.at(first);
+    // A little wider than the radius along x, so that rounding cannot leave out a neighbour the
+    // distance keeps.
+    const double reach = radius_px * (1 + 1e-9) + 1e-9;
+    for (auto it = std::lower_bound(in_first.by_x.begin(), in_first.by_x.end(),
+                                    std::pair<double, std::size_t>(centre.x() - reach, 0));
+         it != in_first.by_x.end() && it->first <= centre.x() + reach; ++it) {
+      const std::size_t j = it->second;
+      const Eigen::Vector2d& p = in_first.at[j];
       const double d2 = (p - centre).squaredNorm();
       if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, p);
     }
