@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <future>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -185,7 +187,16 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
   const GrayImage size_of_first{first.width_px, first.height_px, {}};
   GrayImage frame = std::move(first);
   int last_detection = 0, live_after_detection = 0;
+  // The next frame is read (an image file decoded, a video frame decoded) on a thread of its
+  // own while this one is aligned: reading is serial work, and the alignment leaves the cores
+  // room for it between its parallel steps. The source is called once at a time, in order.
+  const auto read_next = [&next_frame]() {
+    std::optional<GrayImage> next(std::in_place);
+    if (!next_frame(*next)) next.reset();
+    return next;
+  };
   for (int f = 0;; ++f) {
+    auto ahead = std::async(std::launch::async, read_next);
     const bool due = f == 0 || f - last_detection >= params.redetect_every_frames;
     // A fifth of the tracks gone: landmarks have left the view or stopped matching their
     // first-frame neighbourhood.
@@ -201,7 +212,9 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
       tracker.add_frame(frame, {});
     }
     if (progress) progress("track", f + 1, expected);
-    if (!next_frame(frame)) break;
+    std::optional<GrayImage> next = ahead.get();
+    if (!next) break;
+    frame = std::move(*next);
     check_frame_size(frame, f + 1, size_of_first, cal);
   }
   frame_count = tracker.frames();
