@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <future>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -233,49 +232,6 @@ TEST(RefineTracks, BadArgumentsAreRefused) {
   EXPECT_THROW(refine_tracks(c.seq.frames, tracks, 47, p), std::invalid_argument);
   tracks[0].first_frame = 5;  // its 30 positions reach frame 34 of 30
   EXPECT_THROW(refine_tracks(c.seq.frames, tracks, 47), std::invalid_argument);
-}
-
-// The capture makes the next frame ready on another thread while the tracker aligns the one
-// before: that gives the tracks of frames given one by one. An empty or mis-sized frame is
-// refused, naming the sizes.
-TEST(AlignmentTracker, FramesMadeReadyOnAnotherThreadGiveTheSameTracks) {
-  Case c = make_case(WarpPattern::wave, 0.04, 0.0);
-  std::vector<Feature> seeds;
-  for (const Track& t : c.truth) {
-    if (t.first_frame == 0) seeds.push_back({FeatureType::pore, t.x_px[0], t.y_px[0], 0.0});
-  }
-  const std::size_t n = c.seq.frames.size();
-  AlignmentTracker one_by_one(47), ahead(47);
-  for (std::size_t f = 0; f < n; ++f) {
-    one_by_one.add_frame(c.seq.frames[f], f == 0 ? seeds : std::vector<Feature>{});
-  }
-  AlignmentFrame ready = ahead.prepare(c.seq.frames[0]);
-  for (std::size_t f = 0; f < n; ++f) {
-    std::future<AlignmentFrame> next;
-    if (f + 1 < n) {
-      next = std::async(std::launch::async, [&, f] { return ahead.prepare(c.seq.frames[f + 1]); });
-    }
-    ahead.add_frame(ready, f == 0 ? seeds : std::vector<Feature>{});
-    if (f + 1 < n) ready = next.get();
-  }
-  const std::vector<Track> a = one_by_one.finish(), b = ahead.finish();
-  ASSERT_GE(a.size(), 50u);
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].x_px, b[i].x_px);
-    EXPECT_EQ(a[i].y_px, b[i].y_px);
-  }
-
-  AlignmentTracker tracker(47);
-  EXPECT_THROW(tracker.add_frame(AlignmentFrame{}, {}), std::invalid_argument);
-  tracker.add_frame(tracker.prepare(c.seq.frames[0]), seeds);
-  const GrayImage small{10, 10, std::vector<std::uint8_t>(100, 128)};
-  try {
-    tracker.add_frame(tracker.prepare(small), {});
-    FAIL() << "a 10 x 10 frame after a " << c.seq.frames[0].width_px << " px wide one";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("frame 1 is 10x10 px"), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

@@ -187,43 +187,35 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
   const GrayImage size_of_first{first.width_px, first.height_px, {}};
   GrayImage frame = std::move(first);
   int last_detection = 0, live_after_detection = 0;
-  // The next frame is read (an image file decoded, a video frame decoded) and made ready for
-  // the alignment on a thread of its own while this one is aligned: that is serial work, and
-  // the alignment leaves the cores room for it between its parallel steps. The source is called
-  // once at a time, in order.
-  struct Ready {
-    GrayImage image;
-    AlignmentFrame aligned;
-  };
-  const auto read_next = [&](int index) {
-    std::optional<Ready> next(std::in_place);
-    if (!next_frame(next->image)) return std::optional<Ready>();
-    check_frame_size(next->image, index, size_of_first, cal);
-    next->aligned = tracker.prepare(next->image);
+  // The next frame is read (an image file decoded, a video frame decoded) on a thread of its
+  // own while this one is aligned: reading is serial work, and the alignment leaves the cores
+  // room for it between its parallel steps. The source is called once at a time, in order.
+  const auto read_next = [&next_frame]() {
+    std::optional<GrayImage> next(std::in_place);
+    if (!next_frame(*next)) next.reset();
     return next;
   };
-  AlignmentFrame aligned = tracker.prepare(frame);
   for (int f = 0;; ++f) {
-    auto ahead = std::async(std::launch::async, read_next, f + 1);
+    auto ahead = std::async(std::launch::async, read_next);
     const bool due = f == 0 || f - last_detection >= params.redetect_every_frames;
     // A fifth of the tracks gone: landmarks have left the view or stopped matching their
     // first-frame neighbourhood.
     const bool short_of_tracks = 5 * tracker.live_tracks() < 4 * live_after_detection;
     if (f == 0 && !params.first_frame_features.empty()) {
-      tracker.add_frame(aligned, params.first_frame_features);
+      tracker.add_frame(frame, params.first_frame_features);
       live_after_detection = tracker.live_tracks();
     } else if (due || short_of_tracks) {
-      tracker.add_frame(aligned, pores_in(frame, px_per_mm, detection));
+      tracker.add_frame(frame, pores_in(frame, px_per_mm, detection));
       last_detection = f;
       live_after_detection = tracker.live_tracks();
     } else {
-      tracker.add_frame(aligned, {});
+      tracker.add_frame(frame, {});
     }
     if (progress) progress("track", f + 1, expected);
-    std::optional<Ready> next = ahead.get();
+    std::optional<GrayImage> next = ahead.get();
     if (!next) break;
-    frame = std::move(next->image);
-    aligned = std::move(next->aligned);
+    frame = std::move(*next);
+    check_frame_size(frame, f + 1, size_of_first, cal);
   }
   frame_count = tracker.frames();
   std::vector<Track> tracks = tracker.finish();

@@ -708,41 +708,17 @@ bool neighbours_motion(const std::vector<Eigen::Vector2d>& last,
 
 }  // namespace
 
-struct AlignmentFrame::Pixels {
-  cv::Mat smooth;
-};
-
-AlignmentFrame::AlignmentFrame() = default;
-AlignmentFrame::~AlignmentFrame() = default;
-AlignmentFrame::AlignmentFrame(AlignmentFrame&&) noexcept = default;
-AlignmentFrame& AlignmentFrame::operator=(AlignmentFrame&&) noexcept = default;
-
-AlignmentFrame AlignmentTracker::prepare(const GrayImage& image) const {
-  AlignmentFrame frame;
-  frame.pixels_ = std::make_unique<AlignmentFrame::Pixels>();
-  smoothed_frame(image, state_->params.presmoothing_px, frame.pixels_->smooth);
-  frame.width_px_ = image.width_px;
-  frame.height_px_ = image.height_px;
-  return frame;
-}
-
 void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Feature>& seeds) {
-  add_frame(prepare(image), seeds);
-}
-
-void AlignmentTracker::add_frame(const AlignmentFrame& image, const std::vector<Feature>& seeds) {
   State& s = *state_;
-  if (!image.pixels_) throw std::invalid_argument("AlignmentTracker: an empty AlignmentFrame");
   if (s.frames == 0) {
-    s.width_px = image.width_px_;
-    s.height_px = image.height_px_;
-  } else if (image.width_px_ != s.width_px || image.height_px_ != s.height_px) {
+    s.width_px = image.width_px;
+    s.height_px = image.height_px;
+  } else if (image.width_px != s.width_px || image.height_px != s.height_px) {
     throw std::invalid_argument(
         fmt::format("AlignmentTracker: frame {} is {}x{} px, frame 0 is {}x{} px", s.frames,
-                    image.width_px_, image.height_px_, s.width_px, s.height_px));
+                    image.width_px, image.height_px, s.width_px, s.height_px));
   }
-  // Shared, not copied: the frame's pixels are not changed after prepare.
-  s.smooth = image.pixels_->smooth;
+  smoothed_frame(image, s.params.presmoothing_px, s.smooth);
   const int frame = s.frames++;
   const std::size_t n = s.live.size();
   // Each track's start: its own last step carried on (standing still on its second frame).

@@ -151,23 +151,6 @@ RefineStats refine_tracks(const std::vector<GrayImage>& frames, std::vector<Trac
 // seed tracks. A frame is confirmed as in refine_tracks, with the prediction in place of the
 // detection (within max_offset_mm of it); a track ends at its first unconfirmed frame. Frames
 // are taken one by one, so a sequence need not be held in memory.
-// A frame as AlignmentTracker aligns to it (in float, smoothed): made by
-// AlignmentTracker::prepare, which may run on another thread while the tracker aligns the frame
-// before it.
-class AlignmentFrame {
- public:
-  AlignmentFrame();
-  ~AlignmentFrame();
-  AlignmentFrame(AlignmentFrame&&) noexcept;
-  AlignmentFrame& operator=(AlignmentFrame&&) noexcept;
-
- private:
-  friend class AlignmentTracker;
-  struct Pixels;
-  std::unique_ptr<Pixels> pixels_;
-  int width_px_ = 0, height_px_ = 0;
-};
-
 class AlignmentTracker {
  public:
   // Tracks are aligned in parallel on `threads` workers (0 = one per core).
@@ -179,11 +162,6 @@ class AlignmentTracker {
   // Aligns the live tracks to `image` (the next frame), then starts a track at every seed (pixel
   // positions in this frame) further than half of max_offset_mm from every live track.
   void add_frame(const GrayImage& image, const std::vector<Feature>& seeds);
-  // The same for a frame made ready by prepare.
-  void add_frame(const AlignmentFrame& frame, const std::vector<Feature>& seeds);
-  // `image` made ready for add_frame. It reads only the tracker's settings, so it may run on
-  // another thread while add_frame runs.
-  AlignmentFrame prepare(const GrayImage& image) const;
   int frames() const;
   int live_tracks() const;
   // The tracks of at least min_frames frames, numbered 0.. in order of first frame (then of
