@@ -70,13 +70,12 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
           // two) are filtered eight at a time once per direction, each pixel keeping its own
           // direction's level: the same bits as one pixel at a time, for less work.
           std::array<int, 3> seen{};
-          int distinct = 0;
+          int distinct = 0;  // 4: more than three
           for (auto d = first; d != first + 8 && distinct <= 3; ++d) {
-            if (std::find(seen.begin(), seen.begin() + std::min(distinct, 3), *d) ==
-                seen.begin() + std::min(distinct, 3)) {
-              if (distinct < 3) seen[static_cast<std::size_t>(distinct)] = *d;
-              ++distinct;
-            }
+            const auto known = seen.begin() + distinct;
+            if (std::find(seen.begin(), known, *d) != known) continue;
+            if (distinct < 3) seen[static_cast<std::size_t>(distinct)] = *d;
+            ++distinct;
           }
           if (distinct == 1) {
             flank_levels_of_eight(kernels, *first, padded, y, x, o + x);
