@@ -72,14 +72,25 @@ namespace avx512 {
 
 }  // namespace
 
+namespace {
+
+// Asked at every alignment step: a couple of loads of the processor's feature bits.
+RowSumsVersion fastest_here() {
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {
+    return RowSumsVersion::plain;
+  }
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
+    return RowSumsVersion::avx512;
+  }
+  return RowSumsVersion::avx2;
+}
+
+}  // namespace
+
 std::vector<RowSumsVersion> row_sums_versions_here() {
   std::vector<RowSumsVersion> here{RowSumsVersion::plain};
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
-    here.push_back(RowSumsVersion::avx2);
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
-      here.push_back(RowSumsVersion::avx512);
-    }
-  }
+  if (fastest_here() != RowSumsVersion::plain) here.push_back(RowSumsVersion::avx2);
+  if (fastest_here() == RowSumsVersion::avx512) here.push_back(RowSumsVersion::avx512);
   return here;
 }
 
@@ -114,17 +125,11 @@ void add_window_sums_by(RowSumsVersion version, const FloatRows& image, const Wi
 }
 
 void add_window_sums_vector(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s) {
-  add_window_sums_by(row_sums_versions_here().back(), image, window, s);
+  add_window_sums_by(fastest_here(), image, window, s);
 }
 
 void add_row_sums_vector(const FloatRows& image, const RowSpan& row, RowSums& s) {
-  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {
-    add_row_sums(image, row, s);
-  } else if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
-    avx512::add_row_sums_simd(image, row, s);
-  } else {
-    avx2::add_row_sums_simd(image, row, s);
-  }
+  add_row_sums_by(fastest_here(), image, row, s);
 }
 
 #else
