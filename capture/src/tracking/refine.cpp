@@ -322,7 +322,6 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     // the steps after it, and the convergence, see all of it.
     const bool coarse = it == 0 && whole && ref.even_rows.invertible;
     const int row_step = coarse ? 2 : 1;
-    const std::size_t prefix_stride = static_cast<std::size_t>(ref.cols + 1) * kCutSums;
     const double l00 = l(0, 0), l01 = l(0, 1), l10 = l(1, 0), l11 = l(1, 1);
     const double ox0 = ref.left - ref.x_px, oy0 = ref.top - ref.y_px;
     if (whole) {
@@ -348,44 +347,48 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
       swii = ws.ii;
       swit = ws.it;
       swid << ws.a_ox, ws.c_ox, ws.a_oy, ws.c_oy, ws.a, ws.c;
-    }
-    for (int r = 0; r < ref.rows && !whole; ++r) {
-      const double oy = oy0 + r;
-      const double x = position.x() + l00 * ox0 + l01 * oy;
-      const double y = position.y() + l10 * ox0 + l11 * oy;
-      const std::size_t row0 = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.cols);
-      int first = 0, end = ref.cols;
-      inside_columns(x, y, l00, l10, ref.cols, smooth, first, end);
-      if (first == end) continue;
-      RowSums rs;
-      const RowSpan span{ref.weight.data() + row0,
-                         ref.grey.data() + row0,
-                         ref.gx.data() + row0,
-                         ref.gy.data() + row0,
-                         first,
-                         end,
-                         x,
-                         y,
-                         l00,
-                         l10,
-                         ox0};
-      add_row_sums_vector(smooth, span, rs);
-      swi += rs.i;
-      swii += rs.ii;
-      swit += rs.it;
-      swid(0) += rs.a_ox;
-      swid(1) += rs.c_ox;
-      swid(2) += rs.a * oy;
-      swid(3) += rs.c * oy;
-      swid(4) += rs.a;
-      swid(5) += rs.c;
-      const double* row_prefix =
-          ref.cut_prefix.data() + static_cast<std::size_t>(r) * prefix_stride;
-      const double* before = row_prefix + static_cast<std::size_t>(first) * kCutSums;
-      const double* through = row_prefix + static_cast<std::size_t>(end) * kCutSums;
-      double t[kCutSums];
-      for (std::size_t q = 0; q < kCutSums; ++q) t[q] = through[q] - before[q];
-      inside.add_row(t, oy);
+    } else {
+      // A cut window row by row over the columns inside the frame, its reference's sums over
+      // them from the prefix sums.
+      const std::size_t prefix_stride = static_cast<std::size_t>(ref.cols + 1) * kCutSums;
+      for (int r = 0; r < ref.rows; ++r) {
+        const double oy = oy0 + r;
+        const double x = position.x() + l00 * ox0 + l01 * oy;
+        const double y = position.y() + l10 * ox0 + l11 * oy;
+        const std::size_t row0 = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.cols);
+        int first = 0, end = ref.cols;
+        inside_columns(x, y, l00, l10, ref.cols, smooth, first, end);
+        if (first == end) continue;
+        RowSums rs;
+        const RowSpan span{ref.weight.data() + row0,
+                           ref.grey.data() + row0,
+                           ref.gx.data() + row0,
+                           ref.gy.data() + row0,
+                           first,
+                           end,
+                           x,
+                           y,
+                           l00,
+                           l10,
+                           ox0};
+        add_row_sums_vector(smooth, span, rs);
+        swi += rs.i;
+        swii += rs.ii;
+        swit += rs.it;
+        swid(0) += rs.a_ox;
+        swid(1) += rs.c_ox;
+        swid(2) += rs.a * oy;
+        swid(3) += rs.c * oy;
+        swid(4) += rs.a;
+        swid(5) += rs.c;
+        const double* row_prefix =
+            ref.cut_prefix.data() + static_cast<std::size_t>(r) * prefix_stride;
+        const double* before = row_prefix + static_cast<std::size_t>(first) * kCutSums;
+        const double* through = row_prefix + static_cast<std::size_t>(end) * kCutSums;
+        double t[kCutSums];
+        for (std::size_t q = 0; q < kCutSums; ++q) t[q] = through[q] - before[q];
+        inside.add_row(t, oy);
+      }
     }
     // The reference's own sums over the whole window are fixed; only a cut window needs them
     // from its inside part.
@@ -956,16 +959,15 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
   // come from a range search, not a pass over every track.
   struct AliveIn {
     std::vector<Eigen::Vector2d> at;
-    std::vector<char> alive;
     std::vector<std::pair<double, std::size_t>> by_x;
   };
   std::map<int, AliveIn> alive_in;
   for (const Track& t : tracks) alive_in.emplace(t.first_frame, AliveIn{});
   for (auto& [frame, a] : alive_in) {
     a.at.resize(tracks.size());
-    a.alive.assign(tracks.size(), 0);
-    for (std::size_t j = 0; j < tracks.size(); ++j) a.alive[j] = at(tracks[j], frame, a.at[j]);
-    a.by_x = Confirmed(a.at, a.alive).by_x;
+    std::vector<char> alive(tracks.size(), 0);
+    for (std::size_t j = 0; j < tracks.size(); ++j) alive[j] = at(tracks[j], frame, a.at[j]);
+    a.by_x = Confirmed(a.at, alive).by_x;
   }
   std::vector<std::vector<Eigen::Vector2d>> correction(tracks.size());
   std::vector<std::vector<Eigen::Matrix2d>> gradient_correction(tracks.size());
