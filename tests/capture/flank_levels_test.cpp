@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 namespace tactile::capture {
 namespace {
@@ -61,6 +64,52 @@ TEST(FlankLevels, EightPixelsAtOnceGiveEachPixelsOwnLevelToTheBit) {
     }
   }
   EXPECT_EQ(compared, 12 * height * cols);
+}
+
+// The formula the detector's directions must equal, as the detector first wrote it.
+int direction_by_atan2(float jxx, float jyy, float jxy, int n) {
+  const double ridge = 0.5 * std::atan2(2.0 * jxy, double(jxx) - jyy) + std::numbers::pi / 2;
+  return ((static_cast<int>(std::lround(ridge / (std::numbers::pi / n))) % n) + n) % n;
+}
+
+TEST(FlankLevels, RidgeDirectionsAreTheNearestOfTheNByTheExactAngle) {
+  // Tensors at every angle, on and next to the boundaries between directions, signed zeros,
+  // and random ones, for 12 directions (the detector's) and for 5 and 64.
+  std::vector<float> a, b, d;
+  const auto add = [&](double jxx, double jyy, double jxy) {
+    a.push_back(static_cast<float>(jxx));
+    b.push_back(static_cast<float>(jyy));
+    d.push_back(static_cast<float>(jxy));
+  };
+  for (const int n : {5, 12, 64}) {
+    for (int k = 0; k <= 4 * n; ++k) {
+      // The angle of (jxx - jyy, 2 jxy) at which the direction changes, and a hair either side.
+      const double boundary = (k + 0.5) * 2 * std::numbers::pi / n - std::numbers::pi;
+      for (const double off : {-1e-6, -1e-9, 0.0, 1e-9, 1e-6, 0.3}) {
+        for (const double r : {1.0, 1e3, 1e-3}) {
+          add(r * std::cos(boundary + off) + 5.0, 5.0, 0.5 * r * std::sin(boundary + off));
+        }
+      }
+    }
+  }
+  add(0, 0, 0);
+  add(0, 0, -0.0);
+  add(1, 1, 0);
+  add(1, 1, -0.0);
+  add(0, 1, -0.0);
+  add(2, 1, 0.5);  // exactly 45 degrees
+  add(1, 2, -0.5);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 4e4f);
+  for (int i = 0; i < 100000; ++i) add(u(rng), u(rng), u(rng) - 2e4f);
+  for (const int n : {5, 12, 64}) {
+    std::vector<int> got(a.size());
+    ridge_directions(a.data(), b.data(), d.data(), static_cast<int>(a.size()), n, got.data());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(got[i], direction_by_atan2(a[i], b[i], d[i], n))
+          << n << " directions, tensor " << a[i] << " " << b[i] << " " << d[i];
+    }
+  }
 }
 
 }  // namespace

@@ -36,6 +36,40 @@ cv::Mat flank_kernel(double angle_rad, double along_px, double across_px, double
 
 }  // namespace
 
+void ridge_directions(const float* jxx, const float* jyy, const float* jxy, int count, int n,
+                      int* direction) {
+  const double step = std::numbers::pi / n;
+  const double margin = 1e-4 * n;
+  const auto exact = [&](double a, double b, double d) {
+    const double ridge = 0.5 * std::atan2(2.0 * d, a - b) + std::numbers::pi / 2;
+    return ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
+  };
+  for (int i = 0; i < count; ++i) {
+    const double a = jxx[i], b = jyy[i], d = jxy[i];
+    const double x = a - b, y = 2.0 * d;
+    const double ax = std::abs(x), ay = std::abs(y);
+    const double big = std::max(ax, ay);
+    const double t = big > 0 ? std::min(ax, ay) / big : 0.0;
+    // atan(t) on [0, 1] within 1e-5 rad (Abramowitz and Stegun 4.4.49).
+    const double t2 = t * t;
+    double angle =
+        t * (0.9998660 + t2 * (-0.3302995 + t2 * (0.1801410 + t2 * (-0.0851330 + t2 * 0.0208351))));
+    if (ay > ax) angle = std::numbers::pi / 2 - angle;
+    if (x < 0) angle = std::numbers::pi - angle;
+    if (std::signbit(y)) angle = -angle;
+    const double v = (0.5 * angle + std::numbers::pi / 2) / step;
+    const double below = std::floor(v);
+    // 1e-5 rad is 1.6e-6 n of a step: a value over 60 times that from a half step rounds as
+    // the exact angle's does; one nearer (or not finite) takes the exact formula.
+    if (!(std::abs(v - below - 0.5) >= margin)) {
+      direction[i] = exact(a, b, d);
+      continue;
+    }
+    const int k = static_cast<int>(below) + (v - below > 0.5 ? 1 : 0);
+    direction[i] = ((k % n) + n) % n;
+  }
+}
+
 FlankKernels flank_kernels(int n, double along_px, double across_px, double gap_px) {
   FlankKernels f;
   const double step = std::numbers::pi / n;

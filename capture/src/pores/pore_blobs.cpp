@@ -26,14 +26,22 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
   cv::Mat gx, gy;
   cv::Sobel(gray, gx, CV_32F, 1, 0);
   cv::Sobel(gray, gy, CV_32F, 0, 1);
-  cv::Mat jxx = gx.mul(gx), jyy = gy.mul(gy), jxy = gx.mul(gy);
+  const std::array<cv::Mat, 3> products = {gx.mul(gx), gy.mul(gy), gx.mul(gy)};
   const double ts = p.orientation_sigma_mm * px_per_mm;
-  const std::array<cv::Mat*, 3> tensor = {&jxx, &jyy, &jxy};
-  parallel_for(tensor.size(), std::max(1, p.threads), [&](std::size_t k) {
-    cv::GaussianBlur(*tensor[k], *tensor[k], cv::Size(0, 0), ts);
+  std::array<cv::Mat, 3> tensor;
+  for (auto& t : tensor) t.create(gray.size(), CV_32F);
+  // Each product smoothed in two halves of rows, six jobs for the workers instead of three: a
+  // filter reads the rows beyond its half from the whole image, so the halves join seamlessly.
+  const int split = gray.rows / 2;
+  parallel_for(2 * tensor.size(), std::max(1, p.threads), [&](std::size_t job) {
+    const std::size_t k = job / 2;
+    const cv::Range rows = job % 2 == 0 ? cv::Range(0, split) : cv::Range(split, gray.rows);
+    if (rows.empty()) return;
+    cv::Mat part = tensor[k].rowRange(rows);
+    cv::GaussianBlur(products[k].rowRange(rows), part, cv::Size(0, 0), ts);
   });
+  const cv::Mat &jxx = tensor[0], &jyy = tensor[1], &jxy = tensor[2];
   const int n = std::max(2, p.orientations);
-  const double step = std::numbers::pi / n;
   const FlankKernels kernels = flank_kernels(
       n, p.along_sigma_mm * px_per_mm, p.across_sigma_mm * px_per_mm, p.pore_radius_mm * px_per_mm);
   const int rows = 2 * kernels.half + 1;
@@ -56,12 +64,7 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
       const float* b = jyy.ptr<float>(y);
       const float* d = jxy.ptr<float>(y);
       float* o = out.ptr<float>(y);
-      for (int x = 0; x < gray.cols; ++x) {
-        // The dominant gradient is across the ridges; the ridge runs at right angles to it.
-        const double ridge = 0.5 * std::atan2(2.0 * d[x], a[x] - b[x]) + std::numbers::pi / 2;
-        direction[static_cast<std::size_t>(x)] =
-            ((static_cast<int>(std::lround(ridge / step)) % n) + n) % n;
-      }
+      ridge_directions(a, b, d, gray.cols, n, direction.data());
       int x = 0;
       if (eight_at_once) {
         for (; x + 8 <= gray.cols; x += 8) {
@@ -116,11 +119,27 @@ Envelope ridge_envelope(const cv::Mat& level, double px_per_mm, const RidgeBlobP
   const int window = std::max(3, static_cast<int>(std::lround(p.window_mm * px_per_mm)) | 1);
   const cv::Mat box = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(window, window));
   cv::Mat valley, ridge;
-  cv::dilate(level, valley, box);
-  cv::erode(level, ridge, box);
+  parallel_for(2, std::max(1, p.threads), [&](std::size_t k) {
+    if (k == 0) {
+      cv::dilate(level, valley, box);
+    } else {
+      cv::erode(level, ridge, box);
+    }
+  });
   Envelope e;
-  e.contrast = valley - ridge;
-  e.depth = (valley - level) / cv::max(e.contrast, 1.0);
+  e.contrast.create(level.size(), CV_32F);
+  e.depth.create(level.size(), CV_32F);
+  for (int y = 0; y < level.rows; ++y) {
+    const float* v = valley.ptr<float>(y);
+    const float* r = ridge.ptr<float>(y);
+    const float* l = level.ptr<float>(y);
+    float* c = e.contrast.ptr<float>(y);
+    float* d = e.depth.ptr<float>(y);
+    for (int x = 0; x < level.cols; ++x) {
+      c[x] = v[x] - r[x];
+      d[x] = (v[x] - l[x]) / std::max(c[x], 1.0f);
+    }
+  }
   return e;
 }
 
@@ -162,67 +181,93 @@ std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::M
   // differs from that of a clean one. Floors keep flat (test) images finite.
   const cv::Mat deep = envelope.depth >= p.noise_ridge_depth;
   constexpr double kMinNoise = 0.5;  // grey levels: far below any real print's (6-22)
-  const double print_noise =
-      std::max(kMinNoise, robust_spread(response, deep, cv::Rect(0, 0, gray.cols, gray.rows), 1));
   const int block = std::max(8, static_cast<int>(std::lround(p.noise_block_mm * px_per_mm)));
   cv::Mat block_noise((gray.rows + block - 1) / block, (gray.cols + block - 1) / block, CV_64F);
-  parallel_for(
-      static_cast<std::size_t>(block_noise.rows), std::max(1, p.threads), [&](std::size_t row) {
-        const int by = static_cast<int>(row);
-        for (int bx = 0; bx < block_noise.cols; ++bx) {
-          const cv::Rect roi =
-              cv::Rect(bx * block, by * block, block, block) & cv::Rect(0, 0, gray.cols, gray.rows);
-          const double s = robust_spread(response, deep, roi, 20);
-          block_noise.at<double>(by, bx) = s > 0 ? std::max(kMinNoise, s) : print_noise;
-        }
-      });
   // Blob size: scale-normalised Laplacian of the brightness above the ridge level, from a
   // dot of one pixel to one of about a tenth of a millimetre.
   constexpr std::array<double, 8> kScalesMm{0.011, 0.015, 0.019, 0.023, 0.028, 0.034, 0.043, 0.053};
   std::vector<cv::Mat> blob(kScalesMm.size());
-  parallel_for(kScalesMm.size(), std::max(1, p.threads), [&](std::size_t k) {
-    const double s = kScalesMm[k] * px_per_mm;
-    cv::Mat smoothed;
-    cv::GaussianBlur(above, smoothed, cv::Size(0, 0), s);
-    cv::Laplacian(smoothed, blob[k], CV_32F);
-    blob[k] *= -s * s;
-  });
+  // One set of jobs for the workers: the print's noise (the longest), each blob scale, and
+  // each row of blocks; a block with too few deep pixels takes the print's noise afterwards.
+  double print_spread = 0;
+  const std::size_t blob_jobs = kScalesMm.size();
+  parallel_for(1 + blob_jobs + static_cast<std::size_t>(block_noise.rows), std::max(1, p.threads),
+               [&](std::size_t job) {
+                 if (job == 0) {
+                   print_spread =
+                       robust_spread(response, deep, cv::Rect(0, 0, gray.cols, gray.rows), 1);
+                 } else if (job <= blob_jobs) {
+                   const std::size_t k = job - 1;
+                   const double s = kScalesMm[k] * px_per_mm;
+                   cv::Mat smoothed;
+                   cv::GaussianBlur(above, smoothed, cv::Size(0, 0), s);
+                   cv::Laplacian(smoothed, blob[k], CV_32F);
+                   blob[k] *= -s * s;
+                 } else {
+                   const int by = static_cast<int>(job - 1 - blob_jobs);
+                   for (int bx = 0; bx < block_noise.cols; ++bx) {
+                     const cv::Rect roi = cv::Rect(bx * block, by * block, block, block) &
+                                          cv::Rect(0, 0, gray.cols, gray.rows);
+                     block_noise.at<double>(by, bx) = robust_spread(response, deep, roi, 20);
+                   }
+                 }
+               });
+  const double print_noise = std::max(kMinNoise, print_spread);
+  for (int by = 0; by < block_noise.rows; ++by) {
+    for (int bx = 0; bx < block_noise.cols; ++bx) {
+      double& s = block_noise.at<double>(by, bx);
+      s = s > 0 ? std::max(kMinNoise, s) : print_noise;
+    }
+  }
 
   // Candidates: 3 x 3 maxima of the response (a ramp rising towards a valley has none), deep
   // enough in a ridge.
   cv::Mat local_max;
   cv::dilate(response, local_max, cv::Mat());
-  for (int y = 0; y < gray.rows; ++y) {
-    const float* resp = response.ptr<float>(y);
-    const float* lmax = local_max.ptr<float>(y);
-    const float* depth = envelope.depth.ptr<float>(y);
-    const std::uint8_t* ok = allowed.ptr<std::uint8_t>(y);
-    for (int x = 0; x < gray.cols; ++x) {
-      const float v = resp[x];
-      if (!ok[x] || v < lmax[x] || depth[x] < p.min_ridge_depth) continue;
-      // Sub-pixel peak: a parabola through the neighbours along each axis, kept within half a
-      // pixel (a nearly flat top would otherwise throw the peak far away).
-      auto offset = [v](float before, float after) {
-        const double curvature = before - 2.0 * v + after;
-        return curvature < 0 ? std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5) : 0.0;
-      };
-      const double dx = (x > 0 && x + 1 < gray.cols) ? offset(resp[x - 1], resp[x + 1]) : 0.0;
-      const double dy = (y > 0 && y + 1 < gray.rows)
-                            ? offset(response.at<float>(y - 1, x), response.at<float>(y + 1, x))
-                            : 0.0;
-      // Measures 4, 13-15 need every candidate's response first (below).
-      PoreCandidate c{x + dx, y + dy, {}};
-      auto& m = c.measures;
-      m[0] = v / print_noise;
-      m[1] = v / block_noise.at<double>(y / block, x / block);
-      m[2] = depth[x];
-      m[3] = envelope.contrast.at<float>(y, x) / print_noise;
-      for (std::size_t k = 0; k < blob.size(); ++k) {
-        m[5 + k] = blob[k].at<float>(y, x) / print_noise;
+  const auto candidates_in_rows = [&](int y_begin, int y_end, std::vector<PoreCandidate>& out) {
+    for (int y = y_begin; y < y_end; ++y) {
+      const float* resp = response.ptr<float>(y);
+      const float* lmax = local_max.ptr<float>(y);
+      const float* depth = envelope.depth.ptr<float>(y);
+      const std::uint8_t* ok = allowed.ptr<std::uint8_t>(y);
+      for (int x = 0; x < gray.cols; ++x) {
+        const float v = resp[x];
+        if (!ok[x] || v < lmax[x] || depth[x] < p.min_ridge_depth) continue;
+        // Sub-pixel peak: a parabola through the neighbours along each axis, kept within half a
+        // pixel (a nearly flat top would otherwise throw the peak far away).
+        auto offset = [v](float before, float after) {
+          const double curvature = before - 2.0 * v + after;
+          return curvature < 0 ? std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5) : 0.0;
+        };
+        const double dx = (x > 0 && x + 1 < gray.cols) ? offset(resp[x - 1], resp[x + 1]) : 0.0;
+        const double dy = (y > 0 && y + 1 < gray.rows)
+                              ? offset(response.at<float>(y - 1, x), response.at<float>(y + 1, x))
+                              : 0.0;
+        // Measures 4, 13-15 need every candidate's response first (below).
+        PoreCandidate c{x + dx, y + dy, {}};
+        auto& m = c.measures;
+        m[0] = v / print_noise;
+        m[1] = v / block_noise.at<double>(y / block, x / block);
+        m[2] = depth[x];
+        m[3] = envelope.contrast.at<float>(y, x) / print_noise;
+        for (std::size_t k = 0; k < blob.size(); ++k) {
+          m[5 + k] = blob[k].at<float>(y, x) / print_noise;
+        }
+        out.push_back(c);
       }
-      found.push_back(c);
     }
-  }
+  };
+  // Bands of rows in parallel, joined in order: the candidates come out row by row as from one
+  // pass.
+  const int workers = std::max(1, p.threads);
+  const int bands = workers == 1 ? 1 : std::min(gray.rows, 4 * workers);
+  std::vector<std::vector<PoreCandidate>> in_band(static_cast<std::size_t>(bands));
+  parallel_for(static_cast<std::size_t>(bands), workers, [&](std::size_t band) {
+    const int y_begin = static_cast<int>(band) * gray.rows / bands;
+    const int y_end = (static_cast<int>(band) + 1) * gray.rows / bands;
+    candidates_in_rows(y_begin, y_end, in_band[band]);
+  });
+  for (auto& b : in_band) found.insert(found.end(), b.begin(), b.end());
   // Against this print's own spots: the median deep candidate (mostly ridge texture) and the
   // 90th percentile (its clear pores). The same brightness is a pore on a faint print and a
   // speck on one whose pores stand out.
