@@ -648,17 +648,87 @@ int AlignmentTracker::live_tracks() const {
 
 namespace {
 
-// The confirmed tracks of a frame, by their last position along x, for finding those near a
-// point without a pass over all of them.
-struct Confirmed {
-  std::vector<std::pair<double, std::size_t>> by_x;  // (last x, track)
-
-  Confirmed(const std::vector<Eigen::Vector2d>& last, const std::vector<char>& confirmed) {
-    for (std::size_t i = 0; i < confirmed.size(); ++i) {
-      if (confirmed[i]) by_x.emplace_back(last[i].x(), i);
+// Tracks binned by position in square cells, for finding those near a point without a pass
+// over all of them (or over all in a strip across the image).
+class NearIndex {
+ public:
+  // The tracks j with included[j] and a finite at[j], in cells of about cell_px.
+  NearIndex(const std::vector<Eigen::Vector2d>& at, const std::vector<char>& included,
+            double cell_px) {
+    double x_max = 0, y_max = 0;
+    for (std::size_t j = 0; j < at.size(); ++j) {
+      if (!included[j] || !at[j].allFinite()) continue;
+      if (count_ == 0) {
+        x0_ = x_max = at[j].x();
+        y0_ = y_max = at[j].y();
+      }
+      x0_ = std::min(x0_, at[j].x());
+      y0_ = std::min(y0_, at[j].y());
+      x_max = std::max(x_max, at[j].x());
+      y_max = std::max(y_max, at[j].y());
+      ++count_;
     }
-    std::sort(by_x.begin(), by_x.end());
+    if (count_ == 0) return;
+    // At most kMaxCells a side, however far apart the tracks lie.
+    constexpr double kMaxCells = 1024;
+    cell_px_ = std::max({cell_px, (x_max - x0_) / kMaxCells, (y_max - y0_) / kMaxCells, 1e-9});
+    cols_ = cell_of(x_max, x0_) + 1;
+    rows_ = cell_of(y_max, y0_) + 1;
+    // Counting sort into the cells: within a cell, tracks in their own order.
+    first_.assign(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_) + 1, 0);
+    std::vector<std::size_t> cell(at.size(), 0);
+    for (std::size_t j = 0; j < at.size(); ++j) {
+      if (!included[j] || !at[j].allFinite()) continue;
+      cell[j] =
+          static_cast<std::size_t>(cell_of(at[j].y(), y0_)) * static_cast<std::size_t>(cols_) +
+          static_cast<std::size_t>(cell_of(at[j].x(), x0_));
+      ++first_[cell[j] + 1];
+    }
+    for (std::size_t c = 1; c < first_.size(); ++c) first_[c] += first_[c - 1];
+    tracks_.resize(count_);
+    std::vector<std::size_t> fill(first_.begin(), first_.end() - 1);
+    for (std::size_t j = 0; j < at.size(); ++j) {
+      if (included[j] && at[j].allFinite()) tracks_[fill[cell[j]]++] = j;
+    }
   }
+
+  bool empty() const { return count_ == 0; }
+
+  // Calls visit(j) for every track within reach_px of p along both axes (and for some beyond).
+  template <class Visit>
+  void for_each_near(const Eigen::Vector2d& p, double reach_px, Visit&& visit) const {
+    if (count_ == 0 || !p.allFinite()) return;
+    // A hair wider, so that rounding cannot leave out a track a distance test would keep.
+    const double reach = reach_px * (1 + 1e-9) + 1e-9;
+    const auto range = [&](double v, double origin, int cells, int& lo, int& hi) {
+      const double a = std::floor((v - reach - origin) / cell_px_);
+      const double b = std::floor((v + reach - origin) / cell_px_);
+      if (b < 0 || a > cells - 1) return false;
+      lo = static_cast<int>(std::max(a, 0.0));
+      hi = static_cast<int>(std::min(b, cells - 1.0));
+      return true;
+    };
+    int x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
+    if (!range(p.x(), x0_, cols_, x_lo, x_hi) || !range(p.y(), y0_, rows_, y_lo, y_hi)) return;
+    for (int cy = y_lo; cy <= y_hi; ++cy) {
+      const std::size_t row = static_cast<std::size_t>(cy) * static_cast<std::size_t>(cols_);
+      for (std::size_t k = first_[row + static_cast<std::size_t>(x_lo)];
+           k < first_[row + static_cast<std::size_t>(x_hi) + 1]; ++k) {
+        visit(tracks_[k]);
+      }
+    }
+  }
+
+ private:
+  int cell_of(double v, double origin) const {
+    return static_cast<int>(std::floor((v - origin) / cell_px_));
+  }
+
+  std::size_t count_ = 0;
+  double x0_ = 0, y0_ = 0, cell_px_ = 1;
+  int cols_ = 0, rows_ = 0;
+  std::vector<std::size_t> first_;   // cell c holds tracks_[first_[c] .. first_[c + 1])
+  std::vector<std::size_t> tracks_;  // by cell, row by row
 };
 
 // Where the neighbours' motion in this frame takes the landmark last seen at `from`: a
@@ -668,26 +738,23 @@ struct Confirmed {
 // across a few landmarks, so where a track's own history predicts badly, its neighbours'
 // present motion predicts well.
 bool neighbours_motion(const std::vector<Eigen::Vector2d>& last,
-                       const std::vector<Eigen::Vector2d>& now, const Confirmed& known,
+                       const std::vector<Eigen::Vector2d>& now, const NearIndex& known,
                        std::size_t self, const Eigen::Vector2d& from, double radius_px,
                        Eigen::Vector2d& out) {
   constexpr std::size_t kNearest = 8;
   std::array<std::pair<double, std::size_t>, kNearest> near;
   std::size_t count = 0;
   const double r2 = radius_px * radius_px;
-  auto it = std::lower_bound(known.by_x.begin(), known.by_x.end(),
-                             std::pair<double, std::size_t>(from.x() - radius_px, 0));
-  for (; it != known.by_x.end() && it->first <= from.x() + radius_px; ++it) {
-    const std::size_t j = it->second;
+  known.for_each_near(from, radius_px, [&](std::size_t j) {
     const double d2 = (last[j] - from).squaredNorm();
-    if (j == self || d2 > r2) continue;
-    // The nearest kNearest, kept sorted by distance (then by track, for a fixed order).
+    if (j == self || !(d2 <= r2)) return;
+    // The nearest kNearest by distance, then by track: the same whatever order they come in.
     const std::pair<double, std::size_t> c(d2, j);
-    if (count == kNearest && !(c < near[kNearest - 1])) continue;
+    if (count == kNearest && !(c < near[kNearest - 1])) return;
     std::size_t k = count < kNearest ? count++ : kNearest - 1;
     for (; k > 0 && c < near[k - 1]; --k) near[k] = near[k - 1];
     near[k] = c;
-  }
+  });
   if (count < 3) return false;
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   Eigen::Matrix<double, 3, 2> b = Eigen::Matrix<double, 3, 2>::Zero();
@@ -782,8 +849,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
         open.push_back(i);
       }
     }
-    const Confirmed known(last, sure);
-    if (known.by_x.empty() || open.empty()) break;
+    const NearIndex known(last, sure, radius_px);
+    if (known.empty() || open.empty()) break;
     std::vector<char> next(state);
     std::vector<Aligned> retried(open.size());
     std::vector<char> changed(open.size(), 0);
@@ -823,7 +890,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     for (std::size_t i = 0; i < n; ++i) {
       if (confirmed[i]) now[i] = {result[i].x_px, result[i].y_px};
     }
-    const Confirmed known(last, confirmed);
+    const NearIndex known(last, confirmed, radius_px);
     std::vector<char> odd(n, 0);
     // Only a track that moved away from its start can have been drawn onto another minimum.
     std::vector<std::size_t> moved;
@@ -844,7 +911,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
       if (odd[i]) suspect.push_back(i);
       agreeing[i] = confirmed[i] && !odd[i];
     }
-    const Confirmed others(last, agreeing);
+    const NearIndex others(last, agreeing, radius_px);
     parallel_for(suspect.size(), worker_count(s.threads), [&](std::size_t r) {
       const std::size_t i = suspect[r];
       confirmed[i] = 0;
@@ -883,23 +950,25 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   // New tracks only where no live track is: one landmark, one track.
   const double min_separation_px = 0.5 * s.max_offset_px;
   const std::size_t tracked = s.live.size();
-  std::vector<Eigen::Vector2d> live_at(tracked);
-  for (std::size_t i = 0; i < tracked; ++i) {
+  // None for a frame without seeds.
+  std::vector<Eigen::Vector2d> live_at(seeds.empty() ? 0 : tracked);
+  for (std::size_t i = 0; i < live_at.size(); ++i) {
     live_at[i] = {s.live[i].track.x_px.back(), s.live[i].track.y_px.back()};
   }
-  // Only the live tracks within the separation along x can be within it: a search in the
-  // tracks sorted by x, not a pass over all of them for every seed.
-  const Confirmed live_by_x(live_at, std::vector<char>(tracked, 1));
+  // Cells of a few tracks each: the separation itself is a couple of pixels.
+  constexpr double kSeedCellPx = 16;
+  const NearIndex live_near(live_at, std::vector<char>(live_at.size(), 1),
+                            std::max(min_separation_px, kSeedCellPx));
   std::vector<State::Live> started(seeds.size());
   std::vector<char> ok(seeds.size(), 0);
   parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
     const Feature& f = seeds[j];
-    auto it = std::lower_bound(live_by_x.by_x.begin(), live_by_x.by_x.end(),
-                               std::pair<double, std::size_t>(f.x_px - min_separation_px, 0));
-    for (; it != live_by_x.by_x.end() && it->first <= f.x_px + min_separation_px; ++it) {
-      const Eigen::Vector2d& p = live_at[it->second];
-      if (std::hypot(p.x() - f.x_px, p.y() - f.y_px) < min_separation_px) return;
-    }
+    bool taken = false;
+    live_near.for_each_near({f.x_px, f.y_px}, min_separation_px, [&](std::size_t k) {
+      const Eigen::Vector2d& p = live_at[k];
+      taken = taken || std::hypot(p.x() - f.x_px, p.y() - f.y_px) < min_separation_px;
+    });
+    if (taken) return;
     State::Live& l = started[j];
     if (!make_reference(s.smooth, f.x_px, f.y_px, s.half_side, s.room_px, l.reference)) return;
     l.track.type = f.type;
@@ -955,19 +1024,21 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
     p = {t.x_px[static_cast<std::size_t>(k)], t.y_px[static_cast<std::size_t>(k)]};
     return true;
   };
-  // The tracks alive in each frame a track starts in, sorted by x there: a track's neighbours
-  // come from a range search, not a pass over every track.
+  // The tracks alive in each frame a track starts in, binned by where they are there: a
+  // track's neighbours come from the cells around it, not a pass over every track.
   struct AliveIn {
     std::vector<Eigen::Vector2d> at;
-    std::vector<std::pair<double, std::size_t>> by_x;
+    NearIndex near;
   };
   std::map<int, AliveIn> alive_in;
-  for (const Track& t : tracks) alive_in.emplace(t.first_frame, AliveIn{});
-  for (auto& [frame, a] : alive_in) {
-    a.at.resize(tracks.size());
+  for (const Track& t : tracks) {
+    const int frame = t.first_frame;
+    if (alive_in.count(frame)) continue;
+    std::vector<Eigen::Vector2d> positions(tracks.size());
     std::vector<char> alive(tracks.size(), 0);
-    for (std::size_t j = 0; j < tracks.size(); ++j) alive[j] = at(tracks[j], frame, a.at[j]);
-    a.by_x = Confirmed(a.at, alive).by_x;
+    for (std::size_t j = 0; j < tracks.size(); ++j) alive[j] = at(tracks[j], frame, positions[j]);
+    NearIndex near(positions, alive, radius_px);
+    alive_in.emplace(frame, AliveIn{std::move(positions), std::move(near)});
   }
   std::vector<std::vector<Eigen::Vector2d>> correction(tracks.size());
   std::vector<std::vector<Eigen::Matrix2d>> gradient_correction(tracks.size());
@@ -977,17 +1048,11 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
     const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
     std::vector<std::tuple<double, std::size_t, Eigen::Vector2d>> near;
     const AliveIn& in_first = alive_in.at(first);
-    // A little wider than the radius along x, so that rounding cannot leave out a neighbour the
-    // distance keeps.
-    const double reach = radius_px * (1 + 1e-9) + 1e-9;
-    for (auto it = std::lower_bound(in_first.by_x.begin(), in_first.by_x.end(),
-                                    std::pair<double, std::size_t>(centre.x() - reach, 0));
-         it != in_first.by_x.end() && it->first <= centre.x() + reach; ++it) {
-      const std::size_t j = it->second;
+    in_first.near.for_each_near(centre, radius_px, [&](std::size_t j) {
       const Eigen::Vector2d& p = in_first.at[j];
       const double d2 = (p - centre).squaredNorm();
       if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, p);
-    }
+    });
     const auto by_distance = [](const auto& a, const auto& b) {
       return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
     };
