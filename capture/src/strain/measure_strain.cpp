@@ -222,10 +222,11 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
   // A smoother over more frames than the motion stays smooth for would flatten it: smooth only
   // as far as the tracks allow.
   const SmoothingKernel kernel = params.refinement.smoothing_kernel;
-  smooth_tracks(tracks,
-                smoothing_that_fits(tracks, params.smoothing_half_window,
-                                    params.refinement.max_smoothing_residual_px, kernel),
-                kernel);
+  smooth_tracks(
+      tracks,
+      smoothing_that_fits(tracks, params.smoothing_half_window,
+                          params.refinement.max_smoothing_residual_px, kernel, params.threads),
+      kernel, params.threads);
   if (progress) progress("refine", 1, 1);
   return tracks;
 }

@@ -1,4 +1,5 @@
 #include "tactile/capture/track.hpp"
+#include "tactile/common/parallel_for.hpp"
 #include "tactile/common/stats.hpp"
 
 #include <algorithm>
@@ -153,20 +154,27 @@ std::vector<Track> split_at_jumps(const Track& t, double gate_px) {
 
 }  // namespace
 
-void smooth_tracks(std::vector<Track>& tracks, int half_window, SmoothingKernel kernel) {
-  QuadraticSmoother smooth(half_window, kernel);
-  for (auto& t : tracks) {
-    t.x_px = smooth(t.x_px);
-    t.y_px = smooth(t.y_px);
-    if (!has_gradients(t)) continue;
-    // The deformation gradient carries the same frames' noise as the positions.
-    std::vector<double> entry(t.gradient.size());
-    for (std::size_t c = 0; c < 4; ++c) {
-      for (std::size_t k = 0; k < entry.size(); ++k) entry[k] = t.gradient[k][c];
-      entry = smooth(entry);
-      for (std::size_t k = 0; k < entry.size(); ++k) t.gradient[k][c] = entry[k];
+void smooth_tracks(std::vector<Track>& tracks, int half_window, SmoothingKernel kernel,
+                   int threads) {
+  // Chunks of tracks on the workers, each with a smoother of its own (it keeps the weights of
+  // the lengths it has seen).
+  constexpr std::size_t kChunk = 64;
+  parallel_for((tracks.size() + kChunk - 1) / kChunk, worker_count(threads), [&](std::size_t c) {
+    QuadraticSmoother smooth(half_window, kernel);
+    for (std::size_t i = c * kChunk; i < std::min(tracks.size(), (c + 1) * kChunk); ++i) {
+      Track& t = tracks[i];
+      t.x_px = smooth(t.x_px);
+      t.y_px = smooth(t.y_px);
+      if (!has_gradients(t)) continue;
+      // The deformation gradient carries the same frames' noise as the positions.
+      std::vector<double> entry(t.gradient.size());
+      for (std::size_t e = 0; e < 4; ++e) {
+        for (std::size_t k = 0; k < entry.size(); ++k) entry[k] = t.gradient[k][e];
+        entry = smooth(entry);
+        for (std::size_t k = 0; k < entry.size(); ++k) t.gradient[k][e] = entry[k];
+      }
     }
-  }
+  });
 }
 
 namespace {
@@ -198,14 +206,18 @@ std::vector<std::size_t> spread_sample(std::size_t count, std::size_t most) {
 }
 
 std::vector<NeighbourSeries> neighbour_series(const std::vector<Track>& tracks,
-                                              std::size_t min_frames, std::size_t most) {
+                                              std::size_t min_frames, std::size_t most,
+                                              int threads) {
   auto at = [](const Track& t, std::int32_t f, const std::vector<double>& v) {
     return v[static_cast<std::size_t>(f - t.first_frame)];
   };
-  std::vector<NeighbourSeries> out;
-  for (const std::size_t i : spread_sample(tracks.size(), most)) {
+  const std::vector<std::size_t> sample = spread_sample(tracks.size(), most);
+  // Each sampled track's pair on the workers; those without one are left out afterwards.
+  std::vector<NeighbourSeries> found(sample.size());
+  parallel_for(sample.size(), worker_count(threads), [&](std::size_t r) {
+    const std::size_t i = sample[r];
     const Track& a = tracks[i];
-    if (a.x_px.size() < min_frames) continue;
+    if (a.x_px.size() < min_frames) return;
     double best = std::numeric_limits<double>::infinity();
     std::size_t best_j = i;
     for (std::size_t j = 0; j < tracks.size(); ++j) {
@@ -220,15 +232,18 @@ std::vector<NeighbourSeries> neighbour_series(const std::vector<Track>& tracks,
         best_j = j;
       }
     }
-    if (best_j == i) continue;
+    if (best_j == i) return;
     const Track& b = tracks[best_j];
-    NeighbourSeries s;
+    NeighbourSeries& s = found[r];
     for (std::int32_t f = std::max(a.first_frame, b.first_frame);
          f <= std::min(a.last_frame(), b.last_frame()); ++f) {
       s.dx.push_back(at(a, f, a.x_px) - at(b, f, b.x_px));
       s.dy.push_back(at(a, f, a.y_px) - at(b, f, b.y_px));
     }
-    out.push_back(std::move(s));
+  });
+  std::vector<NeighbourSeries> out;
+  for (auto& s : found) {
+    if (!s.dx.empty()) out.push_back(std::move(s));
   }
   return out;
 }
@@ -290,7 +305,7 @@ Removed removed_by(const NeighbourSeries& s, QuadraticSmoother& smooth) {
 }  // namespace
 
 int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
-                        SmoothingKernel kernel) {
+                        SmoothingKernel kernel, int threads) {
   if (half_window <= 0) return half_window;
   std::vector<int> candidates;
   for (int h : {half_window, 14, 12, 10, 8, 7, 6, 5, 4, 3}) {
@@ -308,8 +323,8 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   constexpr int kNoiseWindow = 2;
   constexpr std::size_t kMaxFrames = 256;  // enough frames of each series to choose by
   constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;
-  auto series =
-      neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1), kMaxSeries);
+  auto series = neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1),
+                                 kMaxSeries, threads);
   if (series.size() < kMinSeries) return 0;
   for (auto& s : series) {
     if (s.dx.size() > kMaxFrames) {
@@ -334,7 +349,11 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   }
   int best = 0;
   double best_error = trimmed_mean(error);
-  for (const int h : candidates) {
+  // Each window's estimate on the workers (NaN: the window moves the tracks too far), then the
+  // least of them in the order of the windows.
+  std::vector<double> estimate(candidates.size(), std::numeric_limits<double>::quiet_NaN());
+  parallel_for(candidates.size(), worker_count(threads), [&](std::size_t c) {
+    const int h = candidates[c];
     QuadraticSmoother smoother(h, kernel);
     // A window may not move a whole track by more than max_residual_px (RMS, median track).
     std::vector<double> residuals;
@@ -343,21 +362,24 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
       if (static_cast<int>(t.x_px.size()) < 2 * h + 1) continue;
       residuals.push_back(smoothing_residual(t.x_px, t.y_px, smoother));
     }
-    if (residuals.empty() || median(residuals) > max_residual_px) continue;
+    if (residuals.empty() || median(residuals) > max_residual_px) return;
     std::map<int, SmootherNoise> norms;
+    std::vector<double> window_error(series.size());
     for (std::size_t k = 0; k < series.size(); ++k) {
       const int n = static_cast<int>(series[k].dx.size());
       auto it = norms.find(n);
       if (it == norms.end()) it = norms.emplace(n, smoother_noise(smoother, n)).first;
       const Removed r = removed_by(series[k], smoother);
-      error[k] = (r.change_sq +
-                  2 * noise_variance[k] * (it->second.kept_change - it->second.removed_change)) /
-                 static_cast<double>(n - 1);
+      window_error[k] = (r.change_sq + 2 * noise_variance[k] *
+                                           (it->second.kept_change - it->second.removed_change)) /
+                        static_cast<double>(n - 1);
     }
-    const double e = trimmed_mean(error);
-    if (e < best_error) {
-      best_error = e;
-      best = h;
+    estimate[c] = trimmed_mean(std::move(window_error));
+  });
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (estimate[c] < best_error) {
+      best_error = estimate[c];
+      best = candidates[c];
     }
   }
   return best;

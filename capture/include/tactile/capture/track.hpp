@@ -68,17 +68,18 @@ std::vector<Track> track_features(const std::vector<std::vector<Feature>>& featu
 // least squared error among weightings), so they go with the longer windows the tracks choose.
 enum class SmoothingKernel { uniform, epanechnikov };
 
-// Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none).
+// Every track's positions smoothed by a local quadratic fit over 2 h + 1 frames (h <= 0: none),
+// on `threads` workers (0: every core).
 void smooth_tracks(std::vector<Track>& tracks, int half_window,
-                   SmoothingKernel kernel = SmoothingKernel::uniform);
+                   SmoothingKernel kernel = SmoothingKernel::uniform, int threads = 1);
 
 // The smoothing window (half-window half_window, 14, 12, 10, 8, 7, 6, 5, 4, 3, none longer than
 // half_window, or 0 for none) whose frame-to-frame changes between neighbouring tracks have the
 // least error, as estimated from the tracks themselves: a longer window averages more of the
 // trackers' noise, but flattens strain that changes within it. A window that moves the median
-// track by more than max_residual_px (RMS) is not taken.
+// track by more than max_residual_px (RMS) is not taken. On `threads` workers (0: every core).
 int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
-                        SmoothingKernel kernel = SmoothingKernel::uniform);
+                        SmoothingKernel kernel = SmoothingKernel::uniform, int threads = 1);
 
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
