@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <tuple>
@@ -618,7 +619,8 @@ struct AlignmentTracker::State {
   int frames = 0;
   std::int32_t next_id = 0;
   int width_px = 0, height_px = 0;
-  std::vector<Live> live;
+  // Each live track on the heap: a frame where tracks end moves pointers, not kilobytes.
+  std::vector<std::unique_ptr<Live>> live;
   std::vector<Track> ended;
   RefineStats stats;
   cv::Mat smooth;
@@ -795,7 +797,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   std::vector<Eigen::Vector2d> start(n);
   std::vector<Aligned> result(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Track& t = s.live[i].track;
+    const Track& t = s.live[i]->track;
     const std::size_t k = t.x_px.size();
     const double step_x = k >= 2 ? t.x_px[k - 1] - t.x_px[k - 2] : 0.0;
     const double step_y = k >= 2 ? t.y_px[k - 1] - t.y_px[k - 2] : 0.0;
@@ -806,7 +808,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   RefineParams retry_params = s.params;
   retry_params.max_iterations = std::min(s.params.max_iterations, 10);
   const auto try_align = [&](std::size_t i, Aligned& out, bool retry) {
-    const State::Live& l = s.live[i];
+    const State::Live& l = *s.live[i];
     out = align(l.reference, s.smooth, start[i].x(), start[i].y(), l.linear,
                 retry ? retry_params : s.params);
     return out.ok &&
@@ -836,7 +838,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   const double agree_px = s.params.neighbour_check_px;
   std::vector<Eigen::Vector2d> last(n), now(n);
   for (std::size_t i = 0; i < n; ++i) {
-    last[i] = {s.live[i].track.x_px.back(), s.live[i].track.y_px.back()};
+    last[i] = {s.live[i]->track.x_px.back(), s.live[i]->track.y_px.back()};
   }
   for (int round = 0; round < s.params.neighbour_rounds; ++round) {
     std::vector<std::size_t> open;
@@ -924,7 +926,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     s.stats.steps += static_cast<long>(suspect.size());
   }
   for (std::size_t i = 0; i < n; ++i) {
-    State::Live& l = s.live[i];
+    State::Live& l = *s.live[i];
     if (!confirmed[i]) {
       l.ended = true;
       continue;
@@ -938,9 +940,9 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   // nothing.
   std::size_t still = 0;
   for (std::size_t i = 0; i < s.live.size(); ++i) {
-    if (s.live[i].ended) {
+    if (s.live[i]->ended) {
       ++s.stats.cut;
-      s.ended.push_back(std::move(s.live[i].track));
+      s.ended.push_back(std::move(s.live[i]->track));
       continue;
     }
     if (still != i) s.live[still] = std::move(s.live[i]);
@@ -953,13 +955,13 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   // None for a frame without seeds.
   std::vector<Eigen::Vector2d> live_at(seeds.empty() ? 0 : tracked);
   for (std::size_t i = 0; i < live_at.size(); ++i) {
-    live_at[i] = {s.live[i].track.x_px.back(), s.live[i].track.y_px.back()};
+    live_at[i] = {s.live[i]->track.x_px.back(), s.live[i]->track.y_px.back()};
   }
   // Cells of a few tracks each: the separation itself is a couple of pixels.
   constexpr double kSeedCellPx = 16;
   const NearIndex live_near(live_at, std::vector<char>(live_at.size(), 1),
                             std::max(min_separation_px, kSeedCellPx));
-  std::vector<State::Live> started(seeds.size());
+  std::vector<std::unique_ptr<State::Live>> started(seeds.size());
   std::vector<char> ok(seeds.size(), 0);
   parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
     const Feature& f = seeds[j];
@@ -969,7 +971,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
       taken = taken || std::hypot(p.x() - f.x_px, p.y() - f.y_px) < min_separation_px;
     });
     if (taken) return;
-    State::Live& l = started[j];
+    started[j] = std::make_unique<State::Live>();
+    State::Live& l = *started[j];
     if (!make_reference(s.smooth, f.x_px, f.y_px, s.half_side, s.room_px, l.reference)) return;
     l.track.type = f.type;
     l.track.first_frame = frame;
@@ -980,7 +983,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   });
   for (std::size_t j = 0; j < seeds.size(); ++j) {
     if (!ok[j]) continue;
-    started[j].track.id = s.next_id++;
+    started[j]->track.id = s.next_id++;
     s.live.push_back(std::move(started[j]));
   }
 }
@@ -1151,7 +1154,7 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
 std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
   State& s = *state_;
   std::vector<Track> all = std::move(s.ended);
-  for (auto& l : s.live) all.push_back(std::move(l.track));
+  for (auto& l : s.live) all.push_back(std::move(l->track));
   s.live.clear();
   s.ended.clear();
   // Ended tracks were set aside as they ended: back in the order they started (their ids).
