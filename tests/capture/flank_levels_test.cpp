@@ -32,7 +32,12 @@ TEST(FlankLevels, EveryKernelSumsToOneAndLeavesItsCentreOut) {
   }
 }
 
-TEST(FlankLevels, EightPixelsAtOnceGiveEachPixelsOwnLevelToTheBit) {
+// Every group of `width` pixels that starts at any column of random rows (so that the last
+// reaches the padding's right edge), filtered at once by `at_once`, against one pixel at a time;
+// or, where the machine cannot, the refusal.
+void expect_groups_equal_one_pixel_levels(int width, bool runs_here,
+                                          void (*at_once)(const FlankKernels&, int, const cv::Mat&,
+                                                          int, int, float*)) {
   const FlankKernels kernels = detector_kernels();
   const int rows = 2 * kernels.half + 1;
   const int cols = 64, height = 8;
@@ -44,26 +49,33 @@ TEST(FlankLevels, EightPixelsAtOnceGiveEachPixelsOwnLevelToTheBit) {
   for (int y = 0; y < padded.rows; ++y) {
     for (int x = 0; x < padded.cols; ++x) padded.at<float>(y, x) = grey(rng);
   }
-  if (!has_flank_levels_of_eight()) {
-    float out[8];
-    EXPECT_THROW(flank_levels_of_eight(kernels, 0, padded, 0, 0, out), std::logic_error);
+  std::vector<float> group(static_cast<std::size_t>(width));
+  if (!runs_here) {
+    EXPECT_THROW(at_once(kernels, 0, padded, 0, 0, group.data()), std::logic_error);
     return;
   }
   int compared = 0;
   for (int k = 0; k < 12; ++k) {
     for (int y = 0; y < height; ++y) {
-      for (int x = 0; x + 8 <= cols; x += 8) {
-        float eight[8];
-        flank_levels_of_eight(kernels, k, padded, y, x, eight);
-        for (int u = 0; u < 8; ++u) {
-          ASSERT_EQ(eight[u], flank_level(kernels, k, padded, y, x + u))
-              << "direction " << k << ", pixel " << x + u << ", row " << y;
+      for (int x = 0; x + width <= cols; ++x) {
+        at_once(kernels, k, padded, y, x, group.data());
+        for (int u = 0; u < width; ++u) {
+          ASSERT_EQ(group[static_cast<std::size_t>(u)], flank_level(kernels, k, padded, y, x + u))
+              << width << " at once, direction " << k << ", pixel " << x + u << ", row " << y;
           ++compared;
         }
       }
     }
   }
-  EXPECT_EQ(compared, 12 * height * cols);
+  EXPECT_EQ(compared, 12 * height * (cols - width + 1) * width);
+}
+
+TEST(FlankLevels, EightPixelsAtOnceGiveEachPixelsOwnLevelToTheBit) {
+  expect_groups_equal_one_pixel_levels(8, has_flank_levels_of_eight(), flank_levels_of_eight);
+}
+
+TEST(FlankLevels, SixteenPixelsAtOnceGiveEachPixelsOwnLevelToTheBit) {
+  expect_groups_equal_one_pixel_levels(16, has_flank_levels_of_sixteen(), flank_levels_of_sixteen);
 }
 
 // The formula the detector's directions must equal, as the detector first wrote it.

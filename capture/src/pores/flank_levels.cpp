@@ -128,36 +128,61 @@ float flank_level(const FlankKernels& kernels, int k, const cv::Mat& padded, int
 
 namespace {
 
-// Eight neighbouring pixels of one direction at once: each pixel's taps are summed in
-// flank_level's order (four partial sums by tap column modulo four, combined in pairs, no fused
-// multiply-add), so the levels are the same to the bit, at a quarter of the instructions.
-__attribute__((target("avx"))) void levels_of_eight_avx(const FlankKernels& kernels, int k,
-                                                        const cv::Mat& padded, int y, int x,
-                                                        float* out) {
-  using Lanes8 = float __attribute__((vector_size(32)));
+// Neighbouring pixels of one direction at once, as many as Lanes holds: each pixel's taps are
+// summed in flank_level's order (four partial sums by tap column modulo four, combined in
+// pairs, no fused multiply-add: this file is compiled without contraction), so the levels are
+// the same to the bit, at a fraction of the instructions.
+template <class Lanes>
+__attribute__((always_inline)) inline void levels_at_once(const FlankKernels& kernels, int k,
+                                                          const cv::Mat& padded, int y, int x,
+                                                          float* out) {
   const int rows = 2 * kernels.half + 1;
   const float* taps = &kernels.taps[static_cast<std::size_t>(k * rows * kernels.stride)];
   const auto* spans = &kernels.spans[static_cast<std::size_t>(k * rows)];
-  Lanes8 sum[FlankKernels::kLanes] = {};
+  Lanes sum[FlankKernels::kLanes] = {};
   for (int r = 0; r < rows; ++r) {
     const float* w = taps + r * kernels.stride;
     const float* v = padded.ptr<float>(y + r) + x;
     for (int c = spans[r].first; c < spans[r].second; c += FlankKernels::kLanes) {
       for (int j = 0; j < FlankKernels::kLanes; ++j) {
-        Lanes8 vl;
+        Lanes vl;
         std::memcpy(&vl, v + c + j, sizeof vl);
         sum[j] += w[c + j] * vl;
       }
     }
   }
-  const Lanes8 level = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+  const Lanes level = (sum[0] + sum[1]) + (sum[2] + sum[3]);
   std::memcpy(out, &level, sizeof level);
+}
+
+__attribute__((target("avx"))) void levels_of_eight_avx(const FlankKernels& kernels, int k,
+                                                        const cv::Mat& padded, int y, int x,
+                                                        float* out) {
+  levels_at_once<float __attribute__((vector_size(32)))>(kernels, k, padded, y, x, out);
+}
+
+__attribute__((target("avx512f"))) void levels_of_sixteen_avx512(const FlankKernels& kernels, int k,
+                                                                 const cv::Mat& padded, int y,
+                                                                 int x, float* out) {
+  levels_at_once<float __attribute__((vector_size(64)))>(kernels, k, padded, y, x, out);
 }
 
 }  // namespace
 
 bool has_flank_levels_of_eight() {
   return __builtin_cpu_supports("avx");
+}
+
+bool has_flank_levels_of_sixteen() {
+  return __builtin_cpu_supports("avx512f");
+}
+
+void flank_levels_of_sixteen(const FlankKernels& kernels, int k, const cv::Mat& padded, int y,
+                             int x, float* out) {
+  if (!has_flank_levels_of_sixteen()) {
+    throw std::logic_error("flank_levels_of_sixteen: no AVX-512 here");
+  }
+  levels_of_sixteen_avx512(kernels, k, padded, y, x, out);
 }
 
 void flank_levels_of_eight(const FlankKernels& kernels, int k, const cv::Mat& padded, int y, int x,
@@ -174,6 +199,14 @@ bool has_flank_levels_of_eight() {
 
 void flank_levels_of_eight(const FlankKernels&, int, const cv::Mat&, int, int, float*) {
   throw std::logic_error("flank_levels_of_eight: no vector instructions here");
+}
+
+bool has_flank_levels_of_sixteen() {
+  return false;
+}
+
+void flank_levels_of_sixteen(const FlankKernels&, int, const cv::Mat&, int, int, float*) {
+  throw std::logic_error("flank_levels_of_sixteen: no vector instructions here");
 }
 
 #endif

@@ -44,4 +44,12 @@ bool has_flank_levels_of_eight();
 void flank_levels_of_eight(const FlankKernels& kernels, int k, const cv::Mat& padded, int y, int x,
                            float* out);
 
+// Whether flank_levels_of_sixteen runs here (AVX-512 on x86-64).
+bool has_flank_levels_of_sixteen();
+
+// Pixels x..x+15 of row y the same way, into out[0..15]. Only where
+// has_flank_levels_of_sixteen().
+void flank_levels_of_sixteen(const FlankKernels& kernels, int k, const cv::Mat& padded, int y,
+                             int x, float* out);
+
 }  // namespace tactile::capture

@@ -52,6 +52,7 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
                      kernels.half + kernels.stride - rows, cv::BORDER_REFLECT);
   cv::Mat out(gray.size(), CV_32F);
   const bool eight_at_once = has_flank_levels_of_eight();
+  const bool sixteen_at_once = eight_at_once && has_flank_levels_of_sixteen();
   // Bands of rows, a few per worker so that an uneven band does not hold the others up.
   const int workers = std::max(1, p.threads);
   const int bands = workers == 1 ? 1 : std::min(gray.rows, 4 * workers);
@@ -65,38 +66,51 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
       const float* d = jxy.ptr<float>(y);
       float* o = out.ptr<float>(y);
       ridge_directions(a, b, d, gray.cols, n, direction.data());
-      int x = 0;
-      if (eight_at_once) {
-        for (; x + 8 <= gray.cols; x += 8) {
-          const auto first = direction.begin() + x;
-          // Eight pixels of at most three directions (the field turns slowly: mostly one or
-          // two) are filtered eight at a time once per direction, each pixel keeping its own
-          // direction's level: the same bits as one pixel at a time, for less work.
-          std::array<int, 3> seen{};
-          int distinct = 0;  // 4: more than three
-          for (auto d = first; d != first + 8 && distinct <= 3; ++d) {
-            const auto known = seen.begin() + distinct;
-            if (std::find(seen.begin(), known, *d) != known) continue;
-            if (distinct < 3) seen[static_cast<std::size_t>(distinct)] = *d;
-            ++distinct;
+      // Eight pixels of at most three directions (the field turns slowly: mostly one or two)
+      // are filtered eight at a time once per direction, each pixel keeping its own
+      // direction's level: the same bits as one pixel at a time, for less work.
+      const auto eight = [&](int x) {
+        const auto first = direction.begin() + x;
+        std::array<int, 3> seen{};
+        int distinct = 0;  // 4: more than three
+        for (auto d = first; d != first + 8 && distinct <= 3; ++d) {
+          const auto known = seen.begin() + distinct;
+          if (std::find(seen.begin(), known, *d) != known) continue;
+          if (distinct < 3) seen[static_cast<std::size_t>(distinct)] = *d;
+          ++distinct;
+        }
+        if (distinct == 1) {
+          flank_levels_of_eight(kernels, *first, padded, y, x, o + x);
+        } else if (distinct <= 3) {
+          std::array<float, 8> level{};
+          for (int q = 0; q < distinct; ++q) {
+            const int k = seen[static_cast<std::size_t>(q)];
+            flank_levels_of_eight(kernels, k, padded, y, x, level.data());
+            for (int u = 0; u < 8; ++u) {
+              if (first[u] == k) o[x + u] = level[static_cast<std::size_t>(u)];
+            }
           }
-          if (distinct == 1) {
-            flank_levels_of_eight(kernels, *first, padded, y, x, o + x);
-          } else if (distinct <= 3) {
-            std::array<float, 8> level{};
-            for (int q = 0; q < distinct; ++q) {
-              const int k = seen[static_cast<std::size_t>(q)];
-              flank_levels_of_eight(kernels, k, padded, y, x, level.data());
-              for (int u = 0; u < 8; ++u) {
-                if (first[u] == k) o[x + u] = level[static_cast<std::size_t>(u)];
-              }
-            }
-          } else {
-            for (int u = x; u < x + 8; ++u) {
-              o[u] = flank_level(kernels, direction[static_cast<std::size_t>(u)], padded, y, u);
-            }
+        } else {
+          for (int u = x; u < x + 8; ++u) {
+            o[u] = flank_level(kernels, direction[static_cast<std::size_t>(u)], padded, y, u);
           }
         }
+      };
+      int x = 0;
+      // Sixteen pixels of one direction at once where the machine has the registers for them.
+      if (sixteen_at_once) {
+        for (; x + 16 <= gray.cols; x += 16) {
+          const auto first = direction.begin() + x;
+          if (std::all_of(first + 1, first + 16, [&](int k) { return k == *first; })) {
+            flank_levels_of_sixteen(kernels, *first, padded, y, x, o + x);
+          } else {
+            eight(x);
+            eight(x + 8);
+          }
+        }
+      }
+      if (eight_at_once) {
+        for (; x + 8 <= gray.cols; x += 8) eight(x);
       }
       for (; x < gray.cols; ++x) {
         o[x] = flank_level(kernels, direction[static_cast<std::size_t>(x)], padded, y, x);
