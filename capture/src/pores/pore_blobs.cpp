@@ -17,6 +17,15 @@ namespace tactile::capture {
 
 namespace {
 
+// Rows 0..rows in bands for `workers` workers, a few each so that an uneven band does not hold
+// the others up; in order from the top.
+std::vector<cv::Range> row_bands(int rows, int workers) {
+  const int bands = workers <= 1 ? 1 : std::min(rows, 4 * workers);
+  std::vector<cv::Range> out;
+  for (int b = 0; b < bands; ++b) out.emplace_back(b * rows / bands, (b + 1) * rows / bands);
+  return out;
+}
+
 // Grey level of the ridge (or valley) each pixel lies on, measured along the local ridge
 // direction (from the structure tensor) on both sides of the pixel. Each pixel is filtered
 // with its own direction's kernel only: filtering the whole image with every direction's kernel
@@ -53,14 +62,11 @@ cv::Mat ridge_level(const cv::Mat& gray, double px_per_mm, const RidgeBlobParams
   cv::Mat out(gray.size(), CV_32F);
   const bool eight_at_once = has_flank_levels_of_eight();
   const bool sixteen_at_once = eight_at_once && has_flank_levels_of_sixteen();
-  // Bands of rows, a few per worker so that an uneven band does not hold the others up.
   const int workers = std::max(1, p.threads);
-  const int bands = workers == 1 ? 1 : std::min(gray.rows, 4 * workers);
-  parallel_for(static_cast<std::size_t>(bands), workers, [&](std::size_t band) {
-    const int y_begin = static_cast<int>(band) * gray.rows / bands;
-    const int y_end = (static_cast<int>(band) + 1) * gray.rows / bands;
+  const std::vector<cv::Range> bands = row_bands(gray.rows, workers);
+  parallel_for(bands.size(), workers, [&](std::size_t band) {
     std::vector<int> direction(static_cast<std::size_t>(gray.cols));
-    for (int y = y_begin; y < y_end; ++y) {
+    for (int y = bands[band].start; y < bands[band].end; ++y) {
       const float* a = jxx.ptr<float>(y);
       const float* b = jyy.ptr<float>(y);
       const float* d = jxy.ptr<float>(y);
@@ -238,8 +244,13 @@ std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::M
   // enough in a ridge.
   cv::Mat local_max;
   cv::dilate(response, local_max, cv::Mat());
-  const auto candidates_in_rows = [&](int y_begin, int y_end, std::vector<PoreCandidate>& out) {
-    for (int y = y_begin; y < y_end; ++y) {
+  // Bands of rows in parallel, joined in order: the candidates come out row by row as from one
+  // pass.
+  const int workers = std::max(1, p.threads);
+  const std::vector<cv::Range> bands = row_bands(gray.rows, workers);
+  std::vector<std::vector<PoreCandidate>> in_band(bands.size());
+  parallel_for(bands.size(), workers, [&](std::size_t band) {
+    for (int y = bands[band].start; y < bands[band].end; ++y) {
       const float* resp = response.ptr<float>(y);
       const float* lmax = local_max.ptr<float>(y);
       const float* depth = envelope.depth.ptr<float>(y);
@@ -267,19 +278,9 @@ std::vector<PoreCandidate> find_pore_candidates(const cv::Mat& gray, const cv::M
         for (std::size_t k = 0; k < blob.size(); ++k) {
           m[5 + k] = blob[k].at<float>(y, x) / print_noise;
         }
-        out.push_back(c);
+        in_band[band].push_back(c);
       }
     }
-  };
-  // Bands of rows in parallel, joined in order: the candidates come out row by row as from one
-  // pass.
-  const int workers = std::max(1, p.threads);
-  const int bands = workers == 1 ? 1 : std::min(gray.rows, 4 * workers);
-  std::vector<std::vector<PoreCandidate>> in_band(static_cast<std::size_t>(bands));
-  parallel_for(static_cast<std::size_t>(bands), workers, [&](std::size_t band) {
-    const int y_begin = static_cast<int>(band) * gray.rows / bands;
-    const int y_end = (static_cast<int>(band) + 1) * gray.rows / bands;
-    candidates_in_rows(y_begin, y_end, in_band[band]);
   });
   for (auto& b : in_band) found.insert(found.end(), b.begin(), b.end());
   // Against this print's own spots: the median deep candidate (mostly ridge texture) and the

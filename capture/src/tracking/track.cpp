@@ -351,13 +351,14 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   double best_error = trimmed_mean(error);
   // Each window's estimate on the workers (NaN: the window moves the tracks too far), then the
   // least of them in the order of the windows.
+  const std::vector<std::size_t> sample = spread_sample(tracks.size(), kMaxSeries);
   std::vector<double> estimate(candidates.size(), std::numeric_limits<double>::quiet_NaN());
   parallel_for(candidates.size(), worker_count(threads), [&](std::size_t c) {
     const int h = candidates[c];
     QuadraticSmoother smoother(h, kernel);
     // A window may not move a whole track by more than max_residual_px (RMS, median track).
     std::vector<double> residuals;
-    for (const std::size_t i : spread_sample(tracks.size(), kMaxSeries)) {
+    for (const std::size_t i : sample) {
       const Track& t = tracks[i];
       if (static_cast<int>(t.x_px.size()) < 2 * h + 1) continue;
       residuals.push_back(smoothing_residual(t.x_px, t.y_px, smoother));
