@@ -32,7 +32,8 @@ float flank_level(const FlankKernels& kernels, int k, const cv::Mat& padded, int
 // Each pixel's kernel, for count pixels of the structure tensor (jxx, jyy, jxy): the nearest
 // of the n directions k pi / n to the ridge, which runs at right angles to the dominant gradient,
 // i.e. lround((atan2(2 jxy, jxx - jyy) / 2 + pi / 2) / (pi / n)) mod n. The same directions as
-// that formula, which takes a quarter of the detector's time when evaluated at every pixel.
+// that formula, whose `atan2` at every pixel of a 640 x 484 frame took about 5 ms of the
+// detector's 40 ms of CPU.
 void ridge_directions(const float* jxx, const float* jyy, const float* jxy, int count, int n,
                       int* direction);
 
