@@ -13,10 +13,6 @@ packages=(
   libpng-dev libjpeg-dev  # images read with our own message handlers (capture/src/camera/image.cpp)
   libusb-1.0-0-dev libhidapi-dev
   libglfw3-dev libgl-dev libimgui-dev
-  # CMake's OpenGL is then the vendor-neutral libOpenGL. Without it the build links the legacy
-  # libGL, whose GLX starts a thread before main() that leaves Ctrl-C unblocked: the signal
-  # kills a command instead of stopping it cleanly.
-  libopengl-dev
   libsvm-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libcairo2-dev
   # tests and benchmarks
