@@ -14,11 +14,19 @@ namespace tactile {
 
 namespace {
 
+// SIGINT and SIGTERM, less one the process ignores: the kernel discards an ignored signal only
+// while it is not blocked, so blocking it would turn it into a stop request.
 sigset_t stop_set() {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
+  for (const int sig : {SIGINT, SIGTERM}) {
+    struct sigaction now {};
+    if (sigaction(sig, nullptr, &now) == 0 && (now.sa_flags & SA_SIGINFO) == 0 &&
+        now.sa_handler == SIG_IGN) {
+      continue;
+    }
+    sigaddset(&set, sig);
+  }
   return set;
 }
 

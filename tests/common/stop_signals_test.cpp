@@ -40,5 +40,28 @@ TEST(StopSignals, TheBlockIsLiftedAfterwards) {
   EXPECT_FALSE(stop_requested(-1));
 }
 
+// SIGINT ignored (a background job's) stays ignored: not blocked, not watched, so raising it
+// asks for no stop; SIGTERM is still watched.
+TEST(StopSignals, AnIgnoredSignalStaysIgnored) {
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  struct sigaction before {};
+  ASSERT_EQ(sigaction(SIGINT, &ignore, &before), 0);
+  {
+    StopSignals stop;
+    sigset_t mask;
+    pthread_sigmask(SIG_SETMASK, nullptr, &mask);
+    EXPECT_EQ(sigismember(&mask, SIGINT), 0);
+    EXPECT_EQ(sigismember(&mask, SIGTERM), 1);
+    ASSERT_EQ(::raise(SIGINT), 0);
+    EXPECT_FALSE(stop_requested(stop.fd()));
+    EXPECT_EQ(stop.received(), 0);
+    ASSERT_EQ(::raise(SIGTERM), 0);
+    EXPECT_EQ(stop.received(), SIGTERM);
+  }
+  sigaction(SIGINT, &before, nullptr);
+}
+
 }  // namespace
 }  // namespace tactile

@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -278,7 +279,7 @@ TEST(StopCli, SignalMidPlayLeavesTheLateroBladesAtRest) {
     sleep_s(0.3);
     tactile::test::Started play(
         {"play", movie.string(), "--latero", "127.0.0.1:" + std::to_string(port)}, d / "play.log");
-    ASSERT_TRUE(play.wait_until_blocking(sig, 30)) << text_of(d / "play.log");
+    ASSERT_TRUE(play.wait_until_watching(sig, 30)) << text_of(d / "play.log");
     sleep_s(1.0);
     const auto signalled = std::chrono::steady_clock::now();
     play.signal(sig);
@@ -309,6 +310,65 @@ TEST(StopCli, SignalMidPlayLeavesTheLateroBladesAtRest) {
   }
 }
 
+// The names of a process's threads.
+std::vector<std::string> thread_names(int pid) {
+  std::vector<std::string> names;
+  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task")) {
+    std::ifstream in(task.path() / "comm");
+    std::string name;
+    if (std::getline(in, name)) names.push_back(name);
+  }
+  return names;
+}
+
+// A thread a library starts before main() (OpenBLAS's threaded build does, where Debian installs
+// it as libblas.so.3) would not block the stop signals, and the kernel may give it a signal sent
+// to the process. Preloaded with such a thread, the player and the emulator still take SIGINT
+// as a stop request (`tactile` blocks both signals before any library starts a thread): the
+// player ends the movie at rest, the emulator prints its counters and exits 0, neither dies of
+// the signal.
+TEST(StopCli, ASignalTakenByALibrarysEarlyThreadStillStopsAtRest) {
+  const tactile::test::TempDir d_tmp("early-thread");
+  const fs::path& d = d_tmp.path();
+  const char* asan = std::getenv("ASAN_OPTIONS");
+  // The preloaded library comes before the sanitizer's runtime in a sanitizer build.
+  const std::vector<std::string> preload = {std::string("LD_PRELOAD=") + TACTILE_THREAD_BEFORE_MAIN,
+                                            std::string("ASAN_OPTIONS=") +
+                                                (asan != nullptr ? std::string(asan) + ":" : "") +
+                                                "verify_asan_link_order=0"};
+  const int port = free_udp_port();
+  const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 7500);  // 10 s
+  tactile::test::Started emulator(
+      {"emulate", "--latero", "--port", std::to_string(port), "--seconds", "60"},
+      d / "emulator.log", preload);
+  ASSERT_TRUE(emulator.wait_until_watching(SIGINT, 30)) << text_of(d / "emulator.log");
+  sleep_s(0.3);  // until it answers on the port, as in the test above
+  tactile::test::Started play(
+      {"play", movie.string(), "--latero", "127.0.0.1:" + std::to_string(port)}, d / "play.log",
+      preload);
+  ASSERT_TRUE(play.wait_until_watching(SIGINT, 30)) << text_of(d / "play.log");
+  for (const int pid : {emulator.pid(), play.pid()}) {
+    EXPECT_THAT(thread_names(pid), ::testing::Contains("before-main"))
+        << "pid " << pid << (pid == play.pid() ? " play" : " emulator");
+  }
+  sleep_s(1.0);
+  play.signal(SIGINT);
+  const auto played = play.wait(5);
+  emulator.signal(SIGINT);
+  const auto emulated = emulator.wait(5);
+  const std::string out = text_of(d / "play.log");
+  const std::string emulator_out = text_of(d / "emulator.log");
+  ASSERT_TRUE(played.ended) << out;
+  EXPECT_EQ(played.killed_by, 0) << out;
+  EXPECT_EQ(played.exit_code, 130) << out;
+  EXPECT_THAT(out, HasSubstr(kInterrupted));
+  ASSERT_TRUE(emulated.ended) << emulator_out;
+  EXPECT_EQ(emulated.killed_by, 0) << emulator_out;
+  EXPECT_EQ(emulated.exit_code, 0) << emulator_out;
+  EXPECT_EQ(numbers(emulator_out, kDatagrams)[1], numbers(out, kLink)[0]) << emulator_out;
+  EXPECT_EQ(numbers(emulator_out, kBladesLeft), (std::vector<double>{75, 75})) << emulator_out;
+}
+
 // Headless, the emulated device's firmware plays the movie on a simulated clock; a signal
 // mid-play stops it, the firmware's own outputs (as it wrote them, tick by tick) end at rest,
 // and no preview is written, not even a temporary file.
@@ -321,7 +381,7 @@ TEST(StopCli, SignalMidHeadlessPlayEndsTheFirmwareOutputsAtRest) {
     tactile::test::Started play({"play", movie.string(), "--headless", "--loops", "40", "--preview",
                                  (d / "preview.png").string()},
                                 d / "play.log");
-    ASSERT_TRUE(play.wait_until_blocking(sig, 30)) << text_of(d / "play.log");
+    ASSERT_TRUE(play.wait_until_watching(sig, 30)) << text_of(d / "play.log");
     sleep_s(1.0);  // some 75 000 frames a second of 300 000
     play.signal(sig);
     const auto ended = play.wait(10);

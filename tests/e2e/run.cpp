@@ -5,6 +5,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -29,7 +30,8 @@ RunResult run_tactile(const std::string& args) {
   return r;
 }
 
-Started::Started(const std::vector<std::string>& args, const std::filesystem::path& log) {
+Started::Started(const std::vector<std::string>& args, const std::filesystem::path& log,
+                 const std::vector<std::string>& environment) {
   std::vector<std::string> words = {TACTILE_CLI_PATH};
   words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -39,7 +41,18 @@ Started::Started(const std::vector<std::string>& args, const std::filesystem::pa
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  const int e = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
+  std::vector<std::string> entries = environment;
+  for (char** entry = environ; *entry != nullptr; ++entry) {
+    const std::string name = std::string(*entry).substr(0, std::string(*entry).find('='));
+    const bool replaced = std::any_of(entries.begin(), entries.end(), [&](const std::string& e) {
+      return e.compare(0, name.size() + 1, name + "=") == 0;
+    });
+    if (!replaced) entries.emplace_back(*entry);
+  }
+  std::vector<char*> envp;
+  for (auto& entry : entries) envp.push_back(entry.data());
+  envp.push_back(nullptr);
+  const int e = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (e != 0) throw std::runtime_error("cannot start " + words[0]);
 }
@@ -55,16 +68,22 @@ void Started::signal(int sig) const {
   ::kill(pid_, sig);
 }
 
-bool Started::wait_until_blocking(int sig, double limit_s) const {
+bool Started::wait_until_watching(int sig, double limit_s) const {
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
-  const std::string status_file = "/proc/" + std::to_string(pid_) + "/status";
+  const std::filesystem::path proc = "/proc/" + std::to_string(pid_);
   for (;;) {
-    std::ifstream in(status_file);
-    std::string line;
-    while (std::getline(in, line)) {
-      if (line.rfind("SigBlk:", 0) != 0) continue;
-      const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
-      if ((mask >> (sig - 1)) & 1ULL) return true;
+    std::error_code ec;
+    for (const auto& fd : std::filesystem::directory_iterator(proc / "fd", ec)) {
+      if (std::filesystem::read_symlink(fd.path(), ec).string() != "anon_inode:[signalfd]") {
+        continue;
+      }
+      std::ifstream in(proc / "fdinfo" / fd.path().filename());
+      std::string line;
+      while (std::getline(in, line)) {
+        if (line.rfind("sigmask:", 0) != 0) continue;
+        const unsigned long long mask = std::stoull(line.substr(8), nullptr, 16);
+        if ((mask >> (sig - 1)) & 1ULL) return true;
+      }
     }
     if (std::chrono::steady_clock::now() >= until) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));

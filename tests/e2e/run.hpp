@@ -19,16 +19,20 @@ RunResult run_tactile(const std::string& args);
 // its stdout and stderr going to `log`, so that a test can signal it mid-run.
 class Started {
  public:
-  Started(const std::vector<std::string>& args, const std::filesystem::path& log);
+  // `environment`: NAME=VALUE entries set for it on top of this process's environment.
+  Started(const std::vector<std::string>& args, const std::filesystem::path& log,
+          const std::vector<std::string>& environment = {});
   ~Started();  // kills and reaps a process still running (a failed test)
   Started(const Started&) = delete;
   Started& operator=(const Started&) = delete;
 
+  int pid() const { return pid_; }
   void signal(int sig) const;
-  // Waits at most `limit_s` until the process blocks `sig` (its main thread's mask in
-  // /proc/PID/status), i.e. until it has set up its own stop handling: a signal sent before
-  // that ends it by the default action, which is not what a stop test means to try.
-  bool wait_until_blocking(int sig, double limit_s) const;
+  // Waits at most `limit_s` until the process watches `sig` on a signal descriptor (a
+  // StopSignals, found in /proc/PID/fdinfo), i.e. until it has set up its own stop handling: a
+  // signal sent before that ends it by the default action, which is not what a stop test means
+  // to try. (Its mask is no sign: `tactile` blocks the stop signals from before main().)
+  bool wait_until_watching(int sig, double limit_s) const;
   struct Ended {
     bool ended = false;  // false: still running when the wait gave up
     int exit_code = -1;  // when it exited

@@ -15,9 +15,11 @@ class StopSignals {
  public:
   // Blocks SIGINT and SIGTERM in the calling thread; threads it starts afterwards inherit the
   // block, so create this before any thread that should not receive them (a thread started
-  // before can still be chosen by the kernel and end the process as before). A signal the
-  // process ignores (SIG_IGN, e.g. a background job's SIGINT) stays ignored. Throws
-  // std::runtime_error with the OS's reason when the descriptor cannot be made.
+  // before can still be chosen by the kernel and end the process as before; `tactile` blocks
+  // both before the libraries' initialisers run, so that their threads never take them, see
+  // tools/tactile/main.cpp). A signal the process ignores (SIG_IGN, e.g. a background job's
+  // SIGINT) stays ignored: it is neither blocked nor watched. Throws std::runtime_error with
+  // the OS's reason when the descriptor cannot be made.
   StopSignals();
   // Restores the signal mask: a signal that arrived and was not taken by received() is then
   // delivered as usual (its handler, or the default action that ends the process).
