@@ -63,11 +63,17 @@ namespace avx2 {
 
 #pragma GCC push_options
 #pragma GCC target("avx2,fma,avx512f,avx512vl")
+// GCC 12 warns falsely (-Wmaybe-uninitialized) inside avx512fintrin.h, where its extractions and
+// conversions start from an _mm512_undefined_* value; the warning is attributed to the
+// header's lines, so it is silenced for this version only.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 namespace avx512 {
 #define TACTILE_ROWS_BY_PERMUTE 1
 #include "tracking/align_rows_simd.inc"
 #undef TACTILE_ROWS_BY_PERMUTE
 }  // namespace avx512
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 
 }  // namespace
