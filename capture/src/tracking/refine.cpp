@@ -780,6 +780,22 @@ bool neighbours_motion(const std::vector<Eigen::Vector2d>& last,
 
 }  // namespace
 
+namespace {
+
+// Workers for a step of `count` jobs: one where the jobs are too few to pay for starting a
+// thread (some 35 us with its join), which a step of a few retries or a few cheap checks costs
+// more than it takes over. The jobs are independent, so the result does not depend on it.
+int workers_for(std::size_t count, std::size_t min_for_two, int threads) {
+  return count < min_for_two ? 1 : worker_count(threads);
+}
+
+// Jobs below which a step stays on one thread: an alignment takes about 10 us, a neighbours'
+// motion about a microsecond.
+constexpr std::size_t kAlignmentsForTwo = 8;
+constexpr std::size_t kMotionsForTwo = 64;
+
+}  // namespace
+
 void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Feature>& seeds) {
   State& s = *state_;
   if (s.frames == 0) {
@@ -856,7 +872,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     std::vector<char> next(state);
     std::vector<Aligned> retried(open.size());
     std::vector<char> changed(open.size(), 0);
-    parallel_for(open.size(), worker_count(s.threads), [&](std::size_t r) {
+    const int open_workers = workers_for(open.size(), kAlignmentsForTwo, s.threads);
+    parallel_for(open.size(), open_workers, [&](std::size_t r) {
       const std::size_t i = open[r];
       Eigen::Vector2d p;
       if (!neighbours_motion(last, now, known, n, last[i], radius_px, p)) return;
@@ -901,7 +918,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
         moved.push_back(i);
       }
     }
-    parallel_for(moved.size(), worker_count(s.threads), [&](std::size_t r) {
+    const int moved_workers = workers_for(moved.size(), kMotionsForTwo, s.threads);
+    parallel_for(moved.size(), moved_workers, [&](std::size_t r) {
       const std::size_t i = moved[r];
       Eigen::Vector2d p;
       odd[i] = neighbours_motion(last, now, known, i, last[i], radius_px, p) &&
@@ -914,7 +932,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
       agreeing[i] = confirmed[i] && !odd[i];
     }
     const NearIndex others(last, agreeing, radius_px);
-    parallel_for(suspect.size(), worker_count(s.threads), [&](std::size_t r) {
+    const int suspect_workers = workers_for(suspect.size(), kAlignmentsForTwo, s.threads);
+    parallel_for(suspect.size(), suspect_workers, [&](std::size_t r) {
       const std::size_t i = suspect[r];
       confirmed[i] = 0;
       Eigen::Vector2d p;
@@ -963,7 +982,8 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
                             std::max(min_separation_px, kSeedCellPx));
   std::vector<std::unique_ptr<State::Live>> started(seeds.size());
   std::vector<char> ok(seeds.size(), 0);
-  parallel_for(seeds.size(), worker_count(s.threads), [&](std::size_t j) {
+  const int seed_workers = workers_for(seeds.size(), kAlignmentsForTwo, s.threads);
+  parallel_for(seeds.size(), seed_workers, [&](std::size_t j) {
     const Feature& f = seeds[j];
     bool taken = false;
     live_near.for_each_near({f.x_px, f.y_px}, min_separation_px, [&](std::size_t k) {
