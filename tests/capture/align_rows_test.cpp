@@ -94,6 +94,22 @@ void expect_same_sums(const Sums& vector, const Sums& plain, int n) {
   }
 }
 
+// The same bits in every sum: what two vector versions give for one row or window.
+template <class Sums>
+void expect_same_bits(const Sums& sums, const Sums& first) {
+  EXPECT_EQ(sums.i, first.i);
+  EXPECT_EQ(sums.ii, first.ii);
+  EXPECT_EQ(sums.it, first.it);
+  EXPECT_EQ(sums.a, first.a);
+  EXPECT_EQ(sums.a_ox, first.a_ox);
+  EXPECT_EQ(sums.c, first.c);
+  EXPECT_EQ(sums.c_ox, first.c_ox);
+  if constexpr (std::is_same_v<Sums, WindowSampleSums>) {
+    EXPECT_EQ(sums.a_oy, first.a_oy);
+    EXPECT_EQ(sums.c_oy, first.c_oy);
+  }
+}
+
 const char* name(RowSumsVersion v) {
   switch (v) {
     case RowSumsVersion::plain:
@@ -137,14 +153,7 @@ TEST(AlignRows, EveryVersionHereAgreesWithThePlainLoopAndTheVectorOnesToTheBit) 
       expect_same_sums(vector, plain, n);
       if (version == RowSumsVersion::plain) continue;
       by_vector.push_back(vector);
-      const RowSums& first = by_vector.front();
-      EXPECT_EQ(vector.i, first.i);
-      EXPECT_EQ(vector.ii, first.ii);
-      EXPECT_EQ(vector.it, first.it);
-      EXPECT_EQ(vector.a, first.a);
-      EXPECT_EQ(vector.a_ox, first.a_ox);
-      EXPECT_EQ(vector.c, first.c);
-      EXPECT_EQ(vector.c_ox, first.c_ox);
+      expect_same_bits(vector, by_vector.front());
     }
   }
   for (const RowSumsVersion version : row_sums_versions_here()) {
@@ -243,16 +252,7 @@ TEST(AlignRows, EveryVersionHereSumsWindowsAsThePlainLoopAndTheVectorOnesAgreeTo
       expect_same_sums(sums, plain, cols * rows);
       if (version == RowSumsVersion::plain) continue;
       by_vector.push_back(sums);
-      const WindowSampleSums& first = by_vector.front();
-      EXPECT_EQ(sums.i, first.i);
-      EXPECT_EQ(sums.ii, first.ii);
-      EXPECT_EQ(sums.it, first.it);
-      EXPECT_EQ(sums.a, first.a);
-      EXPECT_EQ(sums.a_ox, first.a_ox);
-      EXPECT_EQ(sums.a_oy, first.a_oy);
-      EXPECT_EQ(sums.c, first.c);
-      EXPECT_EQ(sums.c_ox, first.c_ox);
-      EXPECT_EQ(sums.c_oy, first.c_oy);
+      expect_same_bits(sums, by_vector.front());
     }
   }
 }
