@@ -218,6 +218,52 @@ TEST(Strain, FewerThanThreePointsGiveNoEdges) {
   EXPECT_TRUE(edges.empty());
 }
 
+// Edges in the same order every time for the same points, whatever the heap looks like (the
+// order of CGAL's own edge iterator follows the faces' addresses), on points in general position
+// and on points along one line.
+TEST(Strain, TheSamePointsGiveTheSameEdgesInTheSameOrder) {
+  std::vector<TrackedPoint> scattered;
+  std::uint32_t state = 12345;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
+  };
+  for (int i = 0; i < 400; ++i) {
+    scattered.push_back({i, 0, FeatureType::pore, 0, 0, 10 * next(), 8 * next()});
+  }
+  std::vector<TrackedPoint> moved = scattered;
+  for (auto& p : moved) p.x_mm *= 1.01;
+  std::vector<TrackedPoint> line;
+  for (int i = 0; i < 40; ++i)
+    line.push_back({i, 0, FeatureType::pore, 0, 0, (i * 7 % 40) * 0.1, 0});
+  for (const auto* points : {&scattered, &line}) {
+    const std::vector<TrackedPoint>& to = points == &scattered ? moved : *points;
+    std::vector<StrainEdge> first;
+    std::vector<StrainTriangle> triangles;
+    triangulate_strain(*points, to, 1e9, first, triangles);
+    ASSERT_GT(first.size(), points->size() / 2);
+    // A heap with holes of many sizes freed in a scattered order, so that the next
+    // triangulation's faces land in another order in memory.
+    std::vector<std::vector<char>> clutter;
+    for (int round = 0; round < 4; ++round) {
+      for (int k = 0; k < 3000; ++k) {
+        clutter.emplace_back(16 + static_cast<std::size_t>(next() * 3000), 'x');
+      }
+      for (auto& block : clutter) {
+        if (next() < 0.5) std::vector<char>().swap(block);
+      }
+      std::vector<StrainEdge> again;
+      triangulate_strain(*points, to, 1e9, again, triangles);
+      ASSERT_EQ(first.size(), again.size());
+      int moved_edges = 0;
+      for (std::size_t i = 0; i < first.size(); ++i) {
+        moved_edges += first[i].track_a != again[i].track_a || first[i].track_b != again[i].track_b;
+      }
+      EXPECT_EQ(moved_edges, 0) << "round " << round << " of " << points->size() << " points";
+    }
+  }
+}
+
 // The whole pipeline on a synthetic slide over the bump, compared edge by edge with the exact
 // relative length change of the same skin segment (true_rel_change maps both ends through the
 // skin model). Measured on this 60-frame sequence (seed 1): see docs/capture-models.md.

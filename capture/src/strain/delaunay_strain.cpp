@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "tactile/capture/capture.hpp"
@@ -42,15 +43,36 @@ void triangulate_strain(const std::vector<TrackedPoint>& from, const std::vector
     double length_from;
   };
   std::vector<Raw> raw;
-  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-    const auto face = e->first;
-    const int i = e->second;
-    std::int32_t a = face->vertex(Delaunay::cw(i))->info();
-    std::int32_t b = face->vertex(Delaunay::ccw(i))->info();
+  const auto add_raw = [&](std::int32_t a, std::int32_t b) {
     if (a > b) std::swap(a, b);
     const auto& pa = from[static_cast<std::size_t>(a)];
     const auto& pb = from[static_cast<std::size_t>(b)];
     raw.push_back({a, b, std::hypot(pb.x_mm - pa.x_mm, pb.y_mm - pa.y_mm)});
+  };
+  if (dt.dimension() == 2) {
+    // CGAL's edge iterator gives each edge from whichever of its two faces lies lower in memory,
+    // so the edges' order changed from run to run (the same edges, but files that differ and
+    // sums in another order). Each edge is taken here from the face whose third point comes
+    // first in `from` (or from its one finite face on the hull): the faces' own order depends
+    // only on the points, so the same points give the same edges in the same order.
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+      for (int i = 0; i < 3; ++i) {
+        const auto other = f->neighbor(i);
+        if (!dt.is_infinite(other) &&
+            other->vertex(other->index(f))->info() < f->vertex(i)->info()) {
+          continue;
+        }
+        add_raw(f->vertex(Delaunay::cw(i))->info(), f->vertex(Delaunay::ccw(i))->info());
+      }
+    }
+  } else {
+    // Points on one line: edges but no faces. Their order is sorted for the same reason.
+    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+      add_raw(e->first->vertex(Delaunay::cw(e->second))->info(),
+              e->first->vertex(Delaunay::ccw(e->second))->info());
+    }
+    std::sort(raw.begin(), raw.end(),
+              [](const Raw& x, const Raw& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
   }
   if (raw.empty()) return;  // all points collinear or coincident
   std::vector<double> lengths;
