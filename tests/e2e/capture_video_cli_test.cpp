@@ -26,7 +26,7 @@ using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 namespace capture = tactile::capture;
 
-// Every edge's strain, frame by frame (the triangulation lists edges in an order of its own).
+// Every edge's strain, frame by frame, keyed by its two tracks.
 std::vector<std::map<std::pair<int, int>, double>> strain_of(const fs::path& movie_file) {
   const auto movie = capture::read_strain_movie(movie_file);
   std::vector<std::map<std::pair<int, int>, double>> frames;
