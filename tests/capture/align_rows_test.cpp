@@ -122,6 +122,22 @@ const char* name(RowSumsVersion v) {
   return "?";
 }
 
+// Every version here (`add` fills a row's or a window's sums by one) near the plain loop's
+// `plain` over `samples` samples, and the vector versions the same to the bit.
+template <class Sums, class Add>
+void expect_every_version_agrees(const Sums& plain, int samples, const Add& add) {
+  std::vector<Sums> by_vector;
+  for (const RowSumsVersion version : row_sums_versions_here()) {
+    SCOPED_TRACE(name(version));
+    Sums sums;
+    add(version, sums);
+    expect_same_sums(sums, plain, samples);
+    if (version == RowSumsVersion::plain) continue;
+    by_vector.push_back(sums);
+    expect_same_bits(sums, by_vector.front());
+  }
+}
+
 TEST(AlignRows, EveryVersionHereAgreesWithThePlainLoopAndTheVectorOnesToTheBit) {
   std::mt19937 rng(7);
   const TestImage image = random_image(rng, 80, 60, 83);
@@ -145,16 +161,9 @@ TEST(AlignRows, EveryVersionHereAgreesWithThePlainLoopAndTheVectorOnesToTheBit) 
     const RowSpan row = span_of(ref, n, x0, y0, dx, dy, -18.4);
     RowSums plain;
     add_row_sums(image.rows, row, plain);
-    std::vector<RowSums> by_vector;
-    for (const RowSumsVersion version : row_sums_versions_here()) {
-      SCOPED_TRACE(name(version));
-      RowSums vector;
-      add_row_sums_by(version, image.rows, row, vector);
-      expect_same_sums(vector, plain, n);
-      if (version == RowSumsVersion::plain) continue;
-      by_vector.push_back(vector);
-      expect_same_bits(vector, by_vector.front());
-    }
+    expect_every_version_agrees(plain, n, [&](RowSumsVersion version, RowSums& sums) {
+      add_row_sums_by(version, image.rows, row, sums);
+    });
   }
   for (const RowSumsVersion version : row_sums_versions_here()) {
     SCOPED_TRACE(name(version));
@@ -244,16 +253,10 @@ TEST(AlignRows, EveryVersionHereSumsWindowsAsThePlainLoopAndTheVectorOnesAgreeTo
     const WindowSpan w = window_of(ref, cols, rows, row_step, x0, y0, dx, dy, rx, ry, -19.2, -18.7);
     WindowSampleSums plain;
     add_window_sums(image.rows, w, plain);
-    std::vector<WindowSampleSums> by_vector;
-    for (const RowSumsVersion version : row_sums_versions_here()) {
-      SCOPED_TRACE(name(version));
-      WindowSampleSums sums;
-      add_window_sums_by(version, image.rows, w, sums);
-      expect_same_sums(sums, plain, cols * rows);
-      if (version == RowSumsVersion::plain) continue;
-      by_vector.push_back(sums);
-      expect_same_bits(sums, by_vector.front());
-    }
+    expect_every_version_agrees(plain, cols * rows,
+                                [&](RowSumsVersion version, WindowSampleSums& sums) {
+                                  add_window_sums_by(version, image.rows, w, sums);
+                                });
   }
 }
 
