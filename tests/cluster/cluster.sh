@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A single-node Slurm cluster on this machine for the tests, from Debian's slurmctld, slurmd and
 # munge packages: its own munge key and socket, slurm.conf, spool and state in one short folder,
-# every daemon on 127.0.0.1 on free ports, no accounting, no cgroups.
+# every daemon on loopback (the address of this machine's name) on free ports, no accounting,
+# no cgroups.
 #
 #   cluster.sh start DIR   DIR must not exist and be short (Unix socket paths hold 108 bytes);
 #                          prints nothing on success; exit 1 with the reason when the cluster
@@ -78,15 +79,22 @@ chmod 711 "$dir" "$dir/munge"
 mungekey --create --keyfile="$dir/munge/munge.key" >/dev/null 2>&1 ||
   die "cannot start the cluster: mungekey could not create a key"
 
-# Two free TCP ports on loopback (bound then released: a small race with other programs).
-read -r ctld_port slurmd_port < <(/usr/bin/python3 - <<'EOF'
-import socket
+# With NoCtldInAddrAny and NoInAddrAny each daemon binds to the address this machine's name
+# resolves to, not to every address: 127.0.0.1 on some machines, 127.0.1.1 on an installed
+# Debian (its /etc/hosts). The daemons are told that same address, which must be loopback.
+host=$(hostname)
+addr=$(getent ahostsv4 "$host" | awk 'NR == 1 { print $1 }')
+[[ $addr == 127.* ]] || die "cannot start the cluster: this machine's name '$host' resolves to '${addr:-nothing}', not a loopback address (127.x.x.x); the test cluster listens on loopback only"
+
+# Two free TCP ports on that address (bound then released: a small race with other programs).
+read -r ctld_port slurmd_port < <(/usr/bin/python3 - "$addr" <<'EOF'
+import socket, sys
 s = [socket.socket() for _ in range(2)]
-for x in s: x.bind(("127.0.0.1", 0))
+for x in s: x.bind((sys.argv[1], 0))
 print(*[x.getsockname()[1] for x in s])
 EOF
 )
-[[ -n ${slurmd_port:-} ]] || die "cannot start the cluster: no free port on 127.0.0.1"
+[[ -n ${slurmd_port:-} ]] || die "cannot start the cluster: no free port on $addr"
 
 node=tn$ctld_port
 # The node must describe this machine as slurmd sees it, or it registers as invalid.
@@ -96,7 +104,7 @@ user=$(id -un)
 
 cat >"$dir/slurm.conf" <<EOF
 ClusterName=tactile$ctld_port
-SlurmctldHost=localhost(127.0.0.1)
+SlurmctldHost=$host($addr)
 SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
 SlurmUser=$user
@@ -131,7 +139,7 @@ InactiveLimit=0
 KillWait=2
 MinJobAge=600
 MaxArraySize=1001
-NodeName=$node NodeAddr=127.0.0.1 NodeHostname=$(hostname) $hw State=UNKNOWN
+NodeName=$node NodeAddr=$addr NodeHostname=$host $hw State=UNKNOWN
 PartitionName=debug Nodes=$node Default=YES MaxTime=INFINITE State=UP
 EOF
 
