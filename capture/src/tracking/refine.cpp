@@ -34,7 +34,7 @@ struct Reference {
   double x_px = 0, y_px = 0;  // the landmark
   std::vector<float> grey, weight, gx, gy;
   // The sums that depend on the reference alone, over the whole window (all_rows) and over
-  // every other row of it (rows 0, 2, 4, ...: a first step at half the cost).
+  // each half of its rows (rows 0, 2, 4, ... and rows 1, 3, 5, ...: steps at half the cost).
   struct Sums {
     Vector6 sum_weighted_descent = Vector6::Zero();
     Vector6 sum_weighted_grey_descent = Vector6::Zero();
@@ -42,7 +42,7 @@ struct Reference {
     double total_weight = 0;
     double sum_weighted_grey = 0, sum_weighted_grey_squared = 0;
     bool invertible = false;
-  } all_rows, even_rows;
+  } all_rows, even_rows, odd_rows;
   // Row prefix sums of the quantities a step needs over a window cut by the frame's border
   // (CutSum), made the first time the window is cut: with them a cut window's step costs what
   // a whole window's does instead of a per-pixel pass that builds the Hessian again.
@@ -235,7 +235,7 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
     along_x[static_cast<std::size_t>(u - left)] = std::exp(-ox * ox / (2 * sigma * sigma));
   }
   const auto cols = static_cast<std::size_t>(ref.cols);
-  WindowSums sums, even;
+  WindowSums sums, even, odd;
   for (int v = top; v <= bottom; ++v) {
     const double oy = v - y_px;
     const double along_y = std::exp(-oy * oy / (2 * sigma * sigma));
@@ -259,10 +259,15 @@ bool make_reference(const cv::Mat& smooth, double x_px, double y_px, int half_si
       add_pixel_terms(weight[c], grey[c], gx[c], gy[c], left + static_cast<double>(c) - x_px, t);
     }
     sums.add_row(t, oy);
-    if ((v - top) % 2 == 0) even.add_row(t, oy);
+    if ((v - top) % 2 == 0) {
+      even.add_row(t, oy);
+    } else {
+      odd.add_row(t, oy);
+    }
   }
   ref.all_rows = reference_sums(sums);
   ref.even_rows = reference_sums(even);
+  ref.odd_rows = reference_sums(odd);
   const double mean = sums.swg / sums.sw;
   const double spread = std::sqrt(std::max(0.0, sums.swgg / sums.sw - mean * mean));
   if (!ref.all_rows.invertible || spread < 1e-3) return false;
@@ -309,6 +314,17 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
   Eigen::Matrix2d l = linear;
   double correlation = 0;
   bool converged = false;
+  // The steps alternate between the window's even rows and its odd rows, each at half a whole
+  // window's cost. The two halves see the same texture through different samples of the
+  // camera's noise, so their fixed points differ by about that noise; once each half's warp is
+  // where it was two steps before, the mean of the last two warps stands for the whole window's,
+  // with the noise of every row averaged. Here the warps after the last two half steps, and
+  // the last one's correlation.
+  const bool alternate = ref.even_rows.invertible && ref.odd_rows.invertible;
+  int halves_in_a_row = 0;
+  Eigen::Vector2d position_before[2] = {position, position};
+  Eigen::Matrix2d linear_before[2] = {l, l};
+  double correlation_before = 0;
   for (int it = 0; it < params.max_iterations && !converged; ++it) {
     double sw = 0, swi = 0, swii = 0, swt = 0, swtt = 0, swit = 0;
     // sum of weight x sample x descent: with the reference's own sums it gives the update in
@@ -319,29 +335,36 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     WindowSums inside;
     const bool whole = warped_window_inside(ref, smooth, position, l);
     if (!whole && ref.cut_prefix.empty()) make_cut_prefix(ref);
-    // The first step from a start up to a pixel or so off needs only part of the window;
-    // the steps after it, and the convergence, see all of it.
-    const bool coarse = it == 0 && whole && ref.even_rows.invertible;
+    // Half steps where the window is whole. Elsewhere whole-window steps (over the part inside
+    // the frame where the window is cut), of which the first, from a start up to a pixel or so
+    // off, needs only the even rows.
+    const bool half = alternate && whole;
+    const bool odd_half = half && halves_in_a_row % 2 == 1;
+    const bool coarse = half || (it == 0 && whole && ref.even_rows.invertible);
     const int row_step = coarse ? 2 : 1;
+    const int first_row = odd_half ? 1 : 0;
     const double l00 = l(0, 0), l01 = l(0, 1), l10 = l(1, 0), l11 = l(1, 1);
     const double ox0 = ref.left - ref.x_px, oy0 = ref.top - ref.y_px;
     if (whole) {
       // The whole window in one pass, its sums kept in vector registers from row to row.
-      const WindowSpan window{ref.weight.data(),
-                              ref.grey.data(),
-                              ref.gx.data(),
-                              ref.gy.data(),
+      const std::size_t skip =
+          static_cast<std::size_t>(first_row) * static_cast<std::size_t>(ref.cols);
+      const double oyf = oy0 + first_row;
+      const WindowSpan window{ref.weight.data() + skip,
+                              ref.grey.data() + skip,
+                              ref.gx.data() + skip,
+                              ref.gy.data() + skip,
                               ref.cols,
-                              ref.rows,
+                              ref.rows - first_row,
                               row_step,
-                              position.x() + l00 * ox0 + l01 * oy0,
-                              position.y() + l10 * ox0 + l11 * oy0,
+                              position.x() + l00 * ox0 + l01 * oyf,
+                              position.y() + l10 * ox0 + l11 * oyf,
                               l00,
                               l10,
                               l01,
                               l11,
                               ox0,
-                              oy0};
+                              oyf};
       WindowSampleSums ws;
       add_window_sums_vector(smooth, window, ws);
       swi = ws.i;
@@ -393,7 +416,8 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     }
     // The reference's own sums over the whole window are fixed; only a cut window needs them
     // from its inside part.
-    const Reference::Sums& fixed = coarse ? ref.even_rows : ref.all_rows;
+    const Reference::Sums& fixed =
+        coarse ? (odd_half ? ref.odd_rows : ref.even_rows) : ref.all_rows;
     if (whole) {
       sw = fixed.total_weight;
       swt = fixed.sum_weighted_grey;
@@ -430,8 +454,27 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     // Inverse composition: W <- W o dW^-1.
     l = l * step_linear.inverse();
     position -= l * Eigen::Vector2d(p(4), p(5));
-    converged = !coarse && std::hypot(p(4), p(5)) < params.stop_step_px &&
-                p.head<4>().cwiseAbs().maxCoeff() < params.stop_step_px / 10;
+    if (half) {
+      ++halves_in_a_row;
+      const Eigen::Vector2d two_before = position_before[0];
+      const Eigen::Matrix2d linear_two_before = linear_before[0];
+      position_before[0] = position_before[1];
+      linear_before[0] = linear_before[1];
+      position_before[1] = position;
+      linear_before[1] = l;
+      if (halves_in_a_row >= 3 && (position - two_before).norm() < params.stop_step_px &&
+          (l - linear_two_before).cwiseAbs().maxCoeff() < params.stop_step_px / 10) {
+        converged = true;
+        position = 0.5 * (position + position_before[0]);
+        l = 0.5 * (l + linear_before[0]);
+        correlation = 0.5 * (correlation + correlation_before);
+      }
+      correlation_before = correlation;
+    } else {
+      halves_in_a_row = 0;
+      converged = !coarse && std::hypot(p(4), p(5)) < params.stop_step_px &&
+                  p.head<4>().cwiseAbs().maxCoeff() < params.stop_step_px / 10;
+    }
   }
   a.x_px = position.x();
   a.y_px = position.y();
