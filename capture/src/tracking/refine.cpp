@@ -320,7 +320,8 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
   // where it was two steps before, the mean of the last two warps stands for the whole window's,
   // with the noise of every row averaged. Here the warps after the last two half steps, and
   // the last one's correlation.
-  const bool alternate = ref.even_rows.invertible && ref.odd_rows.invertible;
+  const bool alternate =
+      params.alternate_row_halves && ref.even_rows.invertible && ref.odd_rows.invertible;
   int halves_in_a_row = 0;
   Eigen::Vector2d position_before[2] = {position, position};
   Eigen::Matrix2d linear_before[2] = {l, l};

@@ -103,6 +103,11 @@ struct RefineParams {
   double max_offset_mm = 0.1;    // largest distance of a confirmed position from the detection
   int max_iterations = 40;       // of the alignment
   double stop_step_px = 1e-3;    // the alignment has converged when a step moves less
+  // Alignment steps alternate between the window's even rows and its odd rows (each half a
+  // whole window's cost) and end on the mean of the two halves' warps, which averages the
+  // camera's noise over every row as a whole window does; false = whole-window steps (the first
+  // on the even rows only), about a third more window work for the same precision.
+  bool alternate_row_halves = true;
   double presmoothing_px = 0.6;  // Gaussian sigma applied to the frames before aligning
   int min_frames = 10;           // shortest refined track kept
   // Follow a track by the image alone past the frames where it was detected (to the end of the
