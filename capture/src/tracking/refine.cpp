@@ -830,8 +830,9 @@ int workers_for(std::size_t count, std::size_t min_for_two, int threads) {
   return count < min_for_two ? 1 : worker_count(threads);
 }
 
-// Jobs below which a step stays on one thread: an alignment takes about 10 us (the 640 x 484
-// fast scene's 29 aligned frames, 32,538 alignments and all else, took 354-402 ms of CPU); a
+// Jobs below which a step stays on one thread: an alignment takes at most about 10 us (the 640 x
+// 484 fast scene's 29 aligned frames, 32,538 alignments and all else, took 354-402 ms of CPU with
+// whole-window steps; the alternating row halves need about a quarter less window work); a
 // neighbours' motion is a weighted fit over the tracks within the radius (a median of 84 on the
 // fast scene), far less.
 constexpr std::size_t kAlignmentsForTwo = 8;
