@@ -19,3 +19,6 @@ endforeach()
 set_tests_properties(python.readme PROPERTIES FIXTURES_REQUIRED demo_run)
 # Installs the whole project into a temporary prefix, like package.consumer.
 set_tests_properties(python.install PROPERTIES LABELS "python;package")
+# Compares the map keywords on the demo's strain movie.
+set_tests_properties(python.options PROPERTIES FIXTURES_REQUIRED demo_run)
+set_tests_properties(python.live PROPERTIES FIXTURES_REQUIRED demo_run)

@@ -113,4 +113,11 @@ FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::Strain
   return m;
 }
 
+std::string describe_fidelity(const FidelityMetrics& fit) {
+  return fmt::format(
+      "fidelity to the measured strain: correlation {:.3f}, RMS error {:.3g} against RMS {:.3g} "
+      "({} samples)",
+      fit.strain_correlation, fit.strain_rms_error, fit.source_strain_rms, fit.compared_pairs);
+}
+
 }  // namespace tactile::mapping

@@ -167,9 +167,9 @@ HjifSummary write_hjif_to(const TactileMovie& movie, const HjifOptions& options,
                     "the {} a description may hold (shorten the layout name)",
                     layout_text.size(), kHjifMaxDescriptionBytes));
   }
-  const std::string summary_text = fmt::format(
-      "tactile movie: {} x {} contactors ({}), {} deflection, {:g} Hz, {} frames", l.rows, l.cols,
-      l.name, l.axis == DeflectionAxis::x ? "x" : "y", movie.rate_hz, movie.frame_count);
+  const std::string summary_text =
+      fmt::format("tactile movie: {} x {} contactors ({}), {} deflection, {:g} Hz, {} frames",
+                  l.rows, l.cols, l.name, to_string(l.axis), movie.rate_hz, movie.frame_count);
   const std::string created = movie.provenance.created_utc;
   const std::string date = created.size() >= 10 ? created.substr(0, 10) : "2023-01-01";
 
@@ -579,8 +579,7 @@ TactileMovie parse_hjif(const std::string& text, const std::string& where,
   }
   if (read[0].axis && *read[0].axis != movie.layout.axis) {
     rd.fail(fmt::format("the layout '{}' deflects along {} but the channels' direction is {}",
-                        movie.layout.name, movie.layout.axis == DeflectionAxis::x ? "x" : "y",
-                        *read[0].axis == DeflectionAxis::x ? "x" : "y"));
+                        movie.layout.name, to_string(movie.layout.axis), to_string(*read[0].axis)));
   }
   const std::int64_t rate = read[0].rate;
   std::int64_t frames = 0;

@@ -3,6 +3,7 @@
 #include "tactile/movie/layout_json.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cctype>
 #include <cmath>
@@ -106,13 +107,13 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
         where, l.contactor_width_mm, l.contactor_height_mm, l.pitch_x_mm, l.pitch_y_mm));
   }
   const auto& axis = field(j, "deflection_axis", where);
-  if (axis == "x") {
-    l.axis = DeflectionAxis::x;
-  } else if (axis == "y") {
-    l.axis = DeflectionAxis::y;
-  } else {
-    throw FormatError(
-        fmt::format("{}: 'deflection_axis' must be \"x\" or \"y\", got {}", where, axis.dump()));
+  try {
+    if (!axis.is_string()) throw std::invalid_argument("not a name");
+    l.axis = parse_name("deflection_axis", axis.get<std::string>(), kDeflectionAxisNames);
+  } catch (const std::invalid_argument&) {
+    throw FormatError(fmt::format("{}: 'deflection_axis' must be \"{}\", got {}", where,
+                                  fmt::join(names_of(values_of(kDeflectionAxisNames)), "\" or \""),
+                                  axis.dump()));
   }
   const auto [lo, hi] =
       pair_of(field(j, "deflection_range_um", where), "deflection_range_um", where);
@@ -150,7 +151,7 @@ std::string layout_to_json(const Layout& l) {
   j["cols"] = l.cols;
   j["pitch_mm"] = {l.pitch_x_mm, l.pitch_y_mm};
   j["contactor_size_mm"] = {l.contactor_width_mm, l.contactor_height_mm};
-  j["deflection_axis"] = l.axis == DeflectionAxis::x ? "x" : "y";
+  j["deflection_axis"] = to_string(l.axis);
   j["deflection_range_um"] = {l.deflection_min_um, l.deflection_max_um};
   j["max_rate_hz"] = l.max_rate_hz;
   return j.dump(2);

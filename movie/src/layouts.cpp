@@ -10,6 +10,9 @@
 //           0.5 x 1.4 mm; 750 Hz, the rate OpenLatero's demos run their loop at (the device
 //           has no FIFO and moves when a packet arrives); deflection +-100 um (assumption).
 //           Blade bytes: LateroBladeMapping (latero_protocol.hpp).
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -70,7 +73,8 @@ Layout layout_by_name(const std::string& name) {
   if (name == "stress") return stress_layout();
   if (name == "stress2") return stress2_layout();
   if (name == "latero") return latero_layout();
-  throw std::invalid_argument("unknown layout '" + name + "' (known: stress, stress2, latero)");
+  throw std::invalid_argument(
+      fmt::format("unknown layout '{}' (known: {})", name, fmt::join(kBuiltinLayoutNames, ", ")));
 }
 
 namespace {

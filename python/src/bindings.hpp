@@ -47,5 +47,6 @@ void bind_play(py::module_& m);
 void bind_capture(py::module_& m);
 void bind_classifier(py::module_& m);
 void bind_exchange(py::module_& m);
+void bind_live(py::module_& m);
 
 }  // namespace tactile::python

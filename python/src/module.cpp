@@ -27,4 +27,5 @@ PYBIND11_MODULE(tactile, m) {
   tp::bind_capture(m);
   tp::bind_classifier(m);
   tp::bind_exchange(m);
+  tp::bind_live(m);
 }

@@ -67,10 +67,7 @@ Layout make_layout(std::string name, std::int32_t rows, std::int32_t cols, doubl
   l.pitch_y_mm = pitch_y_mm;
   l.contactor_width_mm = contactor_width_mm;
   l.contactor_height_mm = contactor_height_mm;
-  if (axis != "x" && axis != "y") {
-    throw std::invalid_argument(fmt::format("axis: '{}' is not x or y", axis));
-  }
-  l.axis = axis == "x" ? movie::DeflectionAxis::x : movie::DeflectionAxis::y;
+  l.axis = parse_name("axis", axis, movie::kDeflectionAxisNames);
   l.deflection_min_um = deflection_min_um;
   l.deflection_max_um = deflection_max_um;
   l.max_rate_hz = max_rate_hz;
@@ -115,8 +112,7 @@ void bind_movies(py::module_& m) {
       .def_readonly("pitch_y_mm", &Layout::pitch_y_mm)
       .def_readonly("contactor_width_mm", &Layout::contactor_width_mm)
       .def_readonly("contactor_height_mm", &Layout::contactor_height_mm)
-      .def_property_readonly(
-          "axis", [](const Layout& l) { return l.axis == movie::DeflectionAxis::x ? "x" : "y"; })
+      .def_property_readonly("axis", [](const Layout& l) { return movie::to_string(l.axis); })
       .def_readonly("deflection_min_um", &Layout::deflection_min_um)
       .def_readonly("deflection_max_um", &Layout::deflection_max_um)
       .def_readonly("max_rate_hz", &Layout::max_rate_hz)

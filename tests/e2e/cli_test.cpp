@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
@@ -13,6 +14,7 @@
 namespace fs = std::filesystem;
 using tactile::test::run_tactile;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {}  // namespace
 
@@ -126,4 +128,45 @@ TEST(Cli, StrainMovieGivenToPlayIsAClearError) {
   const auto r = run_tactile("play --headless " + (d / "strain.h5").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("strain.h5"));
+}
+
+// Wrong usage helps: a misspelt command or flag is answered with the closest real one, an
+// unknown flag is named before a required option it may be the misspelling of, and the hint
+// names the command whose help to read.
+TEST(Cli, MisspeltCommandSuggestsTheClosest) {
+  const auto r = run_tactile("captur x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("unknown command 'captur' (did you mean 'capture'?)"));
+  const auto far = run_tactile("zzzzzzzz");
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_THAT(far.output, Not(HasSubstr("did you mean")));
+}
+
+TEST(Cli, UnknownFlagComesBeforeMissingRequiredAndNamesTheCommand) {
+  const tactile::test::TempDir d_tmp("misspelt");
+  // --outt for --out: the required --out is missing too, but the misspelling is the news.
+  const auto r = run_tactile("capture " + d_tmp.path().string() + " --px-per-mm 47 --outt s.h5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("unknown option '--outt' for `tactile capture` (did you mean "
+                                  "'--out'?)"));
+  EXPECT_THAT(r.output, HasSubstr("Run `tactile capture --help`"));
+  const auto nested = run_tactile("bench map --secondz 3");
+  EXPECT_EQ(nested.exit_code, 2);
+  EXPECT_THAT(nested.output, HasSubstr("for `tactile bench map`"));
+  EXPECT_THAT(nested.output, HasSubstr("Run `tactile bench map --help`"));
+}
+
+TEST(Cli, NegativeValuesAreNotTakenForFlags) {
+  const auto r = run_tactile("map x.h5 --out y.h5 --reference-frame -1");
+  EXPECT_EQ(r.exit_code, 2);  // x.h5 does not exist
+  EXPECT_THAT(r.output, Not(HasSubstr("unknown option")));
+}
+
+// synth has two kinds of sequence with two default lengths: its help gives both, and names
+// no hidden option (an empty "Excludes:").
+TEST(Cli, SynthHelpGivesBothDefaultLengths) {
+  const auto r = run_tactile("synth --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("default 180 for a scene, 30 with --from-print"));
+  EXPECT_FALSE(std::regex_search(r.output, std::regex("Excludes: *\n")));
 }

@@ -64,7 +64,7 @@ def test_integrated_imposes_the_known_strain(strain):
     assert movie.rate_hz == 700 and movie.provenance.method == "integrated"
     middle = movie.deflection_um[movie.frame_count // 2]
     np.testing.assert_allclose(np.diff(middle, axis=1), 10.0, atol=0.05)
-    proportional = tactile.map(strain, "stress", method="proportional", gain_um_per_strain=2000)
+    proportional = tactile.map(strain, "stress", method="proportional", gain=2000)
     np.testing.assert_allclose(proportional.deflection_um[proportional.frame_count // 2],
                                20.0, atol=0.05)
 
@@ -85,7 +85,7 @@ def test_map_refuses_what_the_command_line_refuses(tmp_path, strain, cli):
     run = subprocess.run([cli, "map", str(tmp_path / "s.h5"), "--out", str(tmp_path / "m.h5"),
                           "--layout", "latero", "--rate-hz", "800"], capture_output=True,
                          text=True)
-    assert run.returncode == 1
+    assert run.returncode == 2  # a parameter the layout cannot play is wrong usage
     with pytest.raises(ValueError) as error:
         tactile.map(strain, "latero", rate_hz=800)
     assert str(error.value) in run.stderr

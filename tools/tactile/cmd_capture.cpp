@@ -15,9 +15,11 @@
 #include "command.hpp"
 #include "number_checks.hpp"
 #include "progress.hpp"
+#include "request_options.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/capture/capture.hpp"
+#include "tactile/capture/capture_request.hpp"
 #include "tactile/capture/capture_run.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/image.hpp"
@@ -54,7 +56,7 @@ void add_calibration_options(CLI::App& sub, std::optional<fs::path>& calib_file,
                 ->check(CLI::ExistingFile);
   auto* p = sub.add_option("--px-per-mm", px_per_mm,
                            "Uniform scale instead of a calibration file (pixels per millimetre)")
-                ->check(within(2.0, 5000.0));
+                ->check(within(capture::kMinPxPerMm, capture::kMaxPxPerMm));
   c->excludes(p);
 }
 
@@ -256,127 +258,55 @@ void add_features(CLI::App& app, Action& action) {
 }
 
 void add_capture(CLI::App& app, Action& action, const std::string& command_line) {
-  struct Options {
-    fs::path image_dir;
-    std::optional<fs::path> calib;
-    std::optional<double> px_per_mm;
+  // What only the command line has: where the results go.
+  struct Outputs {
     fs::path out;
     std::optional<fs::path> csv_dir;
     std::optional<fs::path> maps_dir;
-    int span = 1;
-    double rate_hz = 60;
-    int min_track_frames = 30;
-    std::string pores = "auto";
-    std::string refine = "auto";
-    std::optional<int> smoothing;
-    double refine_window_mm = capture::RefineParams{}.window_mm;
-    std::optional<fs::path> pore_model;
-    std::string assignment = "greedy";
-    int start = 0;
-    std::optional<int> frames;
   };
-  auto opt = std::make_shared<Options>();
+  auto request = std::make_shared<capture::CaptureRequest>();
+  auto outputs = std::make_shared<Outputs>();
   CLI::App* sub = app.add_subcommand(
       "capture",
       "Measure skin strain from a sequence of fingerprint images (the image files of IMAGE_DIR\n"
       "in name order, or the frames of a video .mp4 .avi .mkv .mov): extract landmarks, match\n"
       "and track them, triangulate (Delaunay) and write each edge's relative length change\n"
       "between frames i and i+span. Frames are read one at a time.");
-  sub->add_option("IMAGE_DIR", opt->image_dir, "Folder of frames, or a video file")
-      ->required()
-      ->check(CLI::ExistingPath);
-  sub->add_option("--start", opt->start, "First frame to use (0 = the first)")
-      ->check(within(0, 100000000))
-      ->capture_default_str();
-  sub->add_option("--frames", opt->frames, "Number of frames to use (default: all from --start)")
-      ->check(within(1, 100000000));
-  add_calibration_options(*sub, opt->calib, opt->px_per_mm);
-  sub->add_option("--out", opt->out, "Strain movie to write (HDF5)")->required();
-  sub->add_option("--csv", opt->csv_dir, "Also write tracks.csv and edges.csv into this folder");
-  sub->add_option("--maps", opt->maps_dir,
+  add_request_options(*sub, request, capture::capture_options());
+  sub->add_option("--out", outputs->out, "Strain movie to write (HDF5)")->required();
+  sub->add_option("--csv", outputs->csv_dir,
+                  "Also write tracks.csv and edges.csv into this folder");
+  sub->add_option("--maps", outputs->maps_dir,
                   "Also draw each strain frame as strain_NNN.png in this folder (edges black = "
                   "most compressed .. white = most stretched, one scale for the whole movie)");
-  sub->add_option("--span", opt->span, "Frames between the two ends of each strain measurement")
-      ->check(within(1, 10000))
-      ->capture_default_str();
-  auto* rate = sub->add_option("--rate-hz", opt->rate_hz,
-                               "Camera frame rate (a video's own rate from its container unless "
-                               "given)")
-                   ->check(within(1.0, 100000.0))
-                   ->capture_default_str();
-  sub->add_option("--min-track", opt->min_track_frames,
-                  "Shortest track kept, in frames (tracks linked from detections, "
-                  "without\nrefinement; refined tracks are kept from 10 frames)")
-      ->check(within(2, 100000))
-      ->capture_default_str();
-  add_pore_options(*sub, opt->pores, opt->pore_model, true);
-  sub->add_option("--refine", opt->refine,
-                  "Sub-pixel refinement of every track against the images (each landmark's\n"
-                  "neighbourhood aligned to its first frame by an affine warp): auto = with the\n"
-                  "ridge-blob detector, whose centres on real prints are noisy")
-      ->check(CLI::IsMember({"auto", "on", "off"}))
-      ->capture_default_str();
-  sub->add_option("--refine-window", opt->refine_window_mm,
-                  "Side of the refinement's alignment window, mm (smaller follows strain\n"
-                  "gradients better, larger averages more noise)")
-      ->check(within(0.1, 5.0))
-      ->capture_default_str();
-  sub->add_option(
-         "--smoothing", opt->smoothing,
-         "Half-window of the trajectory smoothing (local quadratic over 2 H + 1 frames;\n"
-         "0 = none); default 3; with refinement the longest tried (default 16, weights\n"
-         "falling towards the window's ends): the capture takes whichever of H, 14, 12, 10,\n"
-         "8, 7, 6, 5, 4, 3 or none leaves the least error it estimates from the changes\n"
-         "between neighbouring tracks")
-      ->check(within(0, 50));
-  sub->add_option("--assignment", opt->assignment,
-                  "Frame-to-frame matching: greedy by confidence, or optimal (maximum total "
-                  "confidence, Hungarian method)")
-      ->check(CLI::IsMember({"greedy", "optimal"}))
-      ->capture_default_str();
-  sub->callback([opt, rate, &action, &command_line] {
-    require_calibration(opt->calib, opt->px_per_mm);
-    require_ridge_blob_for_model(opt->pores, opt->pore_model);
-    const bool rate_given = rate->count() > 0;
-    action = [opt, rate_given, &command_line] {
-      capture::FrameRange input(opt->image_dir, opt->start, opt->frames);
-      if (const std::string range = input.range_error(); !range.empty()) {
-        fmt::print(stderr, "tactile capture: error: {}\n", range);
-        return 2;
+  sub->callback([request, outputs, &action, &command_line] {
+    capture::check_request(*request, OptionSpelling::cli);
+    action = [request, outputs, &command_line] {
+      capture::ResolvedCapture run = capture::resolve(*request, OptionSpelling::cli);
+      const capture::FrameRange& input = *run.frames;
+      const auto inputs =
+          inputs_of("IMAGE_DIR", request->source, request->calib, request->pore_model);
+      std::vector<Output> outs = {output_file("--out", outputs->out)};
+      if (outputs->csv_dir) {
+        outs.push_back(output_folder("--csv", *outputs->csv_dir, {"tracks.csv", "edges.csv"}));
       }
-      const double rate_hz = input.is_video() && !rate_given ? input.frame_rate_hz() : opt->rate_hz;
-      const auto inputs = inputs_of("IMAGE_DIR", opt->image_dir, opt->calib, opt->pore_model);
-      std::vector<Output> outputs = {output_file("--out", opt->out)};
-      if (opt->csv_dir) {
-        outputs.push_back(output_folder("--csv", *opt->csv_dir, {"tracks.csv", "edges.csv"}));
-      }
-      if (opt->maps_dir) {
+      if (outputs->maps_dir) {
         // One map per strain frame, named by its first camera frame: at most one per input frame.
         std::vector<fs::path> maps;
         for (int i = 0; i < input.count(); ++i) maps.emplace_back(map_name(i));
-        outputs.push_back(output_folder("--maps", *opt->maps_dir, maps));
+        outs.push_back(output_folder("--maps", *outputs->maps_dir, maps));
       }
-      refuse_output_over_input(outputs, inputs);
+      refuse_output_over_input(outs, inputs);
       // The maps are PNG images: drawn among the frames, the next capture of the folder would
       // read them as frames of the sequence.
-      if (opt->maps_dir && !input.is_video() && same_file(*opt->maps_dir, opt->image_dir)) {
+      if (outputs->maps_dir && !input.is_video() &&
+          same_file(*outputs->maps_dir, request->source)) {
         throw OutputIsInputError(fmt::format(
             "--maps {} is the frames folder IMAGE_DIR: its strain_NNN.png images would become "
             "frames of the next capture of it; draw them into another folder",
-            opt->maps_dir->string()));
+            outputs->maps_dir->string()));
       }
       Progress progress;
-      const auto from_file = calibration_file(opt->calib);
-      capture::CaptureSettings settings;
-      settings.pores = parse_name("--pores", opt->pores, capture::kPoreSettingNames);
-      settings.refine = parse_name("--refine", opt->refine, capture::kRefineSettingNames);
-      settings.smoothing_half_window = opt->smoothing;
-      settings.refine_window_mm = opt->refine_window_mm;
-      settings.span_frames = opt->span;
-      settings.min_track_frames = opt->min_track_frames;
-      settings.assignment = parse_name("--assignment", opt->assignment, capture::kAssignmentNames);
-      settings.pore_model = pore_model_file(opt->pore_model);
-      if (opt->calib) settings.calibration_source = opt->calib->string();
       const capture::CaptureMessages messages{
           .note = [](const std::string& text) { fmt::print("capture: {}\n", text); },
           .warning =
@@ -384,37 +314,39 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       const auto t0 = std::chrono::steady_clock::now();
       const double cpu0 = process_cpu_s();
       capture::StrainMovie movie = capture::capture_strain(
-          input, from_file, opt->px_per_mm, rate_hz, settings, messages,
+          *run.frames, run.calibration, run.px_per_mm, run.rate_hz, run.settings, messages,
           [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       // An empty strain movie maps to a still display: report the reason instead of writing it.
       if (capture::measured_no_strain(movie)) {
-        throw std::runtime_error(fmt::format(
-            "{}; nothing written to {}", capture::no_strain_reason(movie, settings, opt->image_dir),
-            opt->out.string()));
+        throw std::runtime_error(
+            fmt::format("{}; nothing written to {}",
+                        capture::no_strain_reason(movie, run.settings, request->source),
+                        outputs->out.string()));
       }
       const double cpu_s = process_cpu_s() - cpu0;
       const int n = movie.camera_frame_count;
-      movie.provenance.input = opt->image_dir.string();
+      movie.provenance.input = request->source.string();
       movie.provenance.command_line = command_line;
       // The strain movie and its CSV files replace the old ones together (the maps, one file a
       // frame, are too many to hold back: they follow).
       CommitTogether together;
-      capture::write_strain_movie(opt->out, movie);
-      if (opt->csv_dir) {
-        fs::create_directories(*opt->csv_dir);
-        capture::export_strain_csv(*opt->csv_dir, movie);
+      capture::write_strain_movie(outputs->out, movie);
+      if (outputs->csv_dir) {
+        fs::create_directories(*outputs->csv_dir);
+        capture::export_strain_csv(*outputs->csv_dir, movie);
       }
       together.commit();
       fmt::print(
           "capture: {} frames in {:.2f} s ({:.0f} frames/s; CPU {:.2f} ms per frame), {} strain "
-          "frames at {:.4g} Hz -> {}\n",
-          n, s, n / s, 1e3 * cpu_s / n, movie.frames.size(), rate_hz, opt->out.string());
-      if (opt->csv_dir) {
-        fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", opt->csv_dir->string());
+          "frames at {:.4g} Hz ({}) -> {}\n",
+          n, s, n / s, 1e3 * cpu_s / n, movie.frames.size(), run.rate_hz, run.rate_from,
+          outputs->out.string());
+      if (outputs->csv_dir) {
+        fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", outputs->csv_dir->string());
       }
-      if (opt->maps_dir) write_maps(*opt->maps_dir, movie, progress);
+      if (outputs->maps_dir) write_maps(*outputs->maps_dir, movie, progress);
       return 0;
     };
   });

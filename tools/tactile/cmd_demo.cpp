@@ -140,10 +140,7 @@ int run_demo(DemoOptions& opt, const std::string& command_line) {
   const mapping::FidelityMetrics fit =
       mapping::fidelity(movie, source, mapped.placement, mapped.um_per_strain,
                         opt.mapping.slew_limit_um_per_s, opt.mapping.field);
-  fmt::print(
-      "    fidelity to the measured strain: correlation {:.3f}, RMS error {:.3g} against RMS "
-      "{:.3g} ({} samples)\n",
-      fit.strain_correlation, fit.strain_rms_error, fit.source_strain_rms, fit.compared_pairs);
+  fmt::print("    {}\n", mapping::describe_fidelity(fit));
   const fs::path movie_path = opt.out / "movie.h5";
   movie::write_tactile_movie(movie_path, movie);
   if (opt.keep) movie::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);

@@ -94,7 +94,7 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
       "strain pattern) and filmed with blur, noise and a brightness drift, so that `tactile\n"
       "evaluate` scores a capture of real skin against the exact warp.");
   sub->add_option("OUT_DIR", opt->out_dir, "Folder to write into (created if missing)")->required();
-  add_scene_options(*sub, opt->spec);
+  add_scene_options(*sub, opt->spec, true);
   auto* from = sub->add_option("--from-print", opt->print,
                                "A real fingerprint image (ridges dark) to warp instead of a "
                                "synthetic scene")
@@ -161,7 +161,6 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
          },
          "")
       ->check(within(1.0, 100000.0))
-      ->excludes("--rate-hz")
       ->group("");
   needs_print(sub->add_option("--exposure-ms", opt->exposure_ms,
                               "--from-print: shutter time, ms (motion blur; at most one frame)")
@@ -185,6 +184,11 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
                   ->check(within(-10000.0, 10000.0))
                   ->excludes("--turn"));
   sub->callback([opt, &action, sub, &command_line] {
+    // Checked here, not with CLI11's excludes: that would list the hidden option's empty name
+    // under --rate-hz in --help ("Excludes: ").
+    if (sub->count("--rate") > 0 && sub->count("--rate-hz") > 0) {
+      throw CLI::ExcludesError("--rate", "--rate-hz");
+    }
     if (opt->print) {
       for (const char* scene_only :
            {"--scene", "--speed", "--height", "--width", "--contact-semi-x", "--rotation",

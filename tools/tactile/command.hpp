@@ -31,6 +31,7 @@ void add_info(CLI::App& app, Action& action);
 void add_export(CLI::App& app, Action& action);
 void add_import(CLI::App& app, Action& action, const std::string& command_line);
 void add_emulate(CLI::App& app, Action& action);
+void add_live(CLI::App& app, Action& action);
 void add_bench(CLI::App& app, Action& action);
 void add_bench_map(CLI::App& bench, Action& action);
 void add_bench_capture(CLI::App& bench, Action& action);

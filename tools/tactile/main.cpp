@@ -17,9 +17,11 @@
 
 #include "command.hpp"
 #include "tactile/capture/image.hpp"
+#include "tactile/common/option_table.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/provenance.hpp"
 #include "tactile/common/version.hpp"
+#include "usage_hints.hpp"
 
 namespace {
 
@@ -81,17 +83,25 @@ int main(int argc, char** argv) {
   tactile::cli::add_export(app, action);
   tactile::cli::add_import(app, action, command_line);
   tactile::cli::add_emulate(app, action);
+  tactile::cli::add_live(app, action);
   tactile::cli::add_bench(app, action);
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
-  const auto is_command = [&app](const std::string& word) {
-    return !app.get_subcommands([&word](CLI::App* sub) { return sub->check_name(word); }).empty();
-  };
-  if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-    fmt::print(stderr, "tactile: error: unknown command '{}'\nRun `tactile --help` for the list.\n",
-               argv[1]);
+  if (argc > 1 && argv[1][0] != '-' && !tactile::cli::find_command(app, argv[1])) {
+    const auto near = tactile::closest_name(argv[1], tactile::cli::command_names(app));
+    fmt::print(stderr,
+               "tactile: error: unknown command '{}'{}\nRun `tactile --help` for the list.\n",
+               argv[1], near ? fmt::format(" (did you mean '{}'?)", *near) : "");
     return 2;
   }
+  const auto usage_error = [&app, argc, argv](const std::string& what) {
+    const tactile::cli::CommandPath path = tactile::cli::command_path(app, argc, argv);
+    // An unknown flag first: a missing required option is often the misspelt one.
+    const std::string message = tactile::cli::unknown_flag(path, argc, argv).value_or(what);
+    fmt::print(stderr, "tactile: error: {}\nRun `tactile {}--help`.\n", message,
+               path.name.empty() ? "" : path.name + " ");
+    return 2;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -101,14 +111,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "tactile: error: {}\nRun `tactile --help` or `tactile <command> --help`.\n",
-               e.what());
-    return 2;
+    return usage_error(e.what());
   } catch (const std::exception& e) {
     // A check of an option that failed otherwise than CLI11 reports: still a usage error.
-    fmt::print(stderr, "tactile: error: {}\nRun `tactile --help` or `tactile <command> --help`.\n",
-               e.what());
-    return 2;
+    return usage_error(e.what());
   }
 
   if (!action) return 2;  // unreachable: require_subcommand(1) guarantees a command ran
@@ -123,6 +129,10 @@ int main(int argc, char** argv) {
     return action();
   } catch (const tactile::OutputPathError& e) {
     // Found before any work, like a parse error, but only once a command knows its inputs.
+    fmt::print(stderr, "tactile {}: error: {}\n", command, e.what());
+    return 2;
+  } catch (const tactile::RequestError& e) {
+    // A rule that needs the input (a range of frames against the video's length): usage.
     fmt::print(stderr, "tactile {}: error: {}\n", command, e.what());
     return 2;
   } catch (const std::bad_alloc&) {

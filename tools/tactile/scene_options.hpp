@@ -8,6 +8,7 @@
 
 #include "mode_option.hpp"
 #include "number_checks.hpp"
+#include "tactile/capture/print_warp.hpp"
 #include "tactile/capture/synth.hpp"
 
 namespace tactile::cli {
@@ -19,14 +20,22 @@ namespace tactile::cli {
 void refuse_stale_frames(const std::string& option, const std::filesystem::path& dir,
                          int frame_count);
 
-inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec) {
+// `print_too`: the command also makes sequences from a print (synth --from-print).
+inline void add_scene_options(CLI::App& sub, capture::SceneSpec& spec, bool print_too = false) {
   add_mode_option(sub, "--scene", spec.scene, capture::kSceneNames,
                   "Scene: bump, hole, flat-slide (slide over a feature or flat glass), "
                   "flat-rotate (press and twist), flat-stick-slip (push back and forth with a "
                   "sticking centre)");
-  sub.add_option("--frames", spec.frame_count, "Number of camera frames")
-      ->check(within(2, 100000))
-      ->capture_default_str();
+  // With prints there are two defaults, one per kind of sequence: said in words, as a single
+  // "[180]" would be wrong for a print.
+  sub.add_option("--frames", spec.frame_count,
+                 print_too ? fmt::format("Number of camera frames (default {} for a scene, {} "
+                                         "with --from-print)",
+                                         capture::SceneSpec{}.frame_count,
+                                         capture::PrintWarpSpec{}.frame_count)
+                           : fmt::format("Number of camera frames (default {})",
+                                         capture::SceneSpec{}.frame_count))
+      ->check(within(2, 100000));
   sub.add_option("--speed", spec.speed_mm_per_s, "Sliding speed in mm/s")
       ->check(within(0.0, 100.0))
       ->capture_default_str();

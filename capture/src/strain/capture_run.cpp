@@ -26,14 +26,16 @@ FrameRange::FrameRange(const fs::path& source, int start, std::optional<int> cou
   count_ = count.value_or(total_ - start);
 }
 
-std::string FrameRange::range_error() const {
+std::string FrameRange::range_error(OptionSpelling spelling) const {
   if (start_ < 0 || start_ >= total_) {
-    return fmt::format("--start: {} is out of range: {} has {} frames (0 to {})", start_,
-                       source_.string(), total_, total_ - 1);
+    return fmt::format("{}: {} is out of range: {} has {} frames (0 to {})",
+                       option_label("start", spelling), start_, source_.string(), total_,
+                       total_ - 1);
   }
   if (count_ < 1 || start_ + count_ > total_) {
-    return fmt::format("--frames: {} is out of range: from frame {} of {} there are {} frames",
-                       count_, start_, source_.string(), total_ - start_);
+    return fmt::format("{}: {} is out of range: from frame {} of {} there are {} frames",
+                       option_label("frames", spelling), count_, start_, source_.string(),
+                       total_ - start_);
   }
   return {};
 }

@@ -415,24 +415,30 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::string tracks_csv_row(const TrackedPoint& p) {
+  return fmt::format("{},{},{},{:.4f},{:.4f},{:.6f},{:.6f}\n", p.track_id, p.frame,
+                     feature_type_name(p.type), p.x_px, p.y_px, p.x_mm, p.y_mm);
+}
+
+std::string edges_csv_rows(const StrainFrame& f) {
+  std::string rows;
+  for (const auto& edge : f.edges) {
+    rows +=
+        fmt::format("{},{},{},{},{:.6f},{:.6f},{:.7f}\n", f.frame_from, f.frame_to, edge.track_a,
+                    edge.track_b, edge.length_from_mm, edge.length_to_mm, edge.rel_change);
+  }
+  return rows;
+}
+
 void export_strain_csv(const std::filesystem::path& dir, const StrainMovie& movie) {
   std::filesystem::create_directories(dir);
   const auto tracks_path = dir / "tracks.csv";
-  auto t = csv::open_with_header(tracks_path, "track_id,frame,type,x_px,y_px,x_mm,y_mm");
-  for (const auto& p : movie.tracks) {
-    t << fmt::format("{},{},{},{:.4f},{:.4f},{:.6f},{:.6f}\n", p.track_id, p.frame,
-                     feature_type_name(p.type), p.x_px, p.y_px, p.x_mm, p.y_mm);
-  }
+  auto t = csv::open_with_header(tracks_path, std::string(kTracksCsvHeader));
+  for (const auto& p : movie.tracks) t << tracks_csv_row(p);
   csv::finish(t, tracks_path);
   const auto edges_path = dir / "edges.csv";
-  auto e = csv::open_with_header(
-      edges_path, "frame_from,frame_to,track_a,track_b,length_from_mm,length_to_mm,rel_change");
-  for (const auto& f : movie.frames) {
-    for (const auto& edge : f.edges) {
-      e << fmt::format("{},{},{},{},{:.6f},{:.6f},{:.7f}\n", f.frame_from, f.frame_to, edge.track_a,
-                       edge.track_b, edge.length_from_mm, edge.length_to_mm, edge.rel_change);
-    }
-  }
+  auto e = csv::open_with_header(edges_path, std::string(kEdgesCsvHeader));
+  for (const auto& f : movie.frames) e << edges_csv_rows(f);
   csv::finish(e, edges_path);
 }
 

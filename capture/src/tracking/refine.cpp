@@ -688,6 +688,19 @@ int AlignmentTracker::frames() const {
   return state_->frames;
 }
 
+std::vector<AlignmentTracker::Step> AlignmentTracker::last_step() const {
+  const State& s = *state_;
+  std::vector<Step> steps;
+  steps.reserve(s.live.size());
+  for (const auto& l : s.live) {
+    const Track& t = l->track;
+    const std::size_t k = t.x_px.size();
+    if (k < 2 || t.last_frame() != s.frames - 1) continue;
+    steps.push_back({t.id, t.x_px[k - 2], t.y_px[k - 2], t.x_px[k - 1], t.y_px[k - 1]});
+  }
+  return steps;
+}
+
 int AlignmentTracker::live_tracks() const {
   return static_cast<int>(state_->live.size());
 }

@@ -17,9 +17,9 @@ struct LucasKanadeParams {
   double min_distance_mm = 0.25;  // between corners (about one pore spacing / 2)
   int window_px = 15;             // LK integration window
   int pyramid_levels = 3;
-  double max_forward_backward_px = 0.5;  // a point must track back to where it started
-  int reseed_every_frames = 5;           // new corners where the tracked ones thinned out
-  int min_track_frames = 30;             // as the landmark pipeline
+  double max_forward_backward_px = 0.5;    // a point must track back to where it started
+  int reseed_every_frames = 5;             // new corners where the tracked ones thinned out
+  int min_track_frames = kMinTrackFrames;  // as the landmark pipeline
 };
 
 struct DisFlowParams {
@@ -27,7 +27,7 @@ struct DisFlowParams {
   double min_texture_std = 12.0;  // ... where the print has contrast (grey levels, 0.3 mm window)
   int preset = 1;                 // cv::DISOpticalFlow preset: 0 ultrafast, 1 fast, 2 medium
   int reseed_every_frames = 5;
-  int min_track_frames = 30;
+  int min_track_frames = kMinTrackFrames;
 };
 
 // Tracks numbered 0.. in order of first frame, positions in pixels, type `pore` (a point of

@@ -42,7 +42,7 @@ struct CaptureParams {
   double match_radius_mm = 0.3;
   Assignment assignment = Assignment::greedy;
   // Shortest track linked from detections; with refinement, refinement.min_frames instead.
-  int min_track_frames = 30;
+  int min_track_frames = kMinTrackFrames;
   int max_gap_frames = 2;
   int smoothing_half_window = 3;
   // Tracking by alignment against the images (AlignmentTracker), before smoothing.

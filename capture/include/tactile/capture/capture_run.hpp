@@ -13,6 +13,7 @@
 #include "tactile/capture/pore_model_io.hpp"
 #include "tactile/capture/video.hpp"
 #include "tactile/common/names.hpp"
+#include "tactile/common/option_table.hpp"
 
 namespace tactile::capture {
 
@@ -28,9 +29,9 @@ class FrameRange {
   int count() const { return count_; }
   double frame_rate_hz() const { return video_ ? video_->info().frame_rate_hz : 0.0; }
 
-  // start and count against the input's length, worded for --start and --frames (empty when they
-  // fit).
-  std::string range_error() const;
+  // start and count against the input's length, naming the options as the front end spells them
+  // (empty when they fit).
+  std::string range_error(OptionSpelling spelling = OptionSpelling::cli) const;
 
   // The next frame of the range, or false after its last. Throws tactile::FormatError naming the
   // file when a frame cannot be read or differs in size from the first.
@@ -71,7 +72,7 @@ struct CaptureSettings {
   std::optional<int> smoothing_half_window;  // unset: smoothing_half_window_for(refine)
   double refine_window_mm = RefineParams{}.window_mm;
   int span_frames = 1;
-  int min_track_frames = 30;
+  int min_track_frames = kMinTrackFrames;
   Assignment assignment = Assignment::greedy;
   std::optional<PoreModelFile> pore_model;  // a ridge-blob model (pores auto then means it)
   // Where the calibration came from (e.g. its file), named when it does not fit the frames

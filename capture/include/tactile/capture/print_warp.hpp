@@ -64,7 +64,7 @@ struct PrintWarpSpec {
   double slide_y_mm = 0.08;
   double rotation_deg = 1.5;  // rigid rotation over the whole sequence
   int frame_count = 30;
-  double frame_rate_hz = 60.0;
+  double frame_rate_hz = kCameraRateHz;
   // Motion in physical units: with travel_speed_mm_per_s > 0 the travelling patterns (wave,
   // pulse, ridge) cross the field at that speed and the stick-slip and kernel patterns change on
   // the time the skin takes to travel the pattern's width; with 0 each takes the whole sequence.

@@ -11,6 +11,10 @@
 
 namespace tactile::capture {
 
+// The prism camera's frame rate in the first paper (640 x 484 at 60 Hz): the rate of a sequence
+// whose rate nobody stated, and of the synthetic scenes.
+inline constexpr double kCameraRateHz = 60.0;
+
 enum class FeatureType : std::uint8_t { pore = 0, ending = 1, bifurcation = 2 };
 
 // Name used in CSV files and HDF5 attributes ("pore", "ending", "bifurcation").
@@ -87,7 +91,7 @@ struct StrainFrame {
 };
 
 struct StrainMovie {
-  double frame_rate_hz = 60.0;
+  double frame_rate_hz = kCameraRateHz;
   std::int32_t span_frames = 1;  // frame_to - frame_from for every StrainFrame
   std::int32_t camera_frame_count = 0;
   double field_width_mm = 0;

@@ -2,6 +2,8 @@
 // Strain movie files: HDF5 with the schema in capture/FORMAT.md, and CSV export.
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "tactile/capture/strain_movie.hpp"
 
@@ -21,5 +23,13 @@ StrainMovie read_strain_movie(const std::filesystem::path& path);
 // Writes dir/tracks.csv (track_id,frame,type,x_px,y_px,x_mm,y_mm) and dir/edges.csv
 // (frame_from,frame_to,track_a,track_b,length_from_mm,length_to_mm,rel_change); creates dir.
 void export_strain_csv(const std::filesystem::path& dir, const StrainMovie& movie);
+
+// The rows of those two files (each line ending in a newline), for writers that append them as
+// they go (a live session's recording).
+inline constexpr std::string_view kTracksCsvHeader = "track_id,frame,type,x_px,y_px,x_mm,y_mm";
+inline constexpr std::string_view kEdgesCsvHeader =
+    "frame_from,frame_to,track_a,track_b,length_from_mm,length_to_mm,rel_change";
+std::string tracks_csv_row(const TrackedPoint& point);
+std::string edges_csv_rows(const StrainFrame& frame);
 
 }  // namespace tactile::capture

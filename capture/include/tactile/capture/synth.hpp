@@ -40,7 +40,7 @@ struct SceneSpec {
   double feature_height_mm = 0.5;  // bump height or hole depth
   double feature_width_mm = 3.0;   // full width at half maximum of the Gaussian profile
   int frame_count = 180;
-  double frame_rate_hz = 60.0;
+  double frame_rate_hz = kCameraRateHz;
   int width_px = 640;
   int height_px = 484;
   double field_width_mm = 10.3;

@@ -24,12 +24,16 @@ inline std::string to_string(Assignment a) {
   return name_in(kAssignmentNames, a);
 }
 
+// Shortest trajectory kept by default: the first paper rejected trajectories shorter than about
+// 30 frames (half a second at 60 Hz) as spurious matches.
+inline constexpr int kMinTrackFrames = 30;
+
 struct TrackParams {
   Assignment assignment = Assignment::greedy;
-  double match_radius_mm = 0.3;   // search radius around the predicted position
-  int min_track_frames = 30;      // shorter trajectories are rejected (paper: about 30)
-  int max_gap_frames = 2;         // a landmark may be missed this many frames in a row
-  int smoothing_half_window = 3;  // local quadratic fit over 2h+1 frames; 0 = no smoothing
+  double match_radius_mm = 0.3;            // search radius around the predicted position
+  int min_track_frames = kMinTrackFrames;  // shorter trajectories are rejected
+  int max_gap_frames = 2;                  // a landmark may be missed this many frames in a row
+  int smoothing_half_window = 3;           // local quadratic fit over 2h+1 frames; 0 = no smoothing
   // A position further than this from the straight-line motion of the 6 before it is a wrong
   // match (a landmark left contact and a neighbour was taken for it): the track is cut there.
   // Real motion deviates far less: 0.05 mm allows accelerations up to about 0.01 mm/frame^2.
@@ -170,6 +174,16 @@ class AlignmentTracker {
   void add_frame(const GrayImage& image, const std::vector<Feature>& seeds);
   int frames() const;
   int live_tracks() const;
+  // The live tracks followed into the last frame from the one before it, with their positions
+  // in both (pixels, as aligned: no smoothing, no curvature correction, which need later
+  // frames): what a causal consumer measures strain from, frame by frame. Ids are the tracker's
+  // own (stable while a track lives), not finish()'s renumbering.
+  struct Step {
+    std::int32_t id = 0;
+    double x0_px = 0, y0_px = 0;  // in the frame before the last
+    double x1_px = 0, y1_px = 0;  // in the last frame
+  };
+  std::vector<Step> last_step() const;
   // The tracks of at least min_frames frames, numbered 0.. in order of first frame (then of
   // seed); the tracker is empty afterwards.
   std::vector<Track> finish(RefineStats* stats = nullptr);

@@ -42,4 +42,8 @@ FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::Strain
                          const Placement& placement, double um_per_strain,
                          double slew_limit_um_per_s, const StrainFieldOptions& field = {});
 
+// "fidelity to the measured strain: correlation 0.998, RMS error ... (N samples)", as `map` and
+// `demo` print it.
+std::string describe_fidelity(const FidelityMetrics& fit);
+
 }  // namespace tactile::mapping

@@ -1,17 +1,27 @@
 #pragma once
 // Plain data for a tactile movie: frames of lateral contactor deflections on a known layout.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "tactile/common/names.hpp"
 #include "tactile/common/provenance.hpp"
 
 namespace tactile::movie {
 
 enum class DeflectionAxis : std::uint8_t { x = 0, y = 1 };
+inline constexpr std::array<Named<DeflectionAxis>, 2> kDeflectionAxisNames = {{
+    {DeflectionAxis::x, "x"},
+    {DeflectionAxis::y, "y"},
+}};
+inline std::string to_string(DeflectionAxis axis) {
+  return name_in(kDeflectionAxisNames, axis);
+}
 
 // Geometry and limits of a contactor array. Contactor (row, col) rests at
 // (col * pitch_x_mm, row * pitch_y_mm) relative to contactor (0, 0).
@@ -57,6 +67,8 @@ struct TactileMovie {
 Layout stress_layout();   // 10 x 10, 1 mm pitch, 700 Hz
 Layout stress2_layout();  // 8 x 8, 1.2 mm x 1.4 mm
 Layout latero_layout();   // 8 x 8, 1.2 mm x 1.6125 mm, contactors 0.5 x 1.4 mm, 750 Hz
+inline constexpr std::array<std::string_view, 3> kBuiltinLayoutNames = {"stress", "stress2",
+                                                                        "latero"};
 // Looks up a built-in layout by name; throws std::invalid_argument listing the known names.
 Layout layout_by_name(const std::string& name);
 

@@ -1,0 +1,58 @@
+#pragma once
+// `live` as a request: a camera (or a stream, or a file played as a camera would deliver it)
+// through capture, strain and mapping to a display, frame by frame. Its options are the capture
+// and map requests' own rows (scale, detector, layout, method, gain: their help, ranges and
+// defaults written once there) and a few of its own.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/capture/capture.hpp"
+#include "tactile/capture/capture_request.hpp"
+#include "tactile/common/option_table.hpp"
+#include "tactile/mapping/map_request.hpp"
+
+namespace tactile::live {
+
+struct LiveRequest {
+  // A V4L2 camera (/dev/videoN), a stream (udp://, tcp://, rtsp://), or a video file or folder
+  // of frames played at its frame rate as a camera would deliver it.
+  std::string source;
+  capture::CaptureRequest capture;  // calib or px_per_mm, rate_hz, pores, refine_window
+  mapping::MapRequest map;          // layout, method, gain
+  std::optional<double> seconds;    // unset: until the source ends or a stop
+  std::optional<std::filesystem::path> record;
+  int queue_frames = 2;
+  // Frames between detections of new landmarks: the batch capture's own rhythm.
+  int detect_every = capture::CaptureParams{}.redetect_every_frames;
+};
+
+const std::vector<OptionRow<LiveRequest>>& live_options();
+
+// Whether `source` names a file or folder (played at its rate) rather than a device or stream.
+bool is_rehearsal_source(const std::string& source);
+
+struct ResolvedLive {
+  std::string source;
+  bool rehearsal = false;
+  std::optional<capture::Calibration> calibration;  // from calib; unset: uniform px_per_mm
+  std::optional<double> px_per_mm;
+  std::optional<double> rate_hz;  // a camera rate asked for (else the source's own)
+  capture::PoreSetting pores = capture::PoreSetting::automatic;
+  double refine_window_mm = 0;
+  movie::Layout layout;
+  mapping::MappingParams params;  // resolved: rate_hz is the device's
+  std::optional<double> seconds;
+  std::optional<std::filesystem::path> record;
+  int queue_frames = 2;
+  int detect_every = 0;
+};
+
+// Checks every value and the rules between them (RequestError in the front end's spelling): one
+// of calib and px_per_mm; a mapping that needs no later frame (normalisation none, strain per
+// frame, not the profile method); the record folder new or empty.
+ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling);
+
+}  // namespace tactile::live

@@ -1,0 +1,96 @@
+#pragma once
+// A live session: frames from a source through capture, strain and mapping to a display, one
+// frame at a time, with no look-ahead.
+//
+// Threads: acquisition (reads the source; a file or folder is paced at its frame rate, each
+// frame available at its time as from a camera) pushes into a DropOldestQueue; processing (the
+// caller's thread) takes the oldest frame, follows the landmarks into it (AlignmentTracker,
+// detecting new ones every detect_every frames), measures the strain of every edge between the
+// last two frames (Delaunay, as the batch capture) and maps it onto the layout (the batch
+// mapping's per-frame methods); the device feeder sends the newest mapped frame at the
+// device's rate (zero-order hold: no interpolation, so no added delay) keeping its FIFO
+// `fifo_target_frames` deep.
+//
+// Latency of a camera frame: from the moment it was available (a file's frame: its scheduled
+// time; a camera or stream: its arrival) to the first device frame carrying it leaving the host
+// (send_frame returning).
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tactile/capture/strain_movie.hpp"
+#include "tactile/display/transport.hpp"
+#include "tactile/live/live_request.hpp"
+#include "tactile/movie/tactile_movie.hpp"
+
+namespace tactile::live {
+
+// One camera frame's fate and where its time went (milliseconds; processing stages are zero
+// for a dropped frame).
+struct FrameTiming {
+  std::int64_t frame = 0;
+  double source_time_s = 0;  // when it was available, from the session's start
+  bool dropped = false;
+  double wait_ms = 0;     // in the queue
+  double track_ms = 0;    // detection and alignment
+  double strain_ms = 0;   // triangulation
+  double map_ms = 0;      // strain field and method
+  double send_ms = 0;     // from mapped to its first device frame sent
+  double latency_ms = 0;  // source_time to sent (NaN for a dropped frame)
+  int points = 0;         // tracked into this frame from the one before
+  int edges = 0;
+};
+
+struct LiveSummary {
+  std::string source;
+  int width_px = 0, height_px = 0;
+  double camera_rate_hz = 0;
+  double device_rate_hz = 0;
+  std::int64_t frames_in = 0;
+  std::int64_t frames_processed = 0;
+  std::int64_t frames_dropped = 0;
+  std::int64_t device_frames_sent = 0;
+  double latency_p50_ms = 0, latency_p99_ms = 0, latency_max_ms = 0;
+  // Medians of each stage over the processed frames.
+  double wait_p50_ms = 0, track_p50_ms = 0, strain_p50_ms = 0, map_p50_ms = 0, send_p50_ms = 0;
+  double median_points = 0;
+  bool stopped = false;  // by a stop request (not the end of the source or of --seconds)
+  std::string detector;  // the pore detector chosen on the first frame
+};
+
+// What the session hands out as it goes (each called from the processing thread).
+struct LiveCallbacks {
+  std::function<void(const std::string&)> note = [](const std::string&) {};
+  // Every camera frame, processed or dropped, once its latency is known.
+  std::function<void(const FrameTiming&)> frame_done = [](const FrameTiming&) {};
+  // Every strain frame measured, with the tracked points of its two frames.
+  std::function<void(const capture::StrainFrame&)> strain = [](const capture::StrainFrame&) {};
+  // Every mapped frame (deflections, um, row-major).
+  std::function<void(std::int64_t frame, const std::vector<float>&)> mapped =
+      [](std::int64_t, const std::vector<float>&) {};
+};
+
+struct LiveOptions {
+  int fifo_target_frames = 2;
+  int threads = 0;  // alignment workers (0: one per core)
+};
+
+// Runs the session until the source ends, `seconds` pass or `stop` becomes true (then the
+// device is stopped, which ramps it to rest). Throws tactile::FormatError naming the source when
+// it cannot be opened or read (a camera removed mid-session: the frames so far were handed out
+// and the device is at rest).
+LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
+                     const std::atomic<bool>& stop, const LiveCallbacks& callbacks = {},
+                     const LiveOptions& options = {});
+
+// The summary for a person: frames in / processed / dropped, latency p50/p99/max and the
+// median of each stage.
+std::string format_summary(const LiveSummary& summary);
+
+// The calibration the session used for the frame size (from the file, or the uniform scale).
+capture::Calibration session_calibration(const ResolvedLive& session, int width_px, int height_px);
+
+}  // namespace tactile::live

@@ -1,0 +1,108 @@
+// The live request's option table and its rules; see live_request.hpp.
+
+#include "tactile/live/live_request.hpp"
+
+#include <fmt/format.h>
+
+#include "tactile/capture/calibration_io.hpp"
+
+namespace tactile::live {
+
+namespace rows = option_rows;
+namespace fs = std::filesystem;
+
+const std::vector<OptionRow<LiveRequest>>& live_options() {
+  using R = LiveRequest;
+  static const std::vector<OptionRow<R>> table = [] {
+    std::vector<OptionRow<R>> t;
+    OptionRow<R> source = rows::path<R>(
+        "source", &R::source,
+        "A V4L2 camera (/dev/videoN), a stream (udp://, tcp://, rtsp://), or a video file or\n"
+        "folder of frames played at its frame rate as a camera would deliver it");
+    source.positional = true;
+    source.metavar = "SOURCE";
+    t.push_back(source);
+    rows::append_nested<R>(t, capture::capture_options(),
+                           [](auto& r) -> auto& { return r.capture; },
+                           {"calib", "px_per_mm", "rate_hz", "pores", "refine_window"});
+    rows::append_nested<R>(t, mapping::map_options(), [](auto& r) -> auto& { return r.map; },
+                           {"layout", "method", "gain"});
+    t.push_back(rows::number<R>("seconds", &R::seconds, 0.01, 1e6, "s",
+                                "Stop after this long (default: when the source ends, or Ctrl-C)"));
+    t.push_back(rows::path<R>(
+        "record", &R::record,
+        "Record the session into this new (or empty) folder as it goes: latency.csv,\n"
+        "tracks.csv and edges.csv flushed every second; strain.h5 and movie.h5 at the end"));
+    t.push_back(rows::number<R>("queue_frames", &R::queue_frames, 1, 64, "frames",
+                                "Frames waiting between the camera and the processing; when "
+                                "full, the oldest\nis dropped (and counted)"));
+    t.push_back(rows::number<R>("detect_every", &R::detect_every, 1, 1000, "frames",
+                                "Frames between detections of new landmarks (between them, "
+                                "landmarks are\nfollowed by alignment alone; sooner when a "
+                                "fifth of the tracks ended)"));
+    return t;
+  }();
+  return table;
+}
+
+bool is_rehearsal_source(const std::string& source) {
+  if (source.find("://") != std::string::npos) return false;
+  if (source.rfind("/dev/", 0) == 0) return false;
+  return true;
+}
+
+ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
+  check_options(request, live_options(), spelling);
+  const auto label = [spelling](std::string_view name) { return option_label(name, spelling); };
+  const capture::CaptureRequest& c = request.capture;
+  if (c.calib.has_value() == c.px_per_mm.has_value()) {
+    throw RequestError(fmt::format("give one of {} (a calibration file) or {}", label("calib"),
+                                   label("px_per_mm")));
+  }
+  ResolvedLive r;
+  r.source = request.source;
+  r.rehearsal = is_rehearsal_source(request.source);
+  std::error_code ec;
+  if (r.rehearsal && !fs::exists(request.source, ec)) {
+    throw RequestError(fmt::format("{}: no such file or folder: {}",
+                                   spelling == OptionSpelling::cli ? "SOURCE" : "source",
+                                   request.source));
+  }
+  const mapping::MappingParams& p = request.map.params;
+  // The session maps each frame when it arrives: a rule that needs the whole movie cannot apply.
+  if (p.normalisation != mapping::Normalisation::none) {
+    throw RequestError(
+        "a live session maps each frame as it arrives: normalisation needs the "
+        "whole movie (use gain)");
+  }
+  if (p.method == mapping::MappingMethod::profile) {
+    throw RequestError(
+        fmt::format("{}: profile needs a surface profile, which a camera does not "
+                    "give",
+                    label("method")));
+  }
+  if (request.record) {
+    const fs::path& dir = *request.record;
+    if (fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec))) {
+      throw RequestError(
+          fmt::format("{}: {} exists and is not an empty folder: a recording goes "
+                      "into a new one, so that nothing is written over",
+                      label("record"), dir.string()));
+    }
+  }
+  if (c.calib) r.calibration = capture::read_calibration_json(*c.calib);
+  r.px_per_mm = c.px_per_mm;
+  r.rate_hz = c.rate_hz;
+  r.pores = c.pores;
+  r.refine_window_mm = c.refine_window_mm;
+  const mapping::ResolvedMap m = mapping::resolve(request.map, spelling);
+  r.layout = m.layout;
+  r.params = m.params;
+  r.seconds = request.seconds;
+  r.record = request.record;
+  r.queue_frames = request.queue_frames;
+  r.detect_every = request.detect_every;
+  return r;
+}
+
+}  // namespace tactile::live

@@ -1,0 +1,393 @@
+// A live session; see live_session.hpp.
+
+#include "tactile/live/live_session.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "live_source.hpp"
+#include "tactile/capture/capture.hpp"
+#include "tactile/capture/features.hpp"
+#include "tactile/capture/track.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/common/stats.hpp"
+#include "tactile/display/frame_codec.hpp"
+#include "tactile/live/frame_queue.hpp"
+#include "tactile/mapping/methods.hpp"
+#include "tactile/mapping/placement.hpp"
+#include "tactile/mapping/strain_field.hpp"
+
+namespace tactile::live {
+
+namespace {
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// The newest mapped frame, held for the device feeder, and when each camera frame was first
+// sent.
+class HeldFrame {
+ public:
+  explicit HeldFrame(std::size_t contactors) : deflection_um_(contactors, 0.0f) {}
+  void publish(std::int64_t frame, std::vector<float> deflection_um) {
+    std::lock_guard lock(mutex_);
+    deflection_um_ = std::move(deflection_um);
+    frame_ = frame;
+    published_ = true;
+  }
+  // The frame to send now; `frame` is -1 before any.
+  std::int64_t take(std::vector<float>& out) {
+    std::lock_guard lock(mutex_);
+    out = deflection_um_;
+    return published_ ? frame_ : -1;
+  }
+  void sent(std::int64_t frame, Clock::time_point at) {
+    {
+      std::lock_guard lock(mutex_);
+      if (frame > last_sent_frame_) {
+        last_sent_frame_ = frame;
+        last_sent_at_ = at;
+      }
+    }
+    changed_.notify_all();
+  }
+  // When `frame` (or a later one) first left the host; waits for it (or until `give_up`).
+  std::optional<Clock::time_point> wait_sent(std::int64_t frame, Clock::time_point give_up) {
+    std::unique_lock lock(mutex_);
+    if (!changed_.wait_until(lock, give_up, [&] { return last_sent_frame_ >= frame; })) {
+      return std::nullopt;
+    }
+    return last_sent_at_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<float> deflection_um_;
+  std::int64_t frame_ = -1;
+  bool published_ = false;
+  std::int64_t last_sent_frame_ = -1;
+  Clock::time_point last_sent_at_{};
+};
+
+// Sends the held frame at the device's rate, keeping its FIFO `target` frames deep.
+void feed_device(display::Transport& device, double rate_hz, int target, HeldFrame& held,
+                 const std::atomic<bool>& done, std::int64_t& frames_sent,
+                 std::exception_ptr& failure) {
+  try {
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
+    std::vector<float> frame;
+    std::uint32_t sequence = 0;
+    auto tick = Clock::now();
+    while (!done.load()) {
+      const display::DeviceStatus status = device.status();
+      int room = target - static_cast<int>(status.fifo_fill);
+      while (room-- > 0) {
+        const std::int64_t camera_frame = held.take(frame);
+        const auto bytes = display::encode_frame(frame, sequence, false);
+        if (!device.send_frame(bytes)) break;
+        ++sequence;
+        ++frames_sent;
+        held.sent(camera_frame, Clock::now());
+      }
+      tick += period;
+      std::this_thread::sleep_until(tick);
+    }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+}
+
+}  // namespace
+
+capture::Calibration session_calibration(const ResolvedLive& session, int width_px, int height_px) {
+  if (session.calibration) {
+    capture::check_calibration_fits(*session.calibration, width_px, height_px, "--calib",
+                                    session.source);
+    return *session.calibration;
+  }
+  return capture::uniform_calibration(session.px_per_mm.value(), width_px, height_px);
+}
+
+LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
+                     const std::atomic<bool>& stop, const LiveCallbacks& callbacks,
+                     const LiveOptions& options) {
+  const Clock::time_point start = Clock::now();
+  std::unique_ptr<FrameSource> source = session.rehearsal
+                                            ? open_rehearsal(session.source, session.rate_hz, start)
+                                            : open_device(session.source, session.rate_hz);
+  callbacks.note(source->describe());
+  LiveSummary summary;
+  summary.source = session.source;
+  summary.camera_rate_hz = source->rate_hz();
+  const double device_rate_hz = session.params.rate_hz.value();
+  summary.device_rate_hz = device_rate_hz;
+  const std::optional<Clock::time_point> end_at =
+      session.seconds ? std::optional(start + std::chrono::duration_cast<Clock::duration>(
+                                                  std::chrono::duration<double>(*session.seconds)))
+                      : std::nullopt;
+
+  // Acquisition: never waits for processing.
+  DropOldestQueue<SourceFrame> queue(static_cast<std::size_t>(session.queue_frames));
+  std::atomic<bool> acquisition_done{false};
+  std::atomic<bool> halt{false};  // the processing ended (a stop, the end or a failure)
+  std::exception_ptr acquisition_failure;
+  std::vector<SourceFrame> dropped;
+  std::mutex dropped_mutex;
+  std::int64_t frames_in = 0;
+  std::thread acquisition([&] {
+    try {
+      SourceFrame frame;
+      while (!stop.load() && !halt.load() && source->next(frame)) {
+        if (end_at && frame.available > *end_at) break;
+        ++frames_in;
+        if (auto old = queue.push(std::move(frame))) {
+          std::lock_guard lock(dropped_mutex);
+          old->image = {};
+          dropped.push_back(std::move(*old));
+        }
+        frame = {};
+      }
+    } catch (...) {
+      acquisition_failure = std::current_exception();
+    }
+    queue.close();
+    acquisition_done = true;
+  });
+
+  const movie::Layout& layout = session.layout;
+  HeldFrame held(static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.cols));
+  std::atomic<bool> feeding_done{false};
+  std::int64_t frames_sent = 0;
+  std::exception_ptr feed_failure;
+  device.start(device_rate_hz);
+  std::thread feeder([&] {
+    feed_device(device, device_rate_hz, options.fifo_target_frames, held, feeding_done, frames_sent,
+                feed_failure);
+  });
+
+  std::unique_ptr<capture::AlignmentTracker> tracker;
+  capture::FeatureParams features = capture::pores_only();
+  capture::Calibration calibration;
+  double px_per_mm = 0;
+  mapping::Placement placement;
+  std::vector<capture::PointMm> sample_points;
+  std::vector<FrameTiming> timings;
+  const auto report_dropped = [&] {
+    std::vector<SourceFrame> now;
+    {
+      std::lock_guard lock(dropped_mutex);
+      now.swap(dropped);
+    }
+    for (const auto& d : now) {
+      FrameTiming t;
+      t.frame = d.index;
+      t.source_time_s = std::chrono::duration<double>(d.available - start).count();
+      t.dropped = true;
+      t.latency_ms = std::numeric_limits<double>::quiet_NaN();
+      callbacks.frame_done(t);
+      timings.push_back(t);
+    }
+  };
+  std::exception_ptr failure;
+  try {
+    std::optional<std::int64_t> previous;
+    std::int64_t last_detection = 0;
+    int tracks_after_detection = 0;
+    while (!stop.load()) {
+      std::optional<SourceFrame> got = queue.pop(std::chrono::milliseconds(20));
+      report_dropped();
+      if (!got) {
+        if (queue.closed_and_empty()) break;
+        continue;
+      }
+      SourceFrame& f = *got;
+      FrameTiming t;
+      t.frame = f.index;
+      t.source_time_s = std::chrono::duration<double>(f.available - start).count();
+      const Clock::time_point popped = Clock::now();
+      t.wait_ms = ms_between(f.available, popped);
+      if (!tracker) {
+        summary.width_px = f.image.width_px;
+        summary.height_px = f.image.height_px;
+        calibration = session_calibration(session, f.image.width_px, f.image.height_px);
+        px_per_mm = 1.0 / calibration.mm_per_px;
+        // The detector the batch capture would choose on this frame.
+        capture::CaptureChoice choice;
+        if (session.pores == capture::PoreSetting::automatic) {
+          choice = capture::choose_capture_settings(f.image, px_per_mm);
+        } else {
+          choice.detector = session.pores == capture::PoreSetting::ridge_blob
+                                ? capture::PoreDetector::ridge_blob
+                                : capture::PoreDetector::paper;
+        }
+        features.pore_detector = choice.detector;
+        summary.detector = capture::to_string(choice.detector);
+        capture::RefineParams refine;
+        refine.window_mm = session.refine_window_mm;
+        tracker = std::make_unique<capture::AlignmentTracker>(px_per_mm, refine, options.threads);
+        capture::StrainMovie frame_of_view;
+        frame_of_view.calibration = calibration;
+        frame_of_view.field_width_mm = f.image.width_px * calibration.mm_per_px;
+        frame_of_view.field_height_mm = f.image.height_px * calibration.mm_per_px;
+        placement = session.params.placement.value_or(mapping::default_placement(frame_of_view));
+        sample_points = mapping::sample_points_mm(layout, placement);
+        callbacks.note(fmt::format("{} x {} px at {:.2f} px/mm, pores: {}; {} at {:g} Hz",
+                                   f.image.width_px, f.image.height_px, px_per_mm, summary.detector,
+                                   layout.name, device_rate_hz));
+      }
+      // Landmarks: detected every detect_every frames, or sooner when a fifth of the tracks
+      // have ended since the last detection (as the batch capture), followed by alignment in
+      // between.
+      const bool detect = f.index - last_detection >= session.detect_every ||
+                          tracker->live_tracks() < 0.8 * tracks_after_detection ||
+                          tracker->frames() == 0;
+      std::vector<capture::Feature> seeds;
+      if (detect) seeds = capture::extract_features(f.image, px_per_mm, features);
+      tracker->add_frame(f.image, seeds);
+      if (detect) {
+        last_detection = f.index;
+        tracks_after_detection = tracker->live_tracks();
+      }
+      const Clock::time_point tracked = Clock::now();
+      t.track_ms = ms_between(popped, tracked);
+
+      capture::StrainFrame sf;
+      std::vector<float> deflection(
+          static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.cols), 0.0f);
+      if (previous) {
+        const auto steps = tracker->last_step();
+        sf.frame_from = static_cast<std::int32_t>(*previous);
+        sf.frame_to = static_cast<std::int32_t>(f.index);
+        sf.t_s = t.source_time_s;
+        for (const auto& s : steps) {
+          const capture::PointMm a = capture::to_mm(calibration, s.x0_px, s.y0_px);
+          const capture::PointMm b = capture::to_mm(calibration, s.x1_px, s.y1_px);
+          sf.points_from.push_back(
+              {s.id, sf.frame_from, capture::FeatureType::pore, s.x0_px, s.y0_px, a.x_mm, a.y_mm});
+          sf.points_to.push_back(
+              {s.id, sf.frame_to, capture::FeatureType::pore, s.x1_px, s.y1_px, b.x_mm, b.y_mm});
+        }
+        if (sf.points_from.size() >= 3) {
+          capture::triangulate_strain(sf.points_from, sf.points_to, 3.0, sf.edges, sf.triangles);
+        }
+        t.points = static_cast<int>(sf.points_to.size());
+        t.edges = static_cast<int>(sf.edges.size());
+        const Clock::time_point strained = Clock::now();
+        t.strain_ms = ms_between(tracked, strained);
+        callbacks.strain(sf);
+        if (!sf.triangles.empty()) {
+          const mapping::StrainField field =
+              mapping::build_strain_field(sf, session.params.field, sample_points);
+          const std::vector<double> d =
+              session.params.method == mapping::MappingMethod::proportional
+                  ? mapping::proportional_frame(field, layout, placement,
+                                                session.params.gain_um_per_strain)
+                  : mapping::integrated_frame(field, layout, placement,
+                                              session.params.gain_um_per_strain);
+          for (std::size_t i = 0; i < d.size() && i < deflection.size(); ++i) {
+            deflection[i] = static_cast<float>(
+                std::clamp(d[i], layout.deflection_min_um, layout.deflection_max_um));
+          }
+        }
+        t.map_ms = ms_between(strained, Clock::now());
+      }
+      previous = f.index;
+      const Clock::time_point mapped = Clock::now();
+      callbacks.mapped(f.index, deflection);
+      held.publish(f.index, std::move(deflection));
+      // Its first device frame: within a few device periods unless the device stalls.
+      const auto sent = held.wait_sent(f.index, mapped + std::chrono::seconds(2));
+      if (!sent) {
+        throw std::runtime_error(fmt::format("the display took no frame for 2 s (frame {} of {})",
+                                             f.index, session.source));
+      }
+      t.send_ms = ms_between(mapped, *sent);
+      t.latency_ms = ms_between(f.available, *sent);
+      ++summary.frames_processed;
+      callbacks.frame_done(t);
+      timings.push_back(t);
+    }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  summary.stopped = stop.load();
+  halt = true;
+  // Acquisition ends at the source's end or at the stop; a camera read may take a frame time.
+  acquisition.join();
+  // Frames still waiting when the session stopped were never processed: dropped too.
+  std::int64_t left_waiting = 0;
+  while (auto left = queue.pop(std::chrono::milliseconds(0))) {
+    std::lock_guard lock(dropped_mutex);
+    left->image = {};
+    dropped.push_back(std::move(*left));
+    ++left_waiting;
+  }
+  report_dropped();
+  feeding_done = true;
+  feeder.join();
+  device.stop();  // the device drops what it holds and ramps every contactor to rest
+  // The device's failure first: the processing then only waited for it in vain.
+  if (feed_failure) std::rethrow_exception(feed_failure);
+  if (failure) std::rethrow_exception(failure);
+  if (acquisition_failure) std::rethrow_exception(acquisition_failure);
+
+  summary.frames_in = frames_in;
+  summary.frames_dropped = queue.dropped() + left_waiting;
+  summary.device_frames_sent = frames_sent;
+  std::vector<double> latency, wait, track, strain, map, send, points;
+  for (const auto& t : timings) {
+    if (t.dropped) continue;
+    latency.push_back(t.latency_ms);
+    wait.push_back(t.wait_ms);
+    track.push_back(t.track_ms);
+    strain.push_back(t.strain_ms);
+    map.push_back(t.map_ms);
+    send.push_back(t.send_ms);
+    points.push_back(t.points);
+  }
+  if (!latency.empty()) {
+    summary.latency_p50_ms = quantile(latency, 0.5);
+    summary.latency_p99_ms = quantile(latency, 0.99);
+    summary.latency_max_ms = *std::max_element(latency.begin(), latency.end());
+    summary.wait_p50_ms = median(wait);
+    summary.track_p50_ms = median(track);
+    summary.strain_p50_ms = median(strain);
+    summary.map_p50_ms = median(map);
+    summary.send_p50_ms = median(send);
+    summary.median_points = median(points);
+  }
+  return summary;
+}
+
+std::string format_summary(const LiveSummary& s) {
+  std::string out;
+  out += fmt::format("frames      {} in, {} processed, {} dropped ({} x {} px at {:g} Hz)\n",
+                     s.frames_in, s.frames_processed, s.frames_dropped, s.width_px, s.height_px,
+                     s.camera_rate_hz);
+  out += fmt::format(
+      "latency     p50 {:.2f} ms, p99 {:.2f} ms, max {:.2f} ms (frame available "
+      "-> its first device frame sent)\n",
+      s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms);
+  out += fmt::format(
+      "stages      medians: queue {:.2f} ms, tracking {:.2f} ms, strain {:.2f} ms, "
+      "mapping {:.2f} ms, to the device {:.2f} ms\n",
+      s.wait_p50_ms, s.track_p50_ms, s.strain_p50_ms, s.map_p50_ms, s.send_p50_ms);
+  out += fmt::format(
+      "display     {} device frames sent at {:g} Hz (held between camera frames); "
+      "median {:.0f} points tracked a frame\n",
+      s.device_frames_sent, s.device_rate_hz, s.median_points);
+  return out;
+}
+
+}  // namespace tactile::live

@@ -1,0 +1,126 @@
+#include "live_source.hpp"
+
+#include <fmt/format.h>
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+#include <thread>
+
+#include "tactile/capture/capture_run.hpp"
+#include "tactile/capture/strain_movie.hpp"
+#include "tactile/common/error.hpp"
+
+namespace tactile::live {
+
+namespace {
+
+class Rehearsal final : public FrameSource {
+ public:
+  Rehearsal(const std::string& source, std::optional<double> rate_hz, Clock::time_point start)
+      : source_(source), frames_(source, 0, std::nullopt), start_(start) {
+    if (const std::string range = frames_.range_error(); !range.empty()) {
+      throw FormatError(fmt::format("{}: no frames to play", source));
+    }
+    rate_hz_ =
+        rate_hz.value_or(frames_.is_video() ? frames_.frame_rate_hz() : capture::kCameraRateHz);
+  }
+  bool next(SourceFrame& out) override {
+    if (!frames_.next(out.image)) return false;
+    out.index = index_++;
+    // Decoded ahead of its time, then held until then, as a camera would hand it over.
+    const auto due = start_ + std::chrono::duration_cast<Clock::duration>(
+                                  std::chrono::duration<double>(out.index / rate_hz_));
+    std::this_thread::sleep_until(due);
+    // Handed over now: at its time, or later when decoding it took longer than a frame.
+    out.available = Clock::now();
+    return true;
+  }
+  double rate_hz() const override { return rate_hz_; }
+  std::string describe() const override {
+    return fmt::format("{}: {} frames played at {:g} Hz", source_, frames_.count(), rate_hz_);
+  }
+
+ private:
+  std::string source_;
+  capture::FrameRange frames_;
+  Clock::time_point start_;
+  double rate_hz_ = capture::kCameraRateHz;
+  std::int64_t index_ = 0;
+};
+
+class Device final : public FrameSource {
+ public:
+  Device(const std::string& source, std::optional<double> rate_hz) : source_(source) {
+    const bool camera = source.rfind("/dev/", 0) == 0;
+    const int api = camera ? cv::CAP_V4L2 : cv::CAP_FFMPEG;
+    if (!capture_.open(source, api)) {
+      throw FormatError(fmt::format("{}: cannot open it as a {}", source,
+                                    camera ? "V4L2 camera" : "video stream"));
+    }
+    if (rate_hz && camera) capture_.set(cv::CAP_PROP_FPS, *rate_hz);
+    asked_hz_ = rate_hz;
+    rate_hz_ = capture_.get(cv::CAP_PROP_FPS);
+    if (!(rate_hz_ > 0 && rate_hz_ < 1e5)) rate_hz_ = rate_hz.value_or(capture::kCameraRateHz);
+    width_px_ = static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_WIDTH));
+    height_px_ = static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_HEIGHT));
+  }
+  bool next(SourceFrame& out) override {
+    cv::Mat frame;
+    if (!capture_.read(frame) || frame.empty()) {
+      if (source_.rfind("/dev/", 0) == 0) {
+        throw FormatError(
+            fmt::format("{}: the camera gave no frame after frame {} (removed or "
+                        "stopped?)",
+                        source_, index_));
+      }
+      return false;  // a stream's end
+    }
+    out.available = Clock::now();
+    cv::Mat grey;
+    if (frame.channels() == 1) {
+      grey = frame;
+    } else {
+      cv::cvtColor(frame, grey, frame.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+    }
+    if (grey.depth() != CV_8U) grey.convertTo(grey, CV_8U);
+    out.image.width_px = grey.cols;
+    out.image.height_px = grey.rows;
+    out.image.pixels.assign(grey.datastart, grey.dataend);
+    if (!grey.isContinuous()) {
+      out.image.pixels.resize(static_cast<std::size_t>(grey.cols) * grey.rows);
+      for (int r = 0; r < grey.rows; ++r) {
+        std::copy_n(grey.ptr<std::uint8_t>(r), grey.cols,
+                    out.image.pixels.data() + static_cast<std::size_t>(r) * grey.cols);
+      }
+    }
+    out.index = index_++;
+    return true;
+  }
+  double rate_hz() const override { return rate_hz_; }
+  std::string describe() const override {
+    return fmt::format("{}: {} x {} px at {:g} Hz{}", source_, width_px_, height_px_, rate_hz_,
+                       asked_hz_ ? fmt::format(" (asked for {:g} Hz)", *asked_hz_) : "");
+  }
+
+ private:
+  std::string source_;
+  cv::VideoCapture capture_;
+  std::optional<double> asked_hz_;
+  double rate_hz_ = 0;
+  int width_px_ = 0, height_px_ = 0;
+  std::int64_t index_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSource> open_rehearsal(const std::string& source,
+                                            std::optional<double> rate_hz,
+                                            Clock::time_point start) {
+  return std::make_unique<Rehearsal>(source, rate_hz, start);
+}
+
+std::unique_ptr<FrameSource> open_device(const std::string& source, std::optional<double> rate_hz) {
+  return std::make_unique<Device>(source, rate_hz);
+}
+
+}  // namespace tactile::live

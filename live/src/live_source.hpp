@@ -1,0 +1,42 @@
+#pragma once
+// Where a live session's frames come from: a camera or stream read as the frames arrive, or a
+// file or folder played at its frame rate as a camera would deliver it.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "tactile/capture/image.hpp"
+
+namespace tactile::live {
+
+using Clock = std::chrono::steady_clock;
+
+struct SourceFrame {
+  std::int64_t index = 0;
+  capture::GrayImage image;
+  Clock::time_point available;  // scheduled time (rehearsal) or arrival (camera, stream)
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  // The next frame, waiting until it is available; false after the last one. Throws
+  // tactile::FormatError naming the source when it cannot be read (a camera that went away).
+  virtual bool next(SourceFrame& out) = 0;
+  virtual double rate_hz() const = 0;
+  // What the source is and what it granted ("/dev/video0: 640 x 480 at 60 Hz (asked 120 Hz)").
+  virtual std::string describe() const = 0;
+};
+
+// A file or folder played at `rate_hz` (unset: a video's own rate, else the default camera
+// rate) from `start` on.
+std::unique_ptr<FrameSource> open_rehearsal(const std::string& source,
+                                            std::optional<double> rate_hz, Clock::time_point start);
+// A camera (/dev/videoN, asked for `rate_hz` when given) or a stream URL, through OpenCV's
+// videoio (V4L2, FFmpeg).
+std::unique_ptr<FrameSource> open_device(const std::string& source, std::optional<double> rate_hz);
+
+}  // namespace tactile::live

@@ -1,0 +1,77 @@
+#pragma once
+// Python keyword arguments made from a request's option table (tactile/common/option_table.hpp):
+// the same names as the command line's flags (with underscores), the same ranges and choices,
+// checked by the same rule and raised as ValueError in the same words, and a docstring listing
+// every keyword with its unit, range and default.
+
+#include <fmt/format.h>
+
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "tactile/common/option_table.hpp"
+
+namespace tactile::python {
+
+// `value` as the table takes it: None (unset), bool, int, float, or text (str or os.PathLike).
+inline OptionValue option_value_of(const py::handle& value, OptionKind kind) {
+  if (value.is_none()) return std::monostate{};
+  if (py::isinstance<py::bool_>(value)) {
+    // Python's bool is an int: True would pass as 1 without this.
+    if (kind != OptionKind::flag) throw py::type_error("takes a number, name or path, not a bool");
+    return value.cast<bool>();
+  }
+  if (py::isinstance<py::int_>(value)) return value.cast<std::int64_t>();
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (kind == OptionKind::path && py::hasattr(value, "__fspath__")) {
+    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  }
+  throw py::type_error(fmt::format(
+      "takes {}, not {}", kind == OptionKind::path ? "a str or path" : "a number or name",
+      py::str(py::type::of(value).attr("__name__")).cast<std::string>()));
+}
+
+// `request` with every keyword of `kwargs` set through its row; an unknown keyword is a
+// TypeError naming the closest known one, a bad value a ValueError (RequestError).
+template <typename R>
+void set_from_kwargs(R& request, const std::vector<OptionRow<R>>& table, const py::kwargs& kwargs,
+                     const std::string& function) {
+  std::vector<std::string> names;
+  for (const auto& row : table)
+    if (!row.positional) names.emplace_back(row.name);
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = py::cast<std::string>(key);
+    const OptionRow<R>* row = find_option(table, name);
+    if (!row || row->positional) {
+      const auto near = closest_name(name, names);
+      throw py::type_error(fmt::format("{}() got an unexpected keyword argument '{}'{}", function,
+                                       name,
+                                       near ? fmt::format(" (did you mean '{}'?)", *near) : ""));
+    }
+    OptionValue v;
+    try {
+      v = option_value_of(value, row->kind);
+    } catch (const py::type_error& e) {
+      throw py::type_error(fmt::format("{}: {}", name, e.what()));
+    }
+    set_option(request, *row, v, OptionSpelling::python);
+  }
+}
+
+// The keywords of `table` for a docstring, one per line: "rate_hz: Camera frame rate [...]".
+template <typename R>
+std::string kwargs_doc(const std::vector<OptionRow<R>>& table) {
+  std::string doc;
+  for (const auto& row : table) {
+    if (row.positional) continue;
+    std::string help = describe_option(row);
+    for (char& c : help)
+      if (c == '\n') c = ' ';
+    doc += fmt::format("\n  {}: {}", row.name, help);
+  }
+  return doc;
+}
+
+}  // namespace tactile::python

@@ -1,0 +1,120 @@
+// `tactile live`: a camera, a stream, or a file played at its rate, through capture, strain and
+// mapping to the display, frame by frame (live::run_live), recording as it goes.
+
+#include <fmt/format.h>
+#include <poll.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include "command.hpp"
+#include "request_options.hpp"
+#include "tactile/common/output_paths.hpp"
+#include "tactile/common/stop_signals.hpp"
+#include "tactile/display/emulated_device.hpp"
+#include "tactile/live/live_request.hpp"
+#include "tactile/live/live_session.hpp"
+#include "tactile/live/recording.hpp"
+
+namespace tactile::cli {
+
+void add_live(CLI::App& app, Action& action) {
+  auto request = std::make_shared<live::LiveRequest>();
+  auto headless = std::make_shared<bool>(false);
+  CLI::App* sub = app.add_subcommand(
+      "live",
+      "A live session: frames from a camera (/dev/videoN), a stream (udp://, tcp://, rtsp://)\n"
+      "or a video file or folder of frames played at its rate as a camera would deliver it,\n"
+      "each processed as it arrives (no look-ahead): landmarks followed by alignment, the\n"
+      "strain of every edge between the last two frames, mapped onto the layout and sent to\n"
+      "the display at its own rate (the newest frame held between camera frames). When the\n"
+      "processing falls behind, the oldest waiting frame is dropped and counted. Prints frames\n"
+      "in / processed / dropped and the latency (frame available -> its first device frame\n"
+      "sent) p50/p99/max with the median of each stage. The display is the emulated device\n"
+      "(--headless); USB, hidapi, Latero and the window are not yet outputs of a live session.");
+  add_request_options(*sub, request, live::live_options());
+  sub->add_flag("--headless", *headless, "Play into the emulated device, with no window");
+  sub->callback([request, headless, &action] {
+    action = [request, headless] {
+      const live::ResolvedLive session = live::resolve(*request, OptionSpelling::cli);
+      StopSignals signals;  // before any thread, so that they inherit the block
+      display::EmulatedDeviceOptions device_options;
+      device_options.layout = session.layout;
+      device_options.clock = display::EmulatedClock::real_time;
+      device_options.record_outputs = false;
+      display::EmulatedDevice device(device_options);
+      std::atomic<bool> stop{false};
+      std::atomic<bool> over{false};
+      std::thread watcher([&] {
+        pollfd p{signals.fd(), POLLIN, 0};
+        while (!over.load()) {
+          if (::poll(&p, 1, 50) > 0) {
+            stop = true;
+            return;
+          }
+        }
+      });
+      std::unique_ptr<live::SessionRecording> recording;
+      if (session.record) recording = std::make_unique<live::SessionRecording>(*session.record);
+      live::LiveCallbacks callbacks;
+      callbacks.note = [](const std::string& text) { fmt::print("live: {}\n", text); };
+      auto last_print = std::chrono::steady_clock::now();
+      std::int64_t processed = 0, dropped = 0;
+      double last_latency_ms = 0;
+      callbacks.frame_done = [&](const live::FrameTiming& t) {
+        if (t.dropped) {
+          ++dropped;
+        } else {
+          ++processed;
+          last_latency_ms = t.latency_ms;
+        }
+        if (recording) recording->frame(t);
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_print >= std::chrono::seconds(1)) {
+          last_print = now;
+          fmt::print("live: t = {:.1f} s, {} frames processed, {} dropped, latency {:.2f} ms\n",
+                     t.source_time_s, processed, dropped, last_latency_ms);
+          std::fflush(stdout);
+        }
+      };
+      callbacks.strain = [&](const capture::StrainFrame& f) {
+        if (recording) recording->strain(f);
+      };
+      callbacks.mapped = [&](std::int64_t frame, const std::vector<float>& d) {
+        if (recording) recording->mapped(frame, d);
+      };
+      live::LiveSummary summary;
+      try {
+        summary = live::run_live(session, device, stop, callbacks);
+      } catch (...) {
+        over = true;
+        watcher.join();
+        // What was recorded stays: the CSV files are flushed before the error is reported.
+        recording.reset();
+        throw;
+      }
+      over = true;
+      watcher.join();
+      if (recording) {
+        recording->finish(live::session_calibration(session, summary.width_px, summary.height_px),
+                          summary.camera_rate_hz, session.layout, summary.device_rate_hz,
+                          session.source);
+        fmt::print("live: recorded into {}\n", session.record->string());
+      }
+      fmt::print("{}", live::format_summary(summary));
+      if (const int signal = signals.received(); signal != 0) {
+        fmt::print("live: stopped by {}; the display is at rest\n",
+                   signal == SIGINT ? "SIGINT" : "SIGTERM");
+        return exit_code_for_signal(signal);
+      }
+      (void)headless;
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,110 @@
+#pragma once
+// Command-line options made from a request's option table (tactile/common/option_table.hpp):
+// one CLI11 option per row, its help text, unit, range, choices and default from the row and
+// the request's defaults, and its value checked by the same rule the Python module applies.
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/ranges.h>
+
+#include "tactile/common/option_table.hpp"
+
+namespace tactile::cli {
+
+// The text typed for `row` as the value the table takes; text that is not a number stays text,
+// so that option_problem words its complaint ("takes a number").
+template <typename R>
+OptionValue value_from_text(const OptionRow<R>& row, const std::string& text) {
+  if (row.kind == OptionKind::integer || row.kind == OptionKind::number) {
+    std::int64_t i{};
+    const char* end = text.data() + text.size();
+    if (const auto [stop, error] = std::from_chars(text.data(), end, i);
+        error == std::errc() && stop == end && !text.empty()) {
+      return i;
+    }
+    double d{};
+    if (CLI::detail::lexical_cast(text, d)) {
+      // "1e3" or " 7" for a whole number: the number it says.
+      if (std::isfinite(d) && d == std::trunc(d) && std::abs(d) < 9e15) {
+        return static_cast<std::int64_t>(d);
+      }
+      return d;
+    }
+  }
+  return text;
+}
+
+// What `--help` shows after the type: "2 to 5000", "{auto,paper,ridge-blob}".
+template <typename R>
+std::string validator_text(const OptionRow<R>& row) {
+  if (row.kind == OptionKind::choice) return fmt::format("{{{}}}", fmt::join(row.choices, ","));
+  if (row.kind != OptionKind::integer && row.kind != OptionKind::number) return {};
+  const bool low = std::isfinite(row.min), high = std::isfinite(row.max);
+  if (low && high) return fmt::format("{} to {}", row.min, row.max);
+  if (low) return fmt::format(">= {}", row.min);
+  if (high) return fmt::format("<= {}", row.max);
+  return {};
+}
+
+// The option's complaint about `text` in CLI11's words ("2 is not a whole number"); CLI11 puts
+// the flag before it.
+template <typename R>
+CLI::Validator row_check(const OptionRow<R>& row) {
+  return CLI::Validator(
+      [row](std::string& text) -> std::string {
+        const OptionValue value = value_from_text(row, text);
+        if (std::holds_alternative<std::string>(value) &&
+            (row.kind == OptionKind::integer || row.kind == OptionKind::number)) {
+          return fmt::format("{} is not {}", text,
+                             row.kind == OptionKind::integer ? "a whole number" : "a number");
+        }
+        return option_problem(row, value);
+      },
+      validator_text(row));
+}
+
+// Adds every row of `table` to `sub`, writing into `*request`.
+template <typename R>
+void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
+                         const std::vector<OptionRow<R>>& table) {
+  for (const auto& row : table) {
+    std::string flag =
+        row.positional ? std::string(row.metavar) : option_label(row.name, OptionSpelling::cli);
+    if (!row.cli_alias.empty()) flag += "," + std::string(row.cli_alias);
+    CLI::Option* option = sub.add_option_function<std::string>(
+        flag,
+        [request, row](const std::string& text) {
+          set_option(*request, row, value_from_text(row, text), OptionSpelling::cli);
+        },
+        describe_option(row, false));
+    option->check(row_check(row));
+    if (row.positional) option->required();
+    if (row.must_exist && row.positional) option->check(CLI::ExistingPath);
+    if (row.must_exist && !row.positional) option->check(CLI::ExistingFile);
+    switch (row.kind) {
+      case OptionKind::integer:
+        option->type_name("INT");
+        break;
+      case OptionKind::number:
+        option->type_name("FLOAT");
+        break;
+      case OptionKind::choice:
+        option->type_name("NAME");
+        break;
+      case OptionKind::path:
+        option->type_name("PATH");
+        break;
+      case OptionKind::flag:
+        option->type_name("BOOL");
+        break;
+    }
+  }
+}
+
+}  // namespace tactile::cli
