@@ -2,7 +2,7 @@
 # -noreset: Xvfb otherwise resets when the last client leaves and refuses the next test's window.
 # The `tactile view` command line is run the same way (view_cli_test.cpp), so the binary waits
 # for the program.
-tactile_add_test_binary(gui_tests gui tactile_display)
+tactile_add_test_binary(gui_tests gui tactile_display_viewer)
 target_include_directories(gui_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/display)
 add_dependencies(gui_tests tactile)
 find_program(XVFB_RUN xvfb-run REQUIRED)

@@ -26,9 +26,9 @@ add_executable(vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/vm_client.cpp
                ${vm_display_dir}/transports/frame_codec.cpp
                ${vm_display_dir}/transports/control_codec.cpp
                ${PROJECT_SOURCE_DIR}/movie/src/layouts.cpp ${PROJECT_SOURCE_DIR}/movie/src/limits.cpp
-               ${vm_display_dir}/transports/libusb_transport.cpp
-               ${vm_display_dir}/transports/hidapi_transport.cpp
-               ${vm_display_dir}/transports/devices.cpp ${vm_firmware_sources}
+               ${vm_display_dir}/usb/libusb_transport.cpp
+               ${vm_display_dir}/usb/hidapi_transport.cpp
+               ${vm_display_dir}/usb/devices.cpp ${vm_firmware_sources}
                ${PROJECT_SOURCE_DIR}/common/src/stop_signals.cpp
                ${PROJECT_SOURCE_DIR}/common/src/provenance.cpp
                ${PROJECT_SOURCE_DIR}/common/src/json.cpp)

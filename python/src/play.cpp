@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "tactile/display/play_anywhere.hpp"
+#include "tactile/display/usb_transports.hpp"
 
 namespace tactile::python {
 
@@ -82,8 +83,7 @@ py::dict play(const movie::TactileMovie& movie, const std::string& backend,
   if (backend != "auto" && backend != "headless" && backend != "latero") {
     throw std::invalid_argument(fmt::format(
         "backend: '{}' is not auto, headless or latero (auto: a display if one is attached, "
-        "else the emulator window if there is a screen, else headless; latero: the Latero at "
-        "address)",
+        "else headless; latero: the Latero at address)",
         backend));
   }
   const bool latero = backend == "latero";
@@ -123,10 +123,15 @@ py::dict play(const movie::TactileMovie& movie, const std::string& backend,
     const StopPipe stop;
     request.stop_fd = stop.fd();
     py::gil_scoped_release unlocked;
-    r = display::play_anywhere(movie, request, [](const std::string& text) {
-      py::gil_scoped_acquire locked;
-      py::module_::import("sys").attr("stdout").attr("write")(text);
-    });
+    // Displays on USB but no emulator window: the module links no GUI library (a window that
+    // blocks the interpreter until closed is `tactile play`'s and `tactile view`'s).
+    r = display::play_anywhere(
+        movie, request,
+        [](const std::string& text) {
+          py::gil_scoped_acquire locked;
+          py::module_::import("sys").attr("stdout").attr("write")(text);
+        },
+        display::usb_play_backends());
   }
   // A Ctrl-C that stopped the player is Python's KeyboardInterrupt now.
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -181,9 +186,9 @@ void bind_play(py::module_& m) {
       py::arg("loops") = 1, py::arg("address") = py::none(),
       py::arg("blade_centre_raw") = py::none(), py::arg("blade_raw_per_unit") = py::none(),
       py::arg("blade_max_raw") = py::none(), py::arg("blade_full_scale_um") = py::none(),
-      "Plays a movie as `tactile play` does. backend 'auto': on an attached display (its\n"
-      "vendor interface first), else the emulator window if there is a screen, else headless\n"
-      "into the emulated device; 'headless': the emulated device only; 'latero': the Latero at\n"
+      "Plays a movie as `tactile play` does, without its emulator window. backend 'auto': on\n"
+      "an attached display (its vendor interface first), else headless into the emulated\n"
+      "device; 'headless': the emulated device only; 'latero': the Latero at\n"
       "address HOST[:PORT] (UDP, port 8900 by default; `tactile play --latero`), a movie of the\n"
       "`latero` layout, with the blade mapping blade_centre_raw, blade_raw_per_unit,\n"
       "blade_max_raw, blade_full_scale_um (unset: OpenLatero's 75, 75, 150, 100 um). preview: a\n"

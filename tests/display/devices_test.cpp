@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "tactile/display/devices.hpp"
+#include "tactile/display/usb_transports.hpp"
 
 namespace tactile::display {
 namespace {

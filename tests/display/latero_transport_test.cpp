@@ -258,9 +258,9 @@ TEST(LateroPlay, PlayAnywhereSendsTheMovieToTheLateroAskedForWithItsBladeMapping
   request.latero->mapping.centre_raw = 128;
   request.latero->mapping.max_raw = 255;
   std::string said;
-  const PlayResult r =
-      play_anywhere(movie::testing::sine_movie(movie::latero_layout(), 750, 150, 40), request,
-                    [&](const std::string& text) { said += text; });
+  const PlayResult r = play_anywhere(
+      movie::testing::sine_movie(movie::latero_layout(), 750, 150, 40), request,
+      [&](const std::string& text) { said += text; }, PlayBackends{});
   EXPECT_EQ(r.target, PlaybackTarget::latero);
   ASSERT_TRUE(r.report && r.latero_link && r.latero_address);
   EXPECT_FALSE(r.stopped);
@@ -283,7 +283,8 @@ TEST(LateroPlay, RefusesAnotherLayoutOrABadMappingBeforeSendingAnything) {
   request.latero = LateroPlayTarget{emulator.address().text(), {}};
   const auto quiet = [](const std::string&) {};
   try {
-    play_anywhere(movie::testing::sine_movie(movie::stress_layout(), 700, 10, 10), request, quiet);
+    play_anywhere(movie::testing::sine_movie(movie::stress_layout(), 700, 10, 10), request, quiet,
+                  PlayBackends{});
     ADD_FAILURE() << "a stress movie was played on a Latero";
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), HasSubstr("'stress'"));
@@ -291,7 +292,7 @@ TEST(LateroPlay, RefusesAnotherLayoutOrABadMappingBeforeSendingAnything) {
   }
   request.latero->mapping.centre_raw = 200;
   EXPECT_THROW(play_anywhere(movie::testing::sine_movie(movie::latero_layout(), 750, 10, 10),
-                             request, quiet),
+                             request, quiet, PlayBackends{}),
                std::invalid_argument);
   EXPECT_EQ(emulator->counters().datagrams, 0u);
 }

@@ -36,7 +36,8 @@ def test_headless_plays_every_frame_and_ends_at_rest(tmp_path, capsys):
 
 def test_auto_without_display_or_screen_goes_headless_like_the_command_line(tmp_path, cli):
     # No display is attached to this machine, and without DISPLAY there is no screen: the
-    # command line and the module must both choose headless and say so in the same words.
+    # command line and the module must both choose headless; the module, which has no emulator
+    # window, says that instead of looking for a screen.
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
     tactile.write_movie(tmp_path / "m.h5", small_movie())
     code = ("import tactile; r = tactile.play(tactile.read_movie(%r)); print(r['target'])"
@@ -46,9 +47,27 @@ def test_auto_without_display_or_screen_goes_headless_like_the_command_line(tmp_
     run = subprocess.run([cli, "play", str(tmp_path / "m.h5"), "--preview",
                           str(tmp_path / "cli.png")], env=env, capture_output=True, text=True,
                          check=True).stdout
-    decision = "play: no display attached and no screen; playing headless into the emulated device"
-    assert decision in py and decision in run
+    assert ("play: no display attached and no screen; playing headless into the emulated device"
+            in run)
+    assert ("play: no display attached; playing headless into the emulated device (no emulator "
+            "window in this program)" in py)
     assert py.strip().endswith("headless")
+
+
+def test_the_module_links_no_gui_library():
+    # play() offers displays on USB but no window, so the module itself needs neither GLFW, GL
+    # nor Dear ImGui. Checked on what the module asks the loader for (not on everything those
+    # libraries load in turn), and on its bytes for Dear ImGui, a static library: its default
+    # settings file name would be in the module, as the play messages are.
+    module = tactile.__file__
+    needed = subprocess.run(["readelf", "-d", module], capture_output=True, text=True,
+                            check=True).stdout
+    assert "(NEEDED)" in needed and "libstdc++" in needed
+    assert not re.search(r"glfw|libGL\.so|libOpenGL", needed), needed
+    with open(module, "rb") as f:
+        data = f.read()
+    assert b"no emulator window in this program" in data
+    assert b"imgui.ini" not in data
 
 
 def test_play_bad_arguments():

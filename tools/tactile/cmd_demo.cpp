@@ -21,6 +21,8 @@
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/display/play_anywhere.hpp"
+#include "tactile/display/usb_transports.hpp"
+#include "tactile/display/viewer.hpp"
 #include "tactile/mapping/fidelity.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -149,7 +151,9 @@ int run_demo(DemoOptions& opt, const std::string& command_line) {
   display::PlayRequest choice;
   choice.headless = opt.headless;
   choice.preview_png = opt.out / "preview.png";
-  display::play_anywhere(movie, choice, [](const std::string& text) { fmt::print("{}", text); });
+  display::play_anywhere(
+      movie, choice, [](const std::string& text) { fmt::print("{}", text); },
+      display::with_window(display::usb_play_backends()));
   fmt::print("demo: done in {:.1f} s; files in {}/ ({}strain.h5, movie.h5{})\n",
              std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count(),
              opt.out.string(),

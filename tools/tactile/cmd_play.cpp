@@ -12,10 +12,10 @@
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stop_signals.hpp"
-#include "tactile/display/devices.hpp"
 #include "tactile/display/play_anywhere.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
+#include "tactile/display/usb_transports.hpp"
 #include "tactile/display/viewer.hpp"
 #include "tactile/mapping/strain_panel.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -62,8 +62,9 @@ void add_play(CLI::App& app, Action& action) {
       opt->choice.stop_fd = stop.fd();
       if (!opt->latero.address.empty()) opt->choice.latero = opt->latero;
       // A stopped playback returns too, after its summary; the signal decides the exit code.
-      display::play_anywhere(movie, opt->choice,
-                             [](const std::string& text) { fmt::print("{}", text); });
+      display::play_anywhere(
+          movie, opt->choice, [](const std::string& text) { fmt::print("{}", text); },
+          display::with_window(display::usb_play_backends()));
       if (const int signal = stop.received(); signal != 0) {
         fmt::print("play: stopped by {}\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
         return exit_code_for_signal(signal);

@@ -9,19 +9,14 @@
 #include <stdexcept>
 
 #include "tactile/common/stop_signals.hpp"
-#include "tactile/display/devices.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/latero_transport.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
-#include "tactile/display/usb_transports.hpp"
-#include "tactile/display/viewer.hpp"
 
 namespace tactile::display {
 
 namespace {
-
-using Say = std::function<void(const std::string&)>;
 
 void play_headless(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
                    PlayResult& result) {
@@ -59,11 +54,12 @@ void play_headless(const movie::TactileMovie& movie, const PlayRequest& request,
 }
 
 void play_on_device(const movie::TactileMovie& movie, const PlayRequest& request,
-                    const DeviceDescription& device, const Say& say, PlayResult& result) {
+                    const DeviceDescription& device, const PlayBackends& backends, const Say& say,
+                    PlayResult& result) {
   say(fmt::format("play: streaming to {} {} ({} {})\n",
                   device.product.empty() ? "display" : device.product, device.serial,
                   to_string(device.backend), device.path));
-  auto transport = open_usb_transport(device);
+  auto transport = backends.open_device(device);
   PlayOptions options;
   options.loops = request.loops;
   options.stop_fd = request.stop_fd;
@@ -119,15 +115,19 @@ void play_on_latero(const movie::TactileMovie& movie, const PlayRequest& request
 }  // namespace
 
 PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& request,
-                         const Say& say) {
+                         const Say& say, const PlayBackends& backends) {
   if (request.latero) {
     PlayResult result;
     result.target = PlaybackTarget::latero;
     play_on_latero(movie, request, say, result);
     return result;
   }
-  const auto devices = request.headless ? std::vector<DeviceDescription>{} : list_usb_devices();
-  const PlaybackPlan plan = plan_playback(request.headless, devices, screen_available);
+  const bool usb = backends.list_devices && backends.open_device;
+  const bool window = backends.screen && backends.play_in_window;
+  const auto devices =
+      request.headless || !usb ? std::vector<DeviceDescription>{} : backends.list_devices();
+  const PlaybackPlan plan =
+      plan_playback(request.headless, devices, [&] { return window && backends.screen(); });
   PlayResult result;
   result.target = plan.target;
   result.device = plan.device;
@@ -139,28 +139,23 @@ PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& re
   }
   switch (plan.target) {
     case PlaybackTarget::device:
-      play_on_device(movie, request, *plan.device, say, result);
+      play_on_device(movie, request, *plan.device, backends, say, result);
       return result;
-    case PlaybackTarget::window: {
+    case PlaybackTarget::window:
       say("play: no display attached; opening the emulator window\n");
-      ViewerOptions viewer;
-      viewer.loop = request.loops > 1;
-      viewer.play.stop_fd = request.stop_fd;
-      const ViewerResult r = run_viewer(movie, viewer);
-      if (stop_requested(request.stop_fd)) {
-        result.stopped = true;
-        say(fmt::format("play: window closed by a stop request at frame {} of {} ({} drawn)\n",
-                        r.last_movie_frame + 1, r.shown_frame_count, r.frames_drawn));
-      }
+      backends.play_in_window(movie, request, say, result);
       return result;
-    }
     case PlaybackTarget::headless:
     case PlaybackTarget::latero:  // never planned
       break;
   }
+  // Without a window back end whether there is a screen was never asked: say so honestly.
   say(fmt::format("play: {}\n", request.headless ? "headless (emulated device)"
-                                                 : "no display attached and no screen; playing "
-                                                   "headless into the emulated device"));
+                                : window         ? "no display attached and no screen; playing "
+                                                   "headless into the emulated device"
+                                                 : "no display attached; playing headless into "
+                                                   "the emulated device (no emulator window in "
+                                                   "this program)"));
   play_headless(movie, request, say, result);
   return result;
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Finding attached displays on USB.
+// Attached displays on USB as plain data, which the playback plan chooses from; listing them
+// (list_usb_devices) is tactile::display_usb's, in usb_transports.hpp.
 //
 // USB identity: vendor 0x1209 (pid.codes, the open-source hardware vendor ID) with product
 // 0x0001, the pid.codes *test* PID, until the project is allocated a PID of its own.
@@ -28,10 +29,5 @@ struct DeviceDescription {
   std::string serial;
   bool accessible = false;  // false: found but not openable (permissions: see the udev rules)
 };
-
-// Lists every attached device with the project's vendor/product ID, through libusb and
-// through hidapi (a display exposing both interfaces appears once per back end). Returns an
-// empty list when none is attached or when the system has no USB at all.
-std::vector<DeviceDescription> list_usb_devices();
 
 }  // namespace tactile::display

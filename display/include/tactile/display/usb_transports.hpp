@@ -1,4 +1,5 @@
 #pragma once
+// tactile::display_usb, the one display library that links libusb and hidapi.
 // Transports to a display on USB (docs/protocol.md, "USB"): libusb on the vendor interface
 // (bulk OUT frames, asynchronous transfers) and hidapi on the HID interface (hidraw). Both
 // check every reply and turn every USB failure, an unplugged device included, into a
@@ -7,11 +8,22 @@
 
 #include <chrono>
 #include <memory>
+#include <vector>
 
 #include "tactile/display/devices.hpp"
 #include "tactile/display/transport.hpp"
 
 namespace tactile::display {
+
+struct PlayBackends;  // play_anywhere.hpp
+
+// Lists every attached device with the project's vendor/product ID, through libusb and
+// through hidapi (a display exposing both interfaces appears once per back end). Returns an
+// empty list when none is attached or when the system has no USB at all.
+std::vector<DeviceDescription> list_usb_devices();
+
+// play_anywhere's displays on USB: list_usb_devices and open_usb_transport.
+PlayBackends usb_play_backends();
 
 struct UsbTransportOptions {
   // Longest any USB operation may take before it is reported as failed.

@@ -1,4 +1,5 @@
 #pragma once
+// tactile::display_viewer, the one display library that links GLFW, OpenGL and Dear ImGui.
 // The on-screen emulator window (GLFW, legacy OpenGL, Dear ImGui for text): contactors at
 // their rest positions displaced by their magnified deflection, coloured by stretch/compression
 // between neighbours; beside them, when given, the source field (side_field.hpp) at the same
@@ -25,6 +26,8 @@
 #include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::display {
+
+struct PlayBackends;  // play_anywhere.hpp
 
 // A rectangle of the window in framebuffer pixels, y down.
 struct PixelRect {
@@ -117,6 +120,10 @@ void write_png(const std::filesystem::path& png, const RenderedImage& image);
 
 // True when a display server is named (DISPLAY or WAYLAND_DISPLAY) and GLFW initialises.
 bool screen_available();
+
+// `backends` with the emulator window added (screen_available, run_viewer), for play_anywhere
+// to open when no display takes the movie: what `tactile play` plays with.
+PlayBackends with_window(PlayBackends backends);
 
 // Opens the window and plays until closed (or exit_after_frames). Throws std::runtime_error
 // naming the GLFW error when no window can be opened, std::invalid_argument for a movie the
