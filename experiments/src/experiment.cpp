@@ -17,6 +17,7 @@
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
 #include "tactile/common/names.hpp"
+#include "tactile/common/plain_name.hpp"
 #include "tactile/common/value_checks.hpp"
 #include "tactile/mapping/profile.hpp"
 #include "tactile/movie/layout_json.hpp"
@@ -39,6 +40,13 @@ std::vector<json> list(const Context& cx, const json& v, const std::string& what
   if (!v.is_array()) return {v};
   if (v.empty()) cx.fail(fmt::format("'{}' is an empty list", what));
   return {v.begin(), v.end()};
+}
+
+// A name that becomes part of a path (a folder, a movie, a plot) or of a manifest line.
+std::string json_plain_name(const Context& cx, const json& v, const std::string& what) {
+  std::string name = json_string(cx, v, what);
+  if (const auto error = plain_name_error(what, name)) cx.fail(*error);
+  return name;
 }
 
 // A mode's name parsed here, where it enters, with the file and field in the message.
@@ -98,15 +106,7 @@ ExperimentSource parse_source(const Context& cx, const json& j, std::size_t inde
   const std::string where = fmt::format("sources[{}]", index);
   json_only_keys(cx, j, where, {"name", "file", "synthetic", "ground_truth", "grid_spacing_mm"});
   ExperimentSource s;
-  s.name = json_string(cx, json_required(cx, j, "name", where), where + ".name");
-  for (const char c : s.name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
-      cx.fail(
-          fmt::format("{}.name '{}' may hold only letters, digits, '-', '_' and '.' (it names "
-                      "files)",
-                      where, s.name));
-    }
-  }
+  s.name = json_plain_name(cx, json_required(cx, j, "name", where), where + ".name");
   const int kinds = static_cast<int>(j.contains("file")) +
                     static_cast<int>(j.contains("synthetic")) +
                     static_cast<int>(j.contains("ground_truth"));
@@ -264,7 +264,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
   Experiment ex;
   ex.text = text;
   ex.origin = origin;
-  ex.name = json_string(cx, json_required(cx, j, "name", "the experiment"), "name");
+  ex.name = json_plain_name(cx, json_required(cx, j, "name", "the experiment"), "name");
   const auto seed = json_integer(cx, json_required(cx, j, "seed", "the experiment"), "seed");
   if (seed < 0) cx.fail("'seed' must not be negative");
   ex.seed = static_cast<std::uint64_t>(seed);

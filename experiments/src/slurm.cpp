@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/plain_name.hpp"
 
 extern char** environ;
 
@@ -67,11 +68,37 @@ void check_time_limit(const std::string& limit) {
         "--time {}: not a Slurm time limit (minutes, M:S, H:M:S, D-H, D-H:M or D-H:M:S)", limit));
 }
 
-SlurmJobs write_slurm_jobs(const Plan& plan, const fs::path& out_dir, const fs::path& program,
-                           const fs::path& experiment_file, const SlurmOptions& o) {
+void check_slurm_options(const SlurmOptions& o, const fs::path& out_dir) {
   if (o.cells_per_task < 1 || o.max_parallel < 0)
     throw std::invalid_argument("--cells-per-task must be >= 1 and --max-parallel >= 0");
   if (!o.time_limit.empty()) check_time_limit(o.time_limit);
+  // Written unquoted after "#SBATCH --partition=": sbatch takes a comma-separated list.
+  for (std::size_t from = 0; !o.partition.empty() && from <= o.partition.size();) {
+    const auto comma = std::min(o.partition.find(',', from), o.partition.size());
+    if (const auto error = plain_name_error("--partition", o.partition.substr(from, comma - from)))
+      throw std::invalid_argument(*error);
+    from = comma + 1;
+  }
+  // The shell lines quote the folder; the #SBATCH lines cannot (sbatch splits them itself, and
+  // reads '%' in --output as a pattern), and a line break would end a comment line of the script.
+  const std::string folder = out_dir.string();
+  for (const char c : folder) {
+    const auto u = static_cast<unsigned char>(c);
+    const bool bad = u < 0x20 || u == 0x7f || c == ' ' || c == '\'' || c == '"' || c == '\\' ||
+                     c == '#' || c == '%';
+    if (bad)
+      throw std::invalid_argument(fmt::format(
+          "--out {:?}: the Slurm scripts name this folder in #SBATCH lines, where sbatch splits "
+          "at white space and reads quotes, backslashes, '#' and '%' as its own; it holds {}: "
+          "choose a folder whose path has none of these and no control character",
+          folder,
+          u < 0x20 || u == 0x7f ? std::string("a control character") : fmt::format("'{}'", c)));
+  }
+}
+
+SlurmJobs write_slurm_jobs(const Plan& plan, const fs::path& out_dir, const fs::path& program,
+                           const fs::path& experiment_file, const SlurmOptions& o) {
+  check_slurm_options(o, out_dir);
   std::vector<std::size_t> pending;
   for (const auto& cell : plan.cells)
     if (cell_status(cell, out_dir).state != CellState::done) pending.push_back(cell.index);

@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -13,6 +12,7 @@
 
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
+#include "tactile/common/plain_name.hpp"
 #include "tactile/common/value_checks.hpp"
 #include "tactile/movie/movie_io.hpp"
 
@@ -80,15 +80,9 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
     throw FormatError(fmt::format("{}: 'name' must be a non-empty string", where));
   }
   l.name = name.get<std::string>();
-  // Experiments name their movies and plots after the layout: a '/' would write outside the
-  // experiment's folder ("../../x").
-  for (const char c : l.name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
-      throw FormatError(fmt::format(
-          "{}: 'name' '{}' may hold only letters, digits, '-', '_' and '.' (it names files)", where,
-          l.name));
-    }
-  }
+  // Experiments name their movies, plots and perception tables after the layout.
+  if (const auto error = plain_name_error("name", l.name))
+    throw FormatError(fmt::format("{}: {}", where, *error));
   l.rows = count(field(j, "rows", where), "rows", where);
   l.cols = count(field(j, "cols", where), "cols", where);
   const auto pitch = field(j, "pitch_mm", where);

@@ -221,6 +221,29 @@ TEST(Slurm, ScriptsRunTheCellsNotDoneInThrottledTasks) {
     EXPECT_NO_THROW(check_time_limit(good)) << good;
   for (const char* bad : {"", "-1", "1-", "1-2-3", "1::2", ":5", "1:2:", "1.5", "1h"})
     EXPECT_THROW(check_time_limit(bad), std::invalid_argument) << bad;
+  // Text that would end its line in a script (then run by bash) or that sbatch splits or
+  // rewrites in an #SBATCH line, refused before a script is written.
+  const auto refused = [&](const fs::path& folder, const SlurmOptions& options,
+                           const std::string& message) {
+    try {
+      write_slurm_jobs(plan, folder, "/t", "/e.json", options);
+      ADD_FAILURE() << "accepted: " << folder << " " << options.partition;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+    EXPECT_FALSE(fs::exists(folder / "slurm" / "cells.sh")) << folder;
+  };
+  const auto partition = [](const std::string& p) {
+    SlurmOptions o;
+    o.partition = p;
+    return o;
+  };
+  refused(out / "p", partition("short\ntouch /tmp/pwned"), "--partition");
+  refused(out / "p", partition("a b"), "--partition");
+  refused(out / "p", partition("$(reboot)"), "--partition");
+  for (const char* folder : {"line\nbreak", "a space", "per%jcent", "a#hash", "quo'te", "quo\"te"})
+    refused(out / folder, {}, "--out");
+  EXPECT_NO_THROW(write_slurm_jobs(plan, out, "/t", "/e.json", partition("short,long_2")));
   try {
     std::vector<Cell> many(2003, plan.cells[1]);
     Plan big = plan;

@@ -191,7 +191,8 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
   refused(edit("\"ground_truth\"", "\"groundtruth\""), "unknown field 'groundtruth'");
   refused(edit("\"name\": \"bump\", ", "\"name\": \"bump\", \"file\": \"x.h5\", "),
           "needs exactly one of 'file', 'synthetic', 'ground_truth'");
-  refused(edit("\"name\": \"bump\"", "\"name\": \"bump/1\""), "may hold only letters");
+  refused(edit("\"name\": \"bump\"", "\"name\": \"bump/1\""),
+          "sources[0].name \"bump/1\" is not a plain name: it holds '/'");
   refused(edit("\"name\": \"bump\", \"ground_truth\": {\"scene\": \"bump\", \"frames\": 12}, "
                "\"grid_spacing_mm\": 0.5",
                "\"name\": \"rec\", \"file\": \"no-such-movie.h5\""),
@@ -203,6 +204,36 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
           "grid_spacing_mm = 0 is not in [0.05, 5]");
   // Found by the second hostile-input run: a key given twice was read as its last value.
   refused(edit("\"seed\": 3,", "\"seed\": 3, \"seed\": 4,"), "field 'seed' appears twice");
+}
+
+// Each name of the file becomes part of a path (the default output folder NAME-results, the
+// movies and plots named after source and layout) or a line of the manifest: one that is not a
+// single plain file name is refused naming its field, before any work.
+TEST(Experiment, RefusesNamesThatAreNotPlainFileNames) {
+  refused(edit("\"name\": \"small\"", "\"name\": \"../escape\""),
+          "name \"../escape\" is not a plain name: it holds '/'");
+  refused(edit("\"name\": \"small\"", "\"name\": \"/tmp/escape\""),
+          "name \"/tmp/escape\" is not a plain name");
+  refused(edit("\"name\": \"small\"", "\"name\": \"..\""), "name \"..\" is not a plain name");
+  refused(edit("\"name\": \"small\"", "\"name\": \"a\\nb\""),
+          "name \"a\\nb\" is not a plain name: it holds a control character");
+  refused(edit("\"name\": \"small\"", "\"name\": \"a b\""), "name \"a b\" is not a plain name");
+  refused(edit("\"name\": \"bump\"", "\"name\": \"..\""),
+          "sources[0].name \"..\" is not a plain name");
+  refused(edit("\"name\": \"bump\"", "\"name\": \".\""),
+          "sources[0].name \".\" is not a plain name");
+  refused(edit("\"name\": \"bump\"", "\"name\": \"../escape\""),
+          "sources[0].name \"../escape\" is not a plain name");
+  const std::string too_long(101, 's');
+  refused(edit("\"name\": \"bump\"", "\"name\": \"" + too_long + "\""),
+          "sources[0].name \"" + too_long + "\" is not a plain name: it is 101 bytes long");
+  refused(edit("\"name\": \"small\"", "\"name\": \"" + too_long + "\""),
+          "name \"" + too_long + "\" is not a plain name");
+  // The longest name taken: both a source and a layout of it still make a run id and a plot
+  // name shorter than a file name may be.
+  const std::string longest(100, 's');
+  EXPECT_NO_THROW(parse_experiment(edit("\"name\": \"bump\"", "\"name\": \"" + longest + "\""),
+                                   "ok.json", "."));
 }
 
 // Found by the second hostile-input run: lists of 3000 and 8000 values (24 million runs) made

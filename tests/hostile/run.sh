@@ -605,6 +605,26 @@ exp_case peak "{$EG,\"parameters\":{\"peak_fraction\":[7]}}"
 exp_case refframe "{$EG,\"parameters\":{\"reference_frame\":[100000]}}"
 exp_case quality "{$EG,\"parameters\":{\"min_triangle_quality\":[2]}}"
 exp_case namepath "{${EG/\"name\":\"a\"/\"name\":\"../../x\"}}"
+# Names that become paths or manifest lines: each refused naming its field, nothing written.
+EGREST=',"seed":1,"sources":[{"name":"a","ground_truth":{"scene":"bump","frames":10}}],"layouts":["stress"],"methods":["integrated"]'
+exp_case expnameup "{\"name\":\"../../x\"$EGREST}"
+exp_case expnameabs "{\"name\":\"$W/abs\"$EGREST}"
+exp_case expnameline "{\"name\":\"t\\nx\"$EGREST}"
+exp_case namedotdot "{${EG/\"name\":\"a\"/\"name\":\"..\"}}"
+exp_case namedot "{${EG/\"name\":\"a\"/\"name\":\".\"}}"
+exp_case namebackslash "{${EG/\"name\":\"a\"/\"name\":\"..\\\\x\"}}"
+exp_case namenul "{${EG/\"name\":\"a\"/\"name\":\"a\\u0000b\"}}"
+exp_case namelong "{${EG/\"name\":\"a\"/\"name\":\"$(head -c 240 /dev/zero | tr '\0' a)\"}}"
+sed 's/"name": *"[^"]*"/"name": ".."/' "$LAYOUT" >"$W/Ldotdot.json"
+exp_case layoutdotdot "{${EG/\[\"stress\"\]/[\"$W/Ldotdot.json\"]}}"
+# Without --out the folder is NAME-results beside the caller: a name with '..' put it elsewhere.
+printf '%s' "{\"name\":\"../escaped\"$EGREST}" >"$W/E-noout.json"
+check "bad-experiment" fail -m "not a plain name" -n "$S/escaped-results" -n "$W/escaped-results" -- experiment "$W/E-noout.json" --plan
+# Text of the command line that ends up in the Slurm scripts.
+check "bad-experiment" usage -m partition -n "$W/esl" -n "$W/pwned" -- experiment "$REPO/tools/experiments/methods.json" --out "$W/esl" --slurm --partition "$(printf 'short\ntouch %s' "$W/pwned")"
+check "bad-experiment" usage -m out -n "$W/e sl" -- experiment "$REPO/tools/experiments/methods.json" --out "$W/e sl" --slurm
+check "bad-experiment" usage -m out -n "$W/e%jsl" -- experiment "$REPO/tools/experiments/methods.json" --out "$W/e%jsl" --slurm
+check "bad-experiment" usage -m out -n "$W/$(printf 'e\nsl')" -- experiment "$REPO/tools/experiments/methods.json" --out "$W/$(printf 'e\nsl')" --slurm
 exp_case dupname "{${EG/\}\],\"layouts/\}, {\"name\":\"a\",\"ground_truth\":{\"scene\":\"hole\"\}\}],\"layouts}}"
 exp_case fileself "{${EG/\"ground_truth\":\{\"scene\":\"bump\",\"frames\":10\}/\"file\":\"E-fileself.json\"}}"
 exp_case filedir "{${EG/\"ground_truth\":\{\"scene\":\"bump\",\"frames\":10\}/\"file\":\"/\"}}"

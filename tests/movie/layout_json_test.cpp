@@ -137,7 +137,13 @@ TEST(LayoutJson, RefusesMalformedFilesByName) {
   // Found by the second hostile-input run: an experiment wrote the movie of a layout named
   // "../../evil" outside its folder; and "rows" given twice meant the second.
   refused(edit("\"name\": \"lab-6x5\"", "\"name\": \"../../evil\""),
-          "'name' '../../evil' may hold only letters, digits, '-', '_' and '.'");
+          "name \"../../evil\" is not a plain name: it holds '/'");
+  // Folders of their own and names longer than a file name can hold with the run's other parts.
+  refused(edit("\"name\": \"lab-6x5\"", "\"name\": \"..\""), "name \"..\" is not a plain name");
+  refused(edit("\"name\": \"lab-6x5\"", "\"name\": \"" + std::string(101, 'l') + "\""),
+          "is not a plain name: it is 101 bytes long");
+  refused(edit("\"name\": \"lab-6x5\"", "\"name\": \"lab\\u0000x\""),
+          "is not a plain name: it holds a control character");
   refused(edit("\"rows\": 6", "\"rows\": 6, \"rows\": 200"), "field 'rows' appears twice");
 }
 

@@ -156,6 +156,14 @@ void add_experiment(CLI::App& app, Action& action) {
         if (!s.path.empty()) inputs.push_back({"source '" + s.name + "'", s.path});
       for (const auto& layout : ex.layout_files) inputs.push_back({"layout", layout});
       refuse_output_over_input({experiments::experiment_output("--out", out)}, inputs);
+      if (opt->slurm) {
+        try {
+          experiments::check_slurm_options(opt->slurm_options, fs::absolute(out));
+        } catch (const std::invalid_argument& e) {
+          fmt::print(stderr, "tactile experiment: {}\n", e.what());
+          return 2;
+        }
+      }
       const experiments::Plan plan = experiments::plan_experiment(ex);
       if (opt->plan) {
         const fs::path manifest = experiments::write_manifest(ex, plan, out);

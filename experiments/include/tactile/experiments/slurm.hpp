@@ -23,6 +23,13 @@ struct SlurmOptions {
 // D-H, D-H:M, D-H:M:S (whole numbers).
 void check_time_limit(const std::string& limit);
 
+// Throws std::invalid_argument, naming the option, unless `options` and `out_dir` (absolute)
+// can be written into the scripts as they are: a number out of range or a bad time limit; a
+// partition list whose names are not plain names (a line break would start a command of its
+// own); an output folder whose path holds what sbatch reads otherwise in an #SBATCH line
+// (white space, quotes, a backslash, '#', '%') or a control character.
+void check_slurm_options(const SlurmOptions& options, const std::filesystem::path& out_dir);
+
 // Slurm refuses array indices above MaxArraySize - 1 (1001 by default).
 inline constexpr std::size_t kDefaultMaxArraySize = 1001;
 
@@ -37,8 +44,9 @@ struct SlurmJobs {
 
 // Writes out_dir/slurm/cells.sh and merge.sh (and creates slurm/logs for their output) for the
 // cells of `plan` not done yet. `program`, `experiment_file` and `out_dir` must be absolute paths
-// the cluster's nodes see. Throws std::invalid_argument when the array would exceed
-// kDefaultMaxArraySize tasks (naming the --cells-per-task that fits).
+// the cluster's nodes see. Throws std::invalid_argument, before writing anything, when
+// check_slurm_options does or when the array would exceed kDefaultMaxArraySize tasks (naming the
+// --cells-per-task that fits).
 SlurmJobs write_slurm_jobs(const Plan& plan, const std::filesystem::path& out_dir,
                            const std::filesystem::path& program,
                            const std::filesystem::path& experiment_file,
