@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include "live_source.hpp"
 #include "tactile/capture/capture.hpp"
@@ -77,6 +78,121 @@ class HeldFrame {
   bool published_ = false;
   std::int64_t last_sent_frame_ = -1;
   Clock::time_point last_sent_at_{};
+};
+
+// Detection of new landmarks off the processing thread. The ridge-blob detector takes tens of
+// milliseconds on a 320 x 240 frame, several camera frames at 120 Hz: in line it would delay
+// those frames and drop the next ones. Its landmarks arrive a few frames later and are moved by
+// the skin's median motion since then (the tracks' own steps), which is close enough for a new
+// track: a track follows whatever skin its first window holds, pore-centred or not.
+class AsyncDetector {
+ public:
+  AsyncDetector(double px_per_mm, const capture::FeatureParams& params)
+      : px_per_mm_(px_per_mm), params_(params), thread_([this] { loop(); }) {}
+  ~AsyncDetector() {
+    {
+      std::lock_guard lock(mutex_);
+      quit_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+  }
+  AsyncDetector(const AsyncDetector&) = delete;
+  AsyncDetector& operator=(const AsyncDetector&) = delete;
+
+  bool busy() {
+    std::lock_guard lock(mutex_);
+    return job_.has_value() || working_;
+  }
+  void submit(std::int64_t frame, const capture::GrayImage& image) {
+    {
+      std::lock_guard lock(mutex_);
+      job_.emplace(frame, image);
+    }
+    changed_.notify_all();
+  }
+  // A finished detection (its frame and landmarks), once; rethrows the detector's failure.
+  std::optional<std::pair<std::int64_t, std::vector<capture::Feature>>> take() {
+    std::lock_guard lock(mutex_);
+    if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+    return std::exchange(result_, std::nullopt);
+  }
+
+ private:
+  void loop() {
+    std::unique_lock lock(mutex_);
+    while (true) {
+      changed_.wait(lock, [this] { return quit_ || job_.has_value(); });
+      if (quit_) return;
+      auto [frame, image] = std::move(*job_);
+      job_.reset();
+      working_ = true;
+      lock.unlock();
+      std::vector<capture::Feature> found;
+      std::exception_ptr failure;
+      try {
+        found = capture::extract_features(image, px_per_mm_, params_);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      lock.lock();
+      working_ = false;
+      if (failure) {
+        failure_ = failure;
+      } else {
+        result_.emplace(frame, std::move(found));
+      }
+    }
+  }
+
+  double px_per_mm_;
+  capture::FeatureParams params_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::optional<std::pair<std::int64_t, capture::GrayImage>> job_;
+  std::optional<std::pair<std::int64_t, std::vector<capture::Feature>>> result_;
+  std::exception_ptr failure_;
+  bool working_ = false;
+  bool quit_ = false;
+  std::thread thread_;  // last: started once the members it uses exist
+};
+
+// The median motion of the tracks from frame to frame (pixels), to carry landmarks detected on
+// an earlier frame to the current one.
+class SkinMotion {
+ public:
+  void add(std::int64_t frame, const std::vector<capture::AlignmentTracker::Step>& steps) {
+    if (steps.empty()) return;
+    std::vector<double> dx, dy;
+    for (const auto& s : steps) {
+      dx.push_back(s.x1_px - s.x0_px);
+      dy.push_back(s.y1_px - s.y0_px);
+    }
+    steps_.push_back({frame, median(dx), median(dy)});
+    if (steps_.size() > 1000) steps_.erase(steps_.begin());
+  }
+  // The motion from `from` to `to`, the step into `to` taken as the last one measured.
+  std::pair<double, double> between(std::int64_t from, std::int64_t to) const {
+    double x = 0, y = 0;
+    for (const auto& s : steps_) {
+      if (s.frame > from && s.frame < to) {
+        x += s.dx;
+        y += s.dy;
+      }
+    }
+    if (!steps_.empty() && to > from) {
+      x += steps_.back().dx;
+      y += steps_.back().dy;
+    }
+    return {x, y};
+  }
+
+ private:
+  struct Step {
+    std::int64_t frame;
+    double dx, dy;
+  };
+  std::vector<Step> steps_;
 };
 
 // Sends the held frame at the device's rate, keeping its FIFO `target` frames deep.
@@ -177,6 +293,8 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
   });
 
   std::unique_ptr<capture::AlignmentTracker> tracker;
+  std::unique_ptr<AsyncDetector> detector;
+  SkinMotion motion;
   capture::FeatureParams features = capture::pores_only();
   capture::Calibration calibration;
   double px_per_mm = 0;
@@ -248,17 +366,34 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
       }
       // Landmarks: detected every detect_every frames, or sooner when a fifth of the tracks
       // have ended since the last detection (as the batch capture), followed by alignment in
-      // between.
-      const bool detect = f.index - last_detection >= session.detect_every ||
-                          tracker->live_tracks() < 0.8 * tracks_after_detection ||
-                          tracker->frames() == 0;
+      // between; detected in line on the first frame only, then on the detector's thread.
       std::vector<capture::Feature> seeds;
-      if (detect) seeds = capture::extract_features(f.image, px_per_mm, features);
-      tracker->add_frame(f.image, seeds);
-      if (detect) {
-        last_detection = f.index;
-        tracks_after_detection = tracker->live_tracks();
+      bool seeded = false;
+      if (tracker->frames() == 0) {
+        seeds = capture::extract_features(f.image, px_per_mm, features);
+        detector = std::make_unique<AsyncDetector>(px_per_mm, features);
+        seeded = true;
+      } else {
+        const bool due = f.index - last_detection >= session.detect_every ||
+                         tracker->live_tracks() < 0.8 * tracks_after_detection;
+        if (due && !detector->busy()) {
+          detector->submit(f.index, f.image);
+          last_detection = f.index;
+        }
+        if (auto found = detector->take()) {
+          const auto [dx, dy] = motion.between(found->first, f.index);
+          for (auto& seed : found->second) {
+            seed.x_px += dx;
+            seed.y_px += dy;
+          }
+          seeds = std::move(found->second);
+          seeded = true;
+        }
       }
+      tracker->add_frame(f.image, seeds);
+      if (seeded) tracks_after_detection = tracker->live_tracks();
+      const std::vector<capture::AlignmentTracker::Step> steps = tracker->last_step();
+      motion.add(f.index, steps);
       const Clock::time_point tracked = Clock::now();
       t.track_ms = ms_between(popped, tracked);
 
@@ -266,7 +401,6 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
       std::vector<float> deflection(
           static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.cols), 0.0f);
       if (previous) {
-        const auto steps = tracker->last_step();
         sf.frame_from = static_cast<std::int32_t>(*previous);
         sf.frame_to = static_cast<std::int32_t>(f.index);
         sf.t_s = t.source_time_s;
