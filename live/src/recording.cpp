@@ -83,6 +83,22 @@ SessionRecording::~SessionRecording() {
   }
 }
 
+void SessionRecording::attach(LiveCallbacks& callbacks) {
+  callbacks.frame_done = [this, before = callbacks.frame_done](const FrameTiming& t) {
+    before(t);
+    frame(t);
+  };
+  callbacks.strain = [this, before = callbacks.strain](const capture::StrainFrame& f) {
+    before(f);
+    strain(f);
+  };
+  callbacks.mapped = [this, before = callbacks.mapped](std::int64_t frame,
+                                                       const std::vector<float>& d) {
+    before(frame, d);
+    mapped(frame, d);
+  };
+}
+
 void SessionRecording::frame(const FrameTiming& t) {
   files_[0].pending += fmt::format("{},{:.6f},{},{}\n", t.frame, t.source_time_s,
                                    t.dropped ? std::string() : fmt::format("{:.3f}", t.latency_ms),

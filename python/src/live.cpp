@@ -50,15 +50,7 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
   std::unique_ptr<live::SessionRecording> recording;
   if (session.record) recording = std::make_unique<live::SessionRecording>(*session.record);
   live::LiveCallbacks callbacks;
-  callbacks.frame_done = [&](const live::FrameTiming& t) {
-    if (recording) recording->frame(t);
-  };
-  callbacks.strain = [&](const capture::StrainFrame& f) {
-    if (recording) recording->strain(f);
-  };
-  callbacks.mapped = [&](std::int64_t frame, const std::vector<float>& d) {
-    if (recording) recording->mapped(frame, d);
-  };
+  if (recording) recording->attach(callbacks);
   std::atomic<bool> stop{false}, done{false};
   live::LiveSummary summary;
   std::exception_ptr failure;

@@ -73,6 +73,8 @@ TEST(PlaybackPlan, HeadlessIgnoresDisplaysAndScreens) {
 TEST(PlaybackPlan, ReportLineGivesTheCounts) {
   PlaybackReport r;
   r.frames_played = 1400;
+  r.movie_frames = 1330;
+  r.ramp_frames = 70;
   r.rate_hz = 700;
   r.duration_s = 2;
   r.wall_s = 2.0005;
@@ -81,7 +83,11 @@ TEST(PlaybackPlan, ReportLineGivesTheCounts) {
   r.clamped_samples = 12;
   r.slew_limited_samples = 5;
   const std::string line = playback_summary_line(r);
-  EXPECT_THAT(line, HasSubstr("1400 frames played at 700 Hz"));
+  // The movie's own length beside the ramp, so that it reads as `info` and `map` count it.
+  EXPECT_THAT(
+      line,
+      HasSubstr(
+          "1400 frames played (1330 movie frames + 70 frames of ramp from and to rest) at 700 Hz"));
   EXPECT_THAT(line, HasSubstr("2.00 s device time"));
   EXPECT_THAT(line, HasSubstr("3 underruns"));
   EXPECT_THAT(line, HasSubstr("12 samples clamped, 5 slew-limited"));

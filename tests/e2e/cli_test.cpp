@@ -128,6 +128,12 @@ TEST(Cli, StrainMovieGivenToPlayIsAClearError) {
   const auto r = run_tactile("play --headless " + (d / "strain.h5").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("strain.h5"));
+  // What to do about it: map it first.
+  EXPECT_THAT(r.output, HasSubstr("a strain movie, not a tactile movie"));
+  EXPECT_THAT(r.output, HasSubstr("tactile map"));
+  const auto v = run_tactile("view " + (d / "strain.h5").string() + " --screenshot " +
+                             (d / "v.png").string());
+  EXPECT_THAT(v.output, HasSubstr("tactile map"));
 }
 
 // Wrong usage helps: a misspelt command or flag is answered with the closest real one, an

@@ -24,6 +24,8 @@ namespace tactile::cli {
 
 void add_live(CLI::App& app, Action& action) {
   auto request = std::make_shared<live::LiveRequest>();
+  // The emulated device is the one output yet: asked for by name, so that a session never
+  // goes somewhere its user did not choose once the other outputs exist.
   auto headless = std::make_shared<bool>(false);
   CLI::App* sub = app.add_subcommand(
       "live",
@@ -37,9 +39,10 @@ void add_live(CLI::App& app, Action& action) {
       "sent) p50/p99/max with the median of each stage. The display is the emulated device\n"
       "(--headless); USB, hidapi, Latero and the window are not yet outputs of a live session.");
   add_request_options(*sub, request, live::live_options());
-  sub->add_flag("--headless", *headless, "Play into the emulated device, with no window");
-  sub->callback([request, headless, &action] {
-    action = [request, headless] {
+  sub->add_flag("--headless", *headless, "Play into the emulated device, with no window")
+      ->required();
+  sub->callback([request, &action] {
+    action = [request] {
       const live::ResolvedLive session = live::resolve(*request, OptionSpelling::cli);
       StopSignals signals;  // before any thread, so that they inherit the block
       display::EmulatedDeviceOptions device_options;
@@ -72,7 +75,6 @@ void add_live(CLI::App& app, Action& action) {
           ++processed;
           last_latency_ms = t.latency_ms;
         }
-        if (recording) recording->frame(t);
         const auto now = std::chrono::steady_clock::now();
         if (now - last_print >= std::chrono::seconds(1)) {
           last_print = now;
@@ -81,12 +83,7 @@ void add_live(CLI::App& app, Action& action) {
           std::fflush(stdout);
         }
       };
-      callbacks.strain = [&](const capture::StrainFrame& f) {
-        if (recording) recording->strain(f);
-      };
-      callbacks.mapped = [&](std::int64_t frame, const std::vector<float>& d) {
-        if (recording) recording->mapped(frame, d);
-      };
+      if (recording) recording->attach(callbacks);
       live::LiveSummary summary;
       try {
         summary = live::run_live(session, device, stop, callbacks);
@@ -111,7 +108,6 @@ void add_live(CLI::App& app, Action& action) {
                    signal == SIGINT ? "SIGINT" : "SIGTERM");
         return exit_code_for_signal(signal);
       }
-      (void)headless;
       return 0;
     };
   });

@@ -23,6 +23,32 @@
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
+namespace {
+
+// The movie to play or view; a strain movie given instead is named as such, with the command
+// that makes a tactile movie of it (the reader alone would only say its format is another).
+movie::TactileMovie read_movie_to_play(const fs::path& path) {
+  try {
+    return movie::read_tactile_movie(path);
+  } catch (const FormatError&) {
+    bool strain = false;
+    try {
+      const H5::H5File file = h5::open_for_reading(path);
+      strain = h5::has_attr(file, "format") &&
+               h5::read_attr_string(file, "format", path.string()) == capture::kStrainMovieFormat;
+    } catch (const std::exception&) {
+      // Not readable as HDF5 at all: the reader's own message says so.
+    }
+    if (!strain) throw;
+    throw FormatError(fmt::format(
+        "{}: a strain movie, not a tactile movie: make one of it with `tactile map {} --out "
+        "MOVIE.h5`, then play that",
+        path.string(), path.string()));
+  }
+}
+
+}  // namespace
+
 void add_play(CLI::App& app, Action& action) {
   struct Options {
     fs::path movie;
@@ -55,7 +81,7 @@ void add_play(CLI::App& app, Action& action) {
       // that writes the preview) is decided only while playing.
       refuse_output_over_input({output_file_ending("--preview", opt->choice.preview_png, ".png")},
                                {{"MOVIE_H5", opt->movie}});
-      const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
+      const movie::TactileMovie movie = read_movie_to_play(opt->movie);
       // Before any device is opened: the threads USB libraries and the window start inherit
       // the blocked signals, so Ctrl-C reaches the player and not the default action.
       StopSignals stop;
@@ -106,7 +132,7 @@ void add_view(CLI::App& app, Action& action) {
                   "Draw the window once (at --at), write it to this PNG and quit");
   sub->callback([opt, &action] {
     action = [opt] {
-      const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
+      const movie::TactileMovie movie = read_movie_to_play(opt->movie);
       // Only the movie knows its length; the viewer would clamp a later time to the end.
       if (opt->viewer.start_s > movie.duration_s()) {
         fmt::print(stderr,

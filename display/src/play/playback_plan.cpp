@@ -33,10 +33,12 @@ PlaybackPlan plan_playback(bool headless, const std::vector<DeviceDescription>& 
 
 std::string playback_summary_line(const PlaybackReport& r) {
   return fmt::format(
-      "{} frames played at {:g} Hz ({:.2f} s device time, {:.3f} s wall), {} underruns, "
-      "{} malformed, {} samples clamped, {} slew-limited{}\n",
-      r.frames_played, r.rate_hz, r.duration_s, r.wall_s, r.underruns, r.malformed,
-      r.clamped_samples, r.slew_limited_samples,
+      "{} frames played ({} movie frames + {} frames of ramp from and to rest) at {:g} Hz ({:.2f} "
+      "s "
+      "device time, {:.3f} s wall), {} underruns, {} malformed, {} samples clamped, {} "
+      "slew-limited{}\n",
+      r.frames_played, r.movie_frames, r.ramp_frames, r.rate_hz, r.duration_s, r.wall_s,
+      r.underruns, r.malformed, r.clamped_samples, r.slew_limited_samples,
       r.interrupted ? "; stopped by a stop request, every contactor ramped to rest" : "");
 }
 

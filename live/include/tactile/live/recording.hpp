@@ -32,6 +32,9 @@ class SessionRecording {
   SessionRecording(const SessionRecording&) = delete;
   SessionRecording& operator=(const SessionRecording&) = delete;
 
+  // `callbacks` made to record into this too (each still calls what it called before).
+  void attach(LiveCallbacks& callbacks);
+
   void frame(const FrameTiming& timing);
   void strain(const capture::StrainFrame& frame);
   void mapped(std::int64_t frame, const std::vector<float>& deflection_um);
