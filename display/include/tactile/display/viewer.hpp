@@ -76,7 +76,8 @@ struct ViewerOptions {
   EmulatedDeviceOptions device;  // its layout is replaced by the movie's
   PlayOptions play;
   double speed = 1.0;  // playback speed relative to the movie's rate
-  bool loop = true;
+  // Off unless asked for: `view --loop` is a flag, which can only turn it on.
+  bool loop = false;
   bool start_paused = false;
   double start_s = 0;  // movie time of the first frame shown (after the device's start ramp)
   int width_px = 800;  // doubled when a field is shown beside the array
