@@ -59,7 +59,7 @@ void draw_header(cv::Mat& header, const movie::TactileMovie& movie, double magni
                    movie.layout.rows, movie.layout.cols, movie.frame_count, movie.rate_hz,
                    movie.duration_s()),
        {8, 18}, 0.5);
-  // Colour scale: compression (blue) .. stretch (red), in units of 1e-3.
+  // Colour scale: compression (blue) .. stretch (red), in per cent as the viewer gives strain.
   const int bar_x = 8, bar_y = 30, bar_w = 160, bar_h = 12;
   for (int i = 0; i < bar_w; ++i) {
     const double s = (2.0 * i / (bar_w - 1) - 1.0) * strain_scale;
@@ -68,8 +68,8 @@ void draw_header(cv::Mat& header, const movie::TactileMovie& movie, double magni
   }
   cv::rectangle(header, {bar_x, bar_y, bar_w, bar_h}, kBlack, 1);
   text(header,
-       fmt::format("strain -{0:.1f}e-3 .. 0 .. +{0:.1f}e-3 (blue compression, red stretch)",
-                   strain_scale * 1000),
+       fmt::format("strain -{0:.2f} % .. 0 .. +{0:.2f} % (blue compression, red stretch)",
+                   strain_scale * 100),
        {bar_x + bar_w + 8, bar_y + 11});
   // Deflection scale bar: the layout's largest deflection at the panels' scale and
   // magnification, so the reader can judge every displacement against the full range.
