@@ -204,10 +204,13 @@ void feed_device(display::Transport& device, double rate_hz, int target, HeldFra
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
     std::vector<float> frame;
     std::uint32_t sequence = 0;
+    // A device without a FIFO (a Latero: a frame plays when it arrives) takes one a tick.
+    const int depth = std::min<int>(
+        target, static_cast<int>(std::max<std::uint32_t>(1, device.info().fifo_capacity_frames)));
     auto tick = Clock::now();
     while (!done.load()) {
       const display::DeviceStatus status = device.status();
-      int room = target - static_cast<int>(status.fifo_fill);
+      int room = depth - static_cast<int>(status.fifo_fill);
       while (room-- > 0) {
         const std::int64_t camera_frame = held.take(frame);
         const auto bytes = display::encode_frame(frame, sequence, false);

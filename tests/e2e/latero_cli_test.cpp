@@ -100,14 +100,17 @@ const std::string kBladesLeft = R"(blades\s+left at raw (\d+)\.\.(\d+))";
 
 // Starts the emulator in the background, runs `client_args`, stops the emulator with SIGINT and
 // returns everything both printed (the client first).
+// `seconds`: how long the emulator answers at most (the SIGINT of a shell's background job may
+// not reach it, so it ends on its own then).
 tactile::test::RunResult with_emulator(int port, const std::string& emulator_args,
-                                       const std::string& client_args, const fs::path& dir) {
+                                       const std::string& client_args, const fs::path& dir,
+                                       int seconds = 60) {
   const std::string bin = TACTILE_CLI_PATH;
   const std::string log = (dir / "emulator.log").string();
-  return run_tactile("emulate --latero --port " + std::to_string(port) + " --seconds 60 " +
-                     emulator_args + " > " + log + " 2>&1 & E=$!; sleep 0.3; " + bin + " " +
-                     client_args + " 2>&1; rc=$?; kill -INT $E; wait $E; cat " + log +
-                     "; exit $rc");
+  return run_tactile("emulate --latero --port " + std::to_string(port) + " --seconds " +
+                     std::to_string(seconds) + " " + emulator_args + " > " + log +
+                     " 2>&1 & E=$!; sleep 0.3; " + bin + " " + client_args +
+                     " 2>&1; rc=$?; kill -INT $E; wait $E; cat " + log + "; exit $rc");
 }
 
 }  // namespace
@@ -401,4 +404,37 @@ TEST(StopCli, SignalMidHeadlessPlayEndsTheFirmwareOutputsAtRest) {
       EXPECT_THAT(e.path().filename().string(), ::testing::Not(HasSubstr("preview"))) << e.path();
     }
   }
+}
+
+// A live session played on the Latero: every frame the session sent reached the emulator
+// (it also counts the stop ramp's), none malformed, and the blades were left at rest.
+TEST(LateroCli, LiveSessionPlaysOnTheLateroAndEndsAtRest) {
+  const tactile::test::TempDir d_tmp("live");
+  const fs::path& d = d_tmp.path();
+  const auto synth =
+      run_tactile("synth " + (d / "wave").string() + " --from-print " +
+                  (tactile::test::test_data("polyu-hrf-pores") / "image_12.jpg").string() +
+                  " --px-per-mm 47 --warp wave --frames 30");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const int port = free_udp_port();
+  const auto r = with_emulator(port, "",
+                               "live " + (d / "wave").string() +
+                                   " --px-per-mm 47 --rate-hz 20 --queue-frames 30 --layout "
+                                   "latero --latero 127.0.0.1:" +
+                                   std::to_string(port) + " --seconds 1.5",
+                               d, 8);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::smatch sent, got, left;
+  ASSERT_TRUE(
+      std::regex_search(r.output, sent, std::regex(R"((\d+) device frames sent at 750 Hz)")))
+      << r.output;
+  ASSERT_TRUE(std::regex_search(r.output, got, std::regex(kDatagrams))) << r.output;
+  ASSERT_TRUE(std::regex_search(r.output, left, std::regex(kBladesLeft))) << r.output;
+  const int frames_sent = std::stoi(sent[1]), frames_played = std::stoi(got[2]);
+  EXPECT_GT(frames_sent, 500);  // 1.5 s at 750 Hz, less the session's start
+  // The stop ramp (20 ms at 750 Hz: 15 frames) comes on top of the session's frames.
+  EXPECT_GE(frames_played, frames_sent);
+  EXPECT_LE(frames_played, frames_sent + 20);
+  EXPECT_EQ(std::stoi(got[5]), 0);          // malformed
+  EXPECT_EQ(left[1].str(), left[2].str());  // every blade at one value: rest
 }

@@ -12,10 +12,12 @@
 #include <thread>
 
 #include "command.hpp"
+#include "latero_cli.hpp"
 #include "request_options.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/emulated_device.hpp"
+#include "tactile/display/latero_transport.hpp"
 #include "tactile/live/live_request.hpp"
 #include "tactile/live/live_session.hpp"
 #include "tactile/live/recording.hpp"
@@ -24,9 +26,10 @@ namespace tactile::cli {
 
 void add_live(CLI::App& app, Action& action) {
   auto request = std::make_shared<live::LiveRequest>();
-  // The emulated device is the one output yet: asked for by name, so that a session never
-  // goes somewhere its user did not choose once the other outputs exist.
+  // The output is asked for by name (the emulated device or a Latero), so that a session never
+  // goes somewhere its user did not choose.
   auto headless = std::make_shared<bool>(false);
+  auto latero = std::make_shared<display::LateroPlayTarget>();
   CLI::App* sub = app.add_subcommand(
       "live",
       "A live session: frames from a camera (/dev/videoN), a stream (udp://, tcp://, rtsp://)\n"
@@ -37,19 +40,40 @@ void add_live(CLI::App& app, Action& action) {
       "processing falls behind, the oldest waiting frame is dropped and counted. Prints frames\n"
       "in / processed / dropped and the latency (frame available -> its first device frame\n"
       "sent) p50/p99/max with the median of each stage. The display is the emulated device\n"
-      "(--headless); USB, hidapi, Latero and the window are not yet outputs of a live session.");
+      "(--headless) or a Latero (--latero HOST[:PORT], with --layout latero); USB, hidapi\n"
+      "and the window are not yet outputs of a live session.");
   add_request_options(*sub, request, live::live_options());
-  sub->add_flag("--headless", *headless, "Play into the emulated device, with no window")
-      ->required();
-  sub->callback([request, &action] {
-    action = [request] {
+  CLI::Option* headless_flag =
+      sub->add_flag("--headless", *headless, "Play into the emulated device, with no window");
+  add_latero_play_options(*sub, *latero);
+  sub->get_option("--latero")->excludes(headless_flag);
+  sub->callback([request, headless, latero, &action] {
+    if (!*headless && latero->address.empty()) {
+      throw CLI::RequiredError("one of --headless (the emulated device) or --latero HOST[:PORT]");
+    }
+    action = [request, latero] {
       const live::ResolvedLive session = live::resolve(*request, OptionSpelling::cli);
       StopSignals signals;  // before any thread, so that they inherit the block
-      display::EmulatedDeviceOptions device_options;
-      device_options.layout = session.layout;
-      device_options.clock = display::EmulatedClock::real_time;
-      device_options.record_outputs = false;
-      display::EmulatedDevice device(device_options);
+      std::unique_ptr<display::Transport> device;
+      if (!latero->address.empty()) {
+        // The Latero's own geometry: a movie of another layout would land on the wrong blades.
+        if (session.layout.name != "latero") {
+          throw RequestError(
+              fmt::format("--latero plays the latero layout; give --layout latero "
+                          "(not {})",
+                          session.layout.name));
+        }
+        display::LateroTransportOptions options;
+        options.mapping = latero->mapping;
+        device = std::make_unique<display::LateroTransport>(
+            display::parse_latero_address(latero->address), options);
+      } else {
+        display::EmulatedDeviceOptions device_options;
+        device_options.layout = session.layout;
+        device_options.clock = display::EmulatedClock::real_time;
+        device_options.record_outputs = false;
+        device = std::make_unique<display::EmulatedDevice>(device_options);
+      }
       std::atomic<bool> stop{false};
       std::atomic<bool> over{false};
       std::thread watcher([&] {
@@ -86,7 +110,7 @@ void add_live(CLI::App& app, Action& action) {
       if (recording) recording->attach(callbacks);
       live::LiveSummary summary;
       try {
-        summary = live::run_live(session, device, stop, callbacks);
+        summary = live::run_live(session, *device, stop, callbacks);
       } catch (...) {
         over = true;
         watcher.join();
