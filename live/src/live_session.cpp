@@ -256,6 +256,9 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
                                                   std::chrono::duration<double>(*session.seconds)))
                       : std::nullopt;
 
+  // Before any thread: a device that cannot start fails here, with nothing to join.
+  device.start(device_rate_hz);
+
   // Acquisition: never waits for processing.
   DropOldestQueue<SourceFrame> queue(static_cast<std::size_t>(session.queue_frames));
   std::atomic<bool> acquisition_done{false};
@@ -289,7 +292,6 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
   std::atomic<bool> feeding_done{false};
   std::int64_t frames_sent = 0;
   std::exception_ptr feed_failure;
-  device.start(device_rate_hz);
   std::thread feeder([&] {
     feed_device(device, device_rate_hz, options.fifo_target_frames, held, feeding_done, frames_sent,
                 feed_failure);

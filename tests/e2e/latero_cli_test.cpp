@@ -438,3 +438,20 @@ TEST(LateroCli, LiveSessionPlaysOnTheLateroAndEndsAtRest) {
   EXPECT_EQ(std::stoi(got[5]), 0);          // malformed
   EXPECT_EQ(left[1].str(), left[2].str());  // every blade at one value: rest
 }
+
+// A Latero that does not answer ends the session with the sender's words naming the address
+// (exit 1), not a crash or a hang.
+TEST(LateroCli, LiveSessionWithNoLateroNamesTheAddress) {
+  const tactile::test::TempDir d_tmp("live-none");
+  const fs::path& d = d_tmp.path();
+  ASSERT_EQ(run_tactile("synth " + (d / "wave").string() + " --from-print " +
+                        (tactile::test::test_data("polyu-hrf-pores") / "image_12.jpg").string() +
+                        " --px-per-mm 47 --warp wave --frames 30")
+                .exit_code,
+            0);
+  const std::string address = "127.0.0.1:" + std::to_string(free_udp_port());
+  const auto r = run_tactile("live " + (d / "wave").string() +
+                             " --px-per-mm 47 --rate-hz 20 --layout latero --latero " + address);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("Latero at " + address));
+}
