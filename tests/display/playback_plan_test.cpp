@@ -84,10 +84,8 @@ TEST(PlaybackPlan, ReportLineGivesTheCounts) {
   r.slew_limited_samples = 5;
   const std::string line = playback_summary_line(r);
   // The movie's own length beside the ramp, so that it reads as `info` and `map` count it.
-  EXPECT_THAT(
-      line,
-      HasSubstr(
-          "1400 frames played (1330 movie frames + 70 frames of ramp from and to rest) at 700 Hz"));
+  EXPECT_THAT(line, HasSubstr("1400 frames played at 700 Hz (of 1330 movie frames + 70 frames of "
+                              "ramp from and to rest;"));
   EXPECT_THAT(line, HasSubstr("2.00 s device time"));
   EXPECT_THAT(line, HasSubstr("3 underruns"));
   EXPECT_THAT(line, HasSubstr("12 samples clamped, 5 slew-limited"));
