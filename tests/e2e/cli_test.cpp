@@ -6,7 +6,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
@@ -131,8 +130,8 @@ TEST(Cli, StrainMovieGivenToPlayIsAClearError) {
   // What to do about it: map it first.
   EXPECT_THAT(r.output, HasSubstr("a strain movie, not a tactile movie"));
   EXPECT_THAT(r.output, HasSubstr("tactile map"));
-  const auto v = run_tactile("view " + (d / "strain.h5").string() + " --screenshot " +
-                             (d / "v.png").string());
+  const auto v =
+      run_tactile("view " + (d / "strain.h5").string() + " --screenshot " + (d / "v.png").string());
   EXPECT_THAT(v.output, HasSubstr("tactile map"));
 }
 
@@ -174,5 +173,9 @@ TEST(Cli, SynthHelpGivesBothDefaultLengths) {
   const auto r = run_tactile("synth --help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_THAT(r.output, HasSubstr("default 180 for a scene, 30 with --from-print"));
-  EXPECT_FALSE(std::regex_search(r.output, std::regex("Excludes: *\n")));
+  for (std::size_t at = r.output.find("Excludes:"); at != std::string::npos;
+       at = r.output.find("Excludes:", at + 1)) {
+    const std::size_t next = r.output.find_first_not_of(' ', at + 9);
+    EXPECT_TRUE(next != std::string::npos && r.output[next] != '\n') << r.output.substr(at, 40);
+  }
 }
