@@ -55,10 +55,7 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
   check_options(request, live_options(), spelling);
   const auto label = [spelling](std::string_view name) { return option_label(name, spelling); };
   const capture::CaptureRequest& c = request.capture;
-  if (c.calib.has_value() == c.px_per_mm.has_value()) {
-    throw RequestError(fmt::format("give one of {} (a calibration file) or {}", label("calib"),
-                                   label("px_per_mm")));
-  }
+  capture::check_one_scale(c.calib.has_value(), c.px_per_mm.has_value(), spelling);
   ResolvedLive r;
   r.source = request.source;
   r.rehearsal = is_rehearsal_source(request.source);

@@ -64,12 +64,17 @@ const std::vector<OptionRow<CaptureRequest>>& capture_options() {
   return table;
 }
 
+void check_one_scale(bool calib_given, bool px_per_mm_given, OptionSpelling spelling) {
+  if (calib_given == px_per_mm_given) {
+    throw RequestError(fmt::format("give one of {} (a calibration file) or {}",
+                                   option_label("calib", spelling),
+                                   option_label("px_per_mm", spelling)));
+  }
+}
+
 void check_request(const CaptureRequest& request, OptionSpelling spelling) {
   const auto label = [spelling](std::string_view name) { return option_label(name, spelling); };
-  if (request.calib.has_value() == request.px_per_mm.has_value()) {
-    throw RequestError(fmt::format("give one of {} (a calibration file) or {}", label("calib"),
-                                   label("px_per_mm")));
-  }
+  check_one_scale(request.calib.has_value(), request.px_per_mm.has_value(), spelling);
   // Every value again, for a request filled in without set_option (a program's own struct).
   check_options(request, capture_options(), spelling);
   if (request.pore_model && request.pores == PoreSetting::paper) {

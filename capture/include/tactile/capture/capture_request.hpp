@@ -41,6 +41,10 @@ struct CaptureRequest {
 
 const std::vector<OptionRow<CaptureRequest>>& capture_options();
 
+// Exactly one of a calibration file and a uniform scale (RequestError otherwise): the rule of
+// every request that measures from images.
+void check_one_scale(bool calib_given, bool px_per_mm_given, OptionSpelling spelling);
+
 // The rules between the options that need no file: exactly one of calib and px_per_mm; a pore
 // model only with a detector that uses one. Throws RequestError in the front end's spelling.
 void check_request(const CaptureRequest& request, OptionSpelling spelling);
