@@ -509,6 +509,14 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
   return summary;
 }
 
+display::EmulatedDeviceOptions emulated_display_options(const movie::Layout& layout) {
+  display::EmulatedDeviceOptions options;
+  options.layout = layout;
+  options.clock = display::EmulatedClock::real_time;
+  options.record_outputs = false;
+  return options;
+}
+
 std::string format_summary(const LiveSummary& s) {
   std::string out;
   out += fmt::format("frames      {} in, {} processed, {} dropped ({} x {} px at {:g} Hz)\n",

@@ -42,11 +42,7 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
   request.source = source;
   set_from_kwargs(request, live::live_options(), kwargs, "live");
   const live::ResolvedLive session = live::resolve(request, OptionSpelling::python);
-  display::EmulatedDeviceOptions device_options;
-  device_options.layout = session.layout;
-  device_options.clock = display::EmulatedClock::real_time;
-  device_options.record_outputs = false;
-  display::EmulatedDevice device(device_options);
+  display::EmulatedDevice device(live::emulated_display_options(session.layout));
   std::unique_ptr<live::SessionRecording> recording;
   if (session.record) recording = std::make_unique<live::SessionRecording>(*session.record);
   live::LiveCallbacks callbacks;

@@ -68,11 +68,8 @@ void add_live(CLI::App& app, Action& action) {
         device = std::make_unique<display::LateroTransport>(
             display::parse_latero_address(latero->address), options);
       } else {
-        display::EmulatedDeviceOptions device_options;
-        device_options.layout = session.layout;
-        device_options.clock = display::EmulatedClock::real_time;
-        device_options.record_outputs = false;
-        device = std::make_unique<display::EmulatedDevice>(device_options);
+        device = std::make_unique<display::EmulatedDevice>(
+            live::emulated_display_options(session.layout));
       }
       std::atomic<bool> stop{false};
       std::atomic<bool> over{false};

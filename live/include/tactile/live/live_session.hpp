@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/display/emulated_device.hpp"
 #include "tactile/display/transport.hpp"
 #include "tactile/live/live_request.hpp"
 #include "tactile/movie/tactile_movie.hpp"
@@ -85,6 +86,10 @@ struct LiveOptions {
 LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
                      const std::atomic<bool>& stop, const LiveCallbacks& callbacks = {},
                      const LiveOptions& options = {});
+
+// The emulated device a session plays into when no display is named: the layout's own, on the
+// real clock, recording nothing (a session may run for hours).
+display::EmulatedDeviceOptions emulated_display_options(const movie::Layout& layout);
 
 // The summary for a person: frames in / processed / dropped, latency p50/p99/max and the
 // median of each stage.
