@@ -28,19 +28,7 @@
 extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
 
 namespace tactile::h5 {
-namespace {
 
-// HDF5 prints its own error stack to stderr on every failure; our FormatError says it better.
-void silence_hdf5() {
-  H5::Exception::dontPrint();
-}
-
-std::string describe(const H5::Exception& e) {
-  return e.getDetailMsg().empty() ? std::string("HDF5 error") : e.getDetailMsg();
-}
-
-template <typename T>
-const H5::PredType& native_type();
 template <>
 const H5::PredType& native_type<double>() {
   return H5::PredType::NATIVE_DOUBLE;
@@ -52,6 +40,17 @@ const H5::PredType& native_type<float>() {
 template <>
 const H5::PredType& native_type<std::int32_t>() {
   return H5::PredType::NATIVE_INT32;
+}
+
+namespace {
+
+// HDF5 prints its own error stack to stderr on every failure; our FormatError says it better.
+void silence_hdf5() {
+  H5::Exception::dontPrint();
+}
+
+std::string describe(const H5::Exception& e) {
+  return e.getDetailMsg().empty() ? std::string("HDF5 error") : e.getDetailMsg();
 }
 
 template <typename T>
@@ -241,7 +240,8 @@ void read_in_child_first(const std::filesystem::path& path, const std::string& w
   }
 }
 
-H5::H5File open_for_reading(const std::filesystem::path& path) {
+H5::H5File open_for_reading(const std::filesystem::path& path, bool* unfinished) {
+  if (unfinished != nullptr) *unfinished = false;
   silence_hdf5();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
@@ -254,7 +254,16 @@ H5::H5File open_for_reading(const std::filesystem::path& path) {
     if (!H5::H5File::isHdf5(path.string())) {
       throw FormatError(fmt::format("{}: not an HDF5 file", path.string()));
     }
-    return H5::H5File(path.string(), H5F_ACC_RDONLY);
+    try {
+      return H5::H5File(path.string(), H5F_ACC_RDONLY);
+    } catch (const H5::Exception&) {
+      // A file whose writer was killed while it grew (GrowingFile, h5_growing.hpp) is still
+      // marked as open for writing, which only a reader in SWMR mode accepts; a damaged file
+      // fails this too and is reported with this open's reason.
+      H5::H5File file(path.string(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ);
+      if (unfinished != nullptr) *unfinished = true;
+      return file;
+    }
   } catch (const H5::Exception& e) {
     throw FormatError(fmt::format("{}: cannot open as HDF5 (truncated or damaged?): {}",
                                   path.string(), describe(e)));

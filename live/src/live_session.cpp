@@ -368,6 +368,8 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
         callbacks.note(fmt::format("{} x {} px at {:.2f} px/mm, pores: {}; {} at {:g} Hz",
                                    f.image.width_px, f.image.height_px, px_per_mm, summary.detector,
                                    layout.name, device_rate_hz));
+        callbacks.started(
+            {session.source, calibration, summary.camera_rate_hz, layout, device_rate_hz});
       }
       // Landmarks: detected every detect_every frames, or sooner when a fifth of the tracks
       // have ended since the last detection (as the batch capture), followed by alignment in

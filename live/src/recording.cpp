@@ -6,12 +6,18 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
-#include <map>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <thread>
+#include <variant>
 
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/version.hpp"
@@ -21,8 +27,13 @@ namespace tactile::live {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Often enough that a kill loses at most a second, counting the time a batch waits.
+constexpr auto kFlushPeriod = std::chrono::milliseconds(500);
+
 // One CSV file appended in whole lines: a buffer written with one write() and then synced.
-struct SessionRecording::Csv {
+struct Csv {
   fs::path path;
   int fd = -1;
   std::string pending;
@@ -43,7 +54,128 @@ struct SessionRecording::Csv {
   }
 };
 
-SessionRecording::SessionRecording(const fs::path& dir) : dir_(dir) {
+struct Mapped {
+  std::int64_t frame = 0;
+  std::vector<float> deflection_um;
+};
+
+using Event = std::variant<SessionStart, FrameTiming, capture::StrainFrame, Mapped>;
+
+}  // namespace
+
+struct SessionRecording::Writer {
+  fs::path dir;
+  std::vector<Csv> csv;  // latency, tracks, edges
+  std::optional<capture::StrainMovieAppender> strain;
+  std::optional<movie::TactileMovieAppender> movie;
+  SessionStart start;
+  // The movie as played: the last mapped frame, held until the next one's time.
+  std::optional<Mapped> held;
+  std::int64_t device_frames = 0;
+
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::deque<Event> events;
+  bool closing = false;
+  std::exception_ptr failure;
+  std::thread thread;
+
+  void push(Event e) {
+    {
+      std::lock_guard lock(mutex);
+      events.push_back(std::move(e));
+    }
+    wake.notify_one();
+  }
+
+  // Device frames j with j / device rate before `until_s`, each holding the last mapped frame.
+  void play_until(double until_s) {
+    if (!held || !movie) return;
+    while (device_frames / start.device_rate_hz < until_s - 1e-12) {
+      movie->append(held->deflection_um);
+      ++device_frames;
+    }
+  }
+
+  void handle(Event& e) {
+    if (auto* s = std::get_if<SessionStart>(&e)) {
+      start = *s;
+      capture::StrainMovie header;
+      header.frame_rate_hz = s->camera_rate_hz;
+      header.span_frames = 1;
+      header.calibration = s->calibration;
+      header.field_width_mm = s->calibration.image_width_px * s->calibration.mm_per_px;
+      header.field_height_mm = s->calibration.image_height_px * s->calibration.mm_per_px;
+      header.provenance.method = "live";
+      header.provenance.input = s->source;
+      header.provenance.program_version = kVersion;
+      strain.emplace(dir / "strain.h5", header);
+      movie::TactileMovie movie_header;
+      movie_header.layout = s->layout;
+      movie_header.rate_hz = s->device_rate_hz;
+      movie_header.provenance = header.provenance;
+      movie.emplace(dir / "movie.h5", movie_header);
+    } else if (auto* t = std::get_if<FrameTiming>(&e)) {
+      csv[0].pending += fmt::format(
+          "{},{:.6f},{},{}\n", t->frame, t->source_time_s,
+          t->dropped ? std::string() : fmt::format("{:.3f}", t->latency_ms), t->dropped ? 1 : 0);
+    } else if (auto* f = std::get_if<capture::StrainFrame>(&e)) {
+      if (!strain) return;
+      for (const auto& p : strain->append(*f)) csv[1].pending += capture::tracks_csv_row(p);
+      csv[2].pending += capture::edges_csv_rows(*f);
+    } else if (auto* m = std::get_if<Mapped>(&e)) {
+      if (!movie) return;
+      // The first mapped frame also stands for the device frames before it.
+      if (!held) held = *m;
+      play_until(m->frame / start.camera_rate_hz);
+      held = std::move(*m);
+    }
+  }
+
+  void flush_all() {
+    for (auto& f : csv) f.flush();
+    if (strain) strain->flush();
+    if (movie) movie->flush();
+  }
+
+  void run() {
+    auto last_flush = std::chrono::steady_clock::now();
+    for (;;) {
+      std::deque<Event> batch;
+      bool last = false;
+      {
+        std::unique_lock lock(mutex);
+        wake.wait_for(lock, kFlushPeriod, [&] { return closing || !events.empty(); });
+        batch.swap(events);
+        last = closing;
+      }
+      if (!failure) {
+        try {
+          for (auto& e : batch) handle(e);
+          const auto now = std::chrono::steady_clock::now();
+          if (last || now - last_flush >= kFlushPeriod) {
+            if (last && held) play_until((held->frame + 1) / start.camera_rate_hz);
+            flush_all();
+            last_flush = now;
+          }
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      }
+      if (last) break;
+    }
+    try {
+      if (strain) strain->close();
+      if (movie) movie->close();
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+    for (auto& f : csv) ::close(f.fd);
+  }
+};
+
+SessionRecording::SessionRecording(const fs::path& dir) : writer_(std::make_unique<Writer>()) {
+  writer_->dir = dir;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) {
@@ -61,124 +193,55 @@ SessionRecording::SessionRecording(const fs::path& dir) : dir_(dir) {
     csv.fd = ::open(csv.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (csv.fd < 0) {
       const int error = errno;
-      for (auto& f : files_) ::close(f.fd);
+      for (auto& f : writer_->csv) ::close(f.fd);
       throw std::runtime_error(
           fmt::format("cannot create {}: {}", csv.path.string(), std::strerror(error)));
     }
     csv.pending = header + "\n";
-    files_.push_back(std::move(csv));
+    writer_->csv.push_back(std::move(csv));
   }
-  for (auto& f : files_) f.flush();
-  last_flush_ = std::chrono::steady_clock::now();
+  for (auto& f : writer_->csv) f.flush();
+  writer_->thread = std::thread([w = writer_.get()] { w->run(); });
 }
 
 SessionRecording::~SessionRecording() {
-  for (auto& f : files_) {
-    try {
-      f.flush();
-    } catch (const std::exception&) {
-      // A destructor cannot report; finish() reports a failed write.
-    }
-    ::close(f.fd);
+  try {
+    finish();
+  } catch (const std::exception&) {
+    // A destructor cannot report; finish() called before it does.
   }
 }
 
 void SessionRecording::attach(LiveCallbacks& callbacks) {
-  callbacks.frame_done = [this, before = callbacks.frame_done](const FrameTiming& t) {
+  Writer* w = writer_.get();
+  callbacks.started = [w, before = callbacks.started](const SessionStart& s) {
+    before(s);
+    w->push(s);
+  };
+  callbacks.frame_done = [w, before = callbacks.frame_done](const FrameTiming& t) {
     before(t);
-    frame(t);
+    w->push(t);
   };
-  callbacks.strain = [this, before = callbacks.strain](const capture::StrainFrame& f) {
+  callbacks.strain = [w, before = callbacks.strain](const capture::StrainFrame& f) {
     before(f);
-    strain(f);
+    w->push(f);
   };
-  callbacks.mapped = [this, before = callbacks.mapped](std::int64_t frame,
-                                                       const std::vector<float>& d) {
+  callbacks.mapped = [w, before = callbacks.mapped](std::int64_t frame,
+                                                    const std::vector<float>& d) {
     before(frame, d);
-    mapped(frame, d);
+    w->push(Mapped{frame, d});
   };
 }
 
-void SessionRecording::frame(const FrameTiming& t) {
-  files_[0].pending += fmt::format("{},{:.6f},{},{}\n", t.frame, t.source_time_s,
-                                   t.dropped ? std::string() : fmt::format("{:.3f}", t.latency_ms),
-                                   t.dropped ? 1 : 0);
-  flush_if_due();
-}
-
-void SessionRecording::strain(const capture::StrainFrame& frame) {
-  // A point's position in its first strain frame's "from" end, then each "to" end.
-  for (const auto& p : frame.points_from) {
-    if (p.frame > last_frame_) files_[1].pending += capture::tracks_csv_row(p);
+void SessionRecording::finish() {
+  if (!writer_->thread.joinable()) return;
+  {
+    std::lock_guard lock(writer_->mutex);
+    writer_->closing = true;
   }
-  for (const auto& p : frame.points_to) files_[1].pending += capture::tracks_csv_row(p);
-  last_frame_ = frame.frame_to;
-  files_[2].pending += capture::edges_csv_rows(frame);
-  frames_.push_back(frame);
-}
-
-void SessionRecording::mapped(std::int64_t frame, const std::vector<float>& deflection_um) {
-  mapped_.emplace_back(frame, deflection_um);
-}
-
-void SessionRecording::flush_if_due() {
-  const auto now = std::chrono::steady_clock::now();
-  if (now - last_flush_ < std::chrono::seconds(1)) return;
-  for (auto& f : files_) f.flush();
-  last_flush_ = now;
-}
-
-void SessionRecording::finish(const capture::Calibration& calibration, double camera_rate_hz,
-                              const movie::Layout& layout, double device_rate_hz,
-                              const std::string& provenance) {
-  for (auto& f : files_) f.flush();
-  capture::StrainMovie strain;
-  strain.frame_rate_hz = camera_rate_hz;
-  strain.span_frames = 1;
-  strain.calibration = calibration;
-  strain.field_width_mm = calibration.image_width_px * calibration.mm_per_px;
-  strain.field_height_mm = calibration.image_height_px * calibration.mm_per_px;
-  strain.provenance.method = "live";
-  strain.provenance.input = provenance;
-  strain.provenance.program_version = kVersion;
-  // Every point of every track, ordered by track, then frame (the schema's order).
-  std::map<std::pair<std::int32_t, std::int32_t>, capture::TrackedPoint> points;
-  std::int32_t last = 0;
-  for (const auto& f : frames_) {
-    // The schema holds strain frames of one span; one measured across a dropped frame spans
-    // two (it stays in edges.csv, whose rows say their frames).
-    if (f.frame_to - f.frame_from != 1) continue;
-    for (const auto& p : f.points_from) points[{p.track_id, p.frame}] = p;
-    for (const auto& p : f.points_to) points[{p.track_id, p.frame}] = p;
-    last = std::max(last, f.frame_to);
-    strain.frames.push_back(f);
-  }
-  for (const auto& [key, p] : points) strain.tracks.push_back(p);
-  strain.camera_frame_count = strain.frames.empty() ? 0 : last + 1;
-  if (!strain.frames.empty()) capture::write_strain_movie(dir_ / "strain.h5", strain);
-
-  movie::TactileMovie movie;
-  movie.layout = layout;
-  movie.rate_hz = device_rate_hz;
-  const std::size_t n =
-      static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.cols);
-  if (!mapped_.empty()) {
-    // As played: each camera frame held from its time until the next camera frame's.
-    const double t_end = (mapped_.back().first + 1) / camera_rate_hz;
-    const auto frames = static_cast<std::int64_t>(std::floor(t_end * device_rate_hz));
-    std::size_t k = 0;
-    for (std::int64_t j = 0; j < frames; ++j) {
-      const double t = j / device_rate_hz;
-      while (k + 1 < mapped_.size() && mapped_[k + 1].first / camera_rate_hz <= t) ++k;
-      const auto& d = mapped_[k].second;
-      movie.deflection_um.insert(movie.deflection_um.end(), d.begin(), d.begin() + n);
-    }
-    movie.frame_count = static_cast<std::int32_t>(frames);
-    movie.provenance.method = "live";
-    movie.provenance.input = provenance;
-    movie.provenance.program_version = kVersion;
-    if (movie.frame_count > 0) movie::write_tactile_movie(dir_ / "movie.h5", movie);
-  }
+  writer_->wake.notify_one();
+  writer_->thread.join();
+  if (writer_->failure) std::rethrow_exception(writer_->failure);
 }
 
 }  // namespace tactile::live

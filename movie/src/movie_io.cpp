@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -83,16 +84,25 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
 
 }  // namespace
 
+namespace {
+
+// Everything but the deflections.
+void write_header(H5::H5File& file, const TactileMovie& movie) {
+  h5::write_attr(file, "format", kFormatName);
+  h5::write_attr(file, "format_version", std::int64_t{kTactileMovieFormatVersion});
+  h5::write_attr(file, "rate_hz", movie.rate_hz);
+  h5::write_attr(file, "frame_count", std::int64_t{movie.frame_count});
+  h5::write_attr(file, "units", "um");
+  write_layout(file, movie.layout);
+  h5::write_provenance(file, movie.provenance);
+}
+
+}  // namespace
+
 void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie) {
   validate_movie(movie);
   h5::write_file_atomically(path, [&](H5::H5File& file) {
-    h5::write_attr(file, "format", kFormatName);
-    h5::write_attr(file, "format_version", std::int64_t{kTactileMovieFormatVersion});
-    h5::write_attr(file, "rate_hz", movie.rate_hz);
-    h5::write_attr(file, "frame_count", std::int64_t{movie.frame_count});
-    h5::write_attr(file, "units", "um");
-    write_layout(file, movie.layout);
-    h5::write_provenance(file, movie.provenance);
+    write_header(file, movie);
     h5::write_dataset(
         file, kDataset, movie.deflection_um,
         {static_cast<hsize_t>(movie.frame_count), static_cast<hsize_t>(movie.layout.rows),
@@ -100,10 +110,53 @@ void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& 
   });
 }
 
+TactileMovieAppender::TactileMovieAppender(const std::filesystem::path& path,
+                                           const TactileMovie& header)
+    : file_(path),
+      frame_size_(static_cast<std::size_t>(header.layout.rows) *
+                  static_cast<std::size_t>(header.layout.cols)) {
+  TactileMovie empty = header;
+  empty.frame_count = 0;
+  empty.deflection_um.clear();
+  validate_movie(empty);
+  try {
+    write_header(file_.file(), empty);
+  } catch (const H5::Exception& e) {
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), e.getDetailMsg()));
+  }
+  file_.create_rows(
+      kDataset,
+      {static_cast<hsize_t>(header.layout.rows), static_cast<hsize_t>(header.layout.cols)},
+      std::vector<float>{});
+  file_.start();
+}
+
+void TactileMovieAppender::append(const std::vector<float>& deflection_um) {
+  if (deflection_um.size() != frame_size_) {
+    throw std::invalid_argument(fmt::format("a frame of {} deflections for a layout of {}",
+                                            deflection_um.size(), frame_size_));
+  }
+  pending_.insert(pending_.end(), deflection_um.begin(), deflection_um.end());
+  ++frames_;
+}
+
+void TactileMovieAppender::flush() {
+  file_.append(kDataset, pending_);
+  pending_.clear();
+  file_.set_attr("/", "frame_count", frames_);
+  file_.flush();
+}
+
+void TactileMovieAppender::close() {
+  flush();
+  file_.close();
+}
+
 namespace {
 
 TactileMovie read_checked(const std::filesystem::path& path) {
-  H5::H5File file = h5::open_for_reading(path);
+  bool unfinished = false;
+  H5::H5File file = h5::open_for_reading(path, &unfinished);
   const std::string where = path.string();
   if (!h5::has_attr(file, "format")) {
     throw FormatError(fmt::format("{}: attribute 'format' is missing; not a tactile movie", where));
@@ -128,12 +181,19 @@ TactileMovie read_checked(const std::filesystem::path& path) {
                                    where, "rate_hz");
   movie.layout = read_layout(file, where);
   // Checked before the dataset is read, whose shape is then checked against memory.
-  const auto frames =
+  auto frames =
       checks::int_in_range(h5::read_attr_int(file, "frame_count", where), 0,
                            std::numeric_limits<std::int32_t>::max(), where, "frame_count");
 
   std::vector<hsize_t> dims;
   movie.deflection_um = h5::read_floats(file, kDataset, 3, dims, where);
+  if (unfinished) {
+    // Its writer was killed (TactileMovieAppender): the frames and their count reach the disk
+    // in either order, so only the frames both say are there are read.
+    frames = std::min<std::int64_t>(frames, static_cast<std::int64_t>(dims[0]));
+    dims[0] = static_cast<hsize_t>(frames);
+    movie.deflection_um.resize(static_cast<std::size_t>(frames) * dims[1] * dims[2]);
+  }
   if (dims[0] != static_cast<hsize_t>(frames)) {
     throw FormatError(fmt::format("{}/{}: has {} frames but frame_count says {}", where, kDataset,
                                   dims[0], frames));

@@ -76,8 +76,7 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
   if (interrupted) throw py::error_already_set();
   if (failure) std::rethrow_exception(failure);
   if (recording) {
-    recording->finish(live::session_calibration(session, summary.width_px, summary.height_px),
-                      summary.camera_rate_hz, session.layout, summary.device_rate_hz, source);
+    recording->finish();
   }
   return summary_dict(summary);
 }

@@ -85,7 +85,10 @@ void add_live(CLI::App& app, Action& action) {
       std::unique_ptr<live::SessionRecording> recording;
       if (session.record) recording = std::make_unique<live::SessionRecording>(*session.record);
       live::LiveCallbacks callbacks;
-      callbacks.note = [](const std::string& text) { fmt::print("live: {}\n", text); };
+      callbacks.note = [](const std::string& text) {
+        fmt::print("live: {}\n", text);
+        std::fflush(stdout);
+      };
       auto last_print = std::chrono::steady_clock::now();
       std::int64_t processed = 0, dropped = 0;
       double last_latency_ms = 0;
@@ -118,9 +121,7 @@ void add_live(CLI::App& app, Action& action) {
       over = true;
       watcher.join();
       if (recording) {
-        recording->finish(live::session_calibration(session, summary.width_px, summary.height_px),
-                          summary.camera_rate_hz, session.layout, summary.device_rate_hz,
-                          session.source);
+        recording->finish();
         fmt::print("live: recorded into {}\n", session.record->string());
       }
       fmt::print("{}", live::format_summary(summary));

@@ -24,103 +24,229 @@ hsize_t h(std::size_t n) {
   return static_cast<hsize_t>(n);
 }
 
-void write_points(H5::Group& g, const std::string& prefix, const std::vector<TrackedPoint>& pts,
-                  bool with_identity) {
+// The columns of /tracks, or of /frames' points (their "from" ends).
+struct PointColumns {
   std::vector<std::int32_t> ids, frames, types;
   std::vector<double> px, mm;
-  for (const auto& p : pts) {
+
+  void add(const TrackedPoint& p) {
     ids.push_back(p.track_id);
     frames.push_back(p.frame);
     types.push_back(static_cast<std::int32_t>(p.type));
     px.insert(px.end(), {p.x_px, p.y_px});
     mm.insert(mm.end(), {p.x_mm, p.y_mm});
   }
-  if (with_identity) {
-    h5::write_dataset(g, prefix + "track_id", ids, {h(pts.size())});
-    h5::write_dataset(g, prefix + "type", types, {h(pts.size())});
+};
+
+// The /frames columns of a run of strain frames. The offsets are the ends of each frame's rows,
+// counted over every frame added so far (a file's offsets start with a 0 before them).
+struct FrameColumns {
+  std::vector<std::int32_t> from, to, point_end, edge_end, triangle_end;
+  std::vector<double> t_s;
+  PointColumns points;
+  std::vector<double> to_px, to_mm;
+  std::vector<std::int32_t> edge_tracks, triangle_points;
+  std::vector<double> edge_lengths, edge_rel;
+  std::int32_t points_total = 0, edges_total = 0, triangles_total = 0;
+
+  void add(const StrainFrame& f) {
+    if (f.points_from.size() != f.points_to.size()) {
+      throw std::invalid_argument(
+          fmt::format("strain frame {}->{}: {} points_from but {} points_to", f.frame_from,
+                      f.frame_to, f.points_from.size(), f.points_to.size()));
+    }
+    from.push_back(f.frame_from);
+    to.push_back(f.frame_to);
+    t_s.push_back(f.t_s);
+    for (const auto& p : f.points_from) points.add(p);
+    for (const auto& p : f.points_to) {
+      to_px.insert(to_px.end(), {p.x_px, p.y_px});
+      to_mm.insert(to_mm.end(), {p.x_mm, p.y_mm});
+    }
+    for (const auto& e : f.edges) {
+      edge_tracks.insert(edge_tracks.end(), {e.track_a, e.track_b});
+      edge_lengths.insert(edge_lengths.end(), {e.length_from_mm, e.length_to_mm});
+      edge_rel.push_back(e.rel_change);
+    }
+    for (const auto& t : f.triangles) {
+      triangle_points.insert(triangle_points.end(), t.point_index.begin(), t.point_index.end());
+    }
+    points_total += static_cast<std::int32_t>(f.points_from.size());
+    edges_total += static_cast<std::int32_t>(f.edges.size());
+    triangles_total += static_cast<std::int32_t>(f.triangles.size());
+    point_end.push_back(points_total);
+    edge_end.push_back(edges_total);
+    triangle_end.push_back(triangles_total);
   }
-  if (prefix.empty()) h5::write_dataset(g, "frame", frames, {h(pts.size())});
-  h5::write_dataset(g, prefix + "position_px", px, {h(pts.size()), 2});
-  h5::write_dataset(g, prefix + "position_mm", mm, {h(pts.size()), 2});
+  // Empties the columns; the running totals stay.
+  void clear() {
+    FrameColumns empty;
+    empty.points_total = points_total;
+    empty.edges_total = edges_total;
+    empty.triangles_total = triangles_total;
+    *this = std::move(empty);
+  }
+};
+
+// The schema's datasets, each handed to `put(path, values, tail)` with its path from the root
+// and the shape of one row (empty for a vector): the one list of them that both writers use.
+template <typename Put>
+void put_track_columns(const PointColumns& c, Put&& put) {
+  put("tracks/track_id", c.ids, Dims{});
+  put("tracks/type", c.types, Dims{});
+  put("tracks/frame", c.frames, Dims{});
+  put("tracks/position_px", c.px, Dims{2});
+  put("tracks/position_mm", c.mm, Dims{2});
+}
+
+template <typename Put, typename PutOffsets>
+void put_frame_columns(const FrameColumns& c, Put&& put, PutOffsets&& put_offsets) {
+  put("frames/frame_from", c.from, Dims{});
+  put("frames/frame_to", c.to, Dims{});
+  put("frames/t_s", c.t_s, Dims{});
+  put_offsets("frames/point_offset", c.point_end);
+  put_offsets("frames/edge_offset", c.edge_end);
+  put_offsets("frames/triangle_offset", c.triangle_end);
+  put("frames/point_track_id", c.points.ids, Dims{});
+  put("frames/point_type", c.points.types, Dims{});
+  put("frames/point_position_px", c.points.px, Dims{2});
+  put("frames/point_position_mm", c.points.mm, Dims{2});
+  put("frames/point_to_position_px", c.to_px, Dims{2});
+  put("frames/point_to_position_mm", c.to_mm, Dims{2});
+  put("frames/edge_tracks", c.edge_tracks, Dims{2});
+  put("frames/edge_length_mm", c.edge_lengths, Dims{2});
+  put("frames/edge_rel_change", c.edge_rel, Dims{});
+  put("frames/triangle_points", c.triangle_points, Dims{3});
+}
+
+// Everything but the tracks and the frames: the root's attributes and the calibration.
+void write_header(H5::H5File& file, const StrainMovie& movie) {
+  H5::Group root = file.openGroup("/");
+  h5::write_attr(root, "format", kStrainMovieFormat);
+  h5::write_attr(root, "format_version", std::int64_t{kStrainMovieFormatVersion});
+  h5::write_attr(root, "frame_rate_hz", movie.frame_rate_hz);
+  h5::write_attr(root, "span_frames", std::int64_t{movie.span_frames});
+  h5::write_attr(root, "camera_frame_count", std::int64_t{movie.camera_frame_count});
+  h5::write_attr(root, "field_width_mm", movie.field_width_mm);
+  h5::write_attr(root, "field_height_mm", movie.field_height_mm);
+  h5::write_attr(root, "units", "position: mm (and px); time: s; rel_change: dimensionless");
+  h5::write_attr(root, "feature_types", "0=pore,1=ending,2=bifurcation");
+  h5::write_provenance(root, movie.provenance);
+
+  H5::Group cal = file.createGroup("/calibration");
+  const Calibration& c = movie.calibration;
+  h5::write_dataset(cal, "px_to_mm", std::vector<double>(c.px_to_mm.begin(), c.px_to_mm.end()),
+                    {3, 3});
+  h5::write_attr(cal, "mm_per_px", c.mm_per_px);
+  h5::write_attr(cal, "image_width_px", std::int64_t{c.image_width_px});
+  h5::write_attr(cal, "image_height_px", std::int64_t{c.image_height_px});
+  h5::write_attr(cal, "method", c.method);
 }
 
 }  // namespace
 
 void write_strain_movie(const std::filesystem::path& path, const StrainMovie& movie) {
   h5::write_file_atomically(path, [&](H5::H5File& file) {
+    write_header(file, movie);
     H5::Group root = file.openGroup("/");
-    h5::write_attr(root, "format", kStrainMovieFormat);
-    h5::write_attr(root, "format_version", std::int64_t{kStrainMovieFormatVersion});
-    h5::write_attr(root, "frame_rate_hz", movie.frame_rate_hz);
-    h5::write_attr(root, "span_frames", std::int64_t{movie.span_frames});
-    h5::write_attr(root, "camera_frame_count", std::int64_t{movie.camera_frame_count});
-    h5::write_attr(root, "field_width_mm", movie.field_width_mm);
-    h5::write_attr(root, "field_height_mm", movie.field_height_mm);
-    h5::write_attr(root, "units", "position: mm (and px); time: s; rel_change: dimensionless");
-    h5::write_attr(root, "feature_types", "0=pore,1=ending,2=bifurcation");
-    h5::write_provenance(root, movie.provenance);
-
-    H5::Group cal = file.createGroup("/calibration");
-    const Calibration& c = movie.calibration;
-    h5::write_dataset(cal, "px_to_mm", std::vector<double>(c.px_to_mm.begin(), c.px_to_mm.end()),
-                      {3, 3});
-    h5::write_attr(cal, "mm_per_px", c.mm_per_px);
-    h5::write_attr(cal, "image_width_px", std::int64_t{c.image_width_px});
-    h5::write_attr(cal, "image_height_px", std::int64_t{c.image_height_px});
-    h5::write_attr(cal, "method", c.method);
-
-    H5::Group tracks = file.createGroup("/tracks");
-    write_points(tracks, "", movie.tracks, true);
-
-    H5::Group frames = file.createGroup("/frames");
-    std::vector<std::int32_t> from, to, point_off{0}, edge_off{0}, tri_off{0};
-    std::vector<double> t_s;
-    std::vector<TrackedPoint> pf, pt;
-    std::vector<std::int32_t> edge_tracks, tri_points;
-    std::vector<double> edge_lengths, edge_rel;
-    for (const auto& f : movie.frames) {
-      if (f.points_from.size() != f.points_to.size()) {
-        throw std::invalid_argument(
-            fmt::format("strain frame {}->{}: {} points_from but {} points_to", f.frame_from,
-                        f.frame_to, f.points_from.size(), f.points_to.size()));
-      }
-      from.push_back(f.frame_from);
-      to.push_back(f.frame_to);
-      t_s.push_back(f.t_s);
-      pf.insert(pf.end(), f.points_from.begin(), f.points_from.end());
-      pt.insert(pt.end(), f.points_to.begin(), f.points_to.end());
-      for (const auto& e : f.edges) {
-        edge_tracks.insert(edge_tracks.end(), {e.track_a, e.track_b});
-        edge_lengths.insert(edge_lengths.end(), {e.length_from_mm, e.length_to_mm});
-        edge_rel.push_back(e.rel_change);
-      }
-      for (const auto& t : f.triangles) {
-        tri_points.insert(tri_points.end(), t.point_index.begin(), t.point_index.end());
-      }
-      point_off.push_back(static_cast<std::int32_t>(pf.size()));
-      edge_off.push_back(static_cast<std::int32_t>(edge_rel.size()));
-      tri_off.push_back(static_cast<std::int32_t>(tri_points.size() / 3));
-    }
-    const hsize_t nf = h(movie.frames.size());
-    h5::write_dataset(frames, "frame_from", from, {nf});
-    h5::write_dataset(frames, "frame_to", to, {nf});
-    h5::write_dataset(frames, "t_s", t_s, {nf});
-    h5::write_dataset(frames, "point_offset", point_off, {nf + 1});
-    h5::write_dataset(frames, "edge_offset", edge_off, {nf + 1});
-    h5::write_dataset(frames, "triangle_offset", tri_off, {nf + 1});
-    write_points(frames, "point_", pf, true);
-    std::vector<double> to_px, to_mm_v;
-    for (const auto& p : pt) {
-      to_px.insert(to_px.end(), {p.x_px, p.y_px});
-      to_mm_v.insert(to_mm_v.end(), {p.x_mm, p.y_mm});
-    }
-    h5::write_dataset(frames, "point_to_position_px", to_px, {h(pt.size()), 2});
-    h5::write_dataset(frames, "point_to_position_mm", to_mm_v, {h(pt.size()), 2});
-    h5::write_dataset(frames, "edge_tracks", edge_tracks, {h(edge_rel.size()), 2});
-    h5::write_dataset(frames, "edge_length_mm", edge_lengths, {h(edge_rel.size()), 2});
-    h5::write_dataset(frames, "edge_rel_change", edge_rel, {h(edge_rel.size())});
-    h5::write_dataset(frames, "triangle_points", tri_points, {h(tri_points.size() / 3), 3});
+    const auto put = [&](const std::string& name, const auto& values, Dims tail) {
+      std::size_t row = 1;
+      for (hsize_t d : tail) row *= d;
+      tail.insert(tail.begin(), h(values.size() / row));
+      h5::write_dataset(root, name, values, tail);
+    };
+    PointColumns tracks;
+    for (const auto& p : movie.tracks) tracks.add(p);
+    file.createGroup("/tracks");
+    put_track_columns(tracks, put);
+    FrameColumns frames;
+    for (const auto& f : movie.frames) frames.add(f);
+    file.createGroup("/frames");
+    const auto put_offsets = [&](const std::string& name, std::vector<std::int32_t> ends) {
+      ends.insert(ends.begin(), 0);
+      put(name, ends, Dims{});
+    };
+    put_frame_columns(frames, put, put_offsets);
   });
+}
+
+struct StrainMovieAppender::Columns {
+  PointColumns tracks;
+  FrameColumns frames;
+};
+
+StrainMovieAppender::StrainMovieAppender(const std::filesystem::path& path,
+                                         const StrainMovie& header)
+    : file_(path), pending_(std::make_unique<Columns>()) {
+  StrainMovie empty = header;
+  empty.tracks.clear();
+  empty.frames.clear();
+  empty.camera_frame_count = 0;
+  span_frames_ = header.span_frames;
+  try {
+    write_header(file_.file(), empty);
+  } catch (const H5::Exception& e) {
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), e.getDetailMsg()));
+  }
+  const auto make = [&](const std::string& name, const auto& values, const Dims& tail) {
+    file_.create_rows(name, tail, std::decay_t<decltype(values)>{});
+  };
+  // Offsets begin with the 0 before the first frame.
+  const auto make_offsets = [&](const std::string& name, const std::vector<std::int32_t>&) {
+    file_.create_rows(name, Dims{}, std::vector<std::int32_t>{0});
+  };
+  try {
+    file_.file().createGroup("/tracks");
+    put_track_columns(pending_->tracks, make);
+    file_.file().createGroup("/frames");
+  } catch (const H5::Exception& e) {
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), e.getDetailMsg()));
+  }
+  put_frame_columns(pending_->frames, make, make_offsets);
+  file_.start();
+}
+
+StrainMovieAppender::~StrainMovieAppender() = default;
+
+std::vector<TrackedPoint> StrainMovieAppender::append(const StrainFrame& frame) {
+  // A point becomes a row of /tracks when first seen: in any "to" end, or in a "from" end that
+  // the previous strain frame's "to" end did not hold (a track detected at that frame, or the
+  // first strain frame).
+  std::vector<TrackedPoint> added;
+  for (const auto& p : frame.points_from) {
+    if (p.frame != last_frame_ || !last_to_tracks_.count(p.track_id)) added.push_back(p);
+  }
+  last_to_tracks_.clear();
+  for (const auto& p : frame.points_to) {
+    added.push_back(p);
+    last_to_tracks_.insert(p.track_id);
+  }
+  last_frame_ = frame.frame_to;
+  for (const auto& p : added) pending_->tracks.add(p);
+  camera_frame_count_ = std::max<std::int64_t>(camera_frame_count_, frame.frame_to + 1);
+  // The schema holds strain frames of one span; one measured across a missing frame is left out.
+  if (frame.frame_to - frame.frame_from == span_frames_) pending_->frames.add(frame);
+  return added;
+}
+
+void StrainMovieAppender::flush() {
+  const auto append = [&](const std::string& name, const auto& values, const Dims&) {
+    file_.append(name, values);
+  };
+  const auto append_offsets = [&](const std::string& name, const std::vector<std::int32_t>& ends) {
+    file_.append(name, ends);
+  };
+  put_track_columns(pending_->tracks, append);
+  put_frame_columns(pending_->frames, append, append_offsets);
+  pending_->tracks = {};
+  pending_->frames.clear();
+  file_.set_attr("/", "camera_frame_count", camera_frame_count_);
+  file_.flush();
+}
+
+void StrainMovieAppender::close() {
+  flush();
+  file_.close();
 }
 
 namespace {
@@ -164,9 +290,11 @@ FeatureType type_from(std::int32_t v, const Reader& r, const std::string& obj, s
   return static_cast<FeatureType>(v);
 }
 
-std::vector<std::int32_t> checked_offsets(Reader& r, const H5::Group& g, const std::string& name,
-                                          std::size_t frames, std::size_t total) {
-  auto off = r.read<std::int32_t>(g, "/frames", name, static_cast<long long>(frames + 1), 0);
+void check_offsets(const Reader& r, const std::string& name, const std::vector<std::int32_t>& off,
+                   std::size_t frames, std::size_t total) {
+  if (off.size() != frames + 1) {
+    r.fail("/frames/" + name, fmt::format("has {} rows, expected {}", off.size(), frames + 1));
+  }
   if (off.front() != 0) r.fail("/frames/" + name, "does not start at 0");
   for (std::size_t i = 1; i < off.size(); ++i) {
     if (off[i] < off[i - 1]) r.fail("/frames/" + name, fmt::format("decreases at entry {}", i));
@@ -175,7 +303,75 @@ std::vector<std::int32_t> checked_offsets(Reader& r, const H5::Group& g, const s
     r.fail("/frames/" + name,
            fmt::format("ends at {} but the data it indexes has {} entries", off.back(), total));
   }
-  return off;
+}
+
+// The rows of a file whose writer was killed while it grew (StrainMovieAppender): each dataset
+// was written whole up to some row, but the datasets of one flush may have reached the disk in
+// any order. What is read is the longest run of strain frames whose rows are all there.
+struct FrameRows {
+  std::vector<std::int32_t>& from;
+  std::vector<std::int32_t>& to;
+  std::vector<double>& t_s;
+  std::vector<std::int32_t>& point_offset;
+  std::vector<std::int32_t>& edge_offset;
+  std::vector<std::int32_t>& triangle_offset;
+  std::vector<std::int32_t>& point_track_id;
+  std::vector<std::int32_t>& point_type;
+  std::vector<double>& point_from_px;
+  std::vector<double>& point_from_mm;
+  std::vector<double>& point_to_px;
+  std::vector<double>& point_to_mm;
+  std::vector<double>& edge_rel;
+  std::vector<std::int32_t>& edge_tracks;
+  std::vector<double>& edge_lengths;
+  std::vector<std::int32_t>& triangles;
+};
+
+void keep_whole_frames(FrameRows c, const std::unordered_set<std::int32_t>& known_tracks) {
+  const auto offsets = [](const std::vector<std::int32_t>& off) {
+    return off.empty() ? std::size_t{0} : off.size() - 1;
+  };
+  std::size_t frames = std::min({c.from.size(), c.to.size(), c.t_s.size(), offsets(c.point_offset),
+                                 offsets(c.edge_offset), offsets(c.triangle_offset)});
+  const std::size_t points =
+      std::min({c.point_track_id.size(), c.point_type.size(), c.point_from_px.size() / 2,
+                c.point_from_mm.size() / 2, c.point_to_px.size() / 2, c.point_to_mm.size() / 2});
+  const std::size_t edges =
+      std::min({c.edge_rel.size(), c.edge_tracks.size() / 2, c.edge_lengths.size() / 2});
+  const std::size_t triangles = c.triangles.size() / 3;
+  // A frame is kept when its rows are there and its points name tracks that are.
+  const auto fits = [](const std::vector<std::int32_t>& off, std::size_t f, std::size_t rows) {
+    return off[f] >= 0 && off[f] <= off[f + 1] && static_cast<std::size_t>(off[f + 1]) <= rows;
+  };
+  std::size_t kept = 0;
+  while (kept < frames && fits(c.point_offset, kept, points) && fits(c.edge_offset, kept, edges) &&
+         fits(c.triangle_offset, kept, triangles)) {
+    bool tracks_there = true;
+    for (auto i = c.point_offset[kept]; i < c.point_offset[kept + 1]; ++i) {
+      tracks_there = tracks_there && known_tracks.count(c.point_track_id[i]) > 0;
+    }
+    if (!tracks_there) break;
+    ++kept;
+  }
+  frames = kept;
+  const auto cut = [](auto& v, std::size_t n) { v.resize(std::min(v.size(), n)); };
+  cut(c.from, frames);
+  cut(c.to, frames);
+  cut(c.t_s, frames);
+  for (auto* off : {&c.point_offset, &c.edge_offset, &c.triangle_offset}) cut(*off, frames + 1);
+  const auto end = [&](const std::vector<std::int32_t>& off) {
+    return off.empty() ? std::size_t{0} : static_cast<std::size_t>(off.back());
+  };
+  const std::size_t p = end(c.point_offset), e = end(c.edge_offset), t = end(c.triangle_offset);
+  cut(c.point_track_id, p);
+  cut(c.point_type, p);
+  for (auto* xy : {&c.point_from_px, &c.point_from_mm, &c.point_to_px, &c.point_to_mm}) {
+    cut(*xy, 2 * p);
+  }
+  cut(c.edge_rel, e);
+  cut(c.edge_tracks, 2 * e);
+  cut(c.edge_lengths, 2 * e);
+  cut(c.triangles, 3 * t);
 }
 
 }  // namespace
@@ -242,7 +438,10 @@ namespace {
 
 StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
   Reader r(path);
-  H5::H5File file = h5::open_for_reading(path);
+  bool unfinished = false;
+  H5::H5File file = h5::open_for_reading(path, &unfinished);
+  // An unfinished file's datasets may be longer than what its counts say: read every row.
+  const auto need = [&](long long rows) { return unfinished ? -1 : rows; };
   H5::Group root = h5::open_group(file, "/", r.where("/"));
   const std::string format = h5::read_attr_string(root, "format", r.where("/"));
   if (format != kStrainMovieFormat) {
@@ -297,12 +496,26 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
   check_calibration(m.calibration, r.where("/calibration"));
 
   H5::Group tg = h5::open_group(root, "tracks", r.where("/tracks"));
-  const auto ids = r.read<std::int32_t>(tg, "/tracks", "track_id", -1, 0);
+  auto ids = r.read<std::int32_t>(tg, "/tracks", "track_id", -1, 0);
   const auto n = static_cast<long long>(ids.size());
-  const auto tframes = r.read<std::int32_t>(tg, "/tracks", "frame", n, 0);
-  const auto ttypes = r.read<std::int32_t>(tg, "/tracks", "type", n, 0);
-  const auto tpx = r.read<double>(tg, "/tracks", "position_px", n, 2);
-  const auto tmm = r.read<double>(tg, "/tracks", "position_mm", n, 2);
+  auto tframes = r.read<std::int32_t>(tg, "/tracks", "frame", need(n), 0);
+  auto ttypes = r.read<std::int32_t>(tg, "/tracks", "type", need(n), 0);
+  auto tpx = r.read<double>(tg, "/tracks", "position_px", need(n), 2);
+  auto tmm = r.read<double>(tg, "/tracks", "position_mm", need(n), 2);
+  if (unfinished) {
+    // The rows every column has; the camera frames are at least those of the points kept
+    // (the count is written after them).
+    const std::size_t k =
+        std::min({ids.size(), tframes.size(), ttypes.size(), tpx.size() / 2, tmm.size() / 2});
+    ids.resize(k);
+    tframes.resize(k);
+    ttypes.resize(k);
+    tpx.resize(2 * k);
+    tmm.resize(2 * k);
+    for (const auto f : tframes) {
+      if (f >= m.camera_frame_count && f < 100000000) m.camera_frame_count = f + 1;
+    }
+  }
   check_positions(tpx, kMaxAbsPositionPx, r, "/tracks/position_px");
   check_positions(tmm, kMaxAbsPositionMm, r, "/tracks/position_mm");
   std::unordered_set<std::int32_t> known_tracks;
@@ -319,22 +532,33 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
   check_field(m, r);
 
   H5::Group fg = h5::open_group(root, "frames", r.where("/frames"));
-  const auto from = r.read<std::int32_t>(fg, "/frames", "frame_from", -1, 0);
+  auto from = r.read<std::int32_t>(fg, "/frames", "frame_from", -1, 0);
   const auto nf = static_cast<long long>(from.size());
-  const auto to = r.read<std::int32_t>(fg, "/frames", "frame_to", nf, 0);
-  const auto t_s = r.read<double>(fg, "/frames", "t_s", nf, 0);
-  const auto pid = r.read<std::int32_t>(fg, "/frames", "point_track_id", -1, 0);
+  auto to = r.read<std::int32_t>(fg, "/frames", "frame_to", need(nf), 0);
+  auto t_s = r.read<double>(fg, "/frames", "t_s", need(nf), 0);
+  auto pid = r.read<std::int32_t>(fg, "/frames", "point_track_id", -1, 0);
   const auto np = static_cast<long long>(pid.size());
-  const auto ptype = r.read<std::int32_t>(fg, "/frames", "point_type", np, 0);
-  const auto pfpx = r.read<double>(fg, "/frames", "point_position_px", np, 2);
-  const auto pfmm = r.read<double>(fg, "/frames", "point_position_mm", np, 2);
-  const auto ptpx = r.read<double>(fg, "/frames", "point_to_position_px", np, 2);
-  const auto ptmm = r.read<double>(fg, "/frames", "point_to_position_mm", np, 2);
-  const auto erel = r.read<double>(fg, "/frames", "edge_rel_change", -1, 0);
+  auto ptype = r.read<std::int32_t>(fg, "/frames", "point_type", need(np), 0);
+  auto pfpx = r.read<double>(fg, "/frames", "point_position_px", need(np), 2);
+  auto pfmm = r.read<double>(fg, "/frames", "point_position_mm", need(np), 2);
+  auto ptpx = r.read<double>(fg, "/frames", "point_to_position_px", need(np), 2);
+  auto ptmm = r.read<double>(fg, "/frames", "point_to_position_mm", need(np), 2);
+  auto erel = r.read<double>(fg, "/frames", "edge_rel_change", -1, 0);
   const auto ne = static_cast<long long>(erel.size());
-  const auto etracks = r.read<std::int32_t>(fg, "/frames", "edge_tracks", ne, 2);
-  const auto elen = r.read<double>(fg, "/frames", "edge_length_mm", ne, 2);
-  const auto tri = r.read<std::int32_t>(fg, "/frames", "triangle_points", -1, 3);
+  auto etracks = r.read<std::int32_t>(fg, "/frames", "edge_tracks", need(ne), 2);
+  auto elen = r.read<double>(fg, "/frames", "edge_length_mm", need(ne), 2);
+  auto tri = r.read<std::int32_t>(fg, "/frames", "triangle_points", -1, 3);
+  auto poff = r.read<std::int32_t>(fg, "/frames", "point_offset", need(nf + 1), 0);
+  auto eoff = r.read<std::int32_t>(fg, "/frames", "edge_offset", need(nf + 1), 0);
+  auto toff = r.read<std::int32_t>(fg, "/frames", "triangle_offset", need(nf + 1), 0);
+  if (unfinished) {
+    keep_whole_frames({from, to, t_s, poff, eoff, toff, pid, ptype, pfpx, pfmm, ptpx, ptmm, erel,
+                       etracks, elen, tri},
+                      known_tracks);
+    for (const auto f : to) {
+      if (f >= m.camera_frame_count && f < 100000000) m.camera_frame_count = f + 1;
+    }
+  }
   check_positions(pfpx, kMaxAbsPositionPx, r, "/frames/point_position_px");
   check_positions(pfmm, kMaxAbsPositionMm, r, "/frames/point_position_mm");
   check_positions(ptpx, kMaxAbsPositionPx, r, "/frames/point_to_position_px");
@@ -345,9 +569,9 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
   }
   checks::all_finite(erel, r.where("/frames/edge_rel_change"), "edge_rel_change");
   checks::all_finite(t_s, r.where("/frames/t_s"), "t_s");
-  const auto poff = checked_offsets(r, fg, "point_offset", from.size(), pid.size());
-  const auto eoff = checked_offsets(r, fg, "edge_offset", from.size(), erel.size());
-  const auto toff = checked_offsets(r, fg, "triangle_offset", from.size(), tri.size() / 3);
+  check_offsets(r, "point_offset", poff, from.size(), pid.size());
+  check_offsets(r, "edge_offset", eoff, from.size(), erel.size());
+  check_offsets(r, "triangle_offset", toff, from.size(), tri.size() / 3);
 
   for (std::size_t f = 0; f < from.size(); ++f) {
     StrainFrame sf;

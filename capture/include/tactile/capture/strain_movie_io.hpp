@@ -1,11 +1,16 @@
 #pragma once
 // Strain movie files: HDF5 with the schema in capture/FORMAT.md, and CSV export.
 
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_set>
+#include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/common/h5_growing.hpp"
 
 namespace tactile::capture {
 
@@ -14,6 +19,36 @@ inline constexpr int kStrainMovieFormatVersion = 1;
 
 // Writes atomically: an existing file is replaced only when the new one is complete.
 void write_strain_movie(const std::filesystem::path& path, const StrainMovie& movie);
+
+// A strain movie written as it is measured, into a file that the reader below opens at every
+// moment, a kill or a power cut included, holding every frame up to the last flush(). The
+// header (rate, span, calibration, field, provenance) is `header`'s; its tracks and frames are
+// ignored. Strain frames of another span than the header's are left out. /tracks is in the
+// order points were first seen (by frame), not by track as write_strain_movie orders it; the
+// reader takes either. Creates `path` new (never over a file or through a link).
+class StrainMovieAppender {
+ public:
+  StrainMovieAppender(const std::filesystem::path& path, const StrainMovie& header);
+  ~StrainMovieAppender();
+  StrainMovieAppender(const StrainMovieAppender&) = delete;
+  StrainMovieAppender& operator=(const StrainMovieAppender&) = delete;
+
+  // Keeps `frame` for the next flush; returns the points that became new rows of /tracks.
+  std::vector<TrackedPoint> append(const StrainFrame& frame);
+  // Writes what was appended since the last flush and syncs it to the disk.
+  void flush();
+  // Flushes and closes: the file is then as any other strain movie.
+  void close();
+
+ private:
+  struct Columns;
+  h5::GrowingFile file_;
+  std::unique_ptr<Columns> pending_;
+  std::int32_t span_frames_ = 1;
+  std::int64_t last_frame_ = -1;
+  std::unordered_set<std::int32_t> last_to_tracks_;
+  std::int64_t camera_frame_count_ = 0;
+};
 
 // Throws tactile::FormatError naming the file, the object and the problem: missing file, not
 // HDF5, another format or version, missing groups/datasets/attributes, wrong types or ranks,

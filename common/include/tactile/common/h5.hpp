@@ -32,8 +32,20 @@ void write_file_atomically(const std::filesystem::path& path,
 void read_in_child_first(const std::filesystem::path& path, const std::string& what,
                          const std::function<void()>& read);
 
-// Opens an existing file for reading; throws FormatError if missing or not HDF5.
-H5::H5File open_for_reading(const std::filesystem::path& path);
+// The HDF5 type of the numbers the files hold (double, float, std::int32_t).
+template <typename T>
+const H5::PredType& native_type();
+template <>
+const H5::PredType& native_type<double>();
+template <>
+const H5::PredType& native_type<float>();
+template <>
+const H5::PredType& native_type<std::int32_t>();
+
+// Opens an existing file for reading; throws FormatError if missing or not HDF5. A file whose
+// writer was killed while it grew (GrowingFile, h5_growing.hpp) opens too, and sets
+// `*unfinished`: its datasets may then hold rows beyond what its counts say.
+H5::H5File open_for_reading(const std::filesystem::path& path, bool* unfinished = nullptr);
 
 void write_attr(H5::H5Object& obj, const std::string& name, double value);
 void write_attr(H5::H5Object& obj, const std::string& name, std::int64_t value);

@@ -62,9 +62,20 @@ struct LiveSummary {
   std::string detector;  // the pore detector chosen on the first frame
 };
 
+// What is known once the first frame has arrived.
+struct SessionStart {
+  std::string source;
+  capture::Calibration calibration;  // of the frames' size
+  double camera_rate_hz = 0;
+  movie::Layout layout;
+  double device_rate_hz = 0;
+};
+
 // What the session hands out as it goes (each called from the processing thread).
 struct LiveCallbacks {
   std::function<void(const std::string&)> note = [](const std::string&) {};
+  // Once, on the first frame, before any other call below.
+  std::function<void(const SessionStart&)> started = [](const SessionStart&) {};
   // Every camera frame, processed or dropped, once its latency is known.
   std::function<void(const FrameTiming&)> frame_done = [](const FrameTiming&) {};
   // Every strain frame measured, with the tracked points of its two frames.

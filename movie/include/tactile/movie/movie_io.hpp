@@ -1,8 +1,11 @@
 #pragma once
 // Tactile movie files: HDF5 (the format users keep, schema in docs/formats.md) and CSV export.
 
+#include <cstdint>
 #include <filesystem>
+#include <vector>
 
+#include "tactile/common/h5_growing.hpp"
 #include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::movie {
@@ -21,6 +24,27 @@ inline constexpr double kMaxLayoutSizeMm = 1000;
 // Throws std::invalid_argument if the movie is inconsistent (see validate_movie()), and
 // std::runtime_error if the file cannot be written.
 void write_tactile_movie(const std::filesystem::path& path, const TactileMovie& movie);
+
+// A movie written frame by frame into a file that read_tactile_movie opens at every moment, a
+// kill or a power cut included, holding every frame up to the last flush(). Rate, layout and
+// provenance are `header`'s (its frames are ignored). Creates `path` new (never over a file or
+// through a link). Throws as write_tactile_movie does.
+class TactileMovieAppender {
+ public:
+  TactileMovieAppender(const std::filesystem::path& path, const TactileMovie& header);
+  // One frame (rows x cols deflections, row-major), kept for the next flush.
+  void append(const std::vector<float>& deflection_um);
+  // Writes the frames appended since the last flush and syncs them to the disk.
+  void flush();
+  // Flushes and closes: the file is then as any other movie.
+  void close();
+
+ private:
+  h5::GrowingFile file_;
+  std::size_t frame_size_;
+  std::vector<float> pending_;
+  std::int64_t frames_ = 0;
+};
 
 // Reads a movie written by write_tactile_movie. Throws tactile::FormatError naming the file and
 // the problem: missing, empty, truncated or not HDF5; wrong format attribute or version;

@@ -1,0 +1,127 @@
+// A strain movie written as it is measured: read back whole when closed, and up to its last
+// flush when the writing process is killed.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <set>
+#include <tuple>
+
+#include "tactile/capture/strain_movie_io.hpp"
+#include "test_util.hpp"
+
+namespace tactile::capture {
+namespace {
+
+using testing::TempDir;
+
+// Four tracks over six frames, strain frames of span 1, each with its points, two edges and a
+// triangle; track 3 starts at frame 2 (a detection during the movie).
+StrainMovie sample_movie() {
+  StrainMovie m;
+  m.frame_rate_hz = 60;
+  m.span_frames = 1;
+  m.camera_frame_count = 6;
+  m.calibration = uniform_calibration(47, 320, 240);
+  m.field_width_mm = 320 / 47.0;
+  m.field_height_mm = 240 / 47.0;
+  m.provenance.method = "live";
+  const auto point = [](std::int32_t id, std::int32_t f) {
+    return TrackedPoint{id,      f, FeatureType::pore, 10.0 * id + f, 5.0 * id, 0.2 * id + 0.01 * f,
+                        0.1 * id};
+  };
+  for (std::int32_t f = 0; f + 1 < 6; ++f) {
+    StrainFrame sf;
+    sf.frame_from = f;
+    sf.frame_to = f + 1;
+    sf.t_s = (f + 1) / 60.0;
+    for (std::int32_t id = 0; id < (f >= 2 ? 4 : 3); ++id) {
+      sf.points_from.push_back(point(id, f));
+      sf.points_to.push_back(point(id, f + 1));
+    }
+    sf.edges.push_back({0, 1, 0.2, 0.21, 0.05});
+    sf.edges.push_back({1, 2, 0.3, 0.27, -0.1 * f});
+    sf.triangles.push_back({{0, 1, 2}});
+    m.frames.push_back(sf);
+  }
+  return m;
+}
+
+using PointKey = std::tuple<std::int32_t, std::int32_t, double, double>;
+
+std::set<PointKey> point_set(const std::vector<TrackedPoint>& points) {
+  std::set<PointKey> out;
+  for (const auto& p : points) out.insert({p.track_id, p.frame, p.x_px, p.y_px});
+  return out;
+}
+
+void expect_same_frames(const StrainMovie& read, const StrainMovie& written, std::size_t frames) {
+  ASSERT_EQ(read.frames.size(), frames);
+  for (std::size_t f = 0; f < frames; ++f) {
+    const auto& a = read.frames[f];
+    const auto& b = written.frames[f];
+    EXPECT_EQ(a.frame_from, b.frame_from);
+    EXPECT_EQ(a.t_s, b.t_s);
+    EXPECT_EQ(point_set(a.points_from), point_set(b.points_from));
+    EXPECT_EQ(point_set(a.points_to), point_set(b.points_to));
+    ASSERT_EQ(a.edges.size(), b.edges.size());
+    for (std::size_t i = 0; i < a.edges.size(); ++i) {
+      EXPECT_EQ(a.edges[i].rel_change, b.edges[i].rel_change);
+    }
+    EXPECT_EQ(a.triangles.size(), b.triangles.size());
+  }
+}
+
+TEST(StrainMovieAppender, ClosedFileHoldsWhatTheBatchWriterWrites) {
+  TempDir dir;
+  const StrainMovie m = sample_movie();
+  StrainMovieAppender out(dir.path() / "grown.h5", m);
+  std::size_t new_points = 0;
+  for (const auto& f : m.frames) {
+    new_points += out.append(f).size();
+    out.flush();
+  }
+  out.close();
+  const StrainMovie r = read_strain_movie(dir.path() / "grown.h5");
+  EXPECT_EQ(r.camera_frame_count, 6);
+  expect_same_frames(r, m, m.frames.size());
+  // Every point of every track once: tracks 0-2 in frames 0-5, track 3 in frames 2-5.
+  std::set<PointKey> expected;
+  for (const auto& f : m.frames) {
+    for (const auto& p : point_set(f.points_from)) expected.insert(p);
+    for (const auto& p : point_set(f.points_to)) expected.insert(p);
+  }
+  EXPECT_EQ(expected.size(), 3u * 6u + 4u);
+  EXPECT_EQ(new_points, expected.size());
+  EXPECT_EQ(r.tracks.size(), expected.size());
+  EXPECT_EQ(point_set(r.tracks), expected);
+}
+
+// The child appends three strain frames, flushes, appends two more and is killed.
+TEST(StrainMovieAppender, KilledWriterLeavesWhatWasFlushed) {
+  TempDir dir;
+  const StrainMovie m = sample_movie();
+  const auto path = dir.path() / "killed.h5";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    StrainMovieAppender out(path, m);
+    for (std::size_t f = 0; f < m.frames.size(); ++f) {
+      out.append(m.frames[f]);
+      if (f == 2) out.flush();
+    }
+    ::kill(::getpid(), SIGKILL);
+    ::_exit(1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const StrainMovie r = read_strain_movie(path);
+  expect_same_frames(r, m, 3);
+  EXPECT_EQ(r.camera_frame_count, 4);
+}
+
+}  // namespace
+}  // namespace tactile::capture
