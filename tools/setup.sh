@@ -31,6 +31,8 @@ packages=(
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
   # a single-node Slurm cluster for the `cluster` tests (daemons started by the tests' helper)
   slurmctld slurmd slurm-client munge
+  # live sessions: a real network stream sent by ffmpeg to the loopback address in the tests
+  ffmpeg
 )
 
 missing=()

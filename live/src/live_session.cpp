@@ -331,7 +331,8 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
       std::optional<SourceFrame> got = queue.pop(std::chrono::milliseconds(20));
       report_dropped();
       if (!got) {
-        if (queue.closed_and_empty()) break;
+        // --seconds ends the session even while the source sends nothing.
+        if (queue.closed_and_empty() || (end_at && Clock::now() > *end_at)) break;
         continue;
       }
       SourceFrame& f = *got;

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <stdlib.h>
 #include <opencv2/imgproc.hpp>
+
 #include <opencv2/videoio.hpp>
 #include <thread>
 
@@ -13,6 +15,9 @@
 namespace tactile::live {
 
 namespace {
+
+constexpr int kStreamOpenTimeoutMs = 10000;
+constexpr int kStreamReadTimeoutMs = 2000;
 
 class Rehearsal final : public FrameSource {
  public:
@@ -52,10 +57,27 @@ class Device final : public FrameSource {
  public:
   Device(const std::string& source, std::optional<double> rate_hz) : source_(source) {
     const bool camera = source.rfind("/dev/", 0) == 0;
-    const int api = camera ? cv::CAP_V4L2 : cv::CAP_FFMPEG;
-    if (!capture_.open(source, api)) {
-      throw FormatError(fmt::format("{}: cannot open it as a {}", source,
-                                    camera ? "V4L2 camera" : "video stream"));
+    bool opened = false;
+    if (camera) {
+      opened = capture_.open(source, cv::CAP_V4L2);
+    } else {
+      // FFmpeg reads a second or more of a stream to learn its format before the first frame
+      // (5 MB or 5 s by default); the frames read meanwhile then come out at once, a burst the
+      // drop-oldest queue would mostly drop. A stream says its size and codec in its first
+      // packets, so a short look is enough, unless the user set FFmpeg's options themselves.
+      ::setenv("OPENCV_FFMPEG_CAPTURE_OPTIONS", "probesize;65536|analyzeduration;200000", 0);
+      // A stream that stops sending ends the session within a bound (and lets a stop request
+      // end it), instead of FFmpeg's 30 s.
+      opened = capture_.open(source, cv::CAP_FFMPEG,
+                             {cv::CAP_PROP_OPEN_TIMEOUT_MSEC, kStreamOpenTimeoutMs,
+                              cv::CAP_PROP_READ_TIMEOUT_MSEC, kStreamReadTimeoutMs});
+    }
+    if (!opened) {
+      throw FormatError(
+          camera
+              ? fmt::format("{}: cannot open it as a V4L2 camera", source)
+              : fmt::format("{}: cannot open it as a video stream (nothing readable within {} s)",
+                            source, kStreamOpenTimeoutMs / 1000));
     }
     if (rate_hz && camera) capture_.set(cv::CAP_PROP_FPS, *rate_hz);
     asked_hz_ = rate_hz;
@@ -73,7 +95,7 @@ class Device final : public FrameSource {
                         "stopped?)",
                         source_, index_));
       }
-      return false;  // a stream's end
+      return false;  // a stream's end, or nothing from it for kStreamReadTimeoutMs
     }
     out.available = Clock::now();
     cv::Mat grey;

@@ -7,6 +7,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -187,6 +192,82 @@ TEST_F(Live, FallingBehindDropsTheOldestFrameAndCountsIt) {
   EXPECT_EQ(in, 60);
   EXPECT_EQ(processed + dropped, in);
   EXPECT_GT(dropped, 0);
+}
+
+// A free UDP port on the loopback interface (bound, read, released).
+int free_udp_port() {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof address;
+  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
+    if (fd >= 0) ::close(fd);
+    return -1;
+  }
+  ::close(fd);
+  return ntohs(address.sin_port);
+}
+
+// Whether a socket is bound to UDP `port` on this machine (/proc/net/udp lists them in hex).
+bool udp_port_bound(int port) {
+  std::ifstream in("/proc/net/udp");
+  std::string line;
+  const std::string needle = fmt::format(":{:04X} ", port);
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    // "  sl  local_address ...": the local address is the second field, IP:PORT.
+    std::istringstream fields(line);
+    std::string slot, local;
+    fields >> slot >> local;
+    if ((local + " ").find(needle) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// A real stream: Debian's ffmpeg encodes the 60 frames (MPEG-2 in MPEG-TS) and sends them over
+// UDP to the loopback address at 60 Hz; the session reads them through FFmpeg as they arrive.
+TEST_F(Live, ReadsAnFfmpegUdpStream) {
+  const int port = free_udp_port();
+  ASSERT_GT(port, 0);
+  const std::string url = fmt::format("udp://127.0.0.1:{}", port);
+  const fs::path log = dir_->path() / "udp.log";
+  // The queue absorbs the first frame's slower start on a sanitizer build too.
+  tactile::test::Started run(
+      {"live", url, "--px-per-mm", "47", "--headless", "--queue-frames", "16", "--seconds", "30"},
+      log);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!udp_port_bound(port) && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(udp_port_bound(port)) << "the session never listened on " << url;
+  const std::string send = fmt::format(
+      "timeout 60 ffmpeg -nostdin -hide_banner -loglevel error -re -framerate 60 -i "
+      "'{}/frame_%03d.png' "
+      "-c:v mpeg2video -q:v 2 -pix_fmt yuv420p -f mpegts '{}?pkt_size=1316' 2>&1",
+      frames().string(), url);
+  ASSERT_EQ(std::system(send.c_str()), 0) << send;
+  // The stream's end: nothing for 2 s ends the session.
+  const auto ended = run.wait(20.0);
+  ASSERT_TRUE(ended.ended);
+  std::ifstream in(log);
+  std::stringstream output;
+  output << in.rdbuf();
+  ASSERT_EQ(ended.exit_code, 0) << output.str();
+  EXPECT_THAT(output.str(), HasSubstr("320 x 240 px at 60 Hz"));
+  const std::string text = output.str();
+  const std::size_t at = text.find("frames      ");
+  ASSERT_NE(at, std::string::npos) << text;
+  int in_frames = 0, processed = 0, dropped = 0;
+  ASSERT_EQ(std::sscanf(text.c_str() + at, "frames %d in, %d processed, %d dropped", &in_frames,
+                        &processed, &dropped),
+            3)
+      << text;
+  EXPECT_GE(in_frames, 57) << text;
+  EXPECT_LE(in_frames, 60) << text;
+  // At least 95 % of the 60 frames sent.
+  EXPECT_GE(processed, 57) << text;
 }
 
 // Ctrl-C ends the session cleanly: exit 130, every file complete.
