@@ -245,6 +245,14 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
   std::unique_ptr<FrameSource> source = session.rehearsal
                                             ? open_rehearsal(session.source, session.rate_hz, start)
                                             : open_device(session.source, session.rate_hz);
+  return run_live_from(*source, start, session, device, stop, callbacks, options);
+}
+
+LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
+                          const ResolvedLive& session, display::Transport& device,
+                          const std::atomic<bool>& stop, const LiveCallbacks& callbacks,
+                          const LiveOptions& options) {
+  FrameSource* source = &source_frames;
   callbacks.note(source->describe());
   LiveSummary summary;
   summary.source = session.source;

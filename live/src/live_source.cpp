@@ -19,6 +19,12 @@ namespace {
 constexpr int kStreamOpenTimeoutMs = 10000;
 constexpr int kStreamReadTimeoutMs = 2000;
 
+// Both paced sources hand frame k over at start + k / rate, or when it is ready if later.
+Clock::time_point paced(Clock::time_point start, std::int64_t index, double rate_hz) {
+  return start + std::chrono::duration_cast<Clock::duration>(
+                     std::chrono::duration<double>(index / rate_hz));
+}
+
 class Rehearsal final : public FrameSource {
  public:
   Rehearsal(const std::string& source, std::optional<double> rate_hz, Clock::time_point start)
@@ -33,9 +39,7 @@ class Rehearsal final : public FrameSource {
     if (!frames_.next(out.image)) return false;
     out.index = index_++;
     // Decoded ahead of its time, then held until then, as a camera would hand it over.
-    const auto due = start_ + std::chrono::duration_cast<Clock::duration>(
-                                  std::chrono::duration<double>(out.index / rate_hz_));
-    std::this_thread::sleep_until(due);
+    std::this_thread::sleep_until(paced(start_, out.index, rate_hz_));
     // Handed over now: at its time, or later when decoding it took longer than a frame.
     out.available = Clock::now();
     return true;
@@ -50,6 +54,30 @@ class Rehearsal final : public FrameSource {
   capture::FrameRange frames_;
   Clock::time_point start_;
   double rate_hz_ = capture::kCameraRateHz;
+  std::int64_t index_ = 0;
+};
+
+class InMemory final : public FrameSource {
+ public:
+  InMemory(const std::vector<capture::GrayImage>& frames, double rate_hz, Clock::time_point start)
+      : frames_(frames), rate_hz_(rate_hz), start_(start) {}
+  bool next(SourceFrame& out) override {
+    if (index_ >= static_cast<std::int64_t>(frames_.size())) return false;
+    out.image = frames_[static_cast<std::size_t>(index_)];
+    out.index = index_++;
+    std::this_thread::sleep_until(paced(start_, out.index, rate_hz_));
+    out.available = Clock::now();
+    return true;
+  }
+  double rate_hz() const override { return rate_hz_; }
+  std::string describe() const override {
+    return fmt::format("{} frames in memory played at {:g} Hz", frames_.size(), rate_hz_);
+  }
+
+ private:
+  const std::vector<capture::GrayImage>& frames_;
+  double rate_hz_;
+  Clock::time_point start_;
   std::int64_t index_ = 0;
 };
 
@@ -139,6 +167,11 @@ std::unique_ptr<FrameSource> open_rehearsal(const std::string& source,
                                             std::optional<double> rate_hz,
                                             Clock::time_point start) {
   return std::make_unique<Rehearsal>(source, rate_hz, start);
+}
+
+std::unique_ptr<FrameSource> open_in_memory(const std::vector<capture::GrayImage>& frames,
+                                            double rate_hz, Clock::time_point start) {
+  return std::make_unique<InMemory>(frames, rate_hz, start);
 }
 
 std::unique_ptr<FrameSource> open_device(const std::string& source, std::optional<double> rate_hz) {

@@ -8,7 +8,10 @@
 #include <optional>
 #include <string>
 
+#include <vector>
+
 #include "tactile/capture/image.hpp"
+#include "tactile/live/live_session.hpp"
 
 namespace tactile::live {
 
@@ -38,5 +41,15 @@ std::unique_ptr<FrameSource> open_rehearsal(const std::string& source,
 // A camera (/dev/videoN, asked for `rate_hz` when given) or a stream URL, through OpenCV's
 // videoio (V4L2, FFmpeg).
 std::unique_ptr<FrameSource> open_device(const std::string& source, std::optional<double> rate_hz);
+
+// Frames held in memory, handed over at `rate_hz` from `start` on as a camera would (a bench
+// measures the session without the cost of decoding files, which a camera does not have).
+std::unique_ptr<FrameSource> open_in_memory(const std::vector<capture::GrayImage>& frames,
+                                            double rate_hz, Clock::time_point start);
+
+// run_live on a source already opened, whose frames are timed from `start`.
+LiveSummary run_live_from(FrameSource& source, Clock::time_point start, const ResolvedLive& session,
+                          display::Transport& device, const std::atomic<bool>& stop,
+                          const LiveCallbacks& callbacks, const LiveOptions& options);
 
 }  // namespace tactile::live

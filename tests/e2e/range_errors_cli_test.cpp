@@ -56,6 +56,18 @@ TEST(RangeErrors, ReadLikeAPersonWroteThem) {
   expect_readable_range_error("bench stream --seconds 0.01",
                               "--seconds: 0.01 is out of range: must be from 0.1 to 600");
   expect_readable_range_error("synth x --frames 2.5", "--frames: 2.5 is not a whole number");
+  const std::string prints = tactile::test::test_data("polyu-hrf-pores").string();
+  expect_readable_range_error("bench live " + prints + " --seconds 0.1",
+                              "--seconds: 0.1 is out of range: must be from 0.5 to 600");
+  expect_readable_range_error("bench live " + prints + " --travel 1e308",
+                              "--travel: 1e308 is out of range: must be from 1 to 500");
+}
+
+TEST(RangeErrors, BenchLiveNamesAPrintItDoesNotHave) {
+  const std::string prints = tactile::test::test_data("polyu-hrf-pores").string();
+  const auto r = run_tactile("bench live " + prints + " --print 99 --out bench-live-none");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--print 99: " + prints + " holds no print image_99"));
 }
 
 // Found by the second hostile-input run: each was accepted (a calibration or a movie of nothing

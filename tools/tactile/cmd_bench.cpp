@@ -15,6 +15,7 @@ void add_bench(CLI::App& app, Action& action) {
   add_bench_stream(*bench, action);
   add_bench_perceive(*bench, action);
   add_bench_latero(*bench, action);
+  add_bench_live(*bench, action);
 }
 
 }  // namespace tactile::cli

@@ -39,5 +39,6 @@ void add_bench_prints(CLI::App& bench, Action& action);
 void add_bench_stream(CLI::App& bench, Action& action);
 void add_bench_perceive(CLI::App& bench, Action& action);
 void add_bench_latero(CLI::App& bench, Action& action);
+void add_bench_live(CLI::App& bench, Action& action);
 
 }  // namespace tactile::cli

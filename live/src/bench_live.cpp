@@ -1,0 +1,123 @@
+// The live session's bench; see bench_live.hpp.
+
+#include "tactile/live/bench_live.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "live_source.hpp"
+#include "tactile/capture/bench.hpp"
+#include "tactile/capture/print_warp.hpp"
+#include "tactile/capture/track.hpp"
+#include "tactile/display/emulated_device.hpp"
+#include "tactile/live/live_request.hpp"
+
+namespace tactile::live {
+
+std::vector<LiveBenchCase> live_bench_cases(bool quick) {
+  if (quick) return {{320, 240, 60}, {320, 240, 120}, {640, 484, 60}};
+  std::vector<LiveBenchCase> cases;
+  for (const auto& [w, h] : {std::pair{320, 240}, std::pair{640, 484}}) {
+    for (const double rate : {30.0, 60.0, 120.0, 240.0}) cases.push_back({w, h, rate});
+  }
+  return cases;
+}
+
+namespace {
+
+void check(const LiveBenchOptions& o) {
+  const auto in = [](double v, double lo, double hi) {
+    return std::isfinite(v) && v >= lo && v <= hi;
+  };
+  if (!in(o.seconds, 0.5, 600)) {
+    throw std::invalid_argument(
+        fmt::format("seconds: {} is out of range: must be from 0.5 to 600", o.seconds));
+  }
+  if (!in(o.travel_mm_per_s, 1, 500)) {
+    throw std::invalid_argument(
+        fmt::format("travel: {} mm/s is out of range: must be from 1 to 500", o.travel_mm_per_s));
+  }
+  if (!in(o.strain, 0.001, 0.2)) {
+    throw std::invalid_argument(
+        fmt::format("strain: {} is out of range: must be from 0.001 to 0.2", o.strain));
+  }
+  if (o.cases.empty()) throw std::invalid_argument("no cases to measure");
+  for (const auto& c : o.cases) {
+    if (c.width_px < 64 || c.width_px > 4096 || c.height_px < 64 || c.height_px > 4096 ||
+        !in(c.camera_rate_hz, 1, 1000)) {
+      throw std::invalid_argument(fmt::format(
+          "case {} x {} px at {} Hz: sizes must be from 64 to 4096 px, rates from 1 to 1000 Hz",
+          c.width_px, c.height_px, c.camera_rate_hz));
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
+                                     const LiveBenchOptions& options,
+                                     const std::function<void(const LiveBenchRow&)>& on_row) {
+  check(options);
+  std::vector<LiveBenchRow> rows;
+  for (const auto& scene : options.cases) {
+    const capture::PoreTrainingPrint sized =
+        capture::mirrored_to_size(print, scene.width_px, scene.height_px);
+    const int frames =
+        std::max(capture::kMinTrackFrames,
+                 static_cast<int>(std::lround(options.seconds * scene.camera_rate_hz)));
+    capture::PrintWarpSpec spec = capture::print_bench_spec(sized, options.px_per_mm, frames);
+    spec.pattern = capture::WarpPattern::wave;
+    spec.strain = options.strain;
+    spec.frame_rate_hz = scene.camera_rate_hz;
+    capture::set_fast_scene(spec, options.travel_mm_per_s);
+    // The scene's finger slides 2.5 mm/s; the warp bounds a slide to 5 mm over the sequence,
+    // so a session longer than 1.8 s slides more slowly (the wave's speed is unchanged).
+    spec.slide_x_mm = std::min(spec.slide_x_mm, 4.5);
+    const capture::PrintSequence sequence =
+        capture::render_print_sequence(spec, sized.image, sized.pores_px);
+
+    LiveRequest request;
+    request.source = fmt::format("memory://{}", print.name);
+    request.capture.px_per_mm = options.px_per_mm;
+    request.capture.rate_hz = scene.camera_rate_hz;
+    const ResolvedLive session = resolve(request, OptionSpelling::cli);
+    display::EmulatedDevice device(emulated_display_options(session.layout));
+
+    // The session's strain as its recording keeps it: strain frames of one span, every point.
+    capture::StrainMovie movie;
+    movie.frame_rate_hz = scene.camera_rate_hz;
+    movie.span_frames = 1;
+    movie.camera_frame_count = frames;
+    movie.calibration = sequence.calibration;
+    movie.field_width_mm = scene.width_px / options.px_per_mm;
+    movie.field_height_mm = scene.height_px / options.px_per_mm;
+    std::map<std::pair<std::int32_t, std::int32_t>, capture::TrackedPoint> points;
+    LiveCallbacks callbacks;
+    callbacks.strain = [&](const capture::StrainFrame& f) {
+      for (const auto* side : {&f.points_from, &f.points_to}) {
+        for (const auto& p : *side) points[{p.track_id, p.frame}] = p;
+      }
+      if (f.frame_to - f.frame_from == 1) movie.frames.push_back(f);
+    };
+    std::atomic<bool> stop{false};
+    const Clock::time_point start = Clock::now();
+    const auto source = open_in_memory(sequence.frames, scene.camera_rate_hz, start);
+    LiveBenchRow row;
+    row.scene = scene;
+    row.summary = run_live_from(*source, start, session, device, stop, callbacks, {});
+    for (const auto& [key, p] : points) movie.tracks.push_back(p);
+    const capture::GroundTruth truth = capture::ground_truth_of(sequence);
+    row.live = capture::evaluate_strain(movie, truth);
+    row.batch = capture::run_print_bench(capture::print_bench_methods().front(), sequence).eval;
+    on_row(row);
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+}  // namespace tactile::live

@@ -1,0 +1,130 @@
+// `tactile bench live`: the live session's latency and drops against frame size and camera
+// rate, and its strain's accuracy against the truth and against the batch capture of the same
+// frames (live::bench_live), printed, as CSV and as a chart of latency against accuracy.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "command.hpp"
+#include "number_checks.hpp"
+#include "tactile/capture/bench.hpp"
+#include "tactile/capture/pore_training_io.hpp"
+#include "tactile/common/chart.hpp"
+#include "tactile/common/csv.hpp"
+#include "tactile/common/option_table.hpp"
+#include "tactile/common/output_paths.hpp"
+#include "tactile/live/bench_live.hpp"
+
+namespace tactile::cli {
+namespace fs = std::filesystem;
+
+void add_bench_live(CLI::App& bench, Action& action) {
+  struct Options {
+    fs::path prints;
+    std::string print = "12";
+    bool quick = false;
+    fs::path out = "bench-live";
+    live::LiveBenchOptions bench;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = bench.add_subcommand(
+      "live",
+      "The live session on a real print: the print (image_NN + pores_NN.txt of PRINTS_DIR, e.g.\n"
+      "tests/data/polyu-hrf-pores; print 12 is held out of the capture's tuning) mirrored to\n"
+      "320 x 240 and 640 x 484 px and moved by an 8 % wave crossing at the speed of touch, held\n"
+      "in memory and handed to the session at 30, 60, 120 and 240 Hz as a camera would, into the\n"
+      "emulated display. Prints frames in, processed, dropped, latency p50/p99/max and the live\n"
+      "strain's error and correlation against the truth beside the batch capture's on the same\n"
+      "frames; writes OUT/bench_live.csv and OUT/latency_accuracy_live.png (and .svg).");
+  sub->add_option("PRINTS_DIR", opt->prints, "Folder of marked prints")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--print", opt->print, "Number NN of the print to use")->capture_default_str();
+  sub->add_option("--seconds", opt->bench.seconds, "Seconds of skin per case")
+      ->check(within(0.5, 600.0))
+      ->capture_default_str();
+  sub->add_option("--travel", opt->bench.travel_mm_per_s,
+                  "Speed of the wave across the contact (mm/s)")
+      ->check(within(1.0, 500.0))
+      ->capture_default_str();
+  sub->add_flag("--quick", opt->quick, "Only 320 x 240 at 60 and 120 Hz and 640 x 484 at 60 Hz");
+  sub->add_option("--out", opt->out, "Folder for the CSV and the chart")->capture_default_str();
+  sub->callback([opt, &action] {
+    action = [opt] {
+      refuse_output_over_input({output_folder("--out", opt->out,
+                                              {"bench_live.csv", "latency_accuracy_live.png",
+                                               "latency_accuracy_live.svg"})},
+                               {{"PRINTS_DIR", opt->prints}});
+      const auto prints = capture::read_pore_training_prints(opt->prints);
+      const auto print = std::find_if(prints.begin(), prints.end(), [&](const auto& p) {
+        return capture::print_number(p.name) == opt->print;
+      });
+      if (print == prints.end()) {
+        throw RequestError(fmt::format("--print {}: {} holds no print image_{}.*", opt->print,
+                                       opt->prints.string(), opt->print));
+      }
+      opt->bench.cases = live::live_bench_cases(opt->quick);
+      fs::create_directories(opt->out);
+      fmt::print(
+          "{} ({:g} s of skin a case, 8 % wave at {:g} mm/s; latency: frame available -> "
+          "its first device frame sent)\n",
+          print->name, opt->bench.seconds, opt->bench.travel_mm_per_s);
+      fmt::print("{:>9} {:>5} {:>6} {:>6} {:>5} {:>7} {:>7} {:>7} {:>9} {:>6} {:>9} {:>6} {:>6}\n",
+                 "frame", "Hz", "in", "done", "drop", "p50_ms", "p99_ms", "max_ms", "live_rms",
+                 "live_r", "batch_rms", "batch_r", "ratio");
+      const auto rows = live::bench_live(*print, opt->bench, [](const live::LiveBenchRow& r) {
+        const auto& s = r.summary;
+        fmt::print(
+            "{:>4} x {:<3} {:>5.0f} {:>6} {:>6} {:>5} {:>7.2f} {:>7.2f} {:>7.2f} {:>9.5f} {:>6.3f} "
+            "{:>9.5f} {:>6.3f} {:>6.2f}\n",
+            r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in,
+            s.frames_processed, s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms,
+            s.latency_max_ms, r.live.rms_error, r.live.correlation, r.batch.rms_error,
+            r.batch.correlation,
+            r.batch.rms_error > 0 ? r.live.rms_error / r.batch.rms_error : NAN);
+        std::fflush(stdout);
+      });
+      const auto csv_path = opt->out / "bench_live.csv";
+      auto csv = csv::open_with_header(
+          csv_path,
+          "width_px,height_px,camera_rate_hz,frames_in,frames_processed,frames_dropped,"
+          "latency_p50_ms,latency_p99_ms,latency_max_ms,track_p50_ms,live_rms_error,"
+          "live_correlation,live_median_points,batch_rms_error,batch_correlation");
+      XYChart chart{.title = "Live session: latency against strain accuracy (8 % wave)",
+                    .x = {.label = "latency p99 (ms)", .scale = AxisScale::log},
+                    .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
+                    .y_targets = {{.value = 0.0025, .label = "RMS 0.0025"}},
+                    .width = 960,
+                    .height = 600};
+      for (const auto& r : rows) {
+        const auto& s = r.summary;
+        csv << fmt::format(
+            "{},{},{:g},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.5f},{:.0f},{:.6g},{:.5f}\n",
+            r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in,
+            s.frames_processed, s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms,
+            s.latency_max_ms, s.track_p50_ms, r.live.rms_error, r.live.correlation,
+            r.live.median_tracked_points, r.batch.rms_error, r.batch.correlation);
+        const std::string label = fmt::format("{} x {} px (points: 30, 60, 120, 240 Hz)",
+                                              r.scene.width_px, r.scene.height_px);
+        auto it = std::find_if(chart.series.begin(), chart.series.end(),
+                               [&](const ChartSeries& c) { return c.label == label; });
+        if (it == chart.series.end())
+          it = chart.series.insert(chart.series.end(), {.label = label});
+        it->x.push_back(s.latency_p99_ms);
+        it->y.push_back(r.live.rms_error);
+      }
+      csv::finish(csv, csv_path);
+      const ChartFiles plot = write_scatter_chart(opt->out / "latency_accuracy_live.png", chart);
+      fmt::print("bench live: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
+                 plot.svg.string());
+      return 0;
+    };
+  });
+}
+
+}  // namespace tactile::cli
