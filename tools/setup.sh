@@ -9,6 +9,7 @@ packages=(
   # libraries
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
   libopencv-dev libopencv-videoio-dev  # videoio: `capture VIDEO` over FFmpeg (libavcodec, libavformat)
+  libavformat-dev libavcodec-dev libavutil-dev  # a live recording's frames.mkv, flushed as it goes
   libhdf5-dev
   libpng-dev libjpeg-dev  # images read with our own message handlers (capture/src/camera/image.cpp)
   libusb-1.0-0-dev libhidapi-dev

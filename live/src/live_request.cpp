@@ -31,8 +31,9 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
                                 "Stop after this long (default: when the source ends, or Ctrl-C)"));
     t.push_back(rows::path<R>(
         "record", &R::record,
-        "Record the session into this new (or empty) folder as it goes (latency.csv,\n"
-        "tracks.csv, edges.csv, strain.h5, movie.h5), on the disk every half second"));
+        "Record the session into this new (or empty) folder as it goes (frames.mkv,\n"
+        "latency.csv, tracks.csv, edges.csv, strain.h5, movie.h5), on the disk every half "
+        "second"));
     t.push_back(rows::number<R>("queue_frames", &R::queue_frames, 1, 64, "frames",
                                 "Frames waiting between the camera and the processing; when "
                                 "full, the oldest\nis dropped (and counted)"));

@@ -281,6 +281,9 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
       while (!stop.load() && !halt.load() && source->next(frame)) {
         if (end_at && frame.available > *end_at) break;
         ++frames_in;
+        callbacks.received(frame.index,
+                           std::chrono::duration<double>(frame.available - start).count(),
+                           frame.image);
         if (auto old = queue.push(std::move(frame))) {
           std::lock_guard lock(dropped_mutex);
           old->image = {};

@@ -19,6 +19,7 @@
 #include <thread>
 #include <variant>
 
+#include "frames_video.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/version.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -59,7 +60,13 @@ struct Mapped {
   std::vector<float> deflection_um;
 };
 
-using Event = std::variant<SessionStart, FrameTiming, capture::StrainFrame, Mapped>;
+struct Received {
+  std::int64_t frame = 0;
+  double time_s = 0;
+  capture::GrayImage image;
+};
+
+using Event = std::variant<SessionStart, FrameTiming, capture::StrainFrame, Mapped, Received>;
 
 }  // namespace
 
@@ -68,6 +75,10 @@ struct SessionRecording::Writer {
   std::vector<Csv> csv;  // latency, tracks, edges
   std::optional<capture::StrainMovieAppender> strain;
   std::optional<movie::TactileMovieAppender> movie;
+  std::optional<FramesVideo> video;
+  // Frames received before the session started (its first frame's work): written then.
+  std::vector<Received> early;
+  bool started = false;
   SessionStart start;
   // The movie as played: the last mapped frame, held until the next one's time.
   std::optional<Mapped> held;
@@ -115,6 +126,15 @@ struct SessionRecording::Writer {
       movie_header.rate_hz = s->device_rate_hz;
       movie_header.provenance = header.provenance;
       movie.emplace(dir / "movie.h5", movie_header);
+      started = true;
+      for (auto& r : early) receive(r);
+      early.clear();
+    } else if (auto* r = std::get_if<Received>(&e)) {
+      if (started) {
+        receive(*r);
+      } else {
+        early.push_back(std::move(*r));
+      }
     } else if (auto* t = std::get_if<FrameTiming>(&e)) {
       csv[0].pending += fmt::format(
           "{},{:.6f},{},{}\n", t->frame, t->source_time_s,
@@ -132,8 +152,16 @@ struct SessionRecording::Writer {
     }
   }
 
+  void receive(const Received& r) {
+    if (!video) {
+      video.emplace(dir / "frames.mkv", r.image.width_px, r.image.height_px, start.camera_rate_hz);
+    }
+    video->write(r.image, r.time_s);
+  }
+
   void flush_all() {
     for (auto& f : csv) f.flush();
+    if (video) video->flush();
     if (strain) strain->flush();
     if (movie) movie->flush();
   }
@@ -167,6 +195,7 @@ struct SessionRecording::Writer {
     try {
       if (strain) strain->close();
       if (movie) movie->close();
+      if (video) video->close();
     } catch (...) {
       if (!failure) failure = std::current_exception();
     }
@@ -214,6 +243,11 @@ SessionRecording::~SessionRecording() {
 
 void SessionRecording::attach(LiveCallbacks& callbacks) {
   Writer* w = writer_.get();
+  callbacks.received = [w, before = callbacks.received](std::int64_t frame, double time_s,
+                                                        const capture::GrayImage& image) {
+    before(frame, time_s, image);
+    w->push(Received{frame, time_s, image});
+  };
   callbacks.started = [w, before = callbacks.started](const SessionStart& s) {
     before(s);
     w->push(s);

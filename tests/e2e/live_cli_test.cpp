@@ -27,7 +27,9 @@
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
+#include "tactile/capture/capture_run.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/capture/video.hpp"
 #include "tactile/movie/movie_io.hpp"
 
 namespace {
@@ -128,6 +130,19 @@ TEST_F(Live, EveryFrameIsAccountedForAndRecorded) {
   EXPECT_EQ(movie.rate_hz, 700);
   // 60 camera frames at 10 Hz are 6 s of display frames.
   EXPECT_EQ(movie.frame_count, 4200);
+  // frames.mkv holds every frame as received, lossless: the same pixels as the source.
+  tactile::capture::VideoReader video(record / "frames.mkv");
+  EXPECT_EQ(video.info().frame_count, 60);
+  tactile::capture::FrameRange source(frames(), 0, std::nullopt);
+  tactile::capture::GrayImage recorded, original;
+  int compared = 0;
+  while (source.next(original)) {
+    ASSERT_TRUE(video.read(recorded)) << compared;
+    EXPECT_EQ(recorded.width_px, original.width_px);
+    EXPECT_TRUE(recorded.pixels == original.pixels) << "frame " << compared;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 60);
   // The edges.csv rows are the strain movie's edges.
   std::size_t edges = 0;
   for (const auto& f : strain.frames) edges += f.edges.size();
@@ -294,7 +309,8 @@ TEST_F(Live, StoppedTheRecordingIsComplete) {
 }
 
 // SIGKILL at a random moment, ten times: every file the recording had made opens in the
-// project's readers, and strain.h5 holds every camera frame up to a second before the kill.
+// project's readers, and strain.h5 and frames.mkv hold every camera frame up to a second before
+// the kill.
 TEST_F(Live, KilledAtAnyMomentTheRecordingOpens) {
   std::random_device seed_source;
   const unsigned seed = seed_source();
@@ -333,6 +349,10 @@ TEST_F(Live, KilledAtAnyMomentTheRecordingOpens) {
     if (expected > 2) {
       EXPECT_GT(movie.frame_count, 0);
     }
+    // Every frame received is in frames.mkv, dropped or not, up to a second before the kill.
+    tactile::capture::VideoReader video(record / "frames.mkv");
+    EXPECT_GE(video.info().frame_count, expected);
+    EXPECT_LE(video.info().frame_count, static_cast<int>(std::ceil(10 * elapsed_s)) + 1);
     for (const auto& row : csv_rows(record / "latency.csv")) EXPECT_EQ(row.size(), 4u);
     for (const auto& row : csv_rows(record / "edges.csv")) EXPECT_EQ(row.size(), 7u);
     for (const auto& row : csv_rows(record / "tracks.csv")) EXPECT_EQ(row.size(), 7u);

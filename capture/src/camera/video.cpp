@@ -30,6 +30,13 @@ struct VideoReader::State {
   cv::Mat decoded;
 };
 
+namespace {
+
+// Ten hours at 240 Hz: beyond it, a count by reading is stopped.
+constexpr int kMaxCountedFrames = 8640000;
+
+}  // namespace
+
 VideoReader::VideoReader(const std::filesystem::path& path) : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.path = path;
@@ -54,7 +61,15 @@ VideoReader::VideoReader(const std::filesystem::path& path) : state_(std::make_u
     throw FormatError(fmt::format("{}: the video states no frame rate", path.string()));
   }
   if (s.info.frame_count < 1) {
-    throw FormatError(fmt::format("{}: the video states no frames", path.string()));
+    // A file cut short (a live recording's frames.mkv after a kill) has no index stating its
+    // length: counted by reading it through once, then read again from the start.
+    int counted = 0;
+    while (counted < kMaxCountedFrames && s.capture.grab()) ++counted;
+    s.info.frame_count = counted;
+    if (counted < 1 || !s.capture.open(path.string(), cv::CAP_FFMPEG)) {
+      throw FormatError(
+          fmt::format("{}: the video states no frames and none can be read", path.string()));
+    }
   }
 }
 

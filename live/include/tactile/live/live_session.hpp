@@ -74,6 +74,10 @@ struct SessionStart {
 // What the session hands out as it goes (each called from the processing thread).
 struct LiveCallbacks {
   std::function<void(const std::string&)> note = [](const std::string&) {};
+  // Every camera frame as it arrives, processed or dropped later, at its time from the
+  // session's start (called from the acquisition thread, the only one here that is).
+  std::function<void(std::int64_t frame, double time_s, const capture::GrayImage&)> received =
+      [](std::int64_t, double, const capture::GrayImage&) {};
   // Once, on the first frame, before any other call below.
   std::function<void(const SessionStart&)> started = [](const SessionStart&) {};
   // Every camera frame, processed or dropped, once its latency is known.

@@ -5,6 +5,8 @@
 //   edges.csv     as `tactile capture --csv` writes it
 //   strain.h5     the strain movie (tactile capture's schema), growing frame by frame
 //   movie.h5      the frames sent to the display, at its rate (each camera frame held)
+//   frames.mkv    every camera frame as received, dropped ones too (FFV1 in Matroska:
+//                 lossless), stamped with its arrival time
 // The CSV files are appended in whole lines; the HDF5 files grow through HDF5's single-writer
 // mode (h5_growing.hpp), whose file on disk is whole at every moment. Everything is written and
 // synced to the disk every half second on a thread of the recording's own (a sync can take tens
