@@ -48,6 +48,61 @@ TEST(LiveViewer, DrawsWhatTheSourceGivesAtTheContactorPositions) {
   }
 }
 
+// A live session's camera: its image (dark left half, bright right half) and a stretched edge
+// across it, drawn in the right pane where place_camera puts them.
+TEST(LiveViewer, DrawsTheCameraImageWithItsEdgesColouredByStrain) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  const movie::Layout layout = movie::latero_layout();
+  LiveFrame frame;
+  frame.deflection_um.assign(64, 0.0f);
+  CameraView camera;
+  camera.width_px = 200;
+  camera.height_px = 100;
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 200; ++x) camera.grey.push_back(x < 100 ? 20 : 230);
+  }
+  camera.full_scale = 0.01;
+  camera.edges.push_back({20, 80, 180, 80, 0.01f});  // full stretch, along y = 80
+  frame.camera = camera;
+  LiveViewerOptions o;
+  o.visible = false;
+  o.width_px = 600;
+  o.height_px = 400;
+  o.exit_after_frames = 1;
+  const ViewerResult r = run_live_viewer(
+      layout, [&]() -> std::optional<LiveFrame> { return frame; }, o);
+  ASSERT_EQ(r.frames_drawn, 1);
+  const PixelRect pane = viewer_panes(600, 400, true).field;
+  ASSERT_GT(pane.width, 0);
+  const CameraPlacement at = place_camera(camera, pane);
+  const auto pixel = [&](double x, double y) {
+    return r.last_image.at(static_cast<int>(std::lround(at.x_px + x * at.scale)),
+                           static_cast<int>(std::lround(at.y_px + y * at.scale)));
+  };
+  const auto dark = pixel(50, 30), bright = pixel(150, 30);
+  EXPECT_LT(dark[0], 60);
+  EXPECT_GT(bright[0], 190);
+  EXPECT_EQ(dark[0], dark[2]);  // grey: the image, not an edge
+  const auto expected = movie::strain_colour(0.01, 0.01);
+  const auto on_edge = pixel(60, 80);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(on_edge[k], expected[k], 3) << k;
+}
+
+TEST(LiveViewer, RefusesACameraViewWhosePixelsDoNotFillIt) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  LiveFrame frame;
+  frame.deflection_um.assign(64, 0.0f);
+  frame.camera = CameraView{};
+  frame.camera->width_px = 10;
+  frame.camera->height_px = 10;
+  frame.camera->grey.assign(99, 0);
+  LiveViewerOptions o;
+  o.visible = false;
+  EXPECT_THROW(run_live_viewer(
+                   movie::latero_layout(), [&]() -> std::optional<LiveFrame> { return frame; }, o),
+               std::invalid_argument);
+}
+
 TEST(LiveViewer, SourceWithNothingToShowClosesTheWindow) {
   ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
   LiveViewerOptions o;
@@ -64,7 +119,7 @@ TEST(LiveViewer, RefusesAFrameOfTheWrongSize) {
   EXPECT_THROW(run_live_viewer(
                    movie::latero_layout(),
                    []() -> std::optional<LiveFrame> {
-                     return LiveFrame{{1.0f, 2.0f}, {}};
+                     return LiveFrame{{1.0f, 2.0f}, {}, std::nullopt};
                    },
                    o),
                std::invalid_argument);

@@ -129,5 +129,33 @@ TEST_F(ViewCli, PlayWindowStopsOnSigterm) {
   EXPECT_NE(r.output.find("rc=143"), std::string::npos) << r.output;
 }
 
+// `tactile live --window` as a user runs it on a rehearsal (a real print moved by a wave): the
+// session plays to its end in the window, whose last image is written; bad combinations are
+// usage errors.
+TEST(LiveWindowCli, TheSessionIsShownAndItsLastImageWritten) {
+  ASSERT_TRUE(screen_available()) << "no screen: run under xvfb-run (CTest does)";
+  tactile::test::TempDir dir;
+  const fs::path wave = dir.path() / "wave";
+  const CliRun synth = run("synth " + wave.string() + " --from-print " + TACTILE_TEST_DATA_DIR +
+                           "/polyu-hrf-pores/image_12.jpg --px-per-mm 47 --warp wave --frames 40");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const fs::path png = dir.path() / "live.png";
+  const CliRun r =
+      run("live " + wave.string() +
+          " --px-per-mm 47 --rate-hz 20 --queue-frames 30 --window --screenshot " + png.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("40 in, 40 processed, 0 dropped"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(png));
+  EXPECT_GT(fs::file_size(png), 10000u);
+
+  EXPECT_EQ(run("live " + wave.string() + " --px-per-mm 47 --window --headless").exit_code, 2);
+  EXPECT_EQ(
+      run("live " + wave.string() + " --px-per-mm 47 --headless --screenshot x.png").exit_code, 2);
+  const CliRun no_folder = run("live " + wave.string() + " --px-per-mm 47 --window --screenshot " +
+                               (dir.path() / "none" / "x.png").string());
+  EXPECT_EQ(no_folder.exit_code, 2) << no_folder.output;
+  EXPECT_NE(no_folder.output.find("x.png"), std::string::npos) << no_folder.output;
+}
+
 }  // namespace
 }  // namespace tactile::display

@@ -15,8 +15,8 @@ DEMO = pathlib.Path(os.environ["TACTILE_E2E_DEMO_DIR"])
 
 # Options only the command line has: where a command writes its results.
 CLI_ONLY = {"capture": {"--out", "--csv", "--maps"}, "map": {"--out", "--csv"},
-            "live": {"--headless", "--latero", "--blade-centre-raw", "--blade-raw-per-unit",
-                     "--blade-max-raw", "--blade-full-scale-um"}}
+            "live": {"--headless", "--window", "--screenshot", "--latero", "--blade-centre-raw",
+                     "--blade-raw-per-unit", "--blade-max-raw", "--blade-full-scale-um"}}
 COMMANDS = [("capture", tactile.capture), ("map", tactile.map), ("live", tactile.live)]
 
 

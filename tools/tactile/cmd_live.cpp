@@ -4,12 +4,19 @@
 #include <fmt/format.h>
 #include <poll.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <exception>
+#include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <thread>
+#include <unordered_map>
+#include <vector>
 
 #include "command.hpp"
 #include "latero_cli.hpp"
@@ -18,17 +25,145 @@
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/latero_transport.hpp"
+#include "tactile/display/viewer.hpp"
 #include "tactile/live/live_request.hpp"
 #include "tactile/live/live_session.hpp"
 #include "tactile/live/recording.hpp"
 
 namespace tactile::cli {
 
+namespace {
+
+namespace fs = std::filesystem;
+
+// What the window shows, handed from the session's threads to the window's.
+struct WindowState {
+  std::mutex mutex;
+  std::optional<display::CameraView> camera;
+  std::vector<display::CameraEdge> edges;
+  double full_scale = 0.01;
+  std::vector<float> deflection_um;
+  std::int64_t processed = 0, dropped = 0;
+  double latency_ms = 0;
+  double time_s = 0;
+  bool over = false;
+};
+
+// The session on a thread of its own and the window on this one (GLFW's rule): the window
+// shows the newest frame as received, the edges of the newest strain frame over it, the newest
+// deflections as sent and the counts; closing it stops the session.
+live::LiveSummary run_in_window(const live::ResolvedLive& session, display::Transport& device,
+                                std::atomic<bool>& stop, live::LiveCallbacks callbacks,
+                                const fs::path& screenshot) {
+  WindowState state;
+  state.deflection_um.assign(static_cast<std::size_t>(session.layout.contactor_count()), 0.0f);
+  callbacks.received = [&, before = callbacks.received](std::int64_t frame, double time_s,
+                                                        const capture::GrayImage& image) {
+    before(frame, time_s, image);
+    std::lock_guard lock(state.mutex);
+    if (!state.camera) state.camera.emplace();
+    state.camera->width_px = image.width_px;
+    state.camera->height_px = image.height_px;
+    state.camera->grey = image.pixels;
+  };
+  callbacks.strain = [&, before = callbacks.strain](const capture::StrainFrame& f) {
+    before(f);
+    std::unordered_map<std::int32_t, const capture::TrackedPoint*> at;
+    for (const auto& p : f.points_to) at[p.track_id] = &p;
+    std::vector<display::CameraEdge> edges;
+    edges.reserve(f.edges.size());
+    for (const auto& e : f.edges) {
+      const auto a = at.find(e.track_a), b = at.find(e.track_b);
+      if (a == at.end() || b == at.end()) continue;
+      edges.push_back({static_cast<float>(a->second->x_px), static_cast<float>(a->second->y_px),
+                       static_cast<float>(b->second->x_px), static_cast<float>(b->second->y_px),
+                       static_cast<float>(e.rel_change)});
+    }
+    // Full colour at the 95th percentile of this frame's |strain| (a frame's strain is a rate:
+    // its size depends on the camera's rate and the skin's speed).
+    std::vector<double> size;
+    for (const auto& e : edges) size.push_back(std::abs(e.strain));
+    double full_scale = 1e-4;
+    if (!size.empty()) {
+      const auto k = size.begin() + static_cast<std::ptrdiff_t>(size.size() * 95 / 100);
+      std::nth_element(size.begin(), k, size.end());
+      full_scale = std::max(full_scale, *k);
+    }
+    std::lock_guard lock(state.mutex);
+    state.edges = std::move(edges);
+    state.full_scale = full_scale;
+  };
+  callbacks.mapped = [&, before = callbacks.mapped](std::int64_t frame,
+                                                    const std::vector<float>& d) {
+    before(frame, d);
+    std::lock_guard lock(state.mutex);
+    state.deflection_um = d;
+  };
+  callbacks.frame_done = [&, before = callbacks.frame_done](const live::FrameTiming& t) {
+    before(t);
+    std::lock_guard lock(state.mutex);
+    (t.dropped ? state.dropped : state.processed) += 1;
+    if (!t.dropped) state.latency_ms = t.latency_ms;
+    state.time_s = t.source_time_s;
+  };
+  live::LiveSummary summary;
+  std::exception_ptr failure;
+  std::thread worker([&] {
+    try {
+      summary = live::run_live(session, device, stop, callbacks);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    std::lock_guard lock(state.mutex);
+    state.over = true;
+  });
+  display::ViewerResult shown;
+  display::LiveViewerOptions options;
+  options.keep_last_image = !screenshot.empty();
+  try {
+    // Strain of 1 % a frame in full colour: the edges' colours match the contactors'.
+    shown = display::run_live_viewer(
+        session.layout,
+        [&]() -> std::optional<display::LiveFrame> {
+          std::lock_guard lock(state.mutex);
+          if (state.over) return std::nullopt;
+          display::LiveFrame f;
+          f.deflection_um = state.deflection_um;
+          if (state.camera) {
+            f.camera = *state.camera;
+            f.camera->edges = state.edges;
+            f.camera->full_scale = state.full_scale;
+          }
+          f.lines = {fmt::format("{}  t = {:.1f} s", session.source, state.time_s),
+                     fmt::format("{} frames processed, {} dropped, latency {:.2f} ms",
+                                 state.processed, state.dropped, state.latency_ms)};
+          return f;
+        },
+        options);
+  } catch (...) {
+    stop = true;
+    worker.join();
+    throw;
+  }
+  stop = true;  // the window was closed, or the session ended
+  worker.join();
+  if (failure) std::rethrow_exception(failure);
+  if (!screenshot.empty() && shown.last_image.width > 0) {
+    display::write_png(screenshot, shown.last_image);
+    fmt::print("live: wrote {}\n", screenshot.string());
+  }
+  return summary;
+}
+
+}  // namespace
+
 void add_live(CLI::App& app, Action& action) {
   auto request = std::make_shared<live::LiveRequest>();
   // The output is asked for by name (the emulated device or a Latero), so that a session never
   // goes somewhere its user did not choose.
   auto headless = std::make_shared<bool>(false);
+  auto window = std::make_shared<bool>(false);
+  auto screenshot = std::make_shared<fs::path>();
   auto latero = std::make_shared<display::LateroPlayTarget>();
   CLI::App* sub = app.add_subcommand(
       "live",
@@ -40,19 +175,40 @@ void add_live(CLI::App& app, Action& action) {
       "processing falls behind, the oldest waiting frame is dropped and counted. Prints frames\n"
       "in / processed / dropped and the latency (frame available -> its first device frame\n"
       "sent) p50/p99/max with the median of each stage. The display is the emulated device\n"
-      "(--headless) or a Latero (--latero HOST[:PORT], with --layout latero); USB, hidapi\n"
-      "and the window are not yet outputs of a live session.");
+      "(--headless, or --window to watch it: the camera image with the strain of every\n"
+      "tracked edge drawn over it beside the contactors) or a Latero (--latero HOST[:PORT],\n"
+      "with --layout latero); USB and hidapi are not yet outputs of a live session.");
   add_request_options(*sub, request, live::live_options());
   CLI::Option* headless_flag =
       sub->add_flag("--headless", *headless, "Play into the emulated device, with no window");
+  CLI::Option* window_flag = sub->add_flag(
+      "--window", *window,
+      "Play into the emulated device and show the session in a window: the camera image\n"
+      "with the strain of every tracked edge, the contactors, frames and latency (closing the\n"
+      "window ends the session)");
+  window_flag->excludes(headless_flag);
+  sub->add_option("--screenshot", *screenshot,
+                  "With --window: write the window's last image to this PNG when the session "
+                  "ends")
+      ->needs(window_flag);
   add_latero_play_options(*sub, *latero);
   sub->get_option("--latero")->excludes(headless_flag);
-  sub->callback([request, headless, latero, &action] {
-    if (!*headless && latero->address.empty()) {
-      throw CLI::RequiredError("one of --headless (the emulated device) or --latero HOST[:PORT]");
+  sub->get_option("--latero")->excludes(window_flag);
+  sub->callback([request, headless, window, screenshot, latero, &action] {
+    if (!*headless && !*window && latero->address.empty()) {
+      throw CLI::RequiredError(
+          "one of --headless (the emulated device), --window (the emulated device, shown) or "
+          "--latero HOST[:PORT]");
     }
-    action = [request, latero] {
+    action = [request, latero, window, screenshot] {
       const live::ResolvedLive session = live::resolve(*request, OptionSpelling::cli);
+      if (!screenshot->empty()) {
+        refuse_output_over_input({output_file_ending("--screenshot", *screenshot, ".png")},
+                                 {{"SOURCE", session.source}});
+      }
+      if (*window && !display::screen_available()) {
+        throw RequestError("--window: no screen (DISPLAY or WAYLAND_DISPLAY) to open it on");
+      }
       StopSignals signals;  // before any thread, so that they inherit the block
       std::unique_ptr<display::Transport> device;
       if (!latero->address.empty()) {
@@ -110,7 +266,11 @@ void add_live(CLI::App& app, Action& action) {
       if (recording) recording->attach(callbacks);
       live::LiveSummary summary;
       try {
-        summary = live::run_live(session, *device, stop, callbacks);
+        if (*window) {
+          summary = run_in_window(session, *device, stop, callbacks, *screenshot);
+        } else {
+          summary = live::run_live(session, *device, stop, callbacks);
+        }
       } catch (...) {
         over = true;
         watcher.join();

@@ -169,6 +169,46 @@ void draw_field(const movie::SideField& field, const movie::FieldFrame& frame,
   glLineWidth(1);
 }
 
+void draw_camera(const CameraView& view, const PixelRect& pane) {
+  fill_rect(pane, kFieldBackground);
+  if (view.width_px <= 0 || view.height_px <= 0) return;
+  const CameraPlacement at = place_camera(view, pane);
+  // The image as a texture: one upload a drawn frame (a camera frame is a few hundred KB).
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, view.width_px, view.height_px, 0, GL_LUMINANCE,
+               GL_UNSIGNED_BYTE, view.grey.data());
+  glEnable(GL_TEXTURE_2D);
+  glColor3ub(255, 255, 255);
+  const double x1 = at.x_px + view.width_px * at.scale, y1 = at.y_px + view.height_px * at.scale;
+  glBegin(GL_QUADS);
+  glTexCoord2d(0, 0);
+  glVertex2d(at.x_px, at.y_px);
+  glTexCoord2d(1, 0);
+  glVertex2d(x1, at.y_px);
+  glTexCoord2d(1, 1);
+  glVertex2d(x1, y1);
+  glTexCoord2d(0, 1);
+  glVertex2d(at.x_px, y1);
+  glEnd();
+  glDisable(GL_TEXTURE_2D);
+  glDeleteTextures(1, &texture);
+  glLineWidth(2);
+  glBegin(GL_LINES);
+  for (const CameraEdge& e : view.edges) {
+    const auto rgb = movie::strain_colour(e.strain, view.full_scale);
+    glColor3ub(rgb[0], rgb[1], rgb[2]);
+    glVertex2d(at.x_px + e.x0_px * at.scale, at.y_px + e.y0_px * at.scale);
+    glVertex2d(at.x_px + e.x1_px * at.scale, at.y_px + e.y1_px * at.scale);
+  }
+  glEnd();
+  glLineWidth(1);
+}
+
 // Scrub bar colours: the played part, the rest, and the handle.
 constexpr std::array<std::uint8_t, 3> kScrubPlayed{70, 130, 200};
 constexpr std::array<std::uint8_t, 3> kScrubRest{40, 40, 40};
@@ -257,12 +297,12 @@ void begin_info_strip(const PixelRect& pane) {
 // Draws the text, counts the frame, reads the pixels back when it is the last one wanted and
 // shows it; true when the viewer should close.
 bool finish_frame(GLFWwindow* window, int fb_w, int fb_h, std::int64_t exit_after_frames,
-                  ViewerResult& result) {
+                  ViewerResult& result, bool keep_image = false) {
   ImGui::Render();
   ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
   ++result.frames_drawn;
   const bool last = exit_after_frames >= 0 && result.frames_drawn >= exit_after_frames;
-  if (last) result.last_image = read_pixels(fb_w, fb_h);
+  if (last || keep_image) result.last_image = read_pixels(fb_w, fb_h);
   glfwSwapBuffers(window);
   return last;
 }
@@ -439,15 +479,27 @@ ViewerResult run_live_viewer(const movie::Layout& layout,
       throw std::invalid_argument(fmt::format("live frame has {} deflections; layout '{}' has {}",
                                               frame->deflection_um.size(), layout.name, n));
     }
+    if (frame->camera) {
+      const CameraView& c = *frame->camera;
+      if (c.width_px <= 0 || c.height_px <= 0 ||
+          c.grey.size() != static_cast<std::size_t>(c.width_px) * c.height_px) {
+        throw std::invalid_argument(fmt::format("live camera view of {} x {} px has {} pixels",
+                                                c.width_px, c.height_px, c.grey.size()));
+      }
+    }
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window, &fb_w, &fb_h);
-    const ViewerPanes panes = viewer_panes(fb_w, fb_h, false);
+    const ViewerPanes panes = viewer_panes(fb_w, fb_h, frame->camera.has_value());
     begin_pixels(fb_w, fb_h);
     draw_contactors(layout, frame->deflection_um, magnification, strain_scale, panes.contactors);
+    if (frame->camera) draw_camera(*frame->camera, panes.field);
     begin_info_strip(panes.info);
     for (const std::string& line : frame->lines) ImGui::TextUnformatted(line.c_str());
     ImGui::End();
-    if (finish_frame(window, fb_w, fb_h, options.exit_after_frames, result)) break;
+    if (finish_frame(window, fb_w, fb_h, options.exit_after_frames, result,
+                     options.keep_last_image)) {
+      break;
+    }
     glfwPollEvents();
   }
   return result;

@@ -57,4 +57,14 @@ movie::ViewTransform pane_field_view(const movie::SideField& field, const PixelR
   return t;
 }
 
+CameraPlacement place_camera(const CameraView& view, const PixelRect& pane) {
+  CameraPlacement at;
+  if (view.width_px <= 0 || view.height_px <= 0) return at;
+  at.scale = std::min(static_cast<double>(pane.width) / view.width_px,
+                      static_cast<double>(pane.height) / view.height_px);
+  at.x_px = pane.x + (pane.width - view.width_px * at.scale) / 2;
+  at.y_px = pane.y + (pane.height - view.height_px * at.scale) / 2;
+  return at;
+}
+
 }  // namespace tactile::display

@@ -8,6 +8,7 @@
 //
 // Window, top to bottom: a text strip (time, frame, speed, loop, magnification, the emulated
 // firmware's counters), the contactors (left) and the field (right, when given), a scrub bar.
+// Fed live (run_live_viewer), the right pane may show a camera's frame with its edges instead.
 // Keys: space play/pause, right/left step one frame (and pause), up/down double/halve speed,
 // L toggle loop, Home back to the start, Esc or Q close. Mouse: click or drag in the scrub bar
 // to seek.
@@ -131,10 +132,32 @@ PlayBackends with_window(PlayBackends backends);
 // emulated device cannot play or an invalid side field.
 ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& options = {});
 
+// An edge of the skin between two tracked landmarks, in camera pixels, with its strain.
+struct CameraEdge {
+  float x0_px = 0, y0_px = 0, x1_px = 0, y1_px = 0;
+  float strain = 0;  // relative length change
+};
+
+// A camera's frame with what was measured on it, drawn beside the contactors.
+struct CameraView {
+  int width_px = 0;
+  int height_px = 0;
+  std::vector<std::uint8_t> grey;  // width x height, row-major
+  std::vector<CameraEdge> edges;   // coloured by strain as the contactors are
+  double full_scale = 0.01;        // |strain| drawn in full colour
+};
+
+// Where a camera view's image lands in `pane` (aspect kept, centred): origin and scale.
+struct CameraPlacement {
+  double x_px = 0, y_px = 0, scale = 1;
+};
+CameraPlacement place_camera(const CameraView& view, const PixelRect& pane);
+
 // A live source instead of a movie (e.g. an emulated device on the network): what to show now.
 struct LiveFrame {
   std::vector<float> deflection_um;  // row-major, one per contactor of the layout
   std::vector<std::string> lines;    // text for the strip along the top
+  std::optional<CameraView> camera;  // shown in the right pane when given
 };
 
 struct LiveViewerOptions {
@@ -143,6 +166,9 @@ struct LiveViewerOptions {
   bool visible = true;
   double magnification = 0;             // 0 = movie::auto_magnification(layout)
   std::int64_t exit_after_frames = -1;  // for tests: close after this many drawn frames
+  // Read every drawn frame back into ViewerResult::last_image (a screenshot of a window whose
+  // last frame is not known in advance, at the cost of a read-back a frame).
+  bool keep_last_image = false;
 };
 
 // Opens the window and draws what `next` returns, once per drawn frame (at the screen's
