@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/csv.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
 #include "tactile/common/names.hpp"
@@ -106,8 +107,9 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
   const std::string where = path.string();
   std::ifstream in(path);
   if (!in) throw FormatError(fmt::format("{}: cannot open labels file", where));
+  csv::LineReader lines(in);
   std::string line;
-  if (!std::getline(in, line)) throw FormatError(fmt::format("{}: empty labels file", where));
+  if (!lines.next(line)) throw FormatError(fmt::format("{}: empty labels file", where));
   const auto header = split(line);
   const auto column = [&](const char* name) {
     return static_cast<int>(std::find(header.begin(), header.end(), name) - header.begin());
@@ -126,7 +128,8 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
   RecordingLabels labels;
   labels.has_values = value_col != width;
   std::set<std::string> seen;
-  for (int number = 2; std::getline(in, line); ++number) {
+  while (lines.next(line)) {
+    const std::size_t number = lines.number();
     if (trim(line).empty()) continue;
     const auto f = split(line);
     if (static_cast<int>(f.size()) != width)
