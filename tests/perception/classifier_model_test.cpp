@@ -199,6 +199,15 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   EXPECT_NE(error(j).find("model format version 4, this program reads versions 1 to 3"),
             std::string::npos)
       << error(j);
+  // A version beyond int, whose low 32 bits are 1, and versions below 1, are not version 1.
+  for (const nlohmann::json& v : {nlohmann::json(4294967297ULL), nlohmann::json(0),
+                                  nlohmann::json(-4294967295LL), nlohmann::json(~0ULL)}) {
+    j = good;
+    j["version"] = v;
+    EXPECT_NE(error(j).find("model format version " + v.dump() + ", this program reads"),
+              std::string::npos)
+        << error(j);
+  }
   j = good;
   j["input_names"][0] = "dp.w1.temperature";
   EXPECT_NE(error(j).find("mismatched inputs"), std::string::npos);

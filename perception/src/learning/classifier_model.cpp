@@ -329,12 +329,18 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         fmt::format("{}: not a classifier model (format '{}')", where, format.get<std::string>()));
   const auto& version =
       field(j, "version", where, &nlohmann::json::is_number_integer, "an integer");
-  // Version 1 had no trim_fraction or electrodes: its inputs are those of no trim and clusters.
-  const bool v1 = version.get<int>() == 1;
-  if (version.get<int>() < 1 || version.get<int>() > kClassifierModelVersion)
+  // Compared as read: narrowed to int first, 4294967297 would pass as version 1.
+  const std::string version_text = version.dump();
+  const auto known = [](auto v) {
+    return v >= 1 && v <= static_cast<decltype(v)>(kClassifierModelVersion);
+  };
+  if (!(version.is_number_unsigned() ? known(version.get<std::uint64_t>())
+                                     : known(version.get<std::int64_t>())))
     throw FormatError(fmt::format(
         "{}: model format version {}, this program reads versions 1 to {}: retrain the model",
-        where, version.get<int>(), kClassifierModelVersion));
+        where, version_text, kClassifierModelVersion));
+  // Version 1 had no trim_fraction or electrodes: its inputs are those of no trim and clusters.
+  const bool v1 = version.get<std::int64_t>() == 1;
   ClassifierModel m;
   try {
     set_recording_procedure(m.options,
