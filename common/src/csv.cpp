@@ -12,4 +12,12 @@ void finish(AtomicOstream& out, const std::filesystem::path& /*path*/) {
   out.commit();
 }
 
+bool LineReader::next(std::string& line) {
+  if (!std::getline(in_, line)) return false;
+  ++number_;
+  if (number_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return true;
+}
+
 }  // namespace tactile::csv

@@ -82,6 +82,29 @@ Layout read_layout(const H5::H5File& file, const std::string& where) {
   return l;
 }
 
+// A display clips a deflection a little beyond its layout's range (the saturation a movie's
+// summary counts); one beyond it by more than the range's whole width is no contactor's
+// position but damage or a unit mix-up (mm for um), refused naming where it is.
+void check_deflections_in_reach(const TactileMovie& movie, const std::string& where) {
+  const Layout& l = movie.layout;
+  const double width = l.deflection_max_um - l.deflection_min_um;
+  const double lo = l.deflection_min_um - width;
+  const double hi = l.deflection_max_um + width;
+  const auto per_frame = static_cast<std::size_t>(l.contactor_count());
+  const auto cols = static_cast<std::size_t>(l.cols);
+  for (std::size_t i = 0; i < movie.deflection_um.size(); ++i) {
+    const double v = movie.deflection_um[i];
+    if (v >= lo && v <= hi) continue;
+    const std::size_t k = i % per_frame;
+    throw FormatError(fmt::format(
+        "{}/{}: frame {}, row {}, col {}: deflection {} um is out of range: layout '{}' moves "
+        "from {} to {} um, and a movie's values may go beyond that by at most its width ({} to "
+        "{} um)",
+        where, kDataset, i / per_frame, k / cols, k % cols, v, l.name, l.deflection_min_um,
+        l.deflection_max_um, lo, hi));
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -211,6 +234,7 @@ TactileMovie read_checked(const std::filesystem::path& path) {
   } catch (const std::invalid_argument& e) {
     throw FormatError(fmt::format("{}: {}", where, e.what()));
   }
+  check_deflections_in_reach(movie, where);
   return movie;
 }
 

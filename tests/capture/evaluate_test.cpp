@@ -163,6 +163,24 @@ TEST_F(Evaluate, BadGroundTruthFoldersAreNamedErrors) {
   put(dir.path(), "landmarks.csv",
       "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm\n1,pore,999,1,2,3,4,5\n");
   expect_format_error(dir.path(), "frame 999");
+  // A wrong header is named as it is, beside the one expected.
+  put(dir.path(), "landmarks.csv", "id;type;frame\n1;pore;0\n");
+  expect_format_error(dir.path(), "line 1: header is 'id;type;frame', expected header id,type,");
+}
+
+// Saved by a spreadsheet on Windows: CR LF line ends and a UTF-8 byte-order mark.
+TEST_F(Evaluate, LandmarksWithCrLfAndAByteOrderMarkAreRead) {
+  TempDir dir;
+  write_sequence(dir.path(), *sequence_);
+  std::string text;
+  {
+    std::ifstream in(dir.path() / "landmarks.csv");
+    for (std::string line; std::getline(in, line);) text += line + "\r\n";
+  }
+  put(dir.path(), "landmarks.csv", "\xEF\xBB\xBF" + text);
+  const GroundTruth gt = read_ground_truth(dir.path());
+  ASSERT_EQ(gt.landmarks.size(), sequence_->landmarks.size());
+  EXPECT_NEAR(gt.landmarks.back().x_px, sequence_->landmarks.back().x_px, 1e-4);
 }
 
 // A rigid slide: every skin point moves speed / rate mm per frame along +x, so the baselines'

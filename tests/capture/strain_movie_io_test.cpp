@@ -253,6 +253,22 @@ TEST_F(Tampered, TriangleOutsideItsFrameIsNamed) {
   EXPECT_THAT(read_error(path()), HasSubstr("triangle 1 uses point 3"));
 }
 
+// An edge whose length changed by more than any skin can stretch (or below no length at all)
+// is refused naming the dataset, the strain frame, the edge and the range.
+TEST_F(Tampered, RelativeChangesNoSkinCanHaveAreNamed) {
+  replace<double>("/frames", "edge_rel_change", {0.05, -0.1, 0.05, 1000, 0.05, -0.1}, {6});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("/frames/edge_rel_change: strain frame 1 (camera frames 1 to 3): edge 3 "
+                        "(tracks 1 and 2) changed its length by 1000, out of range: must be from "
+                        "-1 to 10"));
+  replace<double>("/frames", "edge_rel_change", {0.05, -0.1, 0.05, -0.1, -1.5, -0.1}, {6});
+  EXPECT_THAT(read_error(path()), HasSubstr("strain frame 2 (camera frames 2 to 4): edge 4 "
+                                            "(tracks 0 and 1) changed its length by -1.5"));
+  // The ends of the range are still measurements.
+  replace<double>("/frames", "edge_rel_change", {10, -1, 0.05, -0.1, 0.05, -0.1}, {6});
+  EXPECT_EQ(read_strain_movie(path()).frames[0].edges[0].rel_change, 10);
+}
+
 // Every numeric attribute, every hostile value: refused, naming the file and the attribute.
 TEST_F(Tampered, HostileNumbersInEveryAttributeAreNamed) {
   const std::vector<std::pair<std::string, std::string>> doubles = {{"/", "frame_rate_hz"},

@@ -29,3 +29,36 @@ TEST(Csv, UnwritablePathIsNamed) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.csv"), std::string::npos);
   }
 }
+
+TEST(Csv, LineReaderTakesCrLfAndByteOrderMark) {
+  std::istringstream in(
+      "\xEF\xBB\xBF"
+      "a,b\r\n1,2\r\n\r\n3,4\n");
+  tactile::csv::LineReader lines(in);
+  std::string line;
+  ASSERT_TRUE(lines.next(line));
+  EXPECT_EQ(line, "a,b");
+  EXPECT_EQ(lines.number(), 1U);
+  ASSERT_TRUE(lines.next(line));
+  EXPECT_EQ(line, "1,2");
+  ASSERT_TRUE(lines.next(line));
+  EXPECT_EQ(line, "");
+  ASSERT_TRUE(lines.next(line));
+  EXPECT_EQ(line, "3,4");
+  EXPECT_EQ(lines.number(), 4U);
+  EXPECT_FALSE(lines.next(line));
+}
+
+TEST(Csv, LineReaderKeepsAByteOrderMarkAfterTheFirstLine) {
+  // Only a file's first bytes can be its byte-order mark; later it is part of a field.
+  std::istringstream in(
+      "a\n\xEF\xBB\xBF"
+      "b\n");
+  tactile::csv::LineReader lines(in);
+  std::string line;
+  ASSERT_TRUE(lines.next(line));
+  ASSERT_TRUE(lines.next(line));
+  EXPECT_EQ(line,
+            "\xEF\xBB\xBF"
+            "b");
+}

@@ -7,7 +7,11 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <poll.h>
+
 #include <algorithm>
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <thread>
 
@@ -385,6 +389,136 @@ TEST(LateroTransport, SilentDeviceTimesOutNamingTheAddress) {
   }
   EXPECT_LT(Clock::now() - t0, std::chrono::seconds(2));
   ::close(s);
+}
+
+// A peer on 127.0.0.1 that answers each request with what `answer` makes of it, at most 400
+// times and for at most 10 s: a device that talks, but not the Latero protocol.
+class NonsenseDevice {
+ public:
+  using Answer = std::function<std::vector<std::uint8_t>(const std::vector<std::uint8_t>&)>;
+  explicit NonsenseDevice(Answer answer) : answer_(std::move(answer)) {
+    socket_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    EXPECT_EQ(::bind(socket_, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    socklen_t len = sizeof a;
+    ::getsockname(socket_, reinterpret_cast<sockaddr*>(&a), &len);
+    port_ = ntohs(a.sin_port);
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~NonsenseDevice() {
+    stop_ = true;
+    thread_.join();
+    ::close(socket_);
+  }
+  LateroAddress address() const { return {"127.0.0.1", port_}; }
+
+ private:
+  void serve() {
+    const auto end = Clock::now() + std::chrono::seconds(10);
+    for (int answered = 0; !stop_ && answered < 400 && Clock::now() < end;) {
+      pollfd p{socket_, POLLIN, 0};
+      if (::poll(&p, 1, 20) <= 0) continue;
+      std::vector<std::uint8_t> request(2048);
+      sockaddr_in from{};
+      socklen_t len = sizeof from;
+      const ssize_t n = ::recvfrom(socket_, request.data(), request.size(), 0,
+                                   reinterpret_cast<sockaddr*>(&from), &len);
+      if (n <= 0) continue;
+      request.resize(static_cast<std::size_t>(n));
+      const auto reply = answer_(request);
+      ::sendto(socket_, reply.data(), reply.size(), 0, reinterpret_cast<sockaddr*>(&from), len);
+      ++answered;
+    }
+  }
+  Answer answer_;
+  int socket_ = -1;
+  std::uint16_t port_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+std::string probe_error(const LateroAddress& address) {
+  LateroTransportOptions o;
+  o.link_timeout = std::chrono::milliseconds(150);
+  LateroTransport t(address, o);
+  try {
+    t.info();
+  } catch (const TransportError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// A device that answers nonsense is reported as such, with what was wrong, never as silence.
+TEST(LateroTransport, DeviceAnsweringNonsenseIsReportedAsSuch) {
+  const auto valid = encode_latero_reply(LateroReply{});
+  {
+    NonsenseDevice d([&](const std::vector<std::uint8_t>&) {
+      auto r = valid;
+      r[0] ^= 0xFF;
+      return r;
+    });
+    const std::string e = probe_error(d.address());
+    EXPECT_THAT(e, HasSubstr("Latero at " + d.address().text() + " answered "));
+    EXPECT_THAT(e, HasSubstr(" malformed replies: wrong magic, and no valid reply within 150 ms"));
+    EXPECT_THAT(e, ::testing::Not(HasSubstr("no reply within")));
+  }
+  {
+    NonsenseDevice d([&](const std::vector<std::uint8_t>&) {
+      auto r = valid;
+      r.resize(4000, 0xAB);
+      return r;
+    });
+    EXPECT_THAT(probe_error(d.address()), HasSubstr("malformed replies: oversized"));
+  }
+  {
+    NonsenseDevice d([](const std::vector<std::uint8_t>& request) { return request; });
+    EXPECT_THAT(probe_error(d.address()),
+                HasSubstr("malformed replies: our own requests echoed back"));
+  }
+  {
+    std::uint32_t state = 12345;  // fixed seed: the same bytes every run
+    NonsenseDevice d([&](const std::vector<std::uint8_t>&) {
+      std::vector<std::uint8_t> r(1 + state % 150);
+      for (auto& b : r) {
+        state = state * 1664525u + 1013904223u;
+        b = static_cast<std::uint8_t>(state >> 24);
+      }
+      r[0] = static_cast<std::uint8_t>(r[0] == kLateroMagic ? r[0] + 1 : r[0]);
+      return r;
+    });
+    const std::string e = probe_error(d.address());
+    EXPECT_THAT(e, HasSubstr(" malformed replies: "));
+    EXPECT_THAT(e, HasSubstr("no valid reply within 150 ms"));
+  }
+}
+
+// While streaming, a device whose answers turn into nonsense ends the stream saying so.
+TEST(LateroTransport, DeviceWhoseRepliesTurnMalformedMidStreamIsNamed) {
+  int good = 3;
+  NonsenseDevice d([&](const std::vector<std::uint8_t>& request) {
+    LateroReply reply;
+    reply.sequence = static_cast<std::uint16_t>((request[3] << 8) | request[4]);
+    auto r = encode_latero_reply(reply);
+    if (good-- <= 0) r[1] ^= 0xFF;  // the version byte
+    return r;
+  });
+  LateroTransportOptions o;
+  o.link_timeout = std::chrono::milliseconds(100);
+  o.reply_timeout = std::chrono::milliseconds(100);
+  LateroTransport t(d.address(), o);
+  t.info();
+  t.start(750);
+  const std::vector<float> frame(64, 0.0f);
+  try {
+    for (std::uint32_t k = 0; k < 750; ++k) t.send_frame(encode_frame(frame, k));
+    ADD_FAILURE() << "no error";
+  } catch (const TransportError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("malformed replies: wrong protocol version, and no valid "
+                                    "reply for 100 ms"));
+  }
 }
 
 TEST(LateroTransport, DeviceThatGoesAwayMidStreamEndsTheStream) {

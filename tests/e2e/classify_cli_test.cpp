@@ -178,14 +178,23 @@ TEST(ClassifyCli, BadInputNamesTheFile) {
     for (auto& e : flat.electrodes) e.push_back(3000);
     for (int k = 0; k < tactile::perception::kVibrationPerRow; ++k) flat.vibration.push_back(2000);
   }
+  // A sensor whose every signal holds one value measured nothing: refused as such.
+  tactile::perception::write_sensor_csv(dir / "constant_bio.csv", flat);
+  // Free air has noise: one electrode's count flickers.
+  for (std::size_t i = 0; i < 100; ++i) flat.electrodes[0][i] += static_cast<double>(i % 2);
   tactile::perception::write_sensor_csv(dir / "flat_bio.csv", flat);
   auto brief = flat;
   for (std::size_t i = 0; i < 5; ++i) brief.pressure[i] = 1100;
   tactile::perception::write_sensor_csv(dir / "brief_bio.csv", brief);
   const auto p =
       run_tactile("classify predict --model " + model + " " + (dir / "flat_bio.csv").string() +
-                  " " + (dir / "brief_bio.csv").string() + " " + kMaterials + "/mat14_2_bio.csv");
+                  " " + (dir / "brief_bio.csv").string() + " " +
+                  (dir / "constant_bio.csv").string() + " " + kMaterials + "/mat14_2_bio.csv");
   EXPECT_EQ(p.exit_code, 1);
+  EXPECT_NE(p.output.find("constant_bio.csv: pressure, vibration and all 19 electrodes hold one "
+                          "value each over all 100 rows: the sensor measured nothing"),
+            std::string::npos)
+      << p.output;
   EXPECT_NE(p.output.find("flat_bio.csv: no contact"), std::string::npos) << p.output;
   EXPECT_NE(p.output.find("brief_bio.csv: feature contact of 5 rows is too short"),
             std::string::npos)

@@ -9,8 +9,10 @@
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
+#include "tactile/capture/strain_movie_io.hpp"
 
 namespace fs = std::filesystem;
+using tactile::test::demo_dir;
 using tactile::test::run_tactile;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -178,4 +180,37 @@ TEST(Cli, SynthHelpGivesBothDefaultLengths) {
     const std::size_t next = r.output.find_first_not_of(' ', at + 9);
     EXPECT_TRUE(next != std::string::npos && r.output[next] != '\n') << r.output.substr(at, 40);
   }
+}
+
+// A strain movie in which one edge stretched ten thousand fold, a change no skin can have, is
+// refused naming the field, the strain frame and the range, and no tactile movie is written.
+TEST(Cli, MapRefusesAStrainChangeNoSkinCanHave) {
+  const tactile::test::TempDir dir("absurd_strain");
+  auto m = tactile::capture::read_strain_movie(demo_dir() / "strain.h5");
+  ASSERT_GT(m.frames.size(), 3u);
+  ASSERT_GT(m.frames[3].edges.size(), 7u);
+  m.frames[3].edges[7].rel_change = 1e4;
+  const fs::path strain = dir.path() / "absurd.h5";
+  tactile::capture::write_strain_movie(strain, m);
+  const fs::path out = dir.path() / "movie.h5";
+  const auto r = run_tactile("map " + strain.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("absurd.h5:/frames/edge_rel_change: strain frame 3"));
+  EXPECT_THAT(r.output, HasSubstr("changed its length by 10000, out of range: must be from -1 "
+                                  "to 10"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Options that cannot mean anything together are refused naming both, not taken silently.
+TEST(Cli, OptionsThatContradictEachOtherAreUsageErrors) {
+  const tactile::test::TempDir dir("contradict");
+  const std::string movie = (demo_dir() / "movie.h5").string();
+  auto r = run_tactile("play " + movie + " --headless --latero 127.0.0.1:9");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--headless excludes --latero"));
+  const fs::path out = dir.path() / "perceive";
+  r = run_tactile("perceive --out " + out.string() + " --trials 2 --export-trials 3");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--export-trials requires --export-recordings"));
+  EXPECT_FALSE(fs::exists(out));
 }

@@ -488,17 +488,19 @@ rec_case() {  # name text
   NOTE=$1 check "bad-recording" fail -m bad_bio.csv -n "$W/mm.json" -- classify train --recordings "$W/rec" --labels "$W/rec/lb.csv" --out "$W/mm.json"
 }
 HDR=$(head -1 "$REC/mat1_1_bio.csv")
+# Sets the pressure (pdc, the 4th column) of lines FROM..TO to VALUE.
+set_pdc() { awk -F, -v OFS=, -v a="$1" -v b="$2" -v v="$3" 'NR >= a && NR <= b { $4 = v } 1'; }
 rec_case empty ''
 rec_case header "$HDR"
 rec_case onerow "$(head -2 "$REC/mat1_1_bio.csv")"
-rec_case nan "$(head -200 "$REC/mat1_1_bio.csv" | sed '50,60s/,87,/,nan,/')"
-rec_case inf "$(head -200 "$REC/mat1_1_bio.csv" | sed '50,60s/,87,/,1e999,/')"
-rec_case abc "$(head -200 "$REC/mat1_1_bio.csv" | sed '50s/,87,/,abc,/')"
+rec_case nan "$(head -200 "$REC/mat1_1_bio.csv" | set_pdc 50 60 nan)"
+rec_case inf "$(head -200 "$REC/mat1_1_bio.csv" | set_pdc 50 60 1e999)"
+rec_case abc "$(head -200 "$REC/mat1_1_bio.csv" | set_pdc 50 50 abc)"
 rec_case ragged "$(head -200 "$REC/mat1_1_bio.csv" | sed '50s/,[0-9]*,$//')"
 rec_case cols "$(head -200 "$REC/mat1_1_bio.csv" | cut -d, -f1-20)"
 rec_case timeback "$(head -200 "$REC/mat1_1_bio.csv" | sed '100s/^1581072655/1481072655/')"
 rec_case random "$(head -c 5000 /dev/urandom | tr -d '\0')"
-rec_case huge "$(head -200 "$REC/mat1_1_bio.csv" | sed '50,60s/,87,/,1e308,/')"
+rec_case huge "$(head -200 "$REC/mat1_1_bio.csv" | set_pdc 50 60 1e308)"
 # Models
 model_case() {  # name text
   printf '%s' "$2" >"$W/M-$1.json"
@@ -890,6 +892,75 @@ EOF
   elif [ $rc -ne 0 ]; then say bad-datagram "emulate --latero <- 180 random datagrams" BAD "exit $rc"
   elif ! grep -qi malformed "$W/emu.txt"; then say bad-datagram "emulate --latero <- 180 random datagrams" BAD "no malformed count"
   else say bad-datagram "emulate --latero <- 180 random datagrams" OK; fi
+fi
+
+############################################################################## values no measurement can have
+# A recording whose pressure reads millions of counts (the converters give 0..4095), and one in
+# which no signal ever changes (a sensor that measured nothing).
+rec_value_case() {  # name text words
+  printf '%s' "$2" >"$W/rec/bad_bio.csv"
+  printf 'file,class\nbad_bio.csv,a\nmat1_1_bio.csv,a\nmat1_2_bio.csv,b\nmat7_1_bio.csv,b\n' >"$W/rec/lb.csv"
+  NOTE=$1 check "absurd-value" fail -m "$3" -n "$W/mm.json" -- classify train --recordings "$W/rec" --labels "$W/rec/lb.csv" --out "$W/mm.json"
+}
+rec_value_case millions "$(head -200 "$REC/mat1_1_bio.csv" | set_pdc 50 50 5e6)" "out of range"
+ROW=$(sed -n 2p "$REC/mat1_1_bio.csv")
+rec_value_case constant "$(head -1 "$REC/mat1_1_bio.csv"; for i in $(seq 100); do echo "${ROW/#1581/$((1581 + i))}"; done)" "measured nothing"
+
+############################################################################## inputs people actually have
+# CR LF line ends and a UTF-8 byte-order mark, as a spreadsheet saved on Windows writes them.
+crlf() { printf '\xef\xbb\xbf'; sed 's/$/\r/' "$1"; }
+mkdir -p "$W/crlf"
+for m in mat1_1 mat1_2 mat7_1 mat7_2; do crlf "$REC/${m}_bio.csv" >"$W/crlf/${m}_bio.csv"; done
+printf 'file,class\nmat1_1_bio.csv,a\nmat1_2_bio.csv,a\nmat7_1_bio.csv,b\nmat7_2_bio.csv,b\n' >"$W/crlf/lb0.csv"
+crlf "$W/crlf/lb0.csv" >"$W/crlf/lb.csv"
+check "crlf-bom" ok -- classify train --recordings "$W/crlf" --labels "$W/crlf/lb.csv" --out "$W/crlf-model.json"
+cp -r "$FRAMES" "$W/crlf-frames"
+crlf "$FRAMES/landmarks.csv" >"$W/crlf-frames/landmarks.csv"
+check "crlf-bom" ok -- evaluate "$W/crlf-frames" "$STRAIN" --csv "$W/crlf-ev"
+sed '1s/.*/id;type;frame;x_px/' "$FRAMES/landmarks.csv" >"$W/crlf-frames/landmarks.csv"
+check "said-wrong" fail -m "header is 'id;type;frame;x_px'" -- evaluate "$W/crlf-frames" "$STRAIN" --csv "$W/crlf-ev2"
+echo "$MG" | $PY -c 'import json,sys; m=json.load(sys.stdin); m["version"]=4294967297; print(json.dumps(m))' >"$W/M-v2p32.json"
+check "said-wrong" fail -m "version 4294967297" -- classify predict --model "$W/M-v2p32.json" "$REC/mat1_1_bio.csv"
+check "said-wrong" usage -m "--export-recordings" -n "$W/pe" -- perceive --out "$W/pe" --trials 2 --export-trials 2
+
+############################################################################## a Latero that answers nonsense
+# A peer on 127.0.0.1 answering each request with a datagram of the kind named (at most 300
+# answers, for at most 8 s): the probe must say what came back, not that nothing did.
+if [[ nonsense-latero =~ $FILTER ]]; then
+  for kind in magic oversized echo random; do
+    $PY - "$kind" "$W/nl-port.txt" <<'EOF' &
+import os, socket, sys, time
+kind, port_file = sys.argv[1], sys.argv[2]
+s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+s.bind(("127.0.0.1", 0))
+open(port_file + ".tmp", "w").write(str(s.getsockname()[1]))
+os.rename(port_file + ".tmp", port_file)
+s.settimeout(0.2)
+end, answered = time.time() + 8, 0
+while time.time() < end and answered < 300:
+    try:
+        data, peer = s.recvfrom(4096)
+    except socket.timeout:
+        continue
+    if kind == "magic":
+        reply = bytes([data[0] ^ 0xFF, 1, 0x81]) + bytes(32)
+    elif kind == "oversized":
+        reply = data + bytes(3000)
+    elif kind == "echo":
+        reply = data
+    else:
+        reply = bytes([0x55]) + os.urandom(40)
+    s.sendto(reply, peer)
+    answered += 1
+EOF
+    npid=$!
+    for _ in $(seq 50); do [ -s "$W/nl-port.txt" ] && break; sleep 0.1; done
+    port=$(cat "$W/nl-port.txt" 2>/dev/null)
+    rm -f "$W/nl-port.txt"
+    NOTE=$kind check "nonsense-latero" fail -m "malformed repl" -t 20 -- devices --latero "127.0.0.1:$port"
+    kill $npid 2>/dev/null
+    wait $npid 2>/dev/null
+  done
 fi
 
 ############################################################################## usage oddities

@@ -303,6 +303,27 @@ TEST_F(MovieIo, DeflectionRangeWithoutRestIsNamed) {
   })));
 }
 
+// A deflection no contactor of the layout can take (here 1 m on a display that moves 50 um
+// either way) is refused naming the frame, the contactor and the range; a little saturation
+// beyond the layout's range is still a movie.
+TEST_F(MovieIo, DeflectionsNoContactorCanTakeAreNamed) {
+  const auto with_value = [&](float value) {
+    return edited("far.h5", [value](H5::H5File& f) {
+      std::vector<float> v(700, 1);
+      v[4 * 100 + 5 * 10 + 6] = value;
+      f.unlink("deflection_um");
+      h5::write_dataset(f, "deflection_um", v, {7, 10, 10});
+    });
+  };
+  expect_format_error(with_value(1e6f),
+                      "deflection_um: frame 4, row 5, col 6: deflection 1000000 um is out of "
+                      "range: layout 'stress' moves from -50 to 50 um, and a movie's values "
+                      "may go beyond that by at most its width (-150 to 150 um)");
+  expect_format_error(with_value(-151), "deflection -151 um is out of range");
+  EXPECT_EQ(read_tactile_movie(with_value(-150)).frame(4)[56], -150);
+  EXPECT_EQ(read_tactile_movie(with_value(60)).frame(4)[56], 60);
+}
+
 TEST_F(MovieIo, HugeDeclaredFrameCountNamesTheLimitQuickly) {
   for (const hsize_t frames : {hsize_t{2000000000}, hsize_t{1} << 40}) {
     const auto p = edited("huge.h5", [&](H5::H5File& f) {

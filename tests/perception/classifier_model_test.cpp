@@ -89,6 +89,20 @@ TEST(RecordingLabels, ReadsClassesAndValues) {
   EXPECT_DOUBLE_EQ(l.rows[0].value, -2.5);
 }
 
+TEST(RecordingLabels, TakesCrLfLineEndsAndAByteOrderMark) {
+  const tactile::test::TempDir dir_tmp("labels_crlf");
+  const std::filesystem::path& dir = dir_tmp.path();
+  write_text(dir / "l.csv",
+             "\xEF\xBB\xBF"
+             "file,class,value\r\na_bio.csv,planar,-2.5\r\nb_bio.csv,conical,10\r\n");
+  const auto l = perception::read_recording_labels(dir / "l.csv");
+  ASSERT_EQ(l.rows.size(), 2u);
+  EXPECT_TRUE(l.has_values);
+  EXPECT_EQ(l.rows[0].file, "a_bio.csv");
+  EXPECT_EQ(l.rows[1].label, "conical");
+  EXPECT_DOUBLE_EQ(l.rows[1].value, 10);
+}
+
 TEST(RecordingLabels, MalformedFilesAreNamedErrors) {
   const tactile::test::TempDir dir_tmp("labels_bad");
   const std::filesystem::path& dir = dir_tmp.path();
@@ -185,6 +199,15 @@ TEST(ClassifierModel, OtherVersionAndMismatchedInputsAreNamedErrors) {
   EXPECT_NE(error(j).find("model format version 4, this program reads versions 1 to 3"),
             std::string::npos)
       << error(j);
+  // A version beyond int, whose low 32 bits are 1, and versions below 1, are not version 1.
+  for (const nlohmann::json& v : {nlohmann::json(4294967297ULL), nlohmann::json(0),
+                                  nlohmann::json(-4294967295LL), nlohmann::json(~0ULL)}) {
+    j = good;
+    j["version"] = v;
+    EXPECT_NE(error(j).find("model format version " + v.dump() + ", this program reads"),
+              std::string::npos)
+        << error(j);
+  }
   j = good;
   j["input_names"][0] = "dp.w1.temperature";
   EXPECT_NE(error(j).find("mismatched inputs"), std::string::npos);
@@ -235,7 +258,12 @@ TEST(ClassifierModel, TamperedTrainingRowsAndScalerAreNamedErrors) {
 TEST(LabelledRecordings, BadRecordingsAndLabelsNameTheFile) {
   const tactile::test::TempDir dir_tmp("recordings_bad");
   const std::filesystem::path& dir = dir_tmp.path();
-  perception::write_sensor_csv(dir / "flat_bio.csv", recording(0));
+  // Free air: no contact, one electrode's noise of a count (a sensor whose every signal holds
+  // one value measured nothing at all, refused when read).
+  auto flat = recording(0);
+  for (std::size_t i = 0; i < flat.rows(); ++i) flat.electrodes[0][i] += static_cast<double>(i % 2);
+  perception::write_sensor_csv(dir / "flat_bio.csv", flat);
+  perception::write_sensor_csv(dir / "constant_bio.csv", recording(0));
   perception::write_sensor_csv(dir / "brief_bio.csv", recording(5));
   perception::write_sensor_csv(dir / "good_bio.csv", recording(60));
   const auto error = [&](const std::string& labels,
@@ -248,6 +276,11 @@ TEST(LabelledRecordings, BadRecordingsAndLabelsNameTheFile) {
   const auto no_contact = error("flat_bio.csv,x\n");
   EXPECT_NE(no_contact.find("flat_bio.csv"), std::string::npos) << no_contact;
   EXPECT_NE(no_contact.find("no contact"), std::string::npos) << no_contact;
+  const auto constant = error("constant_bio.csv,x\n");
+  EXPECT_NE(constant.find("constant_bio.csv: pressure, vibration and all 19 electrodes hold one "
+                          "value each over all 100 rows: the sensor measured nothing"),
+            std::string::npos)
+      << constant;
   const auto brief = error("brief_bio.csv,x\n");
   EXPECT_NE(brief.find("brief_bio.csv"), std::string::npos) << brief;
   EXPECT_NE(brief.find("too short for two windows"), std::string::npos) << brief;

@@ -109,6 +109,38 @@ TEST(SensorCsv, MalformedFilesNameTheProblem) {
                std::runtime_error);
 }
 
+TEST(SensorCsv, TakesCrLfLineEndsAndAByteOrderMark) {
+  std::istringstream in("\xEF\xBB\xBF" + header() + "\r\n" + row(1.0, 51) + "\r\n" + row(1.01, 53) +
+                        "\r\n");
+  const auto r = perception::read_sensor_csv(in, "rec.csv");
+  ASSERT_EQ(r.rows(), 2u);
+  EXPECT_DOUBLE_EQ(r.pressure[1], 53);
+  EXPECT_DOUBLE_EQ(r.electrodes[18][1], 1019);
+}
+
+TEST(SensorCsv, RefusesValuesNoSensorGivesAndASensorThatMeasuredNothing) {
+  const std::string h = header() + "\n";
+  EXPECT_NE(message_of(h + row(1.0, 51) + "\n" + row(1.01, 1e9) + "\n")
+                .find("line 3: column 'pdc': 1000000000 is out of range: a sensor's counts lie "
+                      "within -100000 to 100000"),
+            std::string::npos);
+  const std::string ele = with(row(1.0, 51), ",1019", ",-3e7");
+  EXPECT_NE(message_of(h + ele + "\n").find("line 2: column 'ele19': -3e7 is out of range"),
+            std::string::npos);
+  // One row repeated (its 22 vibration samples differ, but each repeats every 10 ms): nothing
+  // changed anywhere.
+  EXPECT_NE(message_of(h + row(1.0, 51) + "\n" + row(1.01, 51) + "\n" + row(1.02, 51) + "\n")
+                .find("all 19 electrodes hold one value each over all 3 rows: the sensor "
+                      "measured nothing"),
+            std::string::npos);
+  // One changing signal is a measurement.
+  EXPECT_EQ(message_of(h + row(1.0, 51) + "\n" + row(1.01, 52) + "\n"), "no error");
+  EXPECT_EQ(message_of(h + row(1.0, 51) + "\n" + with(row(1.01, 51), ",1019", ",1018") + "\n"),
+            "no error");
+  EXPECT_EQ(message_of(h + row(1.0, 51) + "\n" + with(row(1.01, 51), ",122,", ",121,") + "\n"),
+            "no error");
+}
+
 TEST(SensorCsv, ReadsEveryRealRecording) {
   const std::filesystem::path dir = std::filesystem::path(TACTILE_TEST_DATA_DIR) / "biotac-slide";
   int files = 0;

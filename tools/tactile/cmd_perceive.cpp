@@ -153,12 +153,15 @@ void add_perceive(CLI::App& app, Action& action) {
   sub->add_option("--recordings", opt->recordings, "Folder of real *_bio.csv recordings")
       ->check(CLI::ExistingDirectory)
       ->excludes(seeds);
-  sub->add_flag("--export-recordings", opt->export_recordings,
-                "Also write the first trials of every feature and procedure as BioTac-style CSV, "
-                "with labels_<procedure>.csv (file,class,value) for `tactile classify`");
+  auto* export_recordings = sub->add_flag(
+      "--export-recordings", opt->export_recordings,
+      "Also write the first trials of every feature and procedure as BioTac-style CSV, "
+      "with labels_<procedure>.csv (file,class,value) for `tactile classify`");
+  // Without --export-recordings nothing would be exported: refused rather than ignored.
   sub->add_option("--export-trials", opt->export_trials,
                   "With --export-recordings: how many trials of each (from trial 0)")
       ->check(CLI::Range(1, 1000))
+      ->needs(export_recordings)
       ->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {

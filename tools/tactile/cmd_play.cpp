@@ -75,6 +75,8 @@ void add_play(CLI::App& app, Action& action) {
       ->check(within(1, 1000000))
       ->capture_default_str();
   add_latero_play_options(*sub, opt->latero);
+  // Headless plays into the emulated device, --latero on a real one: both at once is no choice.
+  sub->get_option("--latero")->excludes(sub->get_option("--headless"));
   sub->callback([opt, &action] {
     action = [opt] {
       // Checked even if the movie ends up on a device: whether it plays headless (the one case

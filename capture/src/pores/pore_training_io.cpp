@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "tactile/capture/image.hpp"
+#include "tactile/common/csv.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {
@@ -109,7 +110,9 @@ std::vector<std::array<double, 2>> read_pore_marks(const fs::path& path, int wid
   if (!in) throw FormatError(fmt::format("{}: cannot open marks file", path.string()));
   std::vector<std::array<double, 2>> marks;
   std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
+  csv::LineReader lines(in);
+  while (lines.next(line)) {
+    const std::size_t line_no = lines.number();
     const std::string where = fmt::format("{}:{}", path.string(), line_no);
     std::istringstream words(line);
     std::vector<std::string> tokens;

@@ -381,6 +381,11 @@ namespace {
 // Positions, lengths and times far beyond any fingertip image are damage, not measurements.
 constexpr double kMaxAbsPositionPx = 1e6;
 constexpr double kMaxAbsPositionMm = 1e4;
+// An edge's relative change of length: a length cannot fall below 0 (-1), and skin tears
+// before it stretches to twice its length (+1); ten times that leaves room for a point tracked
+// to the wrong ridge on a short edge, and still refuses values no skin can have.
+constexpr double kMinRelChange = -1;
+constexpr double kMaxRelChange = 10;
 
 void check_positions(const std::vector<double>& xy, double max_abs, const Reader& r,
                      const std::string& obj) {
@@ -616,6 +621,14 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
                  fmt::format("edge {} names track {}, which is not a point of strain frame {}", i,
                              t, f));
         }
+      }
+      if (!(erel[i] >= kMinRelChange && erel[i] <= kMaxRelChange)) {
+        r.fail("/frames/edge_rel_change",
+               fmt::format("strain frame {} (camera frames {} to {}): edge {} (tracks {} and {}) "
+                           "changed its length by {}, out of range: must be from {} to {} (a "
+                           "length cannot shrink below 0; skin tears long before it doubles)",
+                           f, sf.frame_from, sf.frame_to, i, a, b, erel[i], kMinRelChange,
+                           kMaxRelChange));
       }
       sf.edges.push_back({a, b, elen[2 * i], elen[2 * i + 1], erel[i]});
     }

@@ -4,9 +4,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string_view>
 
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/csv.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
 
@@ -115,12 +117,18 @@ void read_landmarks_csv(const std::filesystem::path& path, GroundTruth& gt) {
   const std::string where = path.string();
   std::ifstream in(path);
   if (!in) throw FormatError(fmt::format("{}: cannot open", where));
+  csv::LineReader lines(in);
   std::string line;
-  if (!std::getline(in, line) || line != "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm") {
-    throw FormatError(
-        fmt::format("{}: expected header id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm", where));
+  constexpr std::string_view kHeader = "id,type,frame,x_px,y_px,x_mm,y_mm,diameter_mm";
+  if (!lines.next(line)) {
+    throw FormatError(fmt::format("{}: empty file, expected header {}", where, kHeader));
   }
-  for (int row = 2; std::getline(in, line); ++row) {
+  if (line != kHeader) {
+    throw FormatError(fmt::format("{}: line 1: header is '{}', expected header {}", where,
+                                  line.substr(0, 200), kHeader));
+  }
+  while (lines.next(line)) {
+    const std::size_t row = lines.number();
     if (line.empty()) continue;
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream fields(line);

@@ -43,7 +43,49 @@ std::uint16_t parse_port(const std::string& text, const std::string& whole) {
 // machine, a fifth of a 750 Hz period.
 constexpr nanoseconds kSpin = microseconds(200);
 
+// The wrong part of a malformed reply, as a person says it.
+const char* malformed_words(LateroPacketError error) {
+  switch (error) {
+    case LateroPacketError::too_short:
+      return "too short";
+    case LateroPacketError::oversized:
+      return "oversized";
+    case LateroPacketError::bad_magic:
+      return "wrong magic";
+    case LateroPacketError::bad_version:
+      return "wrong protocol version";
+    case LateroPacketError::bad_type:
+      return "unknown packet type";
+    case LateroPacketError::none:
+      break;
+  }
+  return "undecodable";
+}
+
 }  // namespace
+
+std::string describe_malformed_replies(const LateroLinkStats& stats) {
+  if (stats.malformed_replies == 0) return {};
+  std::vector<std::pair<std::uint64_t, std::string>> kinds;
+  if (stats.echoed_requests > 0) {
+    kinds.emplace_back(stats.echoed_requests, "our own requests echoed back");
+  }
+  for (int e = 1; e < kLateroPacketErrorCount; ++e) {
+    const auto count = stats.malformed_by_error[static_cast<std::size_t>(e)];
+    if (count > 0) kinds.emplace_back(count, malformed_words(static_cast<LateroPacketError>(e)));
+  }
+  std::stable_sort(kinds.begin(), kinds.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  const std::string noun = stats.malformed_replies == 1 ? "reply" : "replies";
+  if (kinds.size() == 1) {
+    return fmt::format("{} malformed {}: {}", stats.malformed_replies, noun, kinds[0].second);
+  }
+  std::string parts;
+  for (const auto& [count, words] : kinds) {
+    parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", count, words);
+  }
+  return fmt::format("{} malformed {}: {}", stats.malformed_replies, noun, parts);
+}
 
 std::string LateroAddress::text() const {
   if (host.find(':') != std::string::npos) return fmt::format("[{}]:{}", host, port);
@@ -150,9 +192,15 @@ void LateroTransport::receive_ready() {
       }
       return;  // EAGAIN: nothing more now
     }
-    const auto decoded = decode_latero_reply({buffer.data(), static_cast<std::size_t>(n)});
+    const std::span<const std::uint8_t> bytes{buffer.data(), static_cast<std::size_t>(n)};
+    const auto decoded = decode_latero_reply(bytes);
     if (!decoded.packet) {
       ++stats_.malformed_replies;
+      if (decode_latero_request(bytes).packet) {
+        ++stats_.echoed_requests;
+      } else {
+        ++stats_.malformed_by_error[static_cast<std::size_t>(decoded.error)];
+      }
       continue;
     }
     const auto now = Clock::now();
@@ -202,11 +250,22 @@ void LateroTransport::check_link() {
   if (unanswered_since_ == Clock::time_point{}) return;
   const auto silent = Clock::now() - unanswered_since_;
   if (silent <= options_.link_timeout) return;
+  if (stats_.malformed_replies > 0) throw nonsense_error("for");
   throw TransportError(fmt::format(
       "Latero at {}: no reply for {} ms ({} requests sent, {} replies){}; is the device on and "
       "at this address and port?",
       address_.text(), options_.link_timeout.count(), stats_.requests_sent, stats_.replies_received,
       refused_ ? "; the host answered that nothing listens on that port" : ""));
+}
+
+TransportError LateroTransport::nonsense_error(const char* for_or_within) const {
+  // Something answers, but not as a Latero does: saying "no reply" would send the user
+  // looking for a cable or a power switch instead of at what listens on that port.
+  return TransportError(fmt::format(
+      "Latero at {} answered {}, and no valid reply {} {} ms ({} requests sent); is a Latero "
+      "at this address and port?",
+      address_.text(), describe_malformed_replies(stats_), for_or_within,
+      options_.link_timeout.count(), stats_.requests_sent));
 }
 
 LateroReply LateroTransport::probe() {
@@ -224,6 +283,7 @@ LateroReply LateroTransport::probe() {
     }
   }
   if (stats_.replies_received == before) {
+    if (stats_.malformed_replies > 0) throw nonsense_error("within");
     throw TransportError(fmt::format(
         "Latero at {}: no reply within {} ms ({} requests sent){}; is the device on and at this "
         "address and port?",

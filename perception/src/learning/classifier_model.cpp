@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "tactile/common/atomic_write.hpp"
+#include "tactile/common/csv.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
 #include "tactile/common/names.hpp"
@@ -106,8 +107,9 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
   const std::string where = path.string();
   std::ifstream in(path);
   if (!in) throw FormatError(fmt::format("{}: cannot open labels file", where));
+  csv::LineReader lines(in);
   std::string line;
-  if (!std::getline(in, line)) throw FormatError(fmt::format("{}: empty labels file", where));
+  if (!lines.next(line)) throw FormatError(fmt::format("{}: empty labels file", where));
   const auto header = split(line);
   const auto column = [&](const char* name) {
     return static_cast<int>(std::find(header.begin(), header.end(), name) - header.begin());
@@ -126,7 +128,8 @@ RecordingLabels read_recording_labels(const std::filesystem::path& path) {
   RecordingLabels labels;
   labels.has_values = value_col != width;
   std::set<std::string> seen;
-  for (int number = 2; std::getline(in, line); ++number) {
+  while (lines.next(line)) {
+    const std::size_t number = lines.number();
     if (trim(line).empty()) continue;
     const auto f = split(line);
     if (static_cast<int>(f.size()) != width)
@@ -326,12 +329,18 @@ ClassifierModel read_classifier_model(const std::filesystem::path& path) {
         fmt::format("{}: not a classifier model (format '{}')", where, format.get<std::string>()));
   const auto& version =
       field(j, "version", where, &nlohmann::json::is_number_integer, "an integer");
-  // Version 1 had no trim_fraction or electrodes: its inputs are those of no trim and clusters.
-  const bool v1 = version.get<int>() == 1;
-  if (version.get<int>() < 1 || version.get<int>() > kClassifierModelVersion)
+  // Compared as read: narrowed to int first, 4294967297 would pass as version 1.
+  const std::string version_text = version.dump();
+  const auto known = [](auto v) {
+    return v >= 1 && v <= static_cast<decltype(v)>(kClassifierModelVersion);
+  };
+  if (!(version.is_number_unsigned() ? known(version.get<std::uint64_t>())
+                                     : known(version.get<std::int64_t>())))
     throw FormatError(fmt::format(
         "{}: model format version {}, this program reads versions 1 to {}: retrain the model",
-        where, version.get<int>(), kClassifierModelVersion));
+        where, version_text, kClassifierModelVersion));
+  // Version 1 had no trim_fraction or electrodes: its inputs are those of no trim and clusters.
+  const bool v1 = version.get<std::int64_t>() == 1;
   ClassifierModel m;
   try {
     set_recording_procedure(m.options,

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -26,8 +27,7 @@ std::vector<std::string> expected_header() {
 }
 
 // Splits on commas; one empty trailing field (the recordings' trailing comma) is dropped.
-std::vector<std::string> split(std::string line) {
-  if (!line.empty() && line.back() == '\r') line.pop_back();
+std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> fields;
   std::size_t start = 0;
   while (true) {
@@ -38,6 +38,25 @@ std::vector<std::string> split(std::string line) {
   }
   if (fields.size() > 1 && fields.back().empty()) fields.pop_back();
   return fields;
+}
+
+// The BioTac's converters give 12-bit counts (0..4095), stored raw or with a baseline taken
+// off; a simulated sensor is not clipped at the converter's end. Far beyond both, a value is
+// damage or a unit mix-up, never a measurement.
+constexpr double kMaxCounts = 100000;
+
+bool constant(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
+}
+
+// Every row the same but for its time: pressure, each of a row's 22 vibration samples (a row
+// repeated is one 10 ms pattern repeated, no vibration) and every electrode.
+bool every_signal_constant(const SensorRecording& r) {
+  for (std::size_t i = kVibrationPerRow; i < r.vibration.size(); ++i)
+    if (r.vibration[i] != r.vibration[i - kVibrationPerRow]) return false;
+  return constant(r.pressure) &&
+         std::all_of(r.electrodes.begin(), r.electrodes.end(),
+                     [](const std::vector<double>& e) { return constant(e); });
 }
 
 double parse_number(const std::string& field, const std::string& source, std::size_t line,
@@ -57,8 +76,9 @@ double parse_number(const std::string& field, const std::string& source, std::si
 
 SensorRecording read_sensor_csv(std::istream& in, const std::string& source) {
   const auto names = expected_header();
+  csv::LineReader lines(in);
   std::string line;
-  if (!std::getline(in, line)) throw FormatError(fmt::format("{}: empty file (no header)", source));
+  if (!lines.next(line)) throw FormatError(fmt::format("{}: empty file (no header)", source));
   const auto header = split(line);
   if (header.size() != kFields)
     throw FormatError(fmt::format("{}: line 1: header has {} columns, expected {} ({}..{})", source,
@@ -69,17 +89,21 @@ SensorRecording read_sensor_csv(std::istream& in, const std::string& source) {
                                     header[i], names[i]));
   SensorRecording r;
   r.source = source;
-  std::size_t line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line == "\r") continue;
+  while (lines.next(line)) {
+    const std::size_t line_no = lines.number();
+    if (line.empty()) continue;
     const auto fields = split(line);
     if (fields.size() != kFields)
       throw FormatError(fmt::format("{}: line {}: {} fields, expected {} (truncated row?)", source,
                                     line_no, fields.size(), kFields));
     std::vector<double> v(kFields);
-    for (std::size_t i = 0; i < kFields; ++i)
+    for (std::size_t i = 0; i < kFields; ++i) {
       v[i] = parse_number(fields[i], source, line_no, names[i]);
+      if (i > 0 && std::abs(v[i]) > kMaxCounts)
+        throw FormatError(fmt::format(
+            "{}: line {}: column '{}': {} is out of range: a sensor's counts lie within -{} to {}",
+            source, line_no, names[i], fields[i], kMaxCounts, kMaxCounts));
+    }
     if (!r.t_s.empty() && v[0] < r.t_s.back())
       throw FormatError(
           fmt::format("{}: line {}: timestamp {} goes back in time", source, line_no, fields[0]));
@@ -92,6 +116,11 @@ SensorRecording read_sensor_csv(std::istream& in, const std::string& source) {
       r.electrodes[e].push_back(v[4 + kVibrationPerRow + e]);
   }
   if (r.t_s.empty()) throw FormatError(fmt::format("{}: no data rows after the header", source));
+  if (r.rows() > 1 && every_signal_constant(r))
+    throw FormatError(fmt::format(
+        "{}: pressure, vibration and all {} electrodes hold one value each over all {} rows: the "
+        "sensor measured nothing (unplugged, or its values were not written)",
+        source, kElectrodeCount, r.rows()));
   return r;
 }
 

@@ -52,6 +52,10 @@ struct LateroLinkStats {
   std::uint64_t missed_replies = 0;     // requests whose reply did not come in reply_timeout
   std::uint64_t late_replies = 0;       // replies that came after their request was missed
   std::uint64_t malformed_replies = 0;  // datagrams from the device that did not decode
+  // The malformed replies by what was wrong (indexed by LateroPacketError), and how many of
+  // them were the requests themselves coming back (a loop or an echo service, not a Latero).
+  std::array<std::uint64_t, kLateroPacketErrorCount> malformed_by_error{};
+  std::uint64_t echoed_requests = 0;
   std::uint64_t unplayable_frames = 0;  // frames handed to send_frame that were not valid
   std::uint64_t late_frames = 0;        // sent more than one period after their slot
   std::uint64_t clock_restarts = 0;     // times the schedule restarted (max_catch_up exceeded)
@@ -71,6 +75,9 @@ struct LateroTiming {
   double interval_jitter_p50_us = 0, interval_jitter_p99_us = 0;
 };
 LateroTiming summarize_timing(const LateroLinkStats& stats, double rate_hz);
+// What the malformed replies were, for people: "10 malformed replies: wrong magic", or
+// "12 malformed replies: 7 with a wrong magic byte, 5 oversized"; empty when there were none.
+std::string describe_malformed_replies(const LateroLinkStats& stats);
 // Lines for people: frames and rate, jitter, replies (missed, late, malformed).
 std::string format_latero_link(const LateroLinkStats& stats, double rate_hz);
 
@@ -113,6 +120,9 @@ class LateroTransport : public Transport {
   void drain(std::chrono::steady_clock::time_point until);
   // Throws TransportError when nothing has answered for link_timeout.
   void check_link();
+  // The error for a link on which only malformed replies came; `for_or_within` completes
+  // "no valid reply ... 500 ms".
+  TransportError nonsense_error(const char* for_or_within) const;
 
   LateroAddress address_;
   LateroTransportOptions options_;
