@@ -18,7 +18,7 @@ namespace tactile::display {
 
 namespace {
 
-void play_headless(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
+void play_headless(const movie::TactileMovie& movie, const ResolvedPlay& request, const Say& say,
                    PlayResult& result) {
   EmulatedDeviceOptions device;
   device.layout = movie.layout;
@@ -53,7 +53,7 @@ void play_headless(const movie::TactileMovie& movie, const PlayRequest& request,
                   request.preview_png.string()));
 }
 
-void play_on_device(const movie::TactileMovie& movie, const PlayRequest& request,
+void play_on_device(const movie::TactileMovie& movie, const ResolvedPlay& request,
                     const DeviceDescription& device, const PlayBackends& backends, const Say& say,
                     PlayResult& result) {
   say(fmt::format("play: streaming to {} {} ({} {})\n",
@@ -85,7 +85,7 @@ void check_latero_movie(const movie::TactileMovie& movie) {
   }
 }
 
-void play_on_latero(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
+void play_on_latero(const movie::TactileMovie& movie, const ResolvedPlay& request, const Say& say,
                     PlayResult& result) {
   check_latero_movie(movie);
   const LateroPlayTarget& target = *request.latero;
@@ -114,7 +114,7 @@ void play_on_latero(const movie::TactileMovie& movie, const PlayRequest& request
 
 }  // namespace
 
-PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& request,
+PlayResult play_anywhere(const movie::TactileMovie& movie, const ResolvedPlay& request,
                          const Say& say, const PlayBackends& backends) {
   if (request.latero) {
     PlayResult result;
