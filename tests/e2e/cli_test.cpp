@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
@@ -179,3 +180,46 @@ TEST(Cli, SynthHelpGivesBothDefaultLengths) {
     EXPECT_TRUE(next != std::string::npos && r.output[next] != '\n') << r.output.substr(at, 40);
   }
 }
+
+// An empty path was taken as no file at all: `view --screenshot ''` opened the window and waited
+// for a person to close it. Every option that takes a value refuses "" when it is parsed, in
+// bounded time and before any work.
+TEST(Cli, EmptyValuesAreUsageErrorsAtParseTime) {
+  const tactile::test::TempDir d_tmp("empty");
+  const fs::path& d = d_tmp.path();
+  const std::string movie = (tactile::test::demo_dir() / "movie.h5").string();
+  const std::string strain = (tactile::test::demo_dir() / "strain.h5").string();
+  tactile::test::Started view({"view", movie, "--screenshot", ""}, d / "view.log");
+  const auto ended = view.wait(30);
+  ASSERT_TRUE(ended.ended) << "view --screenshot '' still running after 30 s";
+  EXPECT_EQ(ended.exit_code, 2);
+  std::ifstream log(d / "view.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("--screenshot: is empty"));
+  for (const std::string& args :
+       {"map " + strain + " --out ''", "map " + strain + " --out x.h5 --csv ''",
+        "play " + movie + " --preview ''", "play " + movie + " --latero ''",
+        "export " + movie + " --hjif ''", "capture " + d.string() + " --px-per-mm 47 --out ''"}) {
+    const auto r = run_tactile(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("empty")) << args;
+  }
+  // A file that must exist: refused as missing, still at parse time.
+  EXPECT_EQ(run_tactile("info ''").exit_code, 2);
+  EXPECT_EQ(run_tactile("view " + movie + " --strain ''").exit_code, 2);
+  EXPECT_FALSE(fs::exists(d / "x.h5"));
+}
+
+// A single image where a folder of frames is expected is the wrong kind of input: a usage
+// error (2) naming it, like a value out of range, not a failure of the work (1).
+TEST(Cli, ASingleImageWhereAFolderOfFramesIsExpectedIsAUsageError) {
+  const tactile::test::TempDir d_tmp("single");
+  const fs::path& d = d_tmp.path();
+  const fs::path image = tactile::test::demo_dir() / "frames" / "frame_000.png";
+  const auto r =
+      run_tactile("capture " + image.string() + " --px-per-mm 47 --out " + (d / "s.h5").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("is a single file, not a folder of frames"));
+  EXPECT_FALSE(fs::exists(d / "s.h5"));
+}
+
