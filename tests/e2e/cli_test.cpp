@@ -10,6 +10,7 @@
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace fs = std::filesystem;
 using tactile::test::run_tactile;
@@ -223,3 +224,20 @@ TEST(Cli, ASingleImageWhereAFolderOfFramesIsExpectedIsAUsageError) {
   EXPECT_FALSE(fs::exists(d / "s.h5"));
 }
 
+// `info` said 2077 frames and `play` 2147 for the same movie (the played output holds the
+// ramps): every command counts the movie's own frames, and the ramps apart.
+TEST(Cli, InfoAndPlayCountTheMovieFramesAlike) {
+  const tactile::test::TempDir d_tmp("count");
+  const fs::path movie = tactile::test::demo_dir() / "movie.h5";
+  const std::string frames =
+      std::to_string(tactile::movie::read_tactile_movie(movie).frame_count) + " movie frames";
+  const auto info = run_tactile("info " + movie.string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("length      " + frames + " at "));
+  const auto play = run_tactile("play " + movie.string() + " --headless --preview " +
+                                (d_tmp.path() / "p.png").string());
+  ASSERT_EQ(play.exit_code, 0) << play.output;
+  EXPECT_THAT(play.output, HasSubstr("(of " + frames + " + "));
+  EXPECT_THAT(play.output, HasSubstr("length      " + frames + " + "));
+  EXPECT_THAT(play.output, HasSubstr(" frames of ramp from and to rest at "));
+}

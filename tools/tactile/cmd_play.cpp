@@ -163,8 +163,11 @@ void add_view(CLI::App& app, Action& action) {
       const display::ViewerResult r = display::run_viewer(movie, opt->viewer);
       if (!opt->screenshot.empty()) {
         display::write_png(opt->screenshot, r.last_image);
-        fmt::print("view: frame {} of {} drawn to {}{}\n", r.last_movie_frame + 1,
-                   r.shown_frame_count, opt->screenshot.string(),
+        fmt::print("view: frame {} of {} ({}) drawn to {}{}\n", r.last_movie_frame + 1,
+                   r.shown_frame_count,
+                   display::frame_count_text(r.shown_frame_count - r.device_report.ramp_frames,
+                                             r.device_report.ramp_frames),
+                   opt->screenshot.string(),
                    opt->viewer.field ? " (with the source strain field)" : "");
       }
       return 0;

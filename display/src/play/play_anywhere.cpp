@@ -45,7 +45,11 @@ void play_headless(const movie::TactileMovie& movie, const ResolvedPlay& request
     say("play: stopped; no preview written\n");
     return;
   }
-  say(format_summary(summarize(output)));
+  MovieSummary summary = summarize(output);
+  // The output holds the ramps the player added: counted apart, as the line above counts them.
+  summary.ramp_frames = static_cast<std::int32_t>(report.ramp_frames);
+  summary.frame_count -= summary.ramp_frames;
+  say(format_summary(summary));
   if (request.preview_png.empty()) return;
   write_preview_strip(request.preview_png, output, PreviewOptions{});
   result.preview_png = request.preview_png;
