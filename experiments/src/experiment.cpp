@@ -161,21 +161,52 @@ void check_run_count(const Context& cx, std::size_t runs, const std::string& wha
   }
 }
 
-// Every combination of the parameter lists, in a fixed order (the JSON key order is sorted).
-std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
+// A value of a parameter list as a run's name and the grid's description give it: a mode's name
+// or a number as a person writes it.
+std::string value_text(const json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number()) return fmt::format("{:g}", v.get<double>());
+  return v.dump();
+}
+
+// The parameter grid: every combination of the parameter lists, in a fixed order (the JSON key
+// order is sorted), each with the text that tells it from the others in a run's name.
+struct ParameterGrid {
+  std::vector<MappingParams> params;
+  // Per entry: "-normalisation-peak" for each parameter given more than one value (strain
+  // apart, which every run's name states).
+  std::vector<std::string> names;
+  // "normalisation: none, peak" for each parameter given more than one value, strain included.
+  std::vector<std::string> varying;
+};
+
+ParameterGrid parameter_grid(const Context& cx, const json& j) {
   static const std::set<std::string> known = {
       "gain_um_per_strain", "normalisation",       "peak_fraction",       "rate_hz", "strain",
       "reference_frame",    "slew_limit_um_per_s", "min_triangle_quality"};
   json_only_keys(cx, j, "parameters", known);
   std::vector<MappingParams> grid(1);
+  std::vector<std::string> names(1);
+  std::vector<std::string> varying;
   for (const auto& [key, value] : j.items()) {
     const std::string what = "parameters." + key;
     const auto values = list(cx, value, what);
     // Checked before the product is built: 3000 x 8000 values would be 24 million runs.
     check_run_count(cx, grid.size() * values.size(), "the parameter lists");
+    const bool varies = values.size() > 1;
+    if (varies) {
+      std::vector<std::string> texts;
+      for (const auto& v : values) texts.push_back(value_text(v));
+      varying.push_back(fmt::format("{}: {}", key, fmt::join(texts, ", ")));
+    }
     std::vector<MappingParams> next;
+    std::vector<std::string> next_names;
     for (const auto& v : values) {
-      for (MappingParams p : grid) {
+      for (std::size_t g = 0; g < grid.size(); ++g) {
+        MappingParams p = grid[g];
+        next_names.push_back(varies && key != "strain"
+                                 ? fmt::format("{}-{}-{}", names[g], key, value_text(v))
+                                 : names[g]);
         // Ranges as `tactile map`'s options; the mapping checks the finer rules (a playable
         // rate, a positive gain) for the run.
         const auto number = [&](double min, double max) {
@@ -196,8 +227,9 @@ std::vector<MappingParams> parameter_grid(const Context& cx, const json& j) {
       }
     }
     grid = std::move(next);
+    names = std::move(next_names);
   }
-  return grid;
+  return {std::move(grid), std::move(names), std::move(varying)};
 }
 
 ExperimentPerception parse_perception(const Context& cx, const json& j) {
@@ -304,12 +336,20 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
     const std::string what = fmt::format("methods[{}]", i);
     method_list.push_back(json_mode(cx, methods[i], what, parse_mapping_method));
   }
-  const auto grid = j.contains("parameters") ? parameter_grid(cx, j["parameters"])
-                                             : std::vector<MappingParams>(1);
-  check_run_count(
-      cx, ex.sources.size() * ex.layouts.size() * method_list.size() * grid.size(),
+  const ParameterGrid grid = j.contains("parameters")
+                                 ? parameter_grid(cx, j["parameters"])
+                                 : ParameterGrid{std::vector<MappingParams>(1), {""}, {}};
+  const std::string counts =
       fmt::format("{} sources x {} layouts x {} methods x {} parameter sets", ex.sources.size(),
-                  ex.layouts.size(), method_list.size(), grid.size()));
+                  ex.layouts.size(), method_list.size(), grid.params.size());
+  check_run_count(
+      cx, ex.sources.size() * ex.layouts.size() * method_list.size() * grid.params.size(), counts);
+  std::vector<std::string> layout_names, method_names;
+  for (const auto& layout : ex.layouts) layout_names.push_back(layout.name);
+  for (const auto& method : method_list) method_names.push_back(to_string(method));
+  ex.grid = fmt::format("{} (layouts: {}; methods: {}{}{})", counts, fmt::join(layout_names, ", "),
+                        fmt::join(method_names, ", "), grid.varying.empty() ? "" : "; ",
+                        fmt::join(grid.varying, "; "));
 
   // Every run checked against its layout and source now, so nothing fails halfway.
   for (std::size_t s = 0; s < ex.sources.size(); ++s) {
@@ -323,13 +363,15 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             source.name, source.frame_rate_hz, layout.name, layout.max_rate_hz));
       }
       for (const auto& method : method_list) {
-        for (MappingParams p : grid) {
+        for (std::size_t g = 0; g < grid.params.size(); ++g) {
+          MappingParams p = grid.params[g];
           p.method = method;
           ExperimentRun run;
           run.source = s;
           run.layout = l;
-          run.id = fmt::format("{:03}-{}-{}-{}-{}", ex.runs.size(), source.name, layout.name,
-                               to_string(method), to_string(p.strain));
+          // Named by every parameter that varies, so that no two runs share a name.
+          run.id = fmt::format("{:03}-{}-{}-{}-{}{}", ex.runs.size(), source.name, layout.name,
+                               to_string(method), to_string(p.strain), grid.names[g]);
           if (p.method == MappingMethod::profile) {
             if (source.kind == SourceKind::file) {
               cx.fail(

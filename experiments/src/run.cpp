@@ -185,6 +185,7 @@ void write_merged(const Experiment& ex, const std::vector<MappedRun>& runs, cons
   {
     nlohmann::json j;
     j["made_by"] = made_by_text;
+    j["grid"] = ex.grid;
     j["program_version"] = kVersion;
     j["created_utc"] = made_by_text.substr(made_by_text.rfind(", ") + 2);
     j["experiment"] = ex.name;

@@ -1,4 +1,4 @@
-// play(movie, backend=...): where `tactile play` sends a movie, a Latero included, by the same
+// play(movie, ...): where `tactile play` sends a movie, a Latero included, by the same
 // function (display::play_anywhere), its messages written to Python's sys.stdout.
 
 #include <fmt/format.h>
@@ -9,7 +9,9 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "request_kwargs.hpp"
 #include "tactile/display/play_anywhere.hpp"
+#include "tactile/display/play_request.hpp"
 #include "tactile/display/usb_transports.hpp"
 
 namespace tactile::python {
@@ -71,62 +73,19 @@ class StopPipe {
   py::object old_;
 };
 
-// The blade mapping's keywords: unset keeps the default (OpenLatero's), as the command line's.
-struct BladeArguments {
-  std::optional<double> centre_raw, raw_per_unit, max_raw, full_scale_um;
-  bool any() const { return centre_raw || raw_per_unit || max_raw || full_scale_um; }
-};
-
-py::dict play(const movie::TactileMovie& movie, const std::string& backend,
-              std::optional<std::filesystem::path> preview, int loops,
-              std::optional<std::string> address, const BladeArguments& blade) {
-  if (backend != "auto" && backend != "headless" && backend != "latero") {
-    throw std::invalid_argument(fmt::format(
-        "backend: '{}' is not auto, headless or latero (auto: a display if one is attached, "
-        "else headless; latero: the Latero at address)",
-        backend));
-  }
-  const bool latero = backend == "latero";
-  if (latero && !address) {
-    throw std::invalid_argument(
-        "address: backend 'latero' needs the Latero's address, HOST[:PORT] (port 8900 by "
-        "default)");
-  }
-  if (!latero && address) {
-    throw std::invalid_argument(
-        fmt::format("address: only with backend 'latero' (backend is '{}')", backend));
-  }
-  if (!latero && blade.any()) {
-    throw std::invalid_argument(fmt::format(
-        "blade_*: the blade mapping is only for backend 'latero' (backend is '{}')", backend));
-  }
-  if (loops < 1 || loops > 1000000) {
-    throw std::invalid_argument(
-        fmt::format("loops: {} is out of range: must be in [1, 1000000]", loops));
-  }
+py::dict play(const movie::TactileMovie& movie, const py::kwargs& kwargs) {
   display::PlayRequest request;
-  request.headless = backend == "headless";
-  request.preview_png = preview.value_or(std::filesystem::path{});
-  request.loops = loops;
-  if (latero) {
-    display::LateroPlayTarget target;
-    target.address = *address;
-    display::LateroBladeMapping& m = target.mapping;
-    m.centre_raw = blade.centre_raw.value_or(m.centre_raw);
-    m.raw_per_unit = blade.raw_per_unit.value_or(m.raw_per_unit);
-    m.max_raw = blade.max_raw.value_or(m.max_raw);
-    m.full_scale_um = blade.full_scale_um.value_or(m.full_scale_um);
-    request.latero = target;
-  }
+  set_from_kwargs(request, display::play_options(), kwargs, "play");
+  display::ResolvedPlay choice = display::resolve(request, OptionSpelling::python);
   display::PlayResult r;
   {
     const StopPipe stop;
-    request.stop_fd = stop.fd();
+    choice.stop_fd = stop.fd();
     py::gil_scoped_release unlocked;
     // Displays on USB but no emulator window: the module links no GUI library (a window that
     // blocks the interpreter until closed is `tactile play`'s and `tactile view`'s).
     r = display::play_anywhere(
-        movie, request,
+        movie, choice,
         [](const std::string& text) {
           py::gil_scoped_acquire locked;
           py::module_::import("sys").attr("stdout").attr("write")(text);
@@ -172,32 +131,20 @@ py::dict play(const movie::TactileMovie& movie, const std::string& backend,
 }  // namespace
 
 void bind_play(py::module_& m) {
-  m.def(
-      "play",
-      [](const movie::TactileMovie& movie, const std::string& backend,
-         std::optional<std::filesystem::path> preview, int loops,
-         std::optional<std::string> address, std::optional<double> blade_centre_raw,
-         std::optional<double> blade_raw_per_unit, std::optional<double> blade_max_raw,
-         std::optional<double> blade_full_scale_um) {
-        return play(movie, backend, std::move(preview), loops, std::move(address),
-                    {blade_centre_raw, blade_raw_per_unit, blade_max_raw, blade_full_scale_um});
-      },
-      py::arg("movie"), py::kw_only(), py::arg("backend") = "auto", py::arg("preview") = py::none(),
-      py::arg("loops") = 1, py::arg("address") = py::none(),
-      py::arg("blade_centre_raw") = py::none(), py::arg("blade_raw_per_unit") = py::none(),
-      py::arg("blade_max_raw") = py::none(), py::arg("blade_full_scale_um") = py::none(),
-      "Plays a movie as `tactile play` does, without its emulator window. backend 'auto': on\n"
-      "an attached display (its vendor interface first), else headless into the emulated\n"
-      "device; 'headless': the emulated device only; 'latero': the Latero at\n"
-      "address HOST[:PORT] (UDP, port 8900 by default; `tactile play --latero`), a movie of the\n"
-      "`latero` layout, with the blade mapping blade_centre_raw, blade_raw_per_unit,\n"
-      "blade_max_raw, blade_full_scale_um (unset: OpenLatero's 75, 75, 150, 100 um). preview: a\n"
-      "PNG strip of what the emulated device output (headless only). Prints what `tactile play`\n"
-      "prints and returns what happened: target, the device's counters, for headless the\n"
-      "largest |output| at the end (0 = at rest), for a Latero its address and the link's\n"
-      "figures (requests_sent, replies_received, missed_replies, achieved_rate_hz, ...).\n"
-      "Ctrl-C stops between two frames, every contactor ramped to rest, then raises\n"
-      "KeyboardInterrupt.");
+  // pybind11 keeps the pointer to the docstring: it must outlive the module.
+  static const std::string doc =
+      "Plays a movie as `tactile play` does, without its emulator window: on an attached display\n"
+      "(its vendor interface first), else headless into the emulated device; headless=True: the\n"
+      "emulated device only; latero='HOST[:PORT]': that Latero (UDP; a movie of the `latero`\n"
+      "layout) with the blade mapping blade_*. preview: a PNG strip of what the emulated device\n"
+      "output (headless only; None: none). Prints what `tactile play` prints and returns what\n"
+      "happened: target, the device's counters, for headless the largest |output| at the end\n"
+      "(0 = at rest), for a Latero its address and the link's figures (requests_sent,\n"
+      "replies_received, missed_replies, achieved_rate_hz, ...). Ctrl-C stops between two\n"
+      "frames, every contactor ramped to rest, then raises KeyboardInterrupt. Keywords (the\n"
+      "command line's options, with underscores):" +
+      kwargs_doc(display::play_options());
+  m.def("play", &play, py::arg("movie"), doc.c_str());
 }
 
 }  // namespace tactile::python

@@ -256,7 +256,7 @@ TEST(LateroTransport, PlaysEveryFramePacedByTheHostClockAndStopsAtCentre) {
 // with a Latero asked for goes there and nowhere else, with the blade mapping it was given.
 TEST(LateroPlay, PlayAnywhereSendsTheMovieToTheLateroAskedForWithItsBladeMapping) {
   RunningEmulator emulator;
-  PlayRequest request;
+  ResolvedPlay request;
   request.headless = true;  // not looked at when a Latero is asked for
   request.latero = LateroPlayTarget{emulator.address().text(), {}};
   request.latero->mapping.centre_raw = 128;
@@ -283,7 +283,7 @@ TEST(LateroPlay, PlayAnywhereSendsTheMovieToTheLateroAskedForWithItsBladeMapping
 
 TEST(LateroPlay, RefusesAnotherLayoutOrABadMappingBeforeSendingAnything) {
   RunningEmulator emulator;
-  PlayRequest request;
+  ResolvedPlay request;
   request.latero = LateroPlayTarget{emulator.address().text(), {}};
   const auto quiet = [](const std::string&) {};
   try {

@@ -28,7 +28,7 @@ DeviceDescription display_at(const std::string& path) {
 
 TEST(PlayAnywhere, WithNoBackEndsPlaysHeadlessAndSaysNoWindowWasPossible) {
   std::string said;
-  const PlayResult r = play_anywhere(small_movie(), PlayRequest{},
+  const PlayResult r = play_anywhere(small_movie(), ResolvedPlay{},
                                      [&](const std::string& text) { said += text; }, {});
   EXPECT_EQ(r.target, PlaybackTarget::headless);
   ASSERT_TRUE(r.report);
@@ -54,10 +54,10 @@ TEST(PlayAnywhere, AnOfferedDisplayTakesTheMovieThroughTheBackEndThatOpensIt) {
     ++screens_asked;
     return true;
   };
-  backends.play_in_window = [](const movie::TactileMovie&, const PlayRequest&, const Say&,
+  backends.play_in_window = [](const movie::TactileMovie&, const ResolvedPlay&, const Say&,
                                PlayResult&) { ADD_FAILURE() << "the window opened"; };
   const PlayResult r = play_anywhere(
-      small_movie(), PlayRequest{}, [](const std::string&) {}, backends);
+      small_movie(), ResolvedPlay{}, [](const std::string&) {}, backends);
   EXPECT_EQ(r.target, PlaybackTarget::device);
   EXPECT_EQ(opened, 1);
   EXPECT_EQ(screens_asked, 0);
@@ -71,26 +71,26 @@ TEST(PlayAnywhere, TheWindowTakesTheMovieOnlyWhenItsBackEndFindsAScreen) {
   bool screen = true;
   PlayBackends backends;
   backends.screen = [&] { return screen; };
-  backends.play_in_window = [&](const movie::TactileMovie& m, const PlayRequest&, const Say&,
+  backends.play_in_window = [&](const movie::TactileMovie& m, const ResolvedPlay&, const Say&,
                                 PlayResult&) {
     EXPECT_EQ(m.frame_count, 70);
     ++windows;
   };
   std::string said;
   const auto say = [&](const std::string& text) { said += text; };
-  EXPECT_EQ(play_anywhere(small_movie(), PlayRequest{}, say, backends).target,
+  EXPECT_EQ(play_anywhere(small_movie(), ResolvedPlay{}, say, backends).target,
             PlaybackTarget::window);
   EXPECT_EQ(windows, 1);
   EXPECT_THAT(said, HasSubstr("opening the emulator window"));
   screen = false;
   said.clear();
-  EXPECT_EQ(play_anywhere(small_movie(), PlayRequest{}, say, backends).target,
+  EXPECT_EQ(play_anywhere(small_movie(), ResolvedPlay{}, say, backends).target,
             PlaybackTarget::headless);
   EXPECT_EQ(windows, 1);
   EXPECT_THAT(said, HasSubstr("no display attached and no screen"));
   // Headless asked for: neither back end is consulted.
   screen = true;
-  PlayRequest headless;
+  ResolvedPlay headless;
   headless.headless = true;
   EXPECT_EQ(play_anywhere(small_movie(), headless, say, backends).target, PlaybackTarget::headless);
   EXPECT_EQ(windows, 1);

@@ -44,7 +44,7 @@ TEST(Summary, ActivityFollowsAnEnvelopeAndSaturationIsCounted) {
   EXPECT_DOUBLE_EQ(s.peak_frame_t_s, 0.5);
   const std::string text = format_summary(s);
   EXPECT_THAT(text, HasSubstr("stress (10 x 10 contactors)"));
-  EXPECT_THAT(text, HasSubstr("700 frames at 700 Hz = 1.000 s"));
+  EXPECT_THAT(text, HasSubstr("700 movie frames at 700 Hz = 1.000 s"));
   EXPECT_THAT(text, HasSubstr("50.00 % of samples"));
   EXPECT_THAT(text, HasSubstr("|     #####|"));
 }

@@ -6,10 +6,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/movie/movie_io.hpp"
 
 namespace fs = std::filesystem;
 using tactile::test::demo_dir;
@@ -207,10 +209,70 @@ TEST(Cli, OptionsThatContradictEachOtherAreUsageErrors) {
   const std::string movie = (demo_dir() / "movie.h5").string();
   auto r = run_tactile("play " + movie + " --headless --latero 127.0.0.1:9");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("--headless excludes --latero"));
+  EXPECT_THAT(r.output, HasSubstr("--headless: not with --latero"));
   const fs::path out = dir.path() / "perceive";
   r = run_tactile("perceive --out " + out.string() + " --trials 2 --export-trials 3");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("--export-trials requires --export-recordings"));
   EXPECT_FALSE(fs::exists(out));
+}
+
+// An empty path was taken as no file at all: `view --screenshot ''` opened the window and waited
+// for a person to close it. Every option that takes a value refuses "" when it is parsed, in
+// bounded time and before any work.
+TEST(Cli, EmptyValuesAreUsageErrorsAtParseTime) {
+  const tactile::test::TempDir d_tmp("empty");
+  const fs::path& d = d_tmp.path();
+  const std::string movie = (tactile::test::demo_dir() / "movie.h5").string();
+  const std::string strain = (tactile::test::demo_dir() / "strain.h5").string();
+  tactile::test::Started view({"view", movie, "--screenshot", ""}, d / "view.log");
+  const auto ended = view.wait(30);
+  ASSERT_TRUE(ended.ended) << "view --screenshot '' still running after 30 s";
+  EXPECT_EQ(ended.exit_code, 2);
+  std::ifstream log(d / "view.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("--screenshot: is empty"));
+  for (const std::string& args :
+       {"map " + strain + " --out ''", "map " + strain + " --out x.h5 --csv ''",
+        "play " + movie + " --preview ''", "play " + movie + " --latero ''",
+        "export " + movie + " --hjif ''", "capture " + d.string() + " --px-per-mm 47 --out ''"}) {
+    const auto r = run_tactile(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("empty")) << args;
+  }
+  // A file that must exist: refused as missing, still at parse time.
+  EXPECT_EQ(run_tactile("info ''").exit_code, 2);
+  EXPECT_EQ(run_tactile("view " + movie + " --strain ''").exit_code, 2);
+  EXPECT_FALSE(fs::exists(d / "x.h5"));
+}
+
+// A single image where a folder of frames is expected is the wrong kind of input: a usage
+// error (2) naming it, like a value out of range, not a failure of the work (1).
+TEST(Cli, ASingleImageWhereAFolderOfFramesIsExpectedIsAUsageError) {
+  const tactile::test::TempDir d_tmp("single");
+  const fs::path& d = d_tmp.path();
+  const fs::path image = tactile::test::demo_dir() / "frames" / "frame_000.png";
+  const auto r =
+      run_tactile("capture " + image.string() + " --px-per-mm 47 --out " + (d / "s.h5").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("is a single file, not a folder of frames"));
+  EXPECT_FALSE(fs::exists(d / "s.h5"));
+}
+
+// `info` said 2077 frames and `play` 2147 for the same movie (the played output holds the
+// ramps): every command counts the movie's own frames, and the ramps apart.
+TEST(Cli, InfoAndPlayCountTheMovieFramesAlike) {
+  const tactile::test::TempDir d_tmp("count");
+  const fs::path movie = tactile::test::demo_dir() / "movie.h5";
+  const std::string frames =
+      std::to_string(tactile::movie::read_tactile_movie(movie).frame_count) + " movie frames";
+  const auto info = run_tactile("info " + movie.string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("length      " + frames + " at "));
+  const auto play = run_tactile("play " + movie.string() + " --headless --preview " +
+                                (d_tmp.path() / "p.png").string());
+  ASSERT_EQ(play.exit_code, 0) << play.output;
+  EXPECT_THAT(play.output, HasSubstr("(of " + frames + " + "));
+  EXPECT_THAT(play.output, HasSubstr("length      " + frames + " + "));
+  EXPECT_THAT(play.output, HasSubstr(" frames of ramp from and to rest at "));
 }

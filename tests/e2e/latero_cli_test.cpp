@@ -156,11 +156,22 @@ TEST(LateroCli, BladeMappingIsTheUsersToSet) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("raw 128 at rest"));
   EXPECT_EQ(numbers(r.output, kBladesLeft), (std::vector<double>{128, 128}));
-  // A centre above the largest raw value is refused before anything is sent.
+  // A mapping no blade can follow is a usage error like any other range error, refused
+  // before anything is sent: a centre above the largest raw value, a blade that never moves.
   const auto bad = run_tactile(play + " --blade-centre-raw 200");
-  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.output, HasSubstr("centre_raw 200 is outside [0, max_raw 150]"));
   EXPECT_EQ(run_tactile(play + " --blade-max-raw 300").exit_code, 2);
+  const auto still = run_tactile(play + " --blade-raw-per-unit 0");
+  EXPECT_EQ(still.exit_code, 2);
+  EXPECT_THAT(still.output, HasSubstr("--blade-raw-per-unit: 0 is out of range"));
+  // A blade mapping or --headless without a Latero to apply it to is refused, not ignored.
+  const auto headless = run_tactile(play + " --headless");
+  EXPECT_EQ(headless.exit_code, 2);
+  EXPECT_THAT(headless.output, HasSubstr("--headless: not with --latero"));
+  const auto unused = run_tactile("play " + movie.string() + " --headless --blade-max-raw 200");
+  EXPECT_EQ(unused.exit_code, 2);
+  EXPECT_THAT(unused.output, HasSubstr("the blade mapping is only for a Latero"));
 }
 
 TEST(LateroCli, MissedRepliesAreCountedByTheSender) {

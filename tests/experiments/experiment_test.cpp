@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ using namespace tactile::perception;
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // Ground truth of a short bump scene on a coarse grid: fast enough for debug+sanitizer builds.
 const char* kSmall = R"({
@@ -57,6 +59,33 @@ TEST(Experiment, ParsesTheGridInAFixedOrder) {
   EXPECT_DOUBLE_EQ(ex.runs[5].params.rate_hz.value(), 200);
   EXPECT_EQ(ex.sources[0].scene.seed, 3u);  // experiment seed + source index
   EXPECT_EQ(ex.sources[0].scene.frame_count, 12);
+}
+
+// Two runs that differed only in normalisation had the same name (and so wrote the same movie
+// file): a run is named by every parameter that varies, and the grid is stated whole.
+TEST(Experiment, RunsAreNamedByEveryParameterThatVaries) {
+  const auto ex = parse_experiment(R"({
+    "name": "norms", "seed": 1,
+    "sources": [{"name": "bump", "ground_truth": {"scene": "bump", "frames": 12}}],
+    "layouts": ["stress"],
+    "methods": ["integrated"],
+    "parameters": {"normalisation": ["none", "peak"], "gain_um_per_strain": [500, 1000],
+                   "rate_hz": 200}
+  })",
+                                   "norms.json", ".");
+  ASSERT_EQ(ex.runs.size(), 4u);
+  std::set<std::string> ids;
+  for (const auto& run : ex.runs) ids.insert(run.id);
+  EXPECT_EQ(ids.size(), 4u);
+  EXPECT_EQ(ex.runs[0].id,
+            "000-bump-stress-integrated-per-frame-gain_um_per_strain-500-normalisation-none");
+  EXPECT_EQ(ex.runs[3].id,
+            "003-bump-stress-integrated-per-frame-gain_um_per_strain-1000-normalisation-peak");
+  EXPECT_EQ(ex.grid,
+            "1 sources x 1 layouts x 1 methods x 4 parameter sets (layouts: stress; methods: "
+            "integrated; gain_um_per_strain: 500, 1000; normalisation: none, peak)");
+  // A parameter given one value names no run.
+  for (const auto& run : ex.runs) EXPECT_THAT(run.id, Not(HasSubstr("rate_hz")));
 }
 
 TEST(Experiment, WithoutARateEachLayoutMapsAtItsOwnRateAsTactileMap) {

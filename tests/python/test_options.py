@@ -16,8 +16,10 @@ DEMO = pathlib.Path(os.environ["TACTILE_E2E_DEMO_DIR"])
 # Options only the command line has: where a command writes its results.
 CLI_ONLY = {"capture": {"--out", "--csv", "--maps"}, "map": {"--out", "--csv"},
             "live": {"--headless", "--window", "--screenshot", "--latero", "--blade-centre-raw",
-                     "--blade-raw-per-unit", "--blade-max-raw", "--blade-full-scale-um"}}
-COMMANDS = [("capture", tactile.capture), ("map", tactile.map), ("live", tactile.live)]
+                     "--blade-raw-per-unit", "--blade-max-raw", "--blade-full-scale-um"},
+            "play": set()}
+COMMANDS = [("capture", tactile.capture), ("map", tactile.map), ("live", tactile.live),
+            ("play", tactile.play)]
 
 
 def help_flags(cli, command):
@@ -27,10 +29,11 @@ def help_flags(cli, command):
 
 
 def readme_flags(command):
-    rows = [line for line in README.read_text().splitlines()
+    # A command may have several rows (one per way of using it): together they name its options.
+    rows = [line.split("` |")[0] for line in README.read_text().splitlines()
             if line.startswith(f"| `tactile {command} ")]
     assert rows, f"no README row for `tactile {command}`"
-    return set(re.findall(r"(--[a-z][a-z0-9-]*)", rows[0]))
+    return set(re.findall(r"(--[a-z][a-z0-9-]*)", " ".join(rows)))
 
 
 def python_keywords(function):
@@ -49,7 +52,8 @@ def test_help_python_and_readme_name_the_same_options(cli, command, function):
 def test_every_documented_keyword_is_taken(tmp_path):
     strain = tactile.read_strain_movie(DEMO / "strain.h5")
     for function, first in [(tactile.capture, tmp_path), (tactile.map, strain),
-                            (tactile.live, str(tmp_path))]:
+                            (tactile.live, str(tmp_path)),
+                            (tactile.play, tactile.read_movie(DEMO / "movie.h5"))]:
         for keyword in python_keywords(function) - {"layout"}:
             # A value no option takes: the complaint must be about the value, not the keyword.
             with pytest.raises(TypeError) as error:

@@ -23,7 +23,7 @@ def small_movie():
 
 
 def test_headless_plays_every_frame_and_ends_at_rest(tmp_path, capsys):
-    result = tactile.play(small_movie(), backend="headless", preview=tmp_path / "p.png")
+    result = tactile.play(small_movie(), headless=True, preview=tmp_path / "p.png")
     out = capsys.readouterr().out
     assert result["target"] == "headless" and not result["stopped"]
     # The movie plus the start and stop ramps, all played by the emulated firmware.
@@ -72,12 +72,16 @@ def test_the_module_links_no_gui_library():
 
 def test_play_bad_arguments():
     movie = small_movie()
-    with pytest.raises(ValueError, match="backend: 'usb' is not auto, headless or latero"):
+    with pytest.raises(TypeError, match="unexpected keyword argument 'backend'"):
         tactile.play(movie, backend="usb")
     with pytest.raises(ValueError, match="loops: 0 is out of range"):
-        tactile.play(movie, backend="headless", loops=0)
+        tactile.play(movie, headless=True, loops=0)
+    with pytest.raises(ValueError, match="preview: the path is empty"):
+        tactile.play(movie, headless=True, preview="")
+    with pytest.raises(ValueError, match="headless: takes true or false"):
+        tactile.play(movie, headless=1)
     with pytest.raises(TypeError):
-        tactile.play(np.zeros((3, 10, 10)), backend="headless")
+        tactile.play(np.zeros((3, 10, 10)), headless=True)
 
 
 def test_ctrl_c_stops_between_frames_ramps_to_rest_and_raises(tmp_path):
@@ -88,7 +92,7 @@ def test_ctrl_c_stops_between_frames_ramps_to_rest_and_raises(tmp_path):
         "d[:] = (20 * np.sin(np.arange(1400) / 20.0))[:, None, None]\n"
         "movie = tactile.Movie(d, 'stress')\n"
         "print('ready', flush=True)\n"
-        "tactile.play(movie, backend='headless', loops=1000, preview=%r)\n"
+        "tactile.play(movie, headless=True, loops=1000, preview=%r)\n"
         % str(tmp_path / "p.png"))
     child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True, env=os.environ)
@@ -153,7 +157,7 @@ def counters(emulator_output):
 
 def test_latero_backend_plays_to_the_emulated_latero_and_ends_at_rest(cli, capsys):
     with EmulatedLatero(cli) as latero:
-        result = tactile.play(latero_movie(150), backend="latero", address=latero.address)
+        result = tactile.play(latero_movie(150), latero=latero.address)
         got = counters(latero.stop())
     out = capsys.readouterr().out
     assert result["target"] == "latero" and result["address"] == latero.address
@@ -177,7 +181,7 @@ def test_latero_backend_plays_to_the_emulated_latero_and_ends_at_rest(cli, capsy
 
 def test_latero_blade_mapping_is_the_users_to_set(cli, capsys):
     with EmulatedLatero(cli) as latero:
-        result = tactile.play(latero_movie(75), backend="latero", address=latero.address,
+        result = tactile.play(latero_movie(75), latero=latero.address,
                               blade_centre_raw=128, blade_max_raw=255)
         got = counters(latero.stop())
     assert result["target"] == "latero"
@@ -187,21 +191,23 @@ def test_latero_blade_mapping_is_the_users_to_set(cli, capsys):
 
 def test_latero_bad_arguments(cli):
     movie = latero_movie(10)
-    with pytest.raises(ValueError, match="backend 'latero' needs the Latero's address"):
-        tactile.play(movie, backend="latero")
-    with pytest.raises(ValueError, match="address: only with backend 'latero'"):
-        tactile.play(movie, backend="headless", address="127.0.0.1")
-    with pytest.raises(ValueError, match="blade mapping is only for backend 'latero'"):
-        tactile.play(movie, backend="headless", blade_centre_raw=100)
+    with pytest.raises(ValueError, match="latero: is empty"):
+        tactile.play(movie, latero="")
+    with pytest.raises(ValueError, match="headless: not with latero"):
+        tactile.play(movie, headless=True, latero="127.0.0.1")
+    with pytest.raises(ValueError, match="blade mapping is only for a Latero: give latero"):
+        tactile.play(movie, headless=True, blade_centre_raw=100)
+    with pytest.raises(ValueError, match="blade_raw_per_unit: 0 is out of range"):
+        tactile.play(movie, latero="127.0.0.1:9", blade_raw_per_unit=0)
     for address, why in [("127.0.0.1:0", "outside 1..65535"), ("127.0.0.1:port", "not a number"),
                          (":8900", "no host"), ("[::1", "without ']'")]:
         with pytest.raises(ValueError, match=re.escape(why)):
-            tactile.play(movie, backend="latero", address=address)
+            tactile.play(movie, latero=address)
     # The movie and the blade mapping are checked before anything is sent: no device needed.
     with pytest.raises(ValueError, match="centre_raw 200 is outside \\[0, max_raw 150\\]"):
-        tactile.play(movie, backend="latero", address="127.0.0.1:9", blade_centre_raw=200)
+        tactile.play(movie, latero="127.0.0.1:9", blade_centre_raw=200)
     with pytest.raises(ValueError) as e:
-        tactile.play(small_movie(), backend="latero", address="127.0.0.1:9")
+        tactile.play(small_movie(), latero="127.0.0.1:9")
     assert "'stress'" in str(e.value) and "'latero'" in str(e.value)
     assert "--layout latero" in str(e.value)
 
@@ -212,7 +218,7 @@ def test_latero_nothing_answering_is_a_device_error_naming_the_address():
         s.bind(("127.0.0.1", 0))
         address = "127.0.0.1:%d" % s.getsockname()[1]
         with pytest.raises(tactile.DeviceError, match=re.escape(address)):
-            tactile.play(latero_movie(10), backend="latero", address=address)
+            tactile.play(latero_movie(10), latero=address)
 
 
 def test_ctrl_c_on_the_latero_stops_and_ramps_every_blade_to_rest(cli):
@@ -225,7 +231,7 @@ def test_ctrl_c_on_the_latero_stops_and_ramps_every_blade_to_rest(cli):
             "d[:] = (40 * np.sin(2 * np.pi * 3 * t))[:, None, None]\n"
             "movie = tactile.Movie(d, 'latero')\n"
             "print('ready', flush=True)\n"
-            "tactile.play(movie, backend='latero', address=%r)\n" % latero.address)
+            "tactile.play(movie, latero=%r)\n" % latero.address)
         child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
                                  stderr=subprocess.PIPE, text=True, env=os.environ)
         try:

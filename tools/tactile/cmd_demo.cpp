@@ -148,7 +148,7 @@ int run_demo(DemoOptions& opt, const std::string& command_line) {
   if (opt.keep) movie::export_tactile_csv(opt.out / "csv" / "movie.csv", movie);
 
   fmt::print("  5 play\n");
-  display::PlayRequest choice;
+  display::ResolvedPlay choice;
   choice.headless = opt.headless;
   choice.preview_png = opt.out / "preview.png";
   display::play_anywhere(

@@ -254,11 +254,8 @@ void add_experiment(CLI::App& app, Action& action) {
         fmt::print("merge job {}\n", merge_job);
         return 0;
       }
-      fmt::print(
-          "experiment '{}': {} sources x {} layouts -> {} runs ({} cells), checked; "
-          "writing {}\n",
-          ex.name, ex.sources.size(), ex.layouts.size(), ex.runs.size(), plan.cells.size(),
-          out.string());
+      fmt::print("experiment '{}': {} -> {} runs ({} cells), checked; writing {}\n", ex.name,
+                 ex.grid, ex.runs.size(), plan.cells.size(), out.string());
       std::mutex print_mutex;
       const auto report =
           experiments::run_experiment(ex, out, opt->threads, [&](const std::string& message) {

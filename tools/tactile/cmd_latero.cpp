@@ -13,9 +13,11 @@
 #include "command.hpp"
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
+#include "request_options.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/latero_emulator.hpp"
 #include "tactile/display/latero_transport.hpp"
+#include "tactile/display/play_request.hpp"
 #include "tactile/display/player.hpp"
 #include "tactile/display/viewer.hpp"
 
@@ -90,26 +92,10 @@ void add_latero_play_options(CLI::App& play, display::LateroPlayTarget& o) {
 }
 
 void add_blade_mapping_options(CLI::App& command, display::LateroBladeMapping& mapping) {
-  // Defaults from OpenLatero; a lab that has measured its blades sets its own
-  // (docs/protocol.md, "Blade values").
-  command.add_option("--blade-centre-raw", mapping.centre_raw, "Latero: raw blade value at rest")
-      ->check(within(0.0, 255.0))
-      ->capture_default_str();
-  command
-      .add_option("--blade-raw-per-unit", mapping.raw_per_unit,
-                  "Latero: raw units for a deflection of +full scale (negative: +x lowers it)")
-      ->check(within(-255.0, 255.0))
-      ->capture_default_str();
-  command.add_option("--blade-max-raw", mapping.max_raw, "Latero: largest raw blade value sent")
-      ->check(within(1.0, 255.0))
-      ->capture_default_str();
-  command
-      .add_option("--blade-full-scale-um", mapping.full_scale_um,
-                  "Latero: deflection that moves a blade by raw-per-unit")
-      // Blades move tens to hundreds of micrometres; far outside, every frame maps to rest
-      // (too large) or to the clamp (too small) without a word.
-      ->check(within(0.1, 10000.0))
-      ->capture_default_str();
+  // The options write into `mapping`, which outlives the parse (the caller's): no owner.
+  add_request_options(
+      command, std::shared_ptr<display::LateroBladeMapping>(std::shared_ptr<void>(), &mapping),
+      display::blade_mapping_options());
 }
 
 int print_latero_device(const std::string& address) {

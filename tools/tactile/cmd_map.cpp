@@ -68,7 +68,8 @@ void add_map(CLI::App& app, Action& action, const std::string& command_line) {
       if (*csv) movie::export_tactile_csv(**csv, movie);
       together.commit();
       fmt::print(
-          "map: {} strain frames -> {} frames of {} x {} at {:g} Hz ({:.2f} s) in {:.1f} ms -> "
+          "map: {} strain frames -> {} movie frames of {} x {} at {:g} Hz ({:.2f} s) in {:.1f} ms "
+          "-> "
           "{}\n",
           strain.frames.size(), movie.frame_count, resolved.layout.rows, resolved.layout.cols,
           movie.rate_hz, movie.duration_s(), ms, out->string());

@@ -8,11 +8,13 @@
 #include "command.hpp"
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
+#include "request_options.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/play_anywhere.hpp"
+#include "tactile/display/play_request.hpp"
 #include "tactile/display/preview.hpp"
 #include "tactile/display/summary.hpp"
 #include "tactile/display/usb_transports.hpp"
@@ -50,48 +52,31 @@ movie::TactileMovie read_movie_to_play(const fs::path& path) {
 }  // namespace
 
 void add_play(CLI::App& app, Action& action) {
-  struct Options {
-    fs::path movie;
-    display::PlayRequest choice = [] {
-      display::PlayRequest r;
-      r.preview_png = "preview.png";
-      return r;
-    }();
-    display::LateroPlayTarget latero;
-  };
-  auto opt = std::make_shared<Options>();
+  auto request = std::make_shared<display::PlayRequest>();
   CLI::App* sub = app.add_subcommand(
       "play",
       "Play a tactile movie: on an attached display; with none, in the emulator window; with no\n"
       "screen either, headless into the emulated device (firmware limits applied), writing a\n"
       "preview image strip and printing a summary.");
-  sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_flag("--headless", opt->choice.headless, "Play into the emulated device, no window");
-  sub->add_option("--preview", opt->choice.preview_png, "Preview image written when headless")
-      ->capture_default_str();
-  sub->add_option("--loops", opt->choice.loops, "Times to play the movie")
-      ->check(within(1, 1000000))
-      ->capture_default_str();
-  add_latero_play_options(*sub, opt->latero);
-  // Headless plays into the emulated device, --latero on a real one: both at once is no choice.
-  sub->get_option("--latero")->excludes(sub->get_option("--headless"));
-  sub->callback([opt, &action] {
-    action = [opt] {
+  add_request_options(*sub, request, display::play_options());
+  sub->callback([request, &action] {
+    action = [request] {
+      // Before reading: fail fast on options that do not go together.
+      display::ResolvedPlay choice = display::resolve(*request, OptionSpelling::cli);
       // Checked even if the movie ends up on a device: whether it plays headless (the one case
       // that writes the preview) is decided only while playing.
-      refuse_output_over_input({output_file_ending("--preview", opt->choice.preview_png, ".png")},
-                               {{"MOVIE_H5", opt->movie}});
-      const movie::TactileMovie movie = read_movie_to_play(opt->movie);
+      if (request->preview) {
+        refuse_output_over_input({output_file_ending("--preview", *request->preview, ".png")},
+                                 {{"MOVIE_H5", request->movie}});
+      }
+      const movie::TactileMovie movie = read_movie_to_play(request->movie);
       // Before any device is opened: the threads USB libraries and the window start inherit
       // the blocked signals, so Ctrl-C reaches the player and not the default action.
       StopSignals stop;
-      opt->choice.stop_fd = stop.fd();
-      if (!opt->latero.address.empty()) opt->choice.latero = opt->latero;
+      choice.stop_fd = stop.fd();
       // A stopped playback returns too, after its summary; the signal decides the exit code.
       display::play_anywhere(
-          movie, opt->choice, [](const std::string& text) { fmt::print("{}", text); },
+          movie, choice, [](const std::string& text) { fmt::print("{}", text); },
           display::with_window(display::usb_play_backends()));
       if (const int signal = stop.received(); signal != 0) {
         fmt::print("play: stopped by {}\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
@@ -178,8 +163,11 @@ void add_view(CLI::App& app, Action& action) {
       const display::ViewerResult r = display::run_viewer(movie, opt->viewer);
       if (!opt->screenshot.empty()) {
         display::write_png(opt->screenshot, r.last_image);
-        fmt::print("view: frame {} of {} drawn to {}{}\n", r.last_movie_frame + 1,
-                   r.shown_frame_count, opt->screenshot.string(),
+        fmt::print("view: frame {} of {} ({}) drawn to {}{}\n", r.last_movie_frame + 1,
+                   r.shown_frame_count,
+                   display::frame_count_text(r.shown_frame_count - r.device_report.ramp_frames,
+                                             r.device_report.ramp_frames),
+                   opt->screenshot.string(),
                    opt->viewer.field ? " (with the source strain field)" : "");
       }
       return 0;

@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_emulate(app, action);
   tactile::cli::add_live(app, action);
   tactile::cli::add_bench(app, action);
+  tactile::cli::refuse_empty_values(app);
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
   if (argc > 1 && argv[1][0] != '-' && !tactile::cli::find_command(app, argv[1])) {

@@ -64,7 +64,13 @@ CLI::Validator row_check(const OptionRow<R>& row) {
           return fmt::format("{} is not {}", text,
                              row.kind == OptionKind::integer ? "a whole number" : "a number");
         }
-        return option_problem(row, value);
+        std::string problem = option_problem(row, value);
+        // The number as typed ("1e308"), not as printed back ("1e+308"): the person finds it.
+        if (const auto* d = std::get_if<double>(&value)) {
+          const std::string printed = fmt::format("{} ", *d);
+          if (problem.rfind(printed, 0) == 0) problem.replace(0, printed.size() - 1, text);
+        }
+        return problem;
       },
       validator_text(row));
 }
@@ -77,6 +83,13 @@ void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
     std::string flag =
         row.positional ? std::string(row.metavar) : option_label(row.name, OptionSpelling::cli);
     if (!row.cli_alias.empty()) flag += "," + std::string(row.cli_alias);
+    if (row.kind == OptionKind::flag) {
+      sub.add_flag_function(
+          flag,
+          [request, row](std::int64_t) { set_option(*request, row, true, OptionSpelling::cli); },
+          row.help);
+      continue;
+    }
     CLI::Option* option = sub.add_option_function<std::string>(
         flag,
         [request, row](const std::string& text) {
@@ -99,6 +112,9 @@ void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
         break;
       case OptionKind::path:
         option->type_name("PATH");
+        break;
+      case OptionKind::text:
+        option->type_name(std::string(row.metavar));
         break;
       case OptionKind::flag:
         option->type_name("BOOL");

@@ -23,4 +23,9 @@ CommandPath command_path(const CLI::App& app, int argc, char** argv);
 // first flag of argv the command does not take; nothing when it takes them all.
 std::optional<std::string> unknown_flag(const CommandPath& path, int argc, char** argv);
 
+// Every option of `app` and its commands that takes a value refuses the empty string at parse
+// time: an empty path would be taken as the current folder or as no file at all (an empty
+// --screenshot opened the window and waited for a person), and no option gives "" a meaning.
+void refuse_empty_values(CLI::App& app);
+
 }  // namespace tactile::cli

@@ -6,6 +6,7 @@
 
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/capture/pore_model_io.hpp"
+#include "tactile/capture/video.hpp"
 
 namespace tactile::capture {
 
@@ -85,6 +86,15 @@ void check_request(const CaptureRequest& request, OptionSpelling spelling) {
 
 ResolvedCapture resolve(const CaptureRequest& request, OptionSpelling spelling) {
   check_request(request, spelling);
+  // A single image (or any file that is not a video) where a folder of frames is expected is
+  // the wrong kind of input, as a value out of range is: the caller's to correct.
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(request.source, ec) && !is_video_name(request.source)) {
+    throw RequestError(fmt::format(
+        "{}: {} is a single file, not a folder of frames or a video (give the folder that "
+        "holds the frames)",
+        spelling == OptionSpelling::cli ? "IMAGE_DIR" : "source", request.source.string()));
+  }
   ResolvedCapture r;
   r.frames = std::make_unique<FrameRange>(request.source, request.start, request.frames);
   if (const std::string range = r.frames->range_error(spelling); !range.empty()) {

@@ -18,7 +18,7 @@ namespace tactile::display {
 
 namespace {
 
-void play_headless(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
+void play_headless(const movie::TactileMovie& movie, const ResolvedPlay& request, const Say& say,
                    PlayResult& result) {
   EmulatedDeviceOptions device;
   device.layout = movie.layout;
@@ -45,7 +45,11 @@ void play_headless(const movie::TactileMovie& movie, const PlayRequest& request,
     say("play: stopped; no preview written\n");
     return;
   }
-  say(format_summary(summarize(output)));
+  MovieSummary summary = summarize(output);
+  // The output holds the ramps the player added: counted apart, as the line above counts them.
+  summary.ramp_frames = static_cast<std::int32_t>(report.ramp_frames);
+  summary.frame_count -= summary.ramp_frames;
+  say(format_summary(summary));
   if (request.preview_png.empty()) return;
   write_preview_strip(request.preview_png, output, PreviewOptions{});
   result.preview_png = request.preview_png;
@@ -53,7 +57,7 @@ void play_headless(const movie::TactileMovie& movie, const PlayRequest& request,
                   request.preview_png.string()));
 }
 
-void play_on_device(const movie::TactileMovie& movie, const PlayRequest& request,
+void play_on_device(const movie::TactileMovie& movie, const ResolvedPlay& request,
                     const DeviceDescription& device, const PlayBackends& backends, const Say& say,
                     PlayResult& result) {
   say(fmt::format("play: streaming to {} {} ({} {})\n",
@@ -85,7 +89,7 @@ void check_latero_movie(const movie::TactileMovie& movie) {
   }
 }
 
-void play_on_latero(const movie::TactileMovie& movie, const PlayRequest& request, const Say& say,
+void play_on_latero(const movie::TactileMovie& movie, const ResolvedPlay& request, const Say& say,
                     PlayResult& result) {
   check_latero_movie(movie);
   const LateroPlayTarget& target = *request.latero;
@@ -114,7 +118,7 @@ void play_on_latero(const movie::TactileMovie& movie, const PlayRequest& request
 
 }  // namespace
 
-PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& request,
+PlayResult play_anywhere(const movie::TactileMovie& movie, const ResolvedPlay& request,
                          const Say& say, const PlayBackends& backends) {
   if (request.latero) {
     PlayResult result;

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "tactile/display/summary.hpp"
+
 namespace tactile::display {
 
 std::optional<DeviceDescription> pick_device(const std::vector<DeviceDescription>& devices) {
@@ -34,11 +36,10 @@ PlaybackPlan plan_playback(bool headless, const std::vector<DeviceDescription>& 
 std::string playback_summary_line(const PlaybackReport& r) {
   // The movie's own length apart from the ramps, so that it reads as `info` and `map` count it.
   return fmt::format(
-      "{} frames played at {:g} Hz (of {} movie frames + {} frames of ramp from and to rest; "
-      "{:.2f} s device time, {:.3f} s wall), {} underruns, {} malformed, {} samples clamped, {} "
-      "slew-limited{}\n",
-      r.frames_played, r.rate_hz, r.movie_frames, r.ramp_frames, r.duration_s, r.wall_s,
-      r.underruns, r.malformed, r.clamped_samples, r.slew_limited_samples,
+      "{} frames played at {:g} Hz (of {}; {:.2f} s device time, {:.3f} s wall), {} underruns, "
+      "{} malformed, {} samples clamped, {} slew-limited{}\n",
+      r.frames_played, r.rate_hz, frame_count_text(r.movie_frames, r.ramp_frames), r.duration_s,
+      r.wall_s, r.underruns, r.malformed, r.clamped_samples, r.slew_limited_samples,
       r.interrupted ? "; stopped by a stop request, every contactor ramped to rest" : "");
 }
 

@@ -68,11 +68,17 @@ MovieSummary summarize(const movie::TactileMovie& movie) {
   return s;
 }
 
+std::string frame_count_text(std::int64_t movie_frames, std::int64_t ramp_frames) {
+  if (ramp_frames == 0) return fmt::format("{} movie frames", movie_frames);
+  return fmt::format("{} movie frames + {} frames of ramp from and to rest", movie_frames,
+                     ramp_frames);
+}
+
 std::string format_summary(const MovieSummary& s) {
   std::string out;
   out += fmt::format("layout      {} ({} x {} contactors)\n", s.layout_name, s.rows, s.cols);
-  out += fmt::format("length      {} frames at {} Hz = {:.3f} s\n", s.frame_count, s.rate_hz,
-                     s.duration_s);
+  out += fmt::format("length      {} at {} Hz = {:.3f} s\n",
+                     frame_count_text(s.frame_count, s.ramp_frames), s.rate_hz, s.duration_s);
   out += fmt::format("deflection  peak {:.2f} um, RMS {:.2f} um\n", s.peak_deflection_um,
                      s.rms_deflection_um);
   out += fmt::format("activity    peak frame RMS {:.2f} um at t = {:.3f} s\n", s.peak_frame_rms_um,

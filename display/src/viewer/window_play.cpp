@@ -9,7 +9,7 @@ namespace tactile::display {
 
 PlayBackends with_window(PlayBackends backends) {
   backends.screen = screen_available;
-  backends.play_in_window = [](const movie::TactileMovie& movie, const PlayRequest& request,
+  backends.play_in_window = [](const movie::TactileMovie& movie, const ResolvedPlay& request,
                                const Say& say, PlayResult& result) {
     ViewerOptions viewer;
     viewer.loop = request.loops > 1;

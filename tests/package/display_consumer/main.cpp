@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
     const auto n = static_cast<std::size_t>(movie.layout.contactor_count());
     movie.deflection_um.assign(n * 20, 0.0f);
     movie.frame(10)[0] = 10.0f;
-    tactile::display::PlayRequest request;
+    tactile::display::ResolvedPlay request;
     request.preview_png = argv[1];
     const auto result = tactile::display::play_anywhere(
         movie, request, [](const std::string& text) { std::fputs(text.c_str(), stdout); }, {});

@@ -30,7 +30,9 @@
 
 namespace tactile {
 
-enum class OptionKind { integer, number, choice, path, flag };
+// text: a name that is not a path or a choice (an address); path and text both refuse the empty
+// string, so that a forgotten value is never taken as the current folder or as nothing at all.
+enum class OptionKind { integer, number, choice, path, text, flag };
 
 // A value as a front end hands it over: unset (Python's None, for an option that is unset by
 // default), a switch, a whole number, a number, or a name or path (text). The table's row turns
@@ -65,7 +67,7 @@ struct OptionRow {
   double max = std::numeric_limits<double>::infinity();
   std::vector<std::string> choices;  // OptionKind::choice: the accepted names, in table order
   bool positional = false;           // the command line's first argument (required)
-  std::string_view metavar;          // positional: its name in `--help`, e.g. IMAGE_DIR
+  std::string_view metavar;          // positional and text: its name in `--help`, e.g. IMAGE_DIR
   bool optional = false;             // the field may be unset (std::optional)
   std::string_view cli_alias;        // an older command-line spelling still taken, e.g. --strain
   bool must_exist = false;           // a path that must name an existing file or folder
@@ -131,6 +133,12 @@ std::string option_problem(const OptionRow<R>& row, const OptionValue& value) {
       if (path->find('\0') != std::string::npos) return "the path holds a NUL character";
       return row.check_text ? row.check_text(*path) : std::string();
     }
+    case OptionKind::text: {
+      const auto* text = std::get_if<std::string>(&value);
+      if (!text) return "takes text";
+      if (text->empty()) return "is empty";
+      return row.check_text ? row.check_text(*text) : std::string();
+    }
     case OptionKind::flag:
       return std::holds_alternative<bool>(value) ? std::string() : "takes true or false";
   }
@@ -195,6 +203,9 @@ std::string shown_value(const std::optional<T>& v) {
   return v ? shown_value(*v) : std::string();
 }
 
+inline OptionValue value_of(bool v) {
+  return v;
+}
 inline OptionValue value_of(int v) {
   return std::int64_t{v};
 }
@@ -313,6 +324,32 @@ OptionRow<R> path(std::string_view name, Field field, std::string help) {
   };
   row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
   row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  return row;
+}
+
+// A row for a switch (a bool field, off by default: the command line's flag without a value).
+template <typename R, typename Field>
+OptionRow<R> flag(std::string_view name, Field field, std::string help) {
+  static_assert(std::is_same_v<field_of<R, Field>, bool>);
+  OptionRow<R> row;
+  row.name = name;
+  row.kind = OptionKind::flag;
+  row.help = std::move(help);
+  row.set = [field](R& r, const OptionValue& v) { std::invoke(field, r) = std::get<bool>(v); };
+  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
+  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  return row;
+}
+
+// A row for text that is neither a path nor a choice (an optional std::string field), shown in
+// `--help` as `metavar`; `check` says what else is wrong with it (empty: nothing).
+template <typename R, typename Field>
+OptionRow<R> text(std::string_view name, Field field, std::string_view metavar,
+                  std::function<std::string(const std::string&)> check, std::string help) {
+  OptionRow<R> row = path<R>(name, field, std::move(help));
+  row.kind = OptionKind::text;
+  row.metavar = metavar;
+  row.check_text = std::move(check);
   return row;
 }
 

@@ -30,7 +30,7 @@ struct LateroPlayTarget {
   LateroBladeMapping mapping;
 };
 
-struct PlayRequest {
+struct ResolvedPlay {
   bool headless = false;  // skip device and window even when present
   // Set: play on this Latero and nowhere else (headless is then not looked at).
   std::optional<LateroPlayTarget> latero;
@@ -66,7 +66,7 @@ struct PlayBackends {
   std::function<bool()> screen;
   // Plays in the window until it is closed; says what a person should know and sets
   // result.stopped when request.stop_fd closed it.
-  std::function<void(const movie::TactileMovie&, const PlayRequest&, const Say&, PlayResult&)>
+  std::function<void(const movie::TactileMovie&, const ResolvedPlay&, const Say&, PlayResult&)>
       play_in_window;
 };
 
@@ -76,7 +76,7 @@ struct PlayBackends {
 // resolve), std::invalid_argument when the movie does not fit the device (a Latero: another
 // layout than `latero`, named with the command that maps for it), the Latero's address does not
 // parse or its blade mapping is inconsistent (validate_blade_mapping).
-PlayResult play_anywhere(const movie::TactileMovie& movie, const PlayRequest& request,
+PlayResult play_anywhere(const movie::TactileMovie& movie, const ResolvedPlay& request,
                          const Say& say, const PlayBackends& backends);
 
 }  // namespace tactile::display

@@ -13,7 +13,7 @@
 
 namespace tactile::display {
 
-// `latero` is never planned: it is asked for (PlayRequest::latero in play_anywhere.hpp).
+// `latero` is never planned: it is asked for (ResolvedPlay::latero in play_anywhere.hpp).
 enum class PlaybackTarget { device, window, headless, latero };
 
 struct PlaybackPlan {

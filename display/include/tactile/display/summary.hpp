@@ -1,6 +1,7 @@
 #pragma once
 // Numbers that describe a tactile movie at a glance (printed by `tactile play` when headless).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,9 @@ struct MovieSummary {
   std::int32_t rows = 0;
   std::int32_t cols = 0;
   double rate_hz = 0;
-  std::int32_t frame_count = 0;
+  std::int32_t frame_count = 0;  // the movie's own frames
+  // Frames the player added to ramp from and to rest (a played output's; 0 for a movie file).
+  std::int32_t ramp_frames = 0;
   double duration_s = 0;
   double peak_deflection_um = 0;  // largest |deflection| of any contactor in any frame
   double rms_deflection_um = 0;   // over all contactors and frames
@@ -34,5 +37,10 @@ MovieSummary summarize(const movie::TactileMovie& movie);
 
 // Several lines of human-readable text, ending in a newline.
 std::string format_summary(const MovieSummary& summary);
+
+// A movie's length in frames as every command prints it: "2077 movie frames" or, played, "2077
+// movie frames + 70 frames of ramp from and to rest", so that `map`, `info`, `play` and `view`
+// give the same count for the same movie.
+std::string frame_count_text(std::int64_t movie_frames, std::int64_t ramp_frames);
 
 }  // namespace tactile::display

@@ -43,7 +43,9 @@ struct ExperimentSource {
 };
 
 struct ExperimentRun {
-  std::string id;  // "003-bump-truth-stress-integrated": also the movie's file name
+  // "003-bump-stress-integrated-per-frame", then "-normalisation-peak" for each other parameter
+  // that varies in the grid: also the movie's file name
+  std::string id;
   std::size_t source = 0;
   std::size_t layout = 0;
   mapping::MappingParams params;
@@ -72,6 +74,9 @@ struct Experiment {
   std::vector<std::filesystem::path> layout_files;  // the layouts read from files
   std::vector<ExperimentRun> runs;
   std::optional<ExperimentPerception> perception;
+  // The whole grid in words: "1 sources x 2 layouts x 1 methods x 2 parameter sets (layouts:
+  // stress, latero; methods: integrated; normalisation: none, peak)".
+  std::string grid;
 };
 
 // Parses and checks a whole experiment before any work: JSON syntax, unknown or missing fields,
