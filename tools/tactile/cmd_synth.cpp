@@ -114,7 +114,9 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
                               "stretch (along x), compress (along y), bump (radial), wave\n"
                               "(travelling along x), pulse (a bump crossing along x), ridge\n"
                               "(compression ahead of a sliding edge), stick-slip (rim loads and\n"
-                              "slips around a sticking centre), kernels (random smooth field)"));
+                              "slips around a sticking centre), kernels (random smooth field),\n"
+                              "full-slip (the skin slides through the view at --travel-speed,\n"
+                              "strained by a static field; the print mirrored without end)"));
   needs_print(sub->add_option("--strain-pct", opt->strain_pct,
                               "--from-print: peak strain of the pattern, per cent")
                   ->check(within(-20.0, 20.0))
