@@ -20,10 +20,6 @@
 namespace tactile::capture {
 namespace {
 
-// A view that moves this far between frames slides: beyond it a track's standing start is
-// outside the alignment's reach on a print's ridges (a quarter period is about 2-3 px at 47
-// px/mm), below it the alignment finds the step from there as before.
-constexpr double kSlidingPx = 2.0;
 // Half-resolution pixels (about two ridge periods at 47 px/mm): what varies more slowly than
 // this is shading, not ridges.
 constexpr double kShadingSigmaPx = 4.0;
@@ -759,7 +755,7 @@ int AlignmentTracker::live_tracks() const {
 
 bool AlignmentTracker::sliding() const {
   const State& s = *state_;
-  return !s.view_motion.empty() && s.view_motion.back().norm() >= kSlidingPx;
+  return !s.view_motion.empty() && s.view_motion.back().norm() > s.max_offset_px;
 }
 
 namespace {
@@ -937,7 +933,10 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     motion = view_motion(s.half_before, s.half, s.hanning, s.view_motion.back());
   }
   s.view_motion.push_back(motion);
-  const bool sliding = motion.norm() >= kSlidingPx;
+  // The view slides where it moves further than an alignment may move from its start
+  // (max_offset_mm): a new track standing still could not follow it. Below that a new track
+  // starts standing still, as it always has.
+  const bool sliding = motion.norm() > s.max_offset_px;
   // Each track's start: its own last step carried on; on its second frame, the view's motion
   // where the view slides, and standing still otherwise.
   std::vector<Eigen::Vector2d> start(n);
@@ -1308,14 +1307,14 @@ namespace {
 // along the motion over the speed: a track cannot be longer, and one that must cover most of
 // that time is kept only where it entered at the very edge. Half of it, at least 3 frames (two
 // steps, so that a track's own motion is checked once), and never more than the still contact's.
-int shortest_track_for(const std::vector<Eigen::Vector2d>& view_motion, int width_px, int height_px,
-                       int still_min_frames, RefineStats& stats) {
+int shortest_track_for(const std::vector<Eigen::Vector2d>& view_motion, double sliding_px,
+                       int width_px, int height_px, int still_min_frames, RefineStats& stats) {
   std::vector<double> speeds;
   for (std::size_t f = 1; f < view_motion.size(); ++f) speeds.push_back(view_motion[f].norm());
   stats.view_motion_px = speeds.empty() ? 0.0 : median(speeds);
   stats.min_frames = still_min_frames;
   stats.frames_in_view = 0;
-  if (!(stats.view_motion_px >= kSlidingPx)) return stats.min_frames;
+  if (!(stats.view_motion_px > sliding_px)) return stats.min_frames;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (std::size_t f = 1; f < view_motion.size(); ++f) mean += view_motion[f];
   mean /= static_cast<double>(view_motion.size() - 1);
@@ -1339,8 +1338,8 @@ std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
   s.ended.clear();
   // Ended tracks were set aside as they ended: back in the order they started (their ids).
   std::sort(all.begin(), all.end(), [](const Track& a, const Track& b) { return a.id < b.id; });
-  const int min_frames =
-      shortest_track_for(s.view_motion, s.width_px, s.height_px, s.params.min_frames, s.stats);
+  const int min_frames = shortest_track_for(s.view_motion, s.max_offset_px, s.width_px, s.height_px,
+                                            s.params.min_frames, s.stats);
   s.view_motion.clear();
   std::vector<Track> kept;
   for (auto& t : all) {

@@ -179,8 +179,8 @@ class AlignmentTracker {
   void add_frame(const GrayImage& image, const std::vector<Feature>& seeds);
   int frames() const;
   int live_tracks() const;
-  // Whether the whole view moved by more than a couple of pixels into the last frame (the skin
-  // slides through it): new skin enters every frame.
+  // Whether the whole view moved into the last frame by more than an alignment may move from
+  // its start (max_offset_mm): the skin slides through it and new skin enters every frame.
   bool sliding() const;
   // The live tracks followed into the last frame from the one before it, with their positions
   // in both (pixels, as aligned: no smoothing, no curvature correction, which need later
