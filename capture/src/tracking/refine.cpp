@@ -503,16 +503,29 @@ void check_refine_params(double px_per_mm, const RefineParams& params) {
   }
 }
 
-// Normalised correlation of `a` and `b` over the part of the view both see when `b` is `a`
-// moved by the whole pixels (dx, dy); -1 where they share less than a quarter of it.
+// Normalised correlation of `a` and `b` (CV_32F) over the part of the view both see when `b` is
+// `a` moved by the whole pixels (dx, dy); -1 where they share less than a quarter of it.
 double overlap_correlation(const cv::Mat& a, const cv::Mat& b, int dx, int dy) {
   const int w = a.cols - std::abs(dx), h = a.rows - std::abs(dy);
-  if (4 * w * h < a.cols * a.rows || w <= 0 || h <= 0) return -1;
-  const cv::Rect in_a(std::max(0, -dx), std::max(0, -dy), w, h);
-  const cv::Rect in_b(std::max(0, dx), std::max(0, dy), w, h);
-  cv::Mat r;
-  cv::matchTemplate(b(in_b), a(in_a), r, cv::TM_CCOEFF_NORMED);
-  return static_cast<double>(r.at<float>(0, 0));
+  if (w <= 0 || h <= 0 || 4 * w * h < a.cols * a.rows) return -1;
+  const int ax = std::max(0, -dx), ay = std::max(0, -dy), bx = std::max(0, dx),
+            by = std::max(0, dy);
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (int y = 0; y < h; ++y) {
+    const float* pa = a.ptr<float>(ay + y) + ax;
+    const float* pb = b.ptr<float>(by + y) + bx;
+    for (int x = 0; x < w; ++x) {
+      const double u = pa[x], v = pb[x];
+      sa += u;
+      sb += v;
+      saa += u * u;
+      sbb += v * v;
+      sab += u * v;
+    }
+  }
+  const double n = static_cast<double>(w) * h;
+  const double cov = sab - sa * sb / n, va = saa - sa * sa / n, vb = sbb - sb * sb / n;
+  return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : -1;
 }
 
 // The motion of the whole view from `before` to `now` (pixels), by phase correlation. A print's
@@ -532,8 +545,12 @@ Eigen::Vector2d view_motion(const cv::Mat& before_half, const cv::Mat& now_half,
                                                   Eigen::Vector2d::Zero()};
   Eigen::Vector2d best = candidates[0];
   double best_score = -2;
-  for (const auto& c : candidates) {
-    if (!c.allFinite()) continue;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const Eigen::Vector2d& c = candidates[k];
+    // A candidate within a pixel of one already scored is the same motion.
+    bool seen = false;
+    for (std::size_t e = 0; e < k; ++e) seen = seen || (candidates[e] - c).norm() < 1;
+    if (seen || !c.allFinite()) continue;
     const double score = overlap_correlation(before, now, static_cast<int>(std::lround(c.x())),
                                              static_cast<int>(std::lround(c.y())));
     if (score > best_score + 1e-9) {
