@@ -528,17 +528,15 @@ double overlap_correlation(const cv::Mat& a, const cv::Mat& b, int dx, int dy) {
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : -1;
 }
 
-// The motion of the whole view from `before` to `now` (pixels), by phase correlation. A print's
+// The motion of the whole view from `before` to `now` (full-resolution pixels), by phase
+// correlation of the two frames at half resolution: the motion is only a start for the
+// alignments, and a quarter of the pixels keeps it a small part of a frame's time. A print's
 // ridges repeat, so the correlation surface has side peaks about one ridge period from the true
 // one: the peak is checked against the other motions that are plausible (the view's motion in
 // the previous frame and no motion), by the correlation of the frames' shared part, and the best
 // of them is kept.
-// Both at half resolution: the motion is only a start for the alignments, and a quarter of the
-// pixels keeps it a small part of a frame's time.
-Eigen::Vector2d view_motion(const cv::Mat& before_half, const cv::Mat& now_half, cv::Mat& hanning,
+Eigen::Vector2d view_motion(const cv::Mat& before, const cv::Mat& now, cv::Mat& hanning,
                             const Eigen::Vector2d& previous) {
-  const cv::Mat& before = before_half;
-  const cv::Mat& now = now_half;
   if (hanning.size() != now.size()) cv::createHanningWindow(hanning, now.size(), CV_32F);
   const cv::Point2d peak = cv::phaseCorrelate(before, now, hanning);
   const std::array<Eigen::Vector2d, 3> candidates{Eigen::Vector2d(peak.x, peak.y), previous / 2,
