@@ -384,8 +384,9 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
             {session.source, calibration, summary.camera_rate_hz, layout, device_rate_hz});
       }
       // Landmarks: detected every detect_every frames, or sooner when a fifth of the tracks
-      // have ended since the last detection (as the batch capture), followed by alignment in
-      // between; detected in line on the first frame only, then on the detector's thread.
+      // have ended since the last detection or the view slides (as the batch capture), followed by
+      // alignment in between; detected in line on the first frame only, then on the detector's
+      // thread.
       std::vector<capture::Feature> seeds;
       bool seeded = false;
       if (tracker->frames() == 0) {
@@ -393,8 +394,11 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         detector = std::make_unique<AsyncDetector>(px_per_mm, features);
         seeded = true;
       } else {
+        // Where the view slides new skin enters every frame: detected as often as the
+        // detector's thread can.
         const bool due = f.index - last_detection >= session.detect_every ||
-                         tracker->live_tracks() < 0.8 * tracks_after_detection;
+                         tracker->live_tracks() < 0.8 * tracks_after_detection ||
+                         tracker->sliding();
         if (due && !detector->busy()) {
           detector->submit(f.index, f.image);
           last_detection = f.index;

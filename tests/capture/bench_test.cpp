@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace tactile::capture {
 namespace {
@@ -38,6 +40,13 @@ TEST(CaptureBench, NamesPrintsAndCases) {
   // The quick bench is the quasi-static wave and the fast scene; the full one adds the rest.
   EXPECT_EQ(print_bench_cases(true).size(), 2u);
   EXPECT_EQ(print_bench_cases(false).size(), 8u);
+  // Full slip at the four speeds of exploring touch, each named by its speed.
+  std::vector<std::string> slip;
+  for (const auto& c : slip_bench_cases()) {
+    EXPECT_EQ(c.pattern, WarpPattern::full_slip);
+    slip.push_back(case_label(c));
+  }
+  EXPECT_EQ(slip, (std::vector<std::string>{"slip-10", "slip-25", "slip-50", "slip-100"}));
 }
 
 TEST(CaptureBench, FastSceneSlidesAtTwoAndAHalfMillimetresPerSecond) {

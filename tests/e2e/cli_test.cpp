@@ -171,6 +171,19 @@ TEST(Cli, NegativeValuesAreNotTakenForFlags) {
   EXPECT_THAT(r.output, Not(HasSubstr("unknown option")));
 }
 
+// Full slip has no meaning without the skin's speed: refused by the option's name, before any
+// frame is written.
+TEST(Cli, FullSlipNeedsATravelSpeed) {
+  const tactile::test::TempDir d_tmp("fullslip");
+  const std::filesystem::path out = d_tmp.path() / "slip";
+  const std::string print = std::string(TACTILE_TEST_DATA_DIR) + "/polyu-hrf-pores/image_12.jpg";
+  const auto r =
+      run_tactile("synth " + out.string() + " --from-print " + print + " --warp full-slip");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--warp full-slip: needs --travel-speed above 0"));
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // synth has two kinds of sequence with two default lengths: its help gives both, and names
 // no hidden option (an empty "Excludes:").
 TEST(Cli, SynthHelpGivesBothDefaultLengths) {

@@ -43,6 +43,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
     double px_per_mm = 47;
     bool quick = false;
     bool touch = false;
+    bool slip = false;
     std::vector<int> frame_px;  // empty: each print's own size
     BenchSweepOptions common{
         .out = "bench-prints", .sweeps = false, .limits = {.max_rms = 0.0025, .min_points = 150}};
@@ -84,6 +85,10 @@ void add_bench_prints(CLI::App& bench, Action& action) {
                 "Instead of the wave and the other quasi-static patterns, the other motions of "
                 "the fast scene (8 %, 25 mm/s, 60 Hz): pulse, ridge, stick-slip, kernels, and "
                 "the wave with a loss of contact");
+  sub->add_flag("--slip", opt->slip,
+                "Instead, full slip: the skin sliding through the view at 10, 25, 50 and 100 "
+                "mm/s (60 Hz) under a static 4 % field; Lucas-Kanade re-seeds every frame")
+      ->excludes("--touch");
   sub->callback([opt, &action] {
     action = [opt] {
       refuse_output_over_input(
@@ -111,8 +116,9 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       bench.held_out = opt->held_out;
       bench.frame_count = opt->frames;
       bench.px_per_mm = opt->px_per_mm;
-      bench.cases =
-          opt->touch ? capture::touch_bench_cases() : capture::print_bench_cases(opt->quick);
+      bench.cases = opt->slip    ? capture::slip_bench_cases()
+                    : opt->touch ? capture::touch_bench_cases()
+                                 : capture::print_bench_cases(opt->quick);
       bench.method_count = opt->quick ? 2 : all.size();
       fmt::print("{:<6} {:<8} {:<10} {:>5} {:<20} {:>7} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print",
                  "group", "pattern", "strain", "method", "frames/s", "cpu_ms", "rms_err",

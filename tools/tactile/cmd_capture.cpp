@@ -343,6 +343,9 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
           "frames at {:.4g} Hz ({}) -> {}\n",
           n, s, n / s, 1e3 * cpu_s / n, movie.frames.size(), run.rate_hz, run.rate_from,
           outputs->out.string());
+      if (const std::string note = capture::sliding_note(movie); !note.empty()) {
+        fmt::print("{}\n", note);
+      }
       if (outputs->csv_dir) {
         fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", outputs->csv_dir->string());
       }

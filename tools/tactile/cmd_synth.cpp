@@ -114,7 +114,9 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
                               "stretch (along x), compress (along y), bump (radial), wave\n"
                               "(travelling along x), pulse (a bump crossing along x), ridge\n"
                               "(compression ahead of a sliding edge), stick-slip (rim loads and\n"
-                              "slips around a sticking centre), kernels (random smooth field)"));
+                              "slips around a sticking centre), kernels (random smooth field),\n"
+                              "full-slip (the skin slides through the view at --travel-speed,\n"
+                              "strained by a static field; the print mirrored without end)"));
   needs_print(sub->add_option("--strain-pct", opt->strain_pct,
                               "--from-print: peak strain of the pattern, per cent")
                   ->check(within(-20.0, 20.0))
@@ -200,6 +202,12 @@ void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
       if (sub->count("--frames") > 0) opt->warp.frame_count = opt->spec.frame_count;
       if (sub->count("--noise") > 0) opt->warp.noise_sigma = opt->spec.noise_sigma;
       if (sub->count("--seed") > 0) opt->warp.seed = opt->spec.seed;
+      if (opt->warp.pattern == capture::WarpPattern::full_slip &&
+          !(opt->warp.travel_speed_mm_per_s > 0)) {
+        throw CLI::ValidationError("--warp full-slip",
+                                   "needs --travel-speed above 0 (the skin's speed through the "
+                                   "view, mm/s)");
+      }
       opt->warp.strain = opt->strain_pct / 100;
       opt->warp.exposure_s = opt->exposure_ms / 1000;
       const double duration_s = capture::sequence_duration_s(opt->warp);

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
@@ -22,6 +23,15 @@ StrainMovie landmarks_default(const PrintSequence& seq) {
   return measure_strain(seq.frames, seq.calibration, seq.spec.frame_rate_hz, p);
 }
 
+// The capture's shortest track for skin sliding through the view (half the frames a point stays
+// in view, at least 3, at most a still contact's), from the scene's known speed.
+int sliding_min_track(const PrintWarpSpec& spec) {
+  const double px_per_frame = spec.travel_speed_mm_per_s * spec.px_per_mm / spec.frame_rate_hz;
+  const double in_view = px_per_frame > 0 ? spec.width_px / px_per_frame : 1e9;
+  const int still = RefineParams{}.min_frames;
+  return std::clamp(static_cast<int>(std::min<double>(still, std::floor(in_view / 2))), 3, still);
+}
+
 StrainMovie from_tracks(const std::vector<Track>& tracks, const PrintSequence& seq) {
   return strain_from_tracks(tracks, static_cast<int>(seq.frames.size()), seq.calibration,
                             seq.spec.frame_rate_hz, 1, CaptureParams{}.max_edge_ratio);
@@ -34,6 +44,12 @@ std::vector<PrintBenchMethod> print_bench_methods() {
   m.push_back({"Lucas-Kanade", [](const PrintSequence& s) {
                  auto p = LucasKanadeParams{};
                  p.min_track_frames = std::min(p.min_track_frames, s.spec.frame_count);
+                 if (s.spec.pattern == WarpPattern::full_slip) {
+                   // Fair to it where the skin slides through: new corners every frame as
+                   // points leave, tracks as short as the capture keeps at that speed.
+                   p.reseed_every_frames = 1;
+                   p.min_track_frames = std::min(p.min_track_frames, sliding_min_track(s.spec));
+                 }
                  return from_tracks(track_lucas_kanade(s.frames, s.calibration, p), s);
                }});
   m.push_back({"DIS flow", [](const PrintSequence& s) {
@@ -59,7 +75,18 @@ std::vector<PrintBenchCase> touch_bench_cases() {
           {WarpPattern::wave, 0.08, 25, 1.0}};
 }
 
+std::vector<PrintBenchCase> slip_bench_cases() {
+  std::vector<PrintBenchCase> cases;
+  for (const double speed : {10.0, 25.0, 50.0, 100.0}) {
+    cases.push_back({WarpPattern::full_slip, 0.04, speed});
+  }
+  return cases;
+}
+
 std::string case_label(const PrintBenchCase& c) {
+  if (c.pattern == WarpPattern::full_slip) {
+    return fmt::format("slip-{:.0f}", c.travel_mm_per_s) + (c.contact_loss > 0 ? "+loss" : "");
+  }
   return std::string(to_string(c.pattern)) + (c.travel_mm_per_s > 0 ? "-fast" : "") +
          (c.contact_loss > 0 ? "+loss" : "");
 }
@@ -155,7 +182,11 @@ std::vector<PrintBenchRow> bench_prints(const std::vector<PoreTrainingPrint>& pr
       auto spec = print_bench_spec(p, options.px_per_mm, options.frame_count);
       spec.pattern = c.pattern;
       spec.strain = c.strain;
-      if (c.travel_mm_per_s > 0) set_fast_scene(spec, c.travel_mm_per_s);
+      if (c.pattern == WarpPattern::full_slip) {
+        spec.travel_speed_mm_per_s = c.travel_mm_per_s;
+      } else if (c.travel_mm_per_s > 0) {
+        set_fast_scene(spec, c.travel_mm_per_s);
+      }
       spec.contact_loss = c.contact_loss;
       const PrintSequence seq = render_print_sequence(spec, p.image, p.pores_px);
       for (std::size_t k = 0; k < used; ++k) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "tactile/common/error.hpp"
 
@@ -150,6 +151,14 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
 bool measured_no_strain(const StrainMovie& movie) {
   return std::all_of(movie.frames.begin(), movie.frames.end(),
                      [](const StrainFrame& f) { return f.edges.empty(); });
+}
+
+std::string sliding_note(const StrainMovie& movie) {
+  const auto settings = nlohmann::json::parse(movie.provenance.parameters_json, nullptr, false);
+  if (!settings.is_object() || settings.value("frames_in_view", 0.0) <= 0) return {};
+  return fmt::format("capture: shortest track {} frames: {}",
+                     settings.value("min_track_frames_used", 0),
+                     settings.value("min_track_reason", std::string()));
 }
 
 std::string no_strain_reason(const StrainMovie& movie, const CaptureSettings& settings,

@@ -174,7 +174,7 @@ std::vector<Track> tracks_from_detections(const FrameSource& next_frame, GrayIma
 std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage& first,
                                        const Calibration& cal, const CaptureParams& params,
                                        const CaptureProgress& progress, int expected,
-                                       int& frame_count) {
+                                       int& frame_count, RefineStats& stats) {
   const double px_per_mm = 1.0 / cal.mm_per_px;
   // --min-track below the alignment's own shortest track lowers it too (a short sequence asked
   // for short tracks); above it, the alignment keeps its own, as it did by default.
@@ -201,10 +201,13 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
     // A fifth of the tracks gone: landmarks have left the view or stopped matching their
     // first-frame neighbourhood.
     const bool short_of_tracks = 5 * tracker.live_tracks() < 4 * live_after_detection;
+    // Where the view slides, new skin enters at one edge every frame: detect every frame (seeds
+    // start tracks only where no live track is, so in practice in the entering band).
+    const bool entering = tracker.sliding();
     if (f == 0 && !params.first_frame_features.empty()) {
       tracker.add_frame(frame, params.first_frame_features);
       live_after_detection = tracker.live_tracks();
-    } else if (due || short_of_tracks) {
+    } else if (due || short_of_tracks || entering) {
       tracker.add_frame(frame, pores_in(frame, px_per_mm, detection));
       last_detection = f;
       live_after_detection = tracker.live_tracks();
@@ -218,7 +221,7 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
     check_frame_size(frame, f + 1, size_of_first, cal);
   }
   frame_count = tracker.frames();
-  std::vector<Track> tracks = tracker.finish();
+  std::vector<Track> tracks = tracker.finish(&stats);
   // A smoother over more frames than the motion stays smooth for would flatten it: smooth only
   // as far as the tracks allow.
   const SmoothingKernel kernel = params.refinement.smoothing_kernel;
@@ -250,15 +253,16 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
   if (cal.image_height_px == 0) cal.image_height_px = first.height_px;
 
   int n = 0;
+  RefineStats stats;
   const std::vector<Track> tracks =
       params.refine
-          ? tracks_by_alignment(next_frame, first, cal, params, progress, expected_frames, n)
+          ? tracks_by_alignment(next_frame, first, cal, params, progress, expected_frames, n, stats)
           : tracks_from_detections(next_frame, first, cal, params, progress, expected_frames, n);
   StrainMovie movie =
       strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio,
                          params.threads, params.window_gradient_share);
   // The settings that decide what is measured; the frames' file is the caller's to name.
-  const nlohmann::json settings = {
+  nlohmann::json settings = {
       {"frame_rate_hz", frame_rate_hz},
       {"mm_per_px", cal.mm_per_px},
       {"pore_detector", to_string(params.features.pore_detector)},
@@ -270,6 +274,20 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
       {"match_radius_mm", params.match_radius_mm},
       // Only aligned tracks carry the windows' deformation.
       {"window_gradient_share", params.refine ? params.window_gradient_share : 0.0}};
+  if (params.refine) {
+    // What the sequence showed and the shortest track it led to (fewer frames than asked where
+    // the skin slides through the view and stays in it for fewer).
+    settings["view_motion_px_per_frame"] = stats.view_motion_px;
+    settings["frames_in_view"] = stats.frames_in_view;
+    settings["min_track_frames_used"] = stats.min_frames;
+    settings["min_track_reason"] = stats.frames_in_view > 0
+                                       ? fmt::format(
+                                             "the view slides {:.1f} px a frame, so skin stays in "
+                                             "view for {:.1f} frames; tracks of half of that "
+                                             "(at least 3) kept",
+                                             stats.view_motion_px, stats.frames_in_view)
+                                       : std::string("still contact: the alignment's own");
+  }
   movie.provenance = make_provenance({}, "capture", settings.dump());
   if (progress) progress("strain", 1, 1);
   return movie;

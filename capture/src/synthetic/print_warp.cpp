@@ -56,10 +56,15 @@ class Warp {
     field_w_mm_ = s.width_px / s.px_per_mm;
     field_h_mm_ = s.height_px / s.px_per_mm;
     duration_s_ = sequence_duration_s(s);
-    if (s.pattern == WarpPattern::kernels) make_kernels();
+    if (s.pattern == WarpPattern::kernels || s.pattern == WarpPattern::full_slip) make_kernels();
   }
 
   PointMm to_image(PointMm material, double frame) const {
+    if (s_.pattern == WarpPattern::full_slip) {
+      const PointMm p{material.x_mm - c_.x_mm + slid_mm(frame), material.y_mm - c_.y_mm};
+      const PointMm w = glass_field(p);
+      return {c_.x_mm + p.x_mm + w.x_mm, c_.y_mm + p.y_mm + w.y_mm};
+    }
     const PointMm d{material.x_mm - c_.x_mm, material.y_mm - c_.y_mm};
     const PointMm u = displacement(d, frame);
     const double th = rotation_rad(frame);
@@ -70,6 +75,19 @@ class Warp {
   }
 
   PointMm to_material(PointMm image, double frame) const {
+    if (s_.pattern == WarpPattern::full_slip) {
+      // p + w(p) = q by fixed-point iteration, as below (w's gradient is at most the strain).
+      const PointMm q{image.x_mm - c_.x_mm, image.y_mm - c_.y_mm};
+      PointMm p = q;
+      for (int i = 0; i < 60; ++i) {
+        const PointMm w = glass_field(p);
+        const PointMm next{q.x_mm - w.x_mm, q.y_mm - w.y_mm};
+        const double step = std::hypot(next.x_mm - p.x_mm, next.y_mm - p.y_mm);
+        p = next;
+        if (step < 1e-12) break;
+      }
+      return {p.x_mm + c_.x_mm - slid_mm(frame), p.y_mm + c_.y_mm};
+    }
     const double th = rotation_rad(frame);
     const double tau = progress_of(s_, frame);
     const double qx = image.x_mm - c_.x_mm - s_.slide_x_mm * tau;
@@ -104,6 +122,26 @@ class Warp {
 
  private:
   double time_s(double frame) const { return frame / s_.frame_rate_hz; }
+
+  // How far the skin has slid along x since the first frame (full slip).
+  double slid_mm(double frame) const { return s_.travel_speed_mm_per_s * time_s(frame); }
+
+  // The static field of full slip, at p (millimetres from the centre, undeformed): the random
+  // field's kernels frozen at their peak, each with its own sign, so that skin crossing the view
+  // is stretched and compressed in turn.
+  PointMm glass_field(PointMm p) const {
+    if (s_.strain == 0) return {0, 0};
+    PointMm w{0, 0};
+    for (std::size_t i = 0; i < kernels_.size(); ++i) {
+      const auto& k = kernels_[i];
+      const double dx = p.x_mm - k.centre.x_mm, dy = p.y_mm - k.centre.y_mm;
+      const double a = (i % 2 == 0 ? 1.0 : -1.0) * k.amplitude_mm *
+                       std::exp(-(dx * dx + dy * dy) / (2 * k.sigma_mm * k.sigma_mm));
+      w.x_mm += a * std::cos(k.direction_rad);
+      w.y_mm += a * std::sin(k.direction_rad);
+    }
+    return w;
+  }
 
   double rotation_rad(double frame) const {
     return s_.rotation_deg * kPi / 180 * progress_of(s_, frame);
@@ -194,6 +232,8 @@ class Warp {
         }
         return u;
       }
+      case WarpPattern::full_slip:
+        return {0, 0};  // its field is the glass's (glass_field), not the skin's
       default:
         break;
     }
@@ -248,8 +288,19 @@ std::array<double, 8> lanczos_weights(double t) {
   return w;
 }
 
-// `source` (CV_32F) at (x, y); `outside` beyond its border (skin out of contact).
-float sample_lanczos(const cv::Mat& source, double x, double y, float outside) {
+// An index into 0..n-1 of the source mirrored at its border pixels without end (period
+// 2 (n - 1)), so that neighbouring copies meet without a step.
+int mirrored(int i, int n) {
+  if (n < 2) return 0;
+  const int period = 2 * (n - 1);
+  int r = i % period;
+  if (r < 0) r += period;
+  return r < n ? r : period - r;
+}
+
+// `source` (CV_32F) at (x, y); `outside` beyond its border (skin out of contact), or with
+// `mirror` the source mirrored without end.
+float sample_lanczos(const cv::Mat& source, double x, double y, float outside, bool mirror) {
   const double fx = std::floor(x), fy = std::floor(y);
   const auto wx = lanczos_weights(x - fx), wy = lanczos_weights(y - fy);
   const int x0 = static_cast<int>(fx) - 3, y0 = static_cast<int>(fy) - 3;
@@ -260,7 +311,11 @@ float sample_lanczos(const cv::Mat& source, double x, double y, float outside) {
     for (int i = 0; i < 8; ++i) {
       const int xx = x0 + i;
       const bool inside = xx >= 0 && yy >= 0 && xx < source.cols && yy < source.rows;
-      row += wx[static_cast<std::size_t>(i)] * (inside ? source.at<float>(yy, xx) : outside);
+      const float grey =
+          mirror   ? source.at<float>(mirrored(yy, source.rows), mirrored(xx, source.cols))
+          : inside ? source.at<float>(yy, xx)
+                   : outside;
+      row += wx[static_cast<std::size_t>(i)] * grey;
     }
     sum += wy[static_cast<std::size_t>(j)] * row;
   }
@@ -313,6 +368,9 @@ void validate_print_warp(const PrintWarpSpec& s) {
   }
   if (s.supersample < 1 || s.supersample > 8) {
     fail(fmt::format("supersample {} is out of range: must be 1 to 8", s.supersample));
+  }
+  if (s.pattern == WarpPattern::full_slip && !(s.travel_speed_mm_per_s > 0)) {
+    fail("full slip needs travel_speed_mm_per_s > 0 (the skin's speed through the view)");
   }
   if (!(s.contact_loss >= 0 && s.contact_loss <= 1)) {
     fail(fmt::format("contact_loss {} is out of range: must be 0 to 1", s.contact_loss));
@@ -396,8 +454,9 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
             const PointMm at{(x + o.dx_px) / spec.px_per_mm, (y + o.dy_px) / spec.px_per_mm};
             const double instant = f + o.dframe;
             const PointMm m = warp.to_material(at, instant);
-            const double grey = sample_lanczos(source, m.x_mm * spec.px_per_mm,
-                                               m.y_mm * spec.px_per_mm, background);
+            const double grey =
+                sample_lanczos(source, m.x_mm * spec.px_per_mm, m.y_mm * spec.px_per_mm, background,
+                               spec.pattern == WarpPattern::full_slip);
             const double touch = warp.contact(at, instant);
             sum += touch * grey + (1 - touch) * background;
           }

@@ -13,11 +13,16 @@
 #include "camera/cv_image.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/parallel_for.hpp"
+#include "tactile/common/stats.hpp"
 #include "tracking/align_rows.hpp"
 #include "tracking/track_gradient.hpp"
 
 namespace tactile::capture {
 namespace {
+
+// Half-resolution pixels (about two ridge periods at 47 px/mm): what varies more slowly than
+// this is shading, not ridges.
+constexpr double kShadingSigmaPx = 4.0;
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
@@ -498,6 +503,62 @@ void check_refine_params(double px_per_mm, const RefineParams& params) {
   }
 }
 
+// Normalised correlation of `a` and `b` (CV_32F) over the part of the view both see when `b` is
+// `a` moved by the whole pixels (dx, dy); -1 where they share less than a quarter of it.
+double overlap_correlation(const cv::Mat& a, const cv::Mat& b, int dx, int dy) {
+  const int w = a.cols - std::abs(dx), h = a.rows - std::abs(dy);
+  if (w <= 0 || h <= 0 || 4 * w * h < a.cols * a.rows) return -1;
+  const int ax = std::max(0, -dx), ay = std::max(0, -dy), bx = std::max(0, dx),
+            by = std::max(0, dy);
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (int y = 0; y < h; ++y) {
+    const float* pa = a.ptr<float>(ay + y) + ax;
+    const float* pb = b.ptr<float>(by + y) + bx;
+    for (int x = 0; x < w; ++x) {
+      const double u = pa[x], v = pb[x];
+      sa += u;
+      sb += v;
+      saa += u * u;
+      sbb += v * v;
+      sab += u * v;
+    }
+  }
+  const double n = static_cast<double>(w) * h;
+  const double cov = sab - sa * sb / n, va = saa - sa * sa / n, vb = sbb - sb * sb / n;
+  return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : -1;
+}
+
+// The motion of the whole view from `before` to `now` (full-resolution pixels), by phase
+// correlation of the two frames at half resolution: the motion is only a start for the
+// alignments, and a quarter of the pixels keeps it a small part of a frame's time. A print's
+// ridges repeat, so the correlation surface has side peaks about one ridge period from the true
+// one: the peak is checked against the other motions that are plausible (the view's motion in
+// the previous frame and no motion), by the correlation of the frames' shared part, and the best
+// of them is kept.
+Eigen::Vector2d view_motion(const cv::Mat& before, const cv::Mat& now, cv::Mat& hanning,
+                            const Eigen::Vector2d& previous) {
+  if (hanning.size() != now.size()) cv::createHanningWindow(hanning, now.size(), CV_32F);
+  const cv::Point2d peak = cv::phaseCorrelate(before, now, hanning);
+  const std::array<Eigen::Vector2d, 3> candidates{Eigen::Vector2d(peak.x, peak.y), previous / 2,
+                                                  Eigen::Vector2d::Zero()};
+  Eigen::Vector2d best = candidates[0];
+  double best_score = -2;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const Eigen::Vector2d& c = candidates[k];
+    // A candidate within a pixel of one already scored is the same motion.
+    bool seen = false;
+    for (std::size_t e = 0; e < k; ++e) seen = seen || (candidates[e] - c).norm() < 1;
+    if (seen || !c.allFinite()) continue;
+    const double score = overlap_correlation(before, now, static_cast<int>(std::lround(c.x())),
+                                             static_cast<int>(std::lround(c.y())));
+    if (score > best_score + 1e-9) {
+      best_score = score;
+      best = c;
+    }
+  }
+  return 2 * best;
+}
+
 // A little smoothing takes noise out of the gradients that the alignment follows.
 void smoothed_frame(const GrayImage& frame, double presmoothing_px, cv::Mat& out) {
   as_mat(frame).convertTo(out, CV_32F);
@@ -667,7 +728,9 @@ struct AlignmentTracker::State {
   std::vector<std::unique_ptr<Live>> live;
   std::vector<Track> ended;
   RefineStats stats;
-  cv::Mat smooth;
+  cv::Mat smooth, half, half_before, hanning;
+  // The whole view's motion into each frame from the one before (pixels; frame 0: none).
+  std::vector<Eigen::Vector2d> view_motion;
 };
 
 AlignmentTracker::AlignmentTracker(double px_per_mm, const RefineParams& params, int threads)
@@ -703,6 +766,11 @@ std::vector<AlignmentTracker::Step> AlignmentTracker::last_step() const {
 
 int AlignmentTracker::live_tracks() const {
   return static_cast<int>(state_->live.size());
+}
+
+bool AlignmentTracker::sliding() const {
+  const State& s = *state_;
+  return !s.view_motion.empty() && s.view_motion.back().norm() > s.max_offset_px;
 }
 
 namespace {
@@ -864,16 +932,36 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
                     image.width_px, image.height_px, s.width_px, s.height_px));
   }
   smoothed_frame(image, s.params.presmoothing_px, s.smooth);
+  std::swap(s.half_before, s.half);
+  cv::resize(s.smooth, s.half, {}, 0.5, 0.5, cv::INTER_AREA);
+  // Only the ridges: the print's shading varies slowly across the view and, left in, correlates
+  // better with no motion at all than the ridges do with the true one.
+  cv::Mat shading;
+  cv::GaussianBlur(s.half, shading, {0, 0}, kShadingSigmaPx);
+  s.half -= shading;
   const int frame = s.frames++;
   const std::size_t n = s.live.size();
-  // Each track's start: its own last step carried on (standing still on its second frame).
+  // The whole view's motion first: where the skin slides through the view, a new track's first
+  // step is many pixels, far beyond what an alignment from where it stood can find.
+  Eigen::Vector2d motion = Eigen::Vector2d::Zero();
+  if (frame > 0) {
+    motion = view_motion(s.half_before, s.half, s.hanning, s.view_motion.back());
+  }
+  s.view_motion.push_back(motion);
+  // The view slides where it moves further than an alignment may move from its start
+  // (max_offset_mm): a new track standing still could not follow it. Below that a new track
+  // starts standing still, as it always has.
+  const bool sliding = motion.norm() > s.max_offset_px;
+  // Each track's start: its own last step carried on; on its second frame, the view's motion
+  // where the view slides, and standing still otherwise.
   std::vector<Eigen::Vector2d> start(n);
   std::vector<Aligned> result(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Track& t = s.live[i]->track;
     const std::size_t k = t.x_px.size();
-    const double step_x = k >= 2 ? t.x_px[k - 1] - t.x_px[k - 2] : 0.0;
-    const double step_y = k >= 2 ? t.y_px[k - 1] - t.y_px[k - 2] : 0.0;
+    const Eigen::Vector2d first_step = sliding ? motion : Eigen::Vector2d::Zero();
+    const double step_x = k >= 2 ? t.x_px[k - 1] - t.x_px[k - 2] : first_step.x();
+    const double step_y = k >= 2 ? t.y_px[k - 1] - t.y_px[k - 2] : first_step.y();
     start[i] = {t.x_px[k - 1] + step_x, t.y_px[k - 1] + step_y};
   }
   // An alignment that ends within max_offset_px of where it started.
@@ -1228,6 +1316,35 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
 
 }  // namespace
 
+namespace {
+
+// The shortest track kept. Skin that slides through the view stays in it for the view's extent
+// along the motion over the speed: a track cannot be longer, and one that must cover most of
+// that time is kept only where it entered at the very edge. Half of it, at least 3 frames (two
+// steps, so that a track's own motion is checked once), and never more than the still contact's.
+int shortest_track_for(const std::vector<Eigen::Vector2d>& view_motion, double sliding_px,
+                       int width_px, int height_px, int still_min_frames, RefineStats& stats) {
+  std::vector<double> speeds;
+  for (std::size_t f = 1; f < view_motion.size(); ++f) speeds.push_back(view_motion[f].norm());
+  stats.view_motion_px = speeds.empty() ? 0.0 : median(speeds);
+  stats.min_frames = still_min_frames;
+  stats.frames_in_view = 0;
+  if (!(stats.view_motion_px > sliding_px)) return stats.min_frames;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (std::size_t f = 1; f < view_motion.size(); ++f) mean += view_motion[f];
+  mean /= static_cast<double>(view_motion.size() - 1);
+  // The view's extent along the mean motion's direction.
+  const Eigen::Vector2d dir =
+      mean.norm() > 0 ? Eigen::Vector2d(mean / mean.norm()) : Eigen::Vector2d::UnitX();
+  const double extent = std::abs(dir.x()) * width_px + std::abs(dir.y()) * height_px;
+  stats.frames_in_view = extent / stats.view_motion_px;
+  stats.min_frames = std::min(still_min_frames,
+                              std::max(3, static_cast<int>(std::floor(stats.frames_in_view / 2))));
+  return stats.min_frames;
+}
+
+}  // namespace
+
 std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
   State& s = *state_;
   std::vector<Track> all = std::move(s.ended);
@@ -1236,9 +1353,12 @@ std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
   s.ended.clear();
   // Ended tracks were set aside as they ended: back in the order they started (their ids).
   std::sort(all.begin(), all.end(), [](const Track& a, const Track& b) { return a.id < b.id; });
+  const int min_frames = shortest_track_for(s.view_motion, s.max_offset_px, s.width_px, s.height_px,
+                                            s.params.min_frames, s.stats);
+  s.view_motion.clear();
   std::vector<Track> kept;
   for (auto& t : all) {
-    if (static_cast<int>(t.x_px.size()) < s.params.min_frames) {
+    if (static_cast<int>(t.x_px.size()) < min_frames) {
       ++s.stats.dropped;
       continue;
     }

@@ -123,7 +123,13 @@ std::vector<PrintBenchCase> print_bench_cases(bool quick);
 // fast wave with a region that lifts off and lands again.
 std::vector<PrintBenchCase> touch_bench_cases();
 
-// "wave", "wave-fast" for a case with a travel speed, "+loss" added for a loss of contact.
+// Full slip at 4 % (the skin sliding through the view under a static field) at 10, 25, 50 and
+// 100 mm/s, 60 Hz; travel_mm_per_s is the skin's speed. Lucas-Kanade then re-seeds every frame
+// and keeps tracks as short as the capture does.
+std::vector<PrintBenchCase> slip_bench_cases();
+
+// "wave", "wave-fast" for a case with a travel speed, "slip-S" for full slip at S mm/s, "+loss"
+// added for a loss of contact.
 std::string case_label(const PrintBenchCase& c);
 
 // The fast scene: the pattern crossing at travel_mm_per_s, filmed as a camera does (a 2 ms

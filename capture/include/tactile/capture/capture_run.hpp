@@ -99,6 +99,9 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
 bool measured_no_strain(const StrainMovie& movie);
 // Why a capture of `source` measured no strain, for a person (in the words of `tactile capture`'s
 // options).
+// Where the skin slid through the view, the shortest track the capture kept and why, for a
+// person; empty for a still contact (the shortest track is then the one asked for).
+std::string sliding_note(const StrainMovie& movie);
 std::string no_strain_reason(const StrainMovie& movie, const CaptureSettings& settings,
                              const std::filesystem::path& source);
 

@@ -11,6 +11,12 @@
 // where c is the image centre, R a rotation, s a slide (both growing linearly over the
 // sequence) and u the pattern's displacement, whose strain rises and falls back as
 // sin(pi f / (frames - 1)).
+//
+// Full slip is the exception: the skin slides along x at the travel speed, x = c + p + w(p) with
+// p = X - c + v t ex, and w a static smooth displacement field of the glass's frame (Gaussian
+// kernels), so each skin element is strained as it crosses the contact, as skin is in steady
+// sliding. Rotation and the sequence's slide are not used. The source print is mirrored at its
+// borders without end, so the skin may travel many view widths.
 
 #include <array>
 #include <cstdint>
@@ -36,9 +42,11 @@ enum class WarpPattern {
   ridge,       // a ridge of compression along x, ahead of a sliding edge, crossing the field
   stick_slip,  // a slipping rim around a sticking centre: slow loading, sudden partial slip
   kernels,     // a random smooth field: several Gaussian displacement kernels, own time courses
+  full_slip,   // the skin slides through the view at the travel speed, strained by a field
+               // fixed on the glass (the print mirrored without end, so it can travel far)
 };
 
-inline constexpr std::array<Named<WarpPattern>, 9> kWarpPatternNames = {{
+inline constexpr std::array<Named<WarpPattern>, 10> kWarpPatternNames = {{
     {WarpPattern::rigid, "rigid"},
     {WarpPattern::stretch, "stretch"},
     {WarpPattern::compress, "compress"},
@@ -48,6 +56,7 @@ inline constexpr std::array<Named<WarpPattern>, 9> kWarpPatternNames = {{
     {WarpPattern::ridge, "ridge"},
     {WarpPattern::stick_slip, "stick-slip"},
     {WarpPattern::kernels, "kernels"},
+    {WarpPattern::full_slip, "full-slip"},
 }};
 WarpPattern parse_warp_pattern(std::string_view name);  // throws std::invalid_argument
 std::string to_string(WarpPattern pattern);
@@ -68,6 +77,7 @@ struct PrintWarpSpec {
   // Motion in physical units: with travel_speed_mm_per_s > 0 the travelling patterns (wave,
   // pulse, ridge) cross the field at that speed and the stick-slip and kernel patterns change on
   // the time the skin takes to travel the pattern's width; with 0 each takes the whole sequence.
+  // Full slip: the skin's speed through the view (must be > 0).
   double travel_speed_mm_per_s = 0;
   double exposure_s = 0;  // shutter open time, centred on each frame's instant (motion blur)
   // Samples per pixel side: each pixel integrates the moving image over its area (and, with an

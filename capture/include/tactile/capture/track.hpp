@@ -148,6 +148,11 @@ struct RefineStats {
   long cut = 0;      // tracks ended early, where the image did not confirm a frame
   long dropped = 0;  // of which left shorter than min_frames, and removed
   long anchors = 0;  // references renewed on a later frame
+  // Streaming tracker: the whole view's median motion per frame (pixels), the frames a point of
+  // skin stays in view at that motion (0: the view does not slide) and the shortest track kept.
+  double view_motion_px = 0;
+  double frames_in_view = 0;
+  int min_frames = 0;
 };
 
 // Tracks are refined in parallel on `threads` workers (0 = one per core).
@@ -174,6 +179,9 @@ class AlignmentTracker {
   void add_frame(const GrayImage& image, const std::vector<Feature>& seeds);
   int frames() const;
   int live_tracks() const;
+  // Whether the whole view moved into the last frame by more than an alignment may move from
+  // its start (max_offset_mm): the skin slides through it and new skin enters every frame.
+  bool sliding() const;
   // The live tracks followed into the last frame from the one before it, with their positions
   // in both (pixels, as aligned: no smoothing, no curvature correction, which need later
   // frames): what a causal consumer measures strain from, frame by frame. Ids are the tracker's
@@ -184,8 +192,9 @@ class AlignmentTracker {
     double x1_px = 0, y1_px = 0;  // in the last frame
   };
   std::vector<Step> last_step() const;
-  // The tracks of at least min_frames frames, numbered 0.. in order of first frame (then of
-  // seed); the tracker is empty afterwards.
+  // The tracks of at least min_frames frames (where the view slid, fewer: half the frames a
+  // point stays in view, at least 3; see RefineStats), numbered 0.. in order of first frame (then
+  // of seed); the tracker is empty afterwards.
   std::vector<Track> finish(RefineStats* stats = nullptr);
 
  private:
