@@ -242,7 +242,7 @@ bool udp_port_bound(int port) {
 }
 
 // A real stream: Debian's ffmpeg encodes the 60 frames (MPEG-2 in MPEG-TS) and sends them over
-// UDP to the loopback address at 60 Hz; the session reads them through FFmpeg as they arrive.
+// UDP to the loopback address at 25 Hz; the session reads them through FFmpeg as they arrive.
 TEST_F(Live, ReadsAnFfmpegUdpStream) {
   const int port = free_udp_port();
   ASSERT_GT(port, 0);
@@ -258,7 +258,7 @@ TEST_F(Live, ReadsAnFfmpegUdpStream) {
   }
   ASSERT_TRUE(udp_port_bound(port)) << "the session never listened on " << url;
   const std::string send = fmt::format(
-      "timeout 60 ffmpeg -nostdin -hide_banner -loglevel error -re -framerate 60 -i "
+      "timeout 60 ffmpeg -nostdin -hide_banner -loglevel error -re -framerate 25 -i "
       "'{}/frame_%03d.png' "
       "-c:v mpeg2video -q:v 2 -pix_fmt yuv420p -f mpegts '{}?pkt_size=1316' 2>&1",
       frames().string(), url);
@@ -270,7 +270,7 @@ TEST_F(Live, ReadsAnFfmpegUdpStream) {
   std::stringstream output;
   output << in.rdbuf();
   ASSERT_EQ(ended.exit_code, 0) << output.str();
-  EXPECT_THAT(output.str(), HasSubstr("320 x 240 px at 60 Hz"));
+  EXPECT_THAT(output.str(), HasSubstr("320 x 240 px at 25 Hz"));
   const std::string text = output.str();
   const std::size_t at = text.find("frames      ");
   ASSERT_NE(at, std::string::npos) << text;

@@ -142,7 +142,7 @@ TEST(LiveWindowCli, TheSessionIsShownAndItsLastImageWritten) {
   const fs::path png = dir.path() / "live.png";
   const CliRun r =
       run("live " + wave.string() +
-          " --px-per-mm 47 --rate-hz 20 --queue-frames 30 --window --screenshot " + png.string());
+          " --px-per-mm 47 --rate-hz 10 --queue-frames 30 --window --screenshot " + png.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("40 in, 40 processed, 0 dropped"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(png));
