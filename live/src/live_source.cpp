@@ -19,66 +19,72 @@ namespace {
 constexpr int kStreamOpenTimeoutMs = 10000;
 constexpr int kStreamReadTimeoutMs = 2000;
 
-// Both paced sources hand frame k over at start + k / rate, or when it is ready if later.
-Clock::time_point paced(Clock::time_point start, std::int64_t index, double rate_hz) {
-  return start + std::chrono::duration_cast<Clock::duration>(
-                     std::chrono::duration<double>(index / rate_hz));
-}
+// Frames at hand (a file, a folder, memory) handed over one by one as a camera would: frame k
+// at start + k / rate, or when it is ready if later.
+class Paced : public FrameSource {
+ public:
+  bool next(SourceFrame& out) final {
+    if (!read(out.image)) return false;
+    out.index = index_++;
+    // Read ahead of its time, then held until then.
+    std::this_thread::sleep_until(start_ +
+                                  std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(out.index / rate_hz_)));
+    // Handed over now: at its time, or later when reading it took longer than a frame.
+    out.available = Clock::now();
+    return true;
+  }
+  double rate_hz() const final { return rate_hz_; }
 
-class Rehearsal final : public FrameSource {
+ protected:
+  explicit Paced(Clock::time_point start) : start_(start) {}
+  // The next frame, or false after the last.
+  virtual bool read(capture::GrayImage& image) = 0;
+  double rate_hz_ = capture::kCameraRateHz;
+
+ private:
+  Clock::time_point start_;
+  std::int64_t index_ = 0;
+};
+
+class Rehearsal final : public Paced {
  public:
   Rehearsal(const std::string& source, std::optional<double> rate_hz, Clock::time_point start)
-      : source_(source), frames_(source, 0, std::nullopt), start_(start) {
+      : Paced(start), source_(source), frames_(source, 0, std::nullopt) {
     if (const std::string range = frames_.range_error(); !range.empty()) {
       throw FormatError(fmt::format("{}: no frames to play", source));
     }
     rate_hz_ =
         rate_hz.value_or(frames_.is_video() ? frames_.frame_rate_hz() : capture::kCameraRateHz);
   }
-  bool next(SourceFrame& out) override {
-    if (!frames_.next(out.image)) return false;
-    out.index = index_++;
-    // Decoded ahead of its time, then held until then, as a camera would hand it over.
-    std::this_thread::sleep_until(paced(start_, out.index, rate_hz_));
-    // Handed over now: at its time, or later when decoding it took longer than a frame.
-    out.available = Clock::now();
-    return true;
-  }
-  double rate_hz() const override { return rate_hz_; }
   std::string describe() const override {
     return fmt::format("{}: {} frames played at {:g} Hz", source_, frames_.count(), rate_hz_);
   }
 
  private:
+  bool read(capture::GrayImage& image) override { return frames_.next(image); }
   std::string source_;
   capture::FrameRange frames_;
-  Clock::time_point start_;
-  double rate_hz_ = capture::kCameraRateHz;
-  std::int64_t index_ = 0;
 };
 
-class InMemory final : public FrameSource {
+class InMemory final : public Paced {
  public:
   InMemory(const std::vector<capture::GrayImage>& frames, double rate_hz, Clock::time_point start)
-      : frames_(frames), rate_hz_(rate_hz), start_(start) {}
-  bool next(SourceFrame& out) override {
-    if (index_ >= static_cast<std::int64_t>(frames_.size())) return false;
-    out.image = frames_[static_cast<std::size_t>(index_)];
-    out.index = index_++;
-    std::this_thread::sleep_until(paced(start_, out.index, rate_hz_));
-    out.available = Clock::now();
-    return true;
+      : Paced(start), frames_(frames) {
+    rate_hz_ = rate_hz;
   }
-  double rate_hz() const override { return rate_hz_; }
   std::string describe() const override {
     return fmt::format("{} frames in memory played at {:g} Hz", frames_.size(), rate_hz_);
   }
 
  private:
+  bool read(capture::GrayImage& image) override {
+    if (read_ >= frames_.size()) return false;
+    image = frames_[read_++];
+    return true;
+  }
   const std::vector<capture::GrayImage>& frames_;
-  double rate_hz_;
-  Clock::time_point start_;
-  std::int64_t index_ = 0;
+  std::size_t read_ = 0;
 };
 
 class Device final : public FrameSource {

@@ -21,7 +21,7 @@
 
 #include "frames_video.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
-#include "tactile/common/version.hpp"
+#include "tactile/common/provenance.hpp"
 #include "tactile/movie/movie_io.hpp"
 
 namespace tactile::live {
@@ -117,9 +117,7 @@ struct SessionRecording::Writer {
       header.calibration = s->calibration;
       header.field_width_mm = s->calibration.image_width_px * s->calibration.mm_per_px;
       header.field_height_mm = s->calibration.image_height_px * s->calibration.mm_per_px;
-      header.provenance.method = "live";
-      header.provenance.input = s->source;
-      header.provenance.program_version = kVersion;
+      header.provenance = make_provenance(s->source, "live");
       strain.emplace(dir / "strain.h5", header);
       movie::TactileMovie movie_header;
       movie_header.layout = s->layout;
