@@ -381,6 +381,8 @@ namespace {
 // Positions, lengths and times far beyond any fingertip image are damage, not measurements.
 constexpr double kMaxAbsPositionPx = 1e6;
 constexpr double kMaxAbsPositionMm = 1e4;
+// Camera frames a strain movie may count: over four days at 240 Hz.
+constexpr std::int64_t kMaxCameraFrames = 100000000;
 // An edge's relative change of length: a length cannot fall below 0 (-1), and skin tears
 // before it stretches to twice its length (+1); ten times that leaves room for a point tracked
 // to the wrong ridge on a short edge, and still refuses values no skin can have.
@@ -466,7 +468,7 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
                            r.where("/"), "span_frames"));
   m.camera_frame_count = static_cast<std::int32_t>(
       checks::int_in_range(h5::read_attr_int(root, "camera_frame_count", r.where("/")), 0,
-                           100000000, r.where("/"), "camera_frame_count"));
+                           kMaxCameraFrames, r.where("/"), "camera_frame_count"));
   m.field_width_mm = checks::in_range(h5::read_attr_double(root, "field_width_mm", r.where("/")), 0,
                                       kMaxAbsPositionMm, r.where("/"), "field_width_mm");
   m.field_height_mm = checks::in_range(h5::read_attr_double(root, "field_height_mm", r.where("/")),
@@ -518,7 +520,7 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
     tpx.resize(2 * k);
     tmm.resize(2 * k);
     for (const auto f : tframes) {
-      if (f >= m.camera_frame_count && f < 100000000) m.camera_frame_count = f + 1;
+      if (f >= m.camera_frame_count && f < kMaxCameraFrames) m.camera_frame_count = f + 1;
     }
   }
   check_positions(tpx, kMaxAbsPositionPx, r, "/tracks/position_px");
@@ -561,7 +563,7 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
                        etracks, elen, tri},
                       known_tracks);
     for (const auto f : to) {
-      if (f >= m.camera_frame_count && f < 100000000) m.camera_frame_count = f + 1;
+      if (f >= m.camera_frame_count && f < kMaxCameraFrames) m.camera_frame_count = f + 1;
     }
   }
   check_positions(pfpx, kMaxAbsPositionPx, r, "/frames/point_position_px");
