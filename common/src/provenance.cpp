@@ -2,8 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <chrono>
+#include <cstdint>
+#include <cstdlib>
 #include <ctime>
+#include <stdexcept>
+#include <string_view>
 #include <utility>
 
 #include "tactile/common/version.hpp"
@@ -22,7 +27,23 @@ Provenance make_provenance(std::string input, std::string method, std::string pa
 }
 
 std::string utc_now_iso8601() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  // The reproducible-builds convention: a fixed creation time, so that the same work written
+  // twice (a movie saved by the authoring window and its experiment re-run) gives equal files.
+  if (const char* fixed = std::getenv("SOURCE_DATE_EPOCH"); fixed != nullptr) {
+    const std::string_view text(fixed);
+    std::int64_t seconds = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seconds);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || seconds < 0 ||
+        seconds >
+            253402300799) {  // 9999-12-31T23:59:59Z, the last time ISO 8601 writes in 4 digits
+      throw std::invalid_argument(
+          fmt::format("SOURCE_DATE_EPOCH='{}' is not a time: must be whole seconds since 1970 UTC, "
+                      "from 0 to 253402300799",
+                      text));
+    }
+    now = static_cast<std::time_t>(seconds);
+  }
   std::tm tm{};
   gmtime_r(&now, &tm);
   char buf[32];

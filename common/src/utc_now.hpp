@@ -7,6 +7,8 @@
 
 namespace tactile {
 
+// SOURCE_DATE_EPOCH, when set, is taken as the time (reproducible output); a value that is not
+// whole seconds from 0 to 253402300799 is std::invalid_argument naming it.
 std::string utc_now_iso8601();
 
 }  // namespace tactile

@@ -323,6 +323,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
       ref = (base_dir / ref).string();
     }
     if (std::filesystem::path(ref).extension() == ".json") ex.layout_files.emplace_back(ref);
+    ex.layout_refs.push_back(ref);
     try {
       ex.layouts.push_back(movie::resolve_layout(ref));
     } catch (const std::exception& e) {

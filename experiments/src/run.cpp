@@ -109,6 +109,24 @@ Output experiment_output(std::string option, const fs::path& out_dir) {
                        {"movies", "plots", "perception", "cells", "slurm"});
 }
 
+void stamp_run_provenance(const Experiment& ex, std::size_t run, movie::TactileMovie& movie,
+                          const std::string& created_utc) {
+  // Made from the experiment file; which run of it, and which of its sources, is said with the
+  // mapping's parameters.
+  const ExperimentRun& r = ex.runs.at(run);
+  movie.provenance.input = ex.origin;
+  auto parameters = nlohmann::json::parse(movie.provenance.parameters_json);
+  parameters["experiment"] = ex.name;
+  parameters["run"] = r.id;
+  parameters["source"] = ex.sources[r.source].name;
+  movie.provenance.parameters_json = parameters.dump();
+  movie.provenance.created_utc = created_utc;
+}
+
+fs::path run_movie_path(const Experiment& ex, std::size_t run, const fs::path& out_dir) {
+  return out_dir / "movies" / (ex.runs.at(run).id + ".h5");
+}
+
 MappedRun map_run(const Experiment& ex, std::size_t index, const capture::StrainMovie& base,
                   const capture::StrainMovie& source, const fs::path& out_dir,
                   const std::string& created, std::mutex* hdf5) {
@@ -138,16 +156,8 @@ MappedRun map_run(const Experiment& ex, std::size_t index, const capture::Strain
   std::string movie_file;
   if (ex.write_movies) {
     auto& movie = mapped.movie;
-    // Made from the experiment file; which run of it, and which of its sources, is said with the
-    // mapping's parameters.
-    movie.provenance.input = ex.origin;
-    auto parameters = nlohmann::json::parse(movie.provenance.parameters_json);
-    parameters["experiment"] = ex.name;
-    parameters["run"] = run.id;
-    parameters["source"] = ex.sources[run.source].name;
-    movie.provenance.parameters_json = parameters.dump();
-    movie.provenance.created_utc = created;
-    const fs::path file = out_dir / "movies" / (run.id + ".h5");
+    stamp_run_provenance(ex, index, movie, created);
+    const fs::path file = run_movie_path(ex, index, out_dir);
     fs::create_directories(file.parent_path());
     std::unique_lock<std::mutex> lock;
     if (hdf5) lock = std::unique_lock(*hdf5);

@@ -78,22 +78,19 @@ FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::Strain
   }
 
   if (frames > 0 && n > 0) {
-    constexpr double kTolUm = 1e-3;
-    const double lo = layout.deflection_min_um;
-    const double hi = layout.deflection_max_um;
-    const double step_um = slew_limit_um_per_s / movie.rate_hz;
     std::size_t saturated = 0, slewed = 0, steps = 0, accels = 0;
     double acc2 = 0, d2 = 0;
     for (std::size_t f = 0; f < frames; ++f) {
       for (std::size_t j = 0; j < n; ++j) {
         const double d = movie.deflection_um[f * n + j];
         d2 += d * d;
-        if ((lo != 0 && std::abs(d - lo) <= kTolUm) || (hi != 0 && std::abs(d - hi) <= kTolUm)) {
-          ++saturated;
-        }
+        if (at_deflection_limit(layout, d)) ++saturated;
         if (f >= 1) {
           ++steps;
-          if (std::abs(d - movie.deflection_um[(f - 1) * n + j]) >= step_um - kTolUm) ++slewed;
+          if (at_slew_limit(d - movie.deflection_um[(f - 1) * n + j], slew_limit_um_per_s,
+                            movie.rate_hz)) {
+            ++slewed;
+          }
         }
         if (f >= 2) {
           const double a = (d - 2.0 * movie.deflection_um[(f - 1) * n + j] +
@@ -111,6 +108,20 @@ FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::Strain
     if (accels > 0) m.rms_acceleration_um_per_s2 = std::sqrt(acc2 / static_cast<double>(accels));
   }
   return m;
+}
+
+namespace {
+constexpr double kLimitToleranceUm = 1e-3;
+}  // namespace
+
+bool at_deflection_limit(const movie::Layout& layout, double d_um) {
+  const double lo = layout.deflection_min_um, hi = layout.deflection_max_um;
+  return (lo != 0 && std::abs(d_um - lo) <= kLimitToleranceUm) ||
+         (hi != 0 && std::abs(d_um - hi) <= kLimitToleranceUm);
+}
+
+bool at_slew_limit(double step_um, double slew_limit_um_per_s, double rate_hz) {
+  return std::abs(step_um) >= slew_limit_um_per_s / rate_hz - kLimitToleranceUm;
 }
 
 std::string describe_fidelity(const FidelityMetrics& fit) {

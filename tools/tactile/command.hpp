@@ -26,6 +26,7 @@ void add_perceive(CLI::App& app, Action& action);
 void add_classify(CLI::App& app, Action& action);
 void add_play(CLI::App& app, Action& action);
 void add_view(CLI::App& app, Action& action);
+void add_author(CLI::App& app, Action& action);
 void add_devices(CLI::App& app, Action& action);
 void add_info(CLI::App& app, Action& action);
 void add_export(CLI::App& app, Action& action);

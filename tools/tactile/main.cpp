@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   tactile::cli::add_classify(app, action);
   tactile::cli::add_play(app, action);
   tactile::cli::add_view(app, action);
+  tactile::cli::add_author(app, action);
   tactile::cli::add_devices(app, action);
   tactile::cli::add_info(app, action);
   tactile::cli::add_export(app, action);

@@ -1,5 +1,6 @@
 // GLFW emulator window; see viewer.hpp.
 #include "tactile/display/viewer.hpp"
+#include "tactile/display/viewer_gl.hpp"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -19,19 +20,6 @@
 namespace tactile::display {
 
 namespace {
-
-// GLFW reports errors through a callback; keep the last one to put in exceptions. It is
-// thread-local because GLFW calls it on the thread that made the failing call.
-thread_local std::string g_last_glfw_error;
-
-void on_glfw_error(int code, const char* description) {
-  g_last_glfw_error = fmt::format("GLFW error {}: {}", code, description ? description : "?");
-}
-
-bool env_set(const char* name) {
-  const char* v = std::getenv(name);
-  return v != nullptr && *v != '\0';
-}
 
 struct PlaybackState {
   bool playing = true;
@@ -77,243 +65,19 @@ void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mod
   }
 }
 
-void fill_rect(const PixelRect& r, std::array<std::uint8_t, 3> rgb) {
-  glColor3ub(rgb[0], rgb[1], rgb[2]);
-  glBegin(GL_QUADS);
-  glVertex2d(r.x, r.y);
-  glVertex2d(r.x + r.width, r.y);
-  glVertex2d(r.x + r.width, r.y + r.height);
-  glVertex2d(r.x, r.y + r.height);
-  glEnd();
-}
-
-void begin_pixels(int width, int height) {
-  glViewport(0, 0, width, height);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, width, height, 0, -1, 1);  // pixel coordinates, y down like the preview image
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
-  glClearColor(0.25f, 0.25f, 0.25f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-}
-
-void draw_contactors(const movie::Layout& layout, std::span<const float> frame,
-                     double magnification, double strain_scale, const PixelRect& pane) {
-  const movie::ViewTransform t = pane_view(layout, magnification, pane);
-  const auto px = [&](double x_mm) { return t.origin_x_px + x_mm * t.px_per_mm; };
-  const auto py = [&](double y_mm) { return t.origin_y_px + y_mm * t.px_per_mm; };
-  const std::vector<movie::ContactorShape> shapes =
-      movie::frame_shapes(layout, frame, magnification);
-  for (const movie::ContactorShape& c : shapes) {
-    const double x0 = px(c.x_mm - c.width_mm / 2), x1 = px(c.x_mm + c.width_mm / 2);
-    const double y0 = py(c.y_mm - c.height_mm / 2), y1 = py(c.y_mm + c.height_mm / 2);
-    const auto rgb = movie::strain_colour(c.strain, strain_scale);
-    glColor3ub(rgb[0], rgb[1], rgb[2]);
-    glBegin(GL_QUADS);
-    glVertex2d(x0, y0);
-    glVertex2d(x1, y0);
-    glVertex2d(x1, y1);
-    glVertex2d(x0, y1);
-    glEnd();
-    glColor3ub(0, 0, 0);
-    glBegin(GL_LINE_LOOP);
-    glVertex2d(x0, y0);
-    glVertex2d(x1, y0);
-    glVertex2d(x1, y1);
-    glVertex2d(x0, y1);
-    glEnd();
-  }
-  // Rest positions: small grey crosses, so displacement is visible even when paused.
-  glColor3ub(150, 150, 150);
-  glBegin(GL_LINES);
-  for (const movie::ContactorShape& c : shapes) {
-    const double x = px(c.rest_x_mm), y = py(c.rest_y_mm);
-    glVertex2d(x - 3, y);
-    glVertex2d(x + 3, y);
-    glVertex2d(x, y - 3);
-    glVertex2d(x, y + 3);
-  }
-  glEnd();
-  // Scale bar along the pane's bottom: the layout's full deflection at this magnification.
-  const double range_um =
-      std::max(std::abs(layout.deflection_min_um), std::abs(layout.deflection_max_um));
-  const double bar_px = range_um * magnification / 1000.0 * t.px_per_mm;
-  const double bar_y = pane.y + pane.height - 6;
-  glColor3ub(255, 255, 255);
-  glLineWidth(3);
-  glBegin(GL_LINES);
-  glVertex2d(pane.x + 10, bar_y);
-  glVertex2d(pane.x + 10 + bar_px, bar_y);
-  glEnd();
-  glLineWidth(1);
-}
-
-// The field's background: capture's strain maps' dark blue, against which black, grey and
-// white edges all stand out.
-constexpr std::array<std::uint8_t, 3> kFieldBackground{20, 40, 70};
-
-void draw_field(const movie::SideField& field, const movie::FieldFrame& frame,
-                const PixelRect& pane) {
-  fill_rect(pane, kFieldBackground);
-  const movie::ViewTransform t = pane_field_view(field, pane);
-  glLineWidth(3);
-  glBegin(GL_LINES);
-  for (const movie::FieldSegment& s : frame.segments) {
-    const std::uint8_t g = movie::field_grey(s.value, field.full_scale);
-    glColor3ub(g, g, g);
-    glVertex2d(t.origin_x_px + s.x0_mm * t.px_per_mm, t.origin_y_px + s.y0_mm * t.px_per_mm);
-    glVertex2d(t.origin_x_px + s.x1_mm * t.px_per_mm, t.origin_y_px + s.y1_mm * t.px_per_mm);
-  }
-  glEnd();
-  glLineWidth(1);
-}
-
-void draw_camera(const CameraView& view, const PixelRect& pane) {
-  fill_rect(pane, kFieldBackground);
-  if (view.width_px <= 0 || view.height_px <= 0) return;
-  const CameraPlacement at = place_camera(view, pane);
-  // The image as a texture: one upload a drawn frame (a camera frame is a few hundred KB).
-  GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, view.width_px, view.height_px, 0, GL_LUMINANCE,
-               GL_UNSIGNED_BYTE, view.grey.data());
-  glEnable(GL_TEXTURE_2D);
-  glColor3ub(255, 255, 255);
-  const double x1 = at.x_px + view.width_px * at.scale, y1 = at.y_px + view.height_px * at.scale;
-  glBegin(GL_QUADS);
-  glTexCoord2d(0, 0);
-  glVertex2d(at.x_px, at.y_px);
-  glTexCoord2d(1, 0);
-  glVertex2d(x1, at.y_px);
-  glTexCoord2d(1, 1);
-  glVertex2d(x1, y1);
-  glTexCoord2d(0, 1);
-  glVertex2d(at.x_px, y1);
-  glEnd();
-  glDisable(GL_TEXTURE_2D);
-  glDeleteTextures(1, &texture);
-  glLineWidth(2);
-  glBegin(GL_LINES);
-  for (const CameraEdge& e : view.edges) {
-    const auto rgb = movie::strain_colour(e.strain, view.full_scale);
-    glColor3ub(rgb[0], rgb[1], rgb[2]);
-    glVertex2d(at.x_px + e.x0_px * at.scale, at.y_px + e.y0_px * at.scale);
-    glVertex2d(at.x_px + e.x1_px * at.scale, at.y_px + e.y1_px * at.scale);
-  }
-  glEnd();
-  glLineWidth(1);
-}
-
-// Scrub bar colours: the played part, the rest, and the handle.
-constexpr std::array<std::uint8_t, 3> kScrubPlayed{70, 130, 200};
-constexpr std::array<std::uint8_t, 3> kScrubRest{40, 40, 40};
-
-void draw_scrub(const PixelRect& bar, std::int32_t frame, std::int32_t frames) {
-  fill_rect(bar, kScrubRest);
-  const double x = scrub_handle_x(bar, frame, frames);
-  fill_rect({bar.x, bar.y, static_cast<int>(std::lround(x)) - bar.x, bar.height}, kScrubPlayed);
-  fill_rect({static_cast<int>(std::lround(x)) - 1, bar.y - 3, 3, bar.height + 6}, {255, 255, 255});
-}
-
-RenderedImage read_pixels(int width, int height) {
-  RenderedImage img;
-  img.width = width;
-  img.height = height;
-  img.rgb.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
-  std::vector<std::uint8_t> bottom_up(img.rgb.size());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadBuffer(GL_BACK);
-  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, bottom_up.data());
-  const auto row = static_cast<std::size_t>(width) * 3;
-  for (int y = 0; y < height; ++y) {
-    std::copy_n(bottom_up.begin() + static_cast<std::ptrdiff_t>(row * (height - 1 - y)), row,
-                img.rgb.begin() + static_cast<std::ptrdiff_t>(row * y));
-  }
-  return img;
-}
-
-// glfwTerminate on every exit path.
-struct GlfwSession {
-  GlfwSession() {
-    glfwSetErrorCallback(on_glfw_error);
-    ok = glfwInit() == GLFW_TRUE;
-  }
-  ~GlfwSession() {
-    if (ok) glfwTerminate();
-  }
-  bool ok = false;
-};
-
-// Dear ImGui on the window for text (legacy OpenGL 2 back end, like the drawing); also owns
-// the window so that ImGui shuts down before it goes.
-struct ImGuiSession {
-  explicit ImGuiSession(GLFWwindow* w) : window(w) {
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
-    ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForOpenGL(window, true);
-    ImGui_ImplOpenGL2_Init();
-  }
-  ~ImGuiSession() {
-    ImGui_ImplOpenGL2_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
-    glfwDestroyWindow(window);
-  }
-  ImGuiSession(const ImGuiSession&) = delete;
-  ImGuiSession& operator=(const ImGuiSession&) = delete;
-  GLFWwindow* window;
-};
-
-// Opens the window (after `session` initialised GLFW) and makes its GL context current.
-GLFWwindow* open_window(int width_px, int height_px, bool visible, bool vsync) {
-  glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
-  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(width_px, height_px, "tactile view", nullptr, nullptr);
-  if (window == nullptr) throw std::runtime_error("cannot open a window: " + g_last_glfw_error);
-  glfwMakeContextCurrent(window);
-  glfwSwapInterval(vsync ? 1 : 0);
-  return window;
-}
-
-// Starts an ImGui frame with the text strip's window over `pane` (close it with ImGui::End).
-void begin_info_strip(const PixelRect& pane) {
-  ImGui_ImplOpenGL2_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
-  ImGui::NewFrame();
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(pane.x), static_cast<float>(pane.y)));
-  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(pane.width), static_cast<float>(pane.height)));
-  ImGui::Begin("info", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
-}
-
 // Draws the text, counts the frame, reads the pixels back when it is the last one wanted and
 // shows it; true when the viewer should close.
 bool finish_frame(GLFWwindow* window, int fb_w, int fb_h, std::int64_t exit_after_frames,
                   ViewerResult& result, bool keep_image = false) {
-  ImGui::Render();
-  ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+  gl::render_imgui_frame();
   ++result.frames_drawn;
   const bool last = exit_after_frames >= 0 && result.frames_drawn >= exit_after_frames;
-  if (last || keep_image) result.last_image = read_pixels(fb_w, fb_h);
+  if (last || keep_image) result.last_image = gl::read_pixels(fb_w, fb_h);
   glfwSwapBuffers(window);
   return last;
 }
 
 }  // namespace
-
-bool screen_available() {
-  if (!env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) return false;
-  GlfwSession session;
-  return session.ok;
-}
 
 ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& options) {
   validate_movie(movie);
@@ -335,12 +99,7 @@ ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& o
       options.magnification > 0 ? options.magnification : movie::auto_magnification(shown.layout);
   const double strain_scale = std::max(movie::movie_strain_full_scale(shown), 1e-6);
 
-  g_last_glfw_error.clear();
-  GlfwSession session;
-  if (!session.ok) throw std::runtime_error("cannot start GLFW: " + g_last_glfw_error);
   const int width_px = options.field ? options.width_px * 2 : options.width_px;
-  GLFWwindow* window =
-      open_window(width_px, options.height_px, options.visible, !options.fixed_step);
 
   PlaybackState state;
   state.playing = !options.start_paused;
@@ -349,9 +108,9 @@ ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& o
   state.frames = shown.frame_count;
   state.position = std::clamp(static_cast<double>(lead_in_frames) + options.start_s * shown.rate_hz,
                               0.0, static_cast<double>(shown.frame_count - 1));
-  glfwSetWindowUserPointer(window, &state);
-  glfwSetKeyCallback(window, on_key);  // before ImGui, which chains to it
-  ImGuiSession gui(window);
+  gl::Window win(width_px, options.height_px, options.visible, !options.fixed_step, "tactile view",
+                 on_key, &state);
+  GLFWwindow* window = win.handle();
 
   result.shown_frame_count = shown.frame_count;
   double last_time = glfwGetTime();
@@ -390,16 +149,16 @@ ViewerResult run_viewer(const movie::TactileMovie& movie, const ViewerOptions& o
     const auto frame = static_cast<std::int32_t>(
         std::clamp(std::floor(state.position), 0.0, static_cast<double>(shown.frame_count - 1)));
     const double movie_t_s = static_cast<double>(frame - lead_in_frames) / shown.rate_hz;
-    begin_pixels(fb_w, fb_h);
-    draw_contactors(shown.layout, shown.frame(frame), magnification, strain_scale,
-                    panes.contactors);
+    gl::begin_pixels(fb_w, fb_h);
+    gl::draw_contactors(shown.layout, shown.frame(frame), magnification, strain_scale,
+                        panes.contactors);
     if (options.field) {
       result.last_field_frame = movie::field_frame_at(*options.field, movie_t_s);
-      draw_field(*options.field, options.field->frames[result.last_field_frame], panes.field);
+      gl::draw_field(*options.field, options.field->frames[result.last_field_frame], panes.field);
     }
-    draw_scrub(panes.scrub, frame, shown.frame_count);
+    gl::draw_scrub(panes.scrub, frame, shown.frame_count);
 
-    begin_info_strip(panes.info);
+    gl::begin_info_strip(panes.info);
     ImGui::TextUnformatted(fmt::format("{}   t = {:.3f} s   frame {}/{}{}", shown.layout.name,
                                        movie_t_s, frame + 1, shown.frame_count,
                                        state.playing ? "" : "   (paused)")
@@ -465,11 +224,8 @@ ViewerResult run_live_viewer(const movie::Layout& layout,
   // Neighbours at opposite ends of the range: full colour.
   const double strain_scale = std::max(layout.deflection_max_um - layout.deflection_min_um, 1e-3) *
                               1e-3 / std::min(layout.pitch_x_mm, layout.pitch_y_mm);
-  g_last_glfw_error.clear();
-  GlfwSession session;
-  if (!session.ok) throw std::runtime_error("cannot start GLFW: " + g_last_glfw_error);
-  GLFWwindow* window = open_window(options.width_px, options.height_px, options.visible, true);
-  ImGuiSession gui(window);
+  gl::Window win(options.width_px, options.height_px, options.visible, true, "tactile live");
+  GLFWwindow* window = win.handle();
   ViewerResult result;
   const auto n = static_cast<std::size_t>(layout.contactor_count());
   while (!glfwWindowShouldClose(window)) {
@@ -490,10 +246,11 @@ ViewerResult run_live_viewer(const movie::Layout& layout,
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window, &fb_w, &fb_h);
     const ViewerPanes panes = viewer_panes(fb_w, fb_h, frame->camera.has_value());
-    begin_pixels(fb_w, fb_h);
-    draw_contactors(layout, frame->deflection_um, magnification, strain_scale, panes.contactors);
-    if (frame->camera) draw_camera(*frame->camera, panes.field);
-    begin_info_strip(panes.info);
+    gl::begin_pixels(fb_w, fb_h);
+    gl::draw_contactors(layout, frame->deflection_um, magnification, strain_scale,
+                        panes.contactors);
+    if (frame->camera) gl::draw_camera(*frame->camera, panes.field);
+    gl::begin_info_strip(panes.info);
     for (const std::string& line : frame->lines) ImGui::TextUnformatted(line.c_str());
     ImGui::End();
     if (finish_frame(window, fb_w, fb_h, options.exit_after_frames, result,

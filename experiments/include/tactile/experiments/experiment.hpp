@@ -72,6 +72,8 @@ struct Experiment {
   std::vector<ExperimentSource> sources;
   std::vector<movie::Layout> layouts;
   std::vector<std::filesystem::path> layout_files;  // the layouts read from files
+  // Each layout as named: a built-in name, or its file's path (relative ones from the file's folder)
+  std::vector<std::string> layout_refs;
   std::vector<ExperimentRun> runs;
   std::optional<ExperimentPerception> perception;
   // The whole grid in words: "1 sources x 2 layouts x 1 methods x 2 parameter sets (layouts:
@@ -140,6 +142,15 @@ struct ExperimentReport {
 ExperimentReport run_experiment(Experiment experiment, const std::filesystem::path& out_dir,
                                 int threads,
                                 const std::function<void(const std::string&)>& progress = {});
+
+// What run_experiment does to run `run`'s movie before writing it: the experiment file as its
+// input, the experiment, run and source named in its parameters, created at `created_utc`. A
+// program that maps a run itself (the authoring window) stamps it so, to write the same file.
+void stamp_run_provenance(const Experiment& ex, std::size_t run, movie::TactileMovie& movie,
+                          const std::string& created_utc);
+// Where run_experiment writes run `run`'s movie: out_dir/movies/<run id>.h5.
+std::filesystem::path run_movie_path(const Experiment& ex, std::size_t run,
+                                     const std::filesystem::path& out_dir);
 
 // What run_experiment writes into out_dir (given by `option`), for a caller that must not write
 // over the experiment's inputs: the files at its top, and the sub-folders whose files it names

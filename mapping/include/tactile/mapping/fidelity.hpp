@@ -42,6 +42,12 @@ FidelityMetrics fidelity(const movie::TactileMovie& movie, const capture::Strain
                          const Placement& placement, double um_per_strain,
                          double slew_limit_um_per_s, const StrainFieldOptions& field = {});
 
+// The rules saturated_fraction and slew_limited_fraction count by (within 1e-3 um), for views
+// that show where a movie saturates or is slew-limited: a deflection at a non-zero end of the
+// layout's range; a frame-to-frame step as large as the slew limit allows.
+bool at_deflection_limit(const movie::Layout& layout, double d_um);
+bool at_slew_limit(double step_um, double slew_limit_um_per_s, double rate_hz);
+
 // "fidelity to the measured strain: correlation 0.998, RMS error ... (N samples)", as `map` and
 // `demo` print it.
 std::string describe_fidelity(const FidelityMetrics& fit);
