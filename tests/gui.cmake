@@ -13,3 +13,14 @@ if(TACTILE_SANITIZE)
   # leaks are still checked in every other test.
   set_tests_properties(gui.viewer PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
 endif()
+
+# `tactile author` driven by real input events (xdotool) in the same kind of server.
+find_program(XDOTOOL xdotool REQUIRED)
+add_test(NAME gui.author
+         COMMAND ${XVFB_RUN} -a -s "-screen 0 1600x1000x24 -noreset" sh
+                 ${CMAKE_CURRENT_SOURCE_DIR}/gui/author_window.sh $<TARGET_FILE:tactile>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui-author)
+set_tests_properties(gui.author PROPERTIES LABELS gui TIMEOUT 300)
+if(TACTILE_SANITIZE)
+  set_tests_properties(gui.author PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
+endif()

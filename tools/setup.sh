@@ -19,6 +19,7 @@ packages=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
+  xdotool  # real key presses and clicks sent to the authoring window under Xvfb
   # firmware on an emulated Cortex-M4, USB tests against fake devices, fuzzing
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
   umockdev libumockdev-dev

@@ -7,8 +7,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "tactile/common/parallel_for.hpp"
 #include "tactile/common/version.hpp"
-#include "tactile/movie/layout_json.hpp"
 
 namespace tactile::author {
 
@@ -32,43 +32,57 @@ movie::TactileMovie frames_of(const movie::TactileMovie& movie, std::int32_t fir
   return part;
 }
 
-// Fidelity of stretches of the strain frames, each against the display frames of its time (as
+// The stretches of the strain frames over_time covers, and the display frames of each (as
 // fidelity() pairs them: the display frame nearest each strain frame's time since the first).
-std::vector<FidelityPoint> over_time(const MappingOutcome& o, const capture::StrainMovie& source,
-                                     const mapping::Placement& placement, double um_per_strain) {
-  std::vector<FidelityPoint> points;
+struct Stretch {
+  std::int32_t f0 = 0, f1 = 0;  // strain frames, inclusive
+  std::int32_t d0 = 0, d1 = 0;  // display frames, inclusive
+};
+
+std::vector<Stretch> stretches_of(const capture::StrainMovie& source,
+                                  const movie::TactileMovie& movie) {
+  std::vector<Stretch> out;
   const auto frames = static_cast<std::int32_t>(source.frames.size());
-  const int stretches = std::min(kFidelityStretches, frames);
-  if (stretches <= 0 || o.movie.frame_count <= 0) return points;
+  const int count = std::min(kFidelityStretches, frames);
+  if (count <= 0 || movie.frame_count <= 0) return out;
   const double t0 = source.frames.front().t_s;
   const auto display_index = [&](double t_s) {
-    return std::clamp(static_cast<std::int32_t>(std::lround((t_s - t0) * o.movie.rate_hz)), 0,
-                      o.movie.frame_count - 1);
+    return std::clamp(static_cast<std::int32_t>(std::lround((t_s - t0) * movie.rate_hz)), 0,
+                      movie.frame_count - 1);
   };
-  for (int k = 0; k < stretches; ++k) {
-    const std::int32_t f0 = k * frames / stretches, f1 = (k + 1) * frames / stretches - 1;
-    if (f1 < f0) continue;
-    capture::StrainMovie slice;
-    slice.frame_rate_hz = source.frame_rate_hz;
-    slice.span_frames = source.span_frames;
-    slice.calibration = source.calibration;
-    slice.field_width_mm = source.field_width_mm;
-    slice.field_height_mm = source.field_height_mm;
-    slice.frames.assign(source.frames.begin() + f0, source.frames.begin() + f1 + 1);
-    const std::int32_t d0 = display_index(slice.frames.front().t_s);
+  for (int k = 0; k < count; ++k) {
+    Stretch s;
+    s.f0 = k * frames / count;
+    s.f1 = (k + 1) * frames / count - 1;
+    if (s.f1 < s.f0) continue;
+    s.d0 = display_index(source.frames[static_cast<std::size_t>(s.f0)].t_s);
     // Up to the frame before the next stretch's first, so that the stretches tile the movie.
-    const std::int32_t d1 =
-        k + 1 < stretches
-            ? std::max(d0, display_index(source.frames[static_cast<std::size_t>(f1 + 1)].t_s) - 1)
-            : o.movie.frame_count - 1;
-    const mapping::FidelityMetrics m =
-        mapping::fidelity(frames_of(o.movie, d0, d1), slice, placement, um_per_strain,
-                          o.params.slew_limit_um_per_s, o.params.field);
-    points.push_back({slice.frames.front().t_s - t0, slice.frames.back().t_s - t0,
-                      m.strain_correlation, m.strain_rms_error, m.saturated_fraction,
-                      m.slew_limited_fraction});
+    s.d1 = k + 1 < count
+               ? std::max(s.d0,
+                          display_index(source.frames[static_cast<std::size_t>(s.f1 + 1)].t_s) - 1)
+               : movie.frame_count - 1;
+    out.push_back(s);
   }
-  return points;
+  return out;
+}
+
+FidelityPoint stretch_fidelity(const MappingOutcome& o, const capture::StrainMovie& source,
+                               const Stretch& s, const mapping::Placement& placement,
+                               double um_per_strain) {
+  capture::StrainMovie slice;
+  slice.frame_rate_hz = source.frame_rate_hz;
+  slice.span_frames = source.span_frames;
+  slice.calibration = source.calibration;
+  slice.field_width_mm = source.field_width_mm;
+  slice.field_height_mm = source.field_height_mm;
+  slice.frames.assign(source.frames.begin() + s.f0, source.frames.begin() + s.f1 + 1);
+  const mapping::FidelityMetrics m =
+      mapping::fidelity(frames_of(o.movie, s.d0, s.d1), slice, placement, um_per_strain,
+                        o.params.slew_limit_um_per_s, o.params.field);
+  const double t0 = source.frames.front().t_s;
+  return {slice.frames.front().t_s - t0, slice.frames.back().t_s - t0,
+          m.strain_correlation,          m.strain_rms_error,
+          m.saturated_fraction,          m.slew_limited_fraction};
 }
 
 }  // namespace
@@ -90,9 +104,18 @@ MappingOutcome map_for_authoring(const capture::StrainMovie& strain,
     o.movie = std::move(mapped.movie);
     const auto t1 = std::chrono::steady_clock::now();
     if (mapped.um_per_strain > 0) {
-      o.metrics = mapping::fidelity(o.movie, source, mapped.placement, mapped.um_per_strain,
-                                    o.params.slew_limit_um_per_s, o.params.field);
-      o.over_time = over_time(o, source, mapped.placement, mapped.um_per_strain);
+      // The whole movie's figures and each stretch's, on every core: a change waits for them.
+      const std::vector<Stretch> stretches = stretches_of(source, o.movie);
+      o.over_time.resize(stretches.size());
+      parallel_for(stretches.size() + 1, 0, [&](std::size_t i) {
+        if (i == 0) {
+          o.metrics = mapping::fidelity(o.movie, source, mapped.placement, mapped.um_per_strain,
+                                        o.params.slew_limit_um_per_s, o.params.field);
+        } else {
+          o.over_time[i - 1] =
+              stretch_fidelity(o, source, stretches[i - 1], mapped.placement, mapped.um_per_strain);
+        }
+      });
     }
     const auto n = static_cast<std::size_t>(o.layout.contactor_count());
     o.saturated_share.assign(n, 0);

@@ -64,6 +64,9 @@ void write_any(H5::Group& group, const std::string& name, const std::vector<T>& 
   }
   H5::DataSpace space(static_cast<int>(dims.size()), dims.data());
   H5::DSetCreatPropList props;
+  // No modification time in the object's header: the same data written twice gives the same
+  // bytes (the file's one time is its provenance's, which SOURCE_DATE_EPOCH can fix).
+  H5Pset_obj_track_times(props.getId(), false);
   // Compress large datasets: movies are mostly smooth and compress several-fold.
   if (count >= 4096 && !dims.empty()) {
     std::vector<hsize_t> chunk(dims);

@@ -66,7 +66,17 @@ class Audition {
     request.stop_fd = stop_pipe_[0];
     result_ = std::async(std::launch::async, [movie = std::move(movie), request, backends, say] {
       return display::play_anywhere(
-          movie, request, [&](const std::string& line) { say("audition: " + line); }, backends);
+          movie, request,
+          [&](const std::string& text) {
+            // play says whole lines, each ending in a newline: one event a line.
+            std::size_t start = 0;
+            while (start < text.size()) {
+              const std::size_t end = std::min(text.find('\n', start), text.size());
+              if (end > start) say("audition: " + text.substr(start, end - start));
+              start = end + 1;
+            }
+          },
+          backends);
     });
   }
   // Stops an audition under way (the device ramps to rest) and returns its result.
@@ -310,7 +320,8 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
   Slot slot_b{current, nullptr};
   std::uint64_t asked = remapper.submit(current);
   Clock::time_point asked_at = Clock::now();
-  bool waiting_view = true;  // a change not drawn yet
+  bool waiting_view = false;   // a change not drawn yet (the first mapping is not a change)
+  std::uint64_t b_number = 0;  // the request slot_b.outcome answers
 
   AuthorWindowResult result;
   KeyQueue keys;
@@ -339,12 +350,14 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
     // Newest outcomes.
     if (const auto done = remapper.latest(); done.outcome && done.outcome != slot_b.outcome) {
       slot_b.outcome = done.outcome;
+      b_number = done.number;
       const auto& o = *done.outcome;
       if (o.error.empty()) {
         say(
-            fmt::format("author: mapped #{} ({}) in {:.1f} ms: correlation {:.3f}, RMS error "
-                        "{:.3g}, saturated {:.1f} %, slew-limited {:.1f} %",
-                        done.number, describe_request(o.request), o.map_ms,
+            fmt::format("author: mapped #{} ({}) in {:.1f} ms (+{:.1f} ms of figures): "
+                        "correlation {:.3f}, RMS error {:.3g}, saturated {:.1f} %, slew-limited "
+                        "{:.1f} %",
+                        done.number, describe_request(o.request), o.map_ms, o.figures_ms,
                         o.metrics.strain_correlation, o.metrics.strain_rms_error,
                         100 * o.metrics.saturated_fraction, 100 * o.metrics.slew_limited_fraction));
       } else {
@@ -352,7 +365,11 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
       }
     }
     if (a_mapper && slot_a && !slot_a->outcome) {
-      if (auto done = a_mapper->latest(); done.outcome) slot_a->outcome = done.outcome;
+      if (auto done = a_mapper->latest(); done.outcome) {
+        slot_a->outcome = done.outcome;
+        say(fmt::format("author: A mapped ({}){}", describe_request(done.outcome->request),
+                        done.outcome->error.empty() ? "" : ": " + done.outcome->error));
+      }
     }
     const Slot& shown_slot = show_a && slot_a && slot_a->outcome ? *slot_a : slot_b;
     const std::shared_ptr<const MappingOutcome> shown = shown_slot.outcome;
@@ -397,12 +414,15 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
     ImGui::SetNextWindowSize(ImVec2(static_cast<float>(panel_w), static_cast<float>(fb_h)));
     ImGui::Begin("Mapping", nullptr, fixed);
     ImGui::PushItemWidth(-1);
+    // Tab is the A/B key: no control takes the keyboard's focus by it.
+    ImGui::PushAllowKeyboardFocus(false);
     mapping::MapRequest edited = slot_b.request;
     bool changed = false;
     for (const auto& row : mapping::map_options()) {
       if (row.positional) continue;
       changed = option_control(row, edited, problem) || changed;
     }
+    ImGui::PopAllowKeyboardFocus();
     ImGui::PopItemWidth();
     if (!problem.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", problem.c_str());
     ImGui::Separator();
@@ -643,7 +663,8 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
     if (result.frames_drawn == 0) first_frame = now_clock;
     ++result.frames_drawn;
     result.drawing_s = std::chrono::duration<double>(now_clock - first_frame).count();
-    if (waiting_view && view_current && shown == slot_b.outcome) {
+    // Drawn this frame: B's mapping of the newest change.
+    if (waiting_view && b_number >= asked && !show_a && shown == slot_b.outcome) {
       result.change_to_view_ms.push_back(ms_between(asked_at, now_clock));
       waiting_view = false;
     }
