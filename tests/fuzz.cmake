@@ -61,8 +61,12 @@ foreach(source ${rf_sources})
   add_custom_command(
     OUTPUT ${object}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${rf_dir}
-    COMMAND ${TACTILE_CLANG}++ ${rf_flags} -c ${PROJECT_SOURCE_DIR}/${source} -o ${object}
+    COMMAND ${TACTILE_CLANG}++ ${rf_flags} -MD -MF ${object}.d -c ${PROJECT_SOURCE_DIR}/${source}
+            -o ${object}
     DEPENDS ${PROJECT_SOURCE_DIR}/${source}
+    # Headers too (Ninja reads the compiler's depfile; IMPLICIT_DEPENDS is for Makefiles), so
+    # that a struct changed in a header never links against an object of its old layout.
+    DEPFILE ${object}.d
     IMPLICIT_DEPENDS CXX ${PROJECT_SOURCE_DIR}/${source}
     COMMENT "Compiling ${source} for the reader fuzzer (clang, libFuzzer + ASan + UBSan)"
     VERBATIM)
