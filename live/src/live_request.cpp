@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "tactile/capture/calibration_io.hpp"
+#include "tactile/capture/video.hpp"
 
 namespace tactile::live {
 
@@ -65,6 +66,14 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
     throw RequestError(fmt::format("{}: no such file or folder: {}",
                                    spelling == OptionSpelling::cli ? "SOURCE" : "source",
                                    request.source));
+  }
+  // A single image where a camera, a stream, a video or a folder of frames is expected is the
+  // wrong kind of input (as `capture` says for it): the caller's to correct.
+  if (r.rehearsal && fs::is_regular_file(request.source, ec) &&
+      !capture::is_video_name(request.source)) {
+    throw RequestError(fmt::format(
+        "{}: {} is a single file, not a camera, a stream, a video or a folder of frames",
+        spelling == OptionSpelling::cli ? "SOURCE" : "source", request.source));
   }
   const mapping::MappingParams& p = request.map.params;
   // The session maps each frame when it arrives: a rule that needs the whole movie cannot apply.

@@ -270,6 +270,12 @@ TEST(Cli, ASingleImageWhereAFolderOfFramesIsExpectedIsAUsageError) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("is a single file, not a folder of frames"));
   EXPECT_FALSE(fs::exists(d / "s.h5"));
+  // The same for a live session, which takes a folder of frames or a video as a rehearsal.
+  const auto live =
+      run_tactile("live " + image.string() + " --px-per-mm 47 --headless --seconds 1");
+  EXPECT_EQ(live.exit_code, 2) << live.output;
+  EXPECT_THAT(live.output,
+              HasSubstr("is a single file, not a camera, a stream, a video or a folder"));
 }
 
 // `info` said 2077 frames and `play` 2147 for the same movie (the played output holds the

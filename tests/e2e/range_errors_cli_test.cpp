@@ -70,6 +70,14 @@ TEST(RangeErrors, BenchLiveNamesAPrintItDoesNotHave) {
   EXPECT_THAT(r.output, HasSubstr("--print 99: " + prints + " holds no print image_99"));
 }
 
+// A held-out print the folder does not hold is a wrong value given, as --print is for bench live.
+TEST(RangeErrors, BenchPrintsNamesAHeldOutPrintItDoesNotHave) {
+  const std::string prints = tactile::test::test_data("polyu-hrf-pores").string();
+  const auto r = run_tactile("bench prints " + prints + " --held-out abc --out bench-prints-none");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--held-out abc: " + prints + " holds no print image_abc"));
+}
+
 // Found by the second hostile-input run: each was accepted (a calibration or a movie of nothing
 // but rest, a sweep that always passes) or failed later with a message not naming the option.
 TEST(RangeErrors, OptionsANumberCanNoLongerEmptyOfMeaning) {

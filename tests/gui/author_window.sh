@@ -40,6 +40,13 @@ wait_count() {
   done
 }
 
+# Waits for the window of the program started last ($pid) and gives it the keyboard's focus.
+focus_window() {
+  wid=$(timeout 30 xdotool search --sync --name "tactile author" | head -1)
+  [ -n "$wid" ] || fail "no window named 'tactile author'"
+  xdotool windowfocus --sync "$wid" 2>/dev/null || xdotool windowfocus "$wid"
+}
+
 "$tactile" demo --headless --frames 60 --out demo >demo.log 2>&1 || fail "demo failed"
 
 # Bad command lines: usage errors (exit 2) naming the problem, before any window.
@@ -65,9 +72,7 @@ grep -q "mapped #1 (stress integrated" shot.log || fail "the screenshot's mappin
 
 "$tactile" author demo/strain.h5 --out saved --name ab >run.log 2>&1 &
 pid=$!
-wid=$(timeout 30 xdotool search --sync --name "tactile author" | head -1)
-[ -n "$wid" ] || fail "no window named 'tactile author'"
-xdotool windowfocus --sync "$wid" 2>/dev/null || xdotool windowfocus "$wid"
+focus_window
 wait_for "mapped #1 \(stress integrated"
 xdotool key p
 wait_for "pinned A: stress integrated"
@@ -116,4 +121,44 @@ done
 grep -q "A mapped (stress integrated" reopen.log || fail "--experiment did not restore A: $(cat reopen.log)"
 grep -q "mapped #1 (stress proportional" reopen.log || fail "--experiment did not restore B: $(cat reopen.log)"
 
-echo "author window: pin, method, A/B by key and mouse, auditions of A and B differ on the emulated device, save, reopen; experiment reproduces $(ls saved/movies/*.h5 | wc -l) movies byte for byte"
+# Audition on a Latero: the emulated Latero of `tactile emulate` on a free loopback port.
+mv run.log run-ab.log
+"$tactile" emulate --latero --port 0 --seconds 60 >latero.log 2>&1 &
+lpid=$!
+i=0
+until grep -q "answering on 127.0.0.1:" latero.log; do
+  i=$((i + 1))
+  [ $i -gt 100 ] && fail "the emulated Latero did not start: $(cat latero.log)"
+  sleep 0.1
+done
+address=$(sed -n 's/.*answering on \(127\.0\.0\.1:[0-9]*\).*/\1/p' latero.log | head -1)
+"$tactile" author demo/strain.h5 --layout latero --latero "$address" --blade-centre-raw 100 \
+  --out lat >run.log 2>&1 &
+pid=$!
+focus_window
+wait_for "mapped #1 \(latero integrated"
+xdotool key Return
+wait_for "audition of B"
+wait_for "audition: play: .*Latero"
+wait_for "audition: .*missed"
+# Looped (a Latero plays in real time: 100 loops last minutes), stopped by Enter again: the
+# blades ramp back to rest.
+xdotool key o Return
+wait_for "audition of B from .*, looped"
+sleep 1
+xdotool key Return
+wait_count "audition: .*missed" 2
+xdotool key q
+wait "$pid" || fail "the window (Latero) exited with an error"
+# SIGTERM: a job started with & in a script ignores SIGINT. The emulator prints its counters.
+kill -TERM "$lpid"
+wait "$lpid" || true
+grep -Eq "audition 1: played on a Latero" run.log || fail "the audition did not play on the Latero"
+grep -Eq "audition 2: stopped on a Latero" run.log || fail "the looped audition was not stopped"
+blades=$(sed -n 's/.*blades *left at raw \([0-9]*\)\.\.\([0-9]*\).*/\1 \2/p' latero.log | head -1)
+[ "$blades" = "100 100" ] ||
+  fail "the Latero's blades were not left at rest (raw 100) after the stop: $(cat latero.log)"
+full=$(sed -n 's/.*received: \([0-9]*\) FULL.*/\1/p' latero.log | head -1)
+[ -n "$full" ] && [ "$full" -gt 0 ] || fail "the emulated Latero counted no frames: $(cat latero.log)"
+
+echo "author window: pin, method, A/B by key and mouse, auditions of A and B differ on the emulated device, save, reopen, audition on an emulated Latero ($full frames); experiment reproduces $(ls saved/movies/*.h5 | wc -l) movies byte for byte"

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "latero_cli.hpp"
 #include "request_options.hpp"
 #include "tactile/author/author_window.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
@@ -50,14 +51,15 @@ void add_author(CLI::App& app, Action& action) {
   };
   auto request = std::make_shared<mapping::MapRequest>();
   auto opt = std::make_shared<Options>();
+  auto latero = std::make_shared<display::LateroPlayTarget>();
   CLI::App* sub = app.add_subcommand(
       "author",
       "Author a mapping in a window: the mapping's choices in a panel (those of `tactile map`),\n"
       "re-mapped in the background on every change, the strain and the contactor array side\n"
       "by side, the fidelity figures and their chart over time, contactors at a limit outlined.\n"
       "P pins the mapping as A, Tab switches A and B, Enter auditions on whatever `play` would\n"
-      "choose (a display, else the emulated device), S saves A and B as an experiment that\n"
-      "`tactile experiment` runs to the same movies. H lists every key.");
+      "choose (a display, else the emulated device; with --latero, that Latero), S saves A and\n"
+      "B as an experiment that `tactile experiment` runs to the same movies. H lists every key.");
   add_request_options(*sub, request, mapping::map_options());
   sub->add_option("--experiment", opt->experiment,
                   "Start from an experiment file's mappings (its first run as A, its last as the "
@@ -68,10 +70,11 @@ void add_author(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--name", opt->name, "The saved experiment's name (a plain name)")
       ->capture_default_str();
+  add_latero_play_options(*sub, *latero);
   sub->add_option("--screenshot", opt->screenshot,
                   "Draw the window once the mappings are made, write it to this PNG and quit");
-  sub->callback([request, opt, sub, &action] {
-    action = [request, opt, sub] {
+  sub->callback([request, opt, latero, sub, &action] {
+    action = [request, opt, latero, sub] {
       if (const auto problem = plain_name_error("--name", opt->name)) {
         throw RequestError(*problem);
       }
@@ -123,6 +126,7 @@ void add_author(CLI::App& app, Action& action) {
       options.visible = !opt->screenshot;
       options.stop_fd = stop.fd();
       options.audition_backends = display::usb_play_backends();
+      if (!latero->address.empty()) options.audition_latero = *latero;
       options.say = [](const std::string& line) {
         fmt::print("{}\n", line);
         std::fflush(stdout);

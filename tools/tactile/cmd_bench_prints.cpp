@@ -20,6 +20,7 @@
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
+#include "tactile/common/option_table.hpp"
 #include "tactile/common/output_paths.hpp"
 
 namespace tactile::cli {
@@ -106,8 +107,8 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       for (const auto& nn : opt->held_out) {
         if (std::none_of(prints.begin(), prints.end(),
                          [&](const auto& p) { return capture::print_number(p.name) == nn; })) {
-          throw std::invalid_argument(fmt::format("--held-out {}: {} holds no print image_{}.*", nn,
-                                                  opt->prints.string(), nn));
+          throw RequestError(fmt::format("--held-out {}: {} holds no print image_{}.*", nn,
+                                         opt->prints.string(), nn));
         }
       }
       fs::create_directories(opt->common.out);

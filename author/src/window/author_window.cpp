@@ -58,11 +58,15 @@ class Audition {
            result_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
   }
   void start(movie::TactileMovie movie, int loops, const display::PlayBackends& backends,
+             const std::optional<display::LateroPlayTarget>& latero,
              std::function<void(const std::string&)> say) {
     stop();
     drain();
+    error_.clear();
+    say_ = say;
     display::ResolvedPlay request;
     request.loops = loops;
+    request.latero = latero;
     request.stop_fd = stop_pipe_[0];
     result_ = std::async(std::launch::async, [movie = std::move(movie), request, backends, say] {
       return display::play_anywhere(
@@ -103,6 +107,7 @@ class Audition {
     } catch (const std::exception& e) {
       drain();
       error_ = e.what();
+      if (say_) say_("author: audition failed: " + error_);
       return std::nullopt;
     }
   }
@@ -113,6 +118,7 @@ class Audition {
   }
   int stop_pipe_[2] = {-1, -1};
   std::future<display::PlayResult> result_;
+  std::function<void(const std::string&)> say_;
 
  public:
   std::string error_;
@@ -132,6 +138,16 @@ std::string next_layout(const std::string& layout, int step) {
   while (i < n && names[static_cast<std::size_t>(i)] != layout) ++i;
   if (i == n) i = step > 0 ? -1 : 0;  // a file layout: on to the built-in ones
   return std::string(names[static_cast<std::size_t>((i + step + n) % n)]);
+}
+
+// The next display rate the R key gives: the layout's own (unset), then a half and a quarter of
+// it in whole hertz, then the layout's own again.
+std::optional<double> next_rate(const mapping::MapRequest& request, const MappingOutcome* shown) {
+  if (shown == nullptr || !shown->error.empty()) return std::nullopt;
+  const double own = shown->layout.max_rate_hz;
+  if (!request.params.rate_hz) return std::floor(own / 2);
+  if (*request.params.rate_hz > own / 3) return std::floor(own / 4);
+  return std::nullopt;
 }
 
 // The panel's control for one row of the mapping's option table; true when the request
@@ -223,6 +239,10 @@ bool option_control(const OptionRow<mapping::MapRequest>& row, mapping::MapReque
   return false;
 }
 
+// A looped audition plays the movie this many times unless stopped first (on a device, as many
+// seconds as the movie lasts, times this: about a minute and a half of the demo's).
+constexpr int kLoopedAuditionLoops = 100;
+
 constexpr std::array<std::uint8_t, 3> kSaturatedRgb{230, 40, 40};
 constexpr std::array<std::uint8_t, 3> kSlewRgb{240, 210, 40};
 
@@ -250,13 +270,7 @@ int outline_limits(const MappingOutcome& o, std::int32_t f, double magnification
     const double x1 = t.origin_x_px + (c.x_mm + c.width_mm / 2) * t.px_per_mm + 2;
     const double y0 = t.origin_y_px + (c.y_mm - c.height_mm / 2) * t.px_per_mm - 2;
     const double y1 = t.origin_y_px + (c.y_mm + c.height_mm / 2) * t.px_per_mm + 2;
-    glColor3ub(rgb[0], rgb[1], rgb[2]);
-    glBegin(GL_LINE_LOOP);
-    glVertex2d(x0, y0);
-    glVertex2d(x1, y0);
-    glVertex2d(x1, y1);
-    glVertex2d(x0, y1);
-    glEnd();
+    display::gl::outline_rect(x0, y0, x1, y1, rgb);
   }
   glLineWidth(1);
   return marked;
@@ -291,6 +305,8 @@ const char* const kHelp =
     "  N           next normalisation   T  next strain mode\n"
     "  Y           next built-in layout\n"
     "  G, shift+G  gain x2 / divided by 2\n"
+    "  F, shift+F  peak fraction +/- 0.1 E, shift+E  reference frame +/- 10\n"
+    "  R           rate: the layout's own, a half, a quarter\n"
     "  P           pin the current mapping as A\n"
     "  Tab         show A / the current mapping (B)\n"
     "  Enter       audition from here (again: stop, ramping to rest)\n"
@@ -572,6 +588,20 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
                 std::clamp(edited.params.gain_um_per_strain * (shift ? 0.5 : 2.0), 0.001, 1e6);
             changed = true;
             break;
+          case GLFW_KEY_F:
+            edited.params.peak_fraction = std::clamp(
+                std::round(10 * edited.params.peak_fraction + (shift ? -1 : 1)) / 10, 0.1, 1.0);
+            changed = true;
+            break;
+          case GLFW_KEY_E:
+            edited.params.accumulate.reference_frame =
+                std::max(-1, edited.params.accumulate.reference_frame + (shift ? -10 : 10));
+            changed = true;
+            break;
+          case GLFW_KEY_R:
+            edited.params.rate_hz = next_rate(edited, shown.get());
+            changed = true;
+            break;
           case GLFW_KEY_P:
             pin = true;
             break;
@@ -637,8 +667,8 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
             from_here.deflection_um.begin() + static_cast<std::ptrdiff_t>(frame * n));
         say(fmt::format("author: audition of {} from {:.3f} s{}", show_a ? "A" : "B",
                         frame / m.rate_hz, loop_audition ? ", looped" : ""));
-        audition.start(std::move(from_here), loop_audition ? 1000 : 1, options.audition_backends,
-                       say);
+        audition.start(std::move(from_here), loop_audition ? kLoopedAuditionLoops : 1,
+                       options.audition_backends, options.audition_latero, say);
       }
     }
     if (auto r = audition.finished()) result.auditions.push_back(*r);

@@ -114,6 +114,16 @@ void fill_rect(const PixelRect& r, std::array<std::uint8_t, 3> rgb) {
   glEnd();
 }
 
+void outline_rect(double x0, double y0, double x1, double y1, std::array<std::uint8_t, 3> rgb) {
+  glColor3ub(rgb[0], rgb[1], rgb[2]);
+  glBegin(GL_LINE_LOOP);
+  glVertex2d(x0, y0);
+  glVertex2d(x1, y0);
+  glVertex2d(x1, y1);
+  glVertex2d(x0, y1);
+  glEnd();
+}
+
 void begin_pixels(int width, int height) {
   glViewport(0, 0, width, height);
   glMatrixMode(GL_PROJECTION);
@@ -143,13 +153,7 @@ void draw_contactors(const movie::Layout& layout, std::span<const float> frame,
     glVertex2d(x1, y1);
     glVertex2d(x0, y1);
     glEnd();
-    glColor3ub(0, 0, 0);
-    glBegin(GL_LINE_LOOP);
-    glVertex2d(x0, y0);
-    glVertex2d(x1, y0);
-    glVertex2d(x1, y1);
-    glVertex2d(x0, y1);
-    glEnd();
+    outline_rect(x0, y0, x1, y1, {0, 0, 0});
   }
   // Rest positions: small grey crosses, so displacement is visible even when paused.
   glColor3ub(150, 150, 150);

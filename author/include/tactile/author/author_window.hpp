@@ -6,7 +6,9 @@
 // (yellow) outlined, A/B, audition on whatever `play` would choose, and Save (save.hpp).
 //
 // Keys (also listed by H): space play/pause, left/right step, Home start; M / shift+M next /
-// previous method, N normalisation, T strain mode, Y layout, G / shift+G gain x2 / /2; P pin
+// previous method, N normalisation, T strain mode, Y layout, G / shift+G gain x2 / /2, F /
+// shift+F peak fraction +/- 0.1, E / shift+E reference frame +/- 10, R rate (the layout's own, a
+// half, a quarter); P pin
 // the current mapping as A, Tab show A / the current one (B); Enter audition from the scrubbed
 // time (again: stop, ramping to rest), O audition looped or once; S save; H or F1 help; Esc or
 // Q close. Every key has a control in the panel for the mouse.
@@ -38,6 +40,8 @@ struct AuthorWindowOptions {
   int stop_fd = -1;                     // readable: close (an audition under way ramps to rest)
   // Where an audition plays besides the emulated device (no window: this is the window).
   display::PlayBackends audition_backends;
+  // Set: auditions play on this Latero and nowhere else (a mapping for the latero layout).
+  std::optional<display::LateroPlayTarget> audition_latero;
   // Events as lines a person reads (and tests parse): each mapping shown, pin, audition, save.
   std::function<void(const std::string&)> say;
 };

@@ -47,6 +47,8 @@ class Window {
 // Clears the framebuffer and sets up pixel coordinates, y down.
 void begin_pixels(int width_px, int height_px);
 void fill_rect(const PixelRect& r, std::array<std::uint8_t, 3> rgb);
+// The outline of the rectangle from (x0, y0) to (x1, y1), in pixels.
+void outline_rect(double x0, double y0, double x1, double y1, std::array<std::uint8_t, 3> rgb);
 // The array at its deflections, magnified, coloured by neighbour strain up to strain_scale, rest
 // positions as grey crosses and a white scale bar of the layout's full deflection.
 void draw_contactors(const movie::Layout& layout, std::span<const float> frame_um,
