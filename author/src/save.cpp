@@ -9,6 +9,7 @@
 
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/h5.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/common/plain_name.hpp"
 #include "tactile/movie/hjif.hpp"
 #include "tactile/movie/layout_json.hpp"
@@ -114,12 +115,20 @@ Saved save_authoring(const fs::path& out_dir, const std::string& name, const fs:
   // Checked by the experiment library's reader before anything is written.
   const experiments::Experiment ex =
       experiments::parse_experiment(text, saved.experiment.string(), out_dir);
-  fs::create_directories(out_dir / "movies");
-  write_text_atomically(saved.experiment, text);
-  const std::string created = h5::utc_now_iso8601();
   std::vector<std::pair<const MappingOutcome*, std::size_t>> runs;
   if (a != nullptr) runs.emplace_back(a, run_of(ex, 0, *a));
   runs.emplace_back(&current, run_of(ex, ex.runs.size() - 1, current));
+  // Nothing written over what the mappings read (the strain, a layout file typed in the window).
+  const std::vector<Output> outputs = {
+      output_folder("the save folder", out_dir, {saved.experiment.filename()}, {"movies"})};
+  std::vector<NamedPath> inputs = {{"the strain movie", strain_file}};
+  for (const auto& r : requests) {
+    if (fs::path(r.layout).extension() == ".json") inputs.push_back({"a layout", r.layout});
+  }
+  refuse_output_over_input(outputs, inputs);
+  fs::create_directories(out_dir / "movies");
+  write_text_atomically(saved.experiment, text);
+  const std::string created = h5::utc_now_iso8601();
   for (const auto& [outcome, index] : runs) {
     if (a != nullptr && outcome == &current && index == 0) break;  // A and the current are one
     movie::TactileMovie movie = outcome->movie;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "tactile/author/outcome.hpp"
@@ -11,6 +13,8 @@
 #include "tactile/author/save.hpp"
 #include "tactile/capture/ground_truth.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
+#include "tactile/common/atomic_write.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/mapping/map.hpp"
 #include "tactile/movie/layout_json.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -116,6 +120,28 @@ TEST(AuthorSave, TheExperimentHoldsAAndBAndReopensToThem) {
   EXPECT_DOUBLE_EQ(back.current.params.gain_um_per_strain, 3000);
   EXPECT_TRUE(fs::equivalent(back.strain_file, dir / "strain.h5"));
   EXPECT_EQ(describe_change(a, b), "--method integrated -> proportional, --gain 1000 -> 3000");
+}
+
+// A layout file typed in the window could be where Save writes its experiment: refused, the
+// layout file left as it was.
+TEST(AuthorSave, NeverWritesOverALayoutFileTheMappingRead) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "author-over-layout";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  const std::string layout_text = movie::layout_to_json(movie::resolve_layout("stress"));
+  write_text_atomically(dir / "out" / "ab.json", layout_text);
+  const auto strain = bump_strain();
+  capture::write_strain_movie(dir / "strain.h5", *strain);
+  mapping::MapRequest request;
+  request.layout = (dir / "out" / "ab.json").string();
+  const MappingOutcome o = map_for_authoring(*strain, request);
+  ASSERT_TRUE(o.error.empty()) << o.error;
+  EXPECT_THROW(save_authoring(dir / "out", "ab", dir / "strain.h5", nullptr, o),
+               OutputIsInputError);
+  std::ifstream in(dir / "out" / "ab.json");
+  const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(after, layout_text);
+  EXPECT_FALSE(fs::exists(dir / "out" / "movies"));
 }
 
 TEST(AuthorSave, RefusesAFailedMappingAndABadName) {

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -152,8 +153,9 @@ std::optional<double> next_rate(const mapping::MapRequest& request, const Mappin
 
 // The panel's control for one row of the mapping's option table; true when the request
 // changed (and passed the row's checks).
+// `typed` holds what is typed into a path's text field between frames.
 bool option_control(const OptionRow<mapping::MapRequest>& row, mapping::MapRequest& request,
-                    std::string& problem) {
+                    std::string& problem, std::array<char, 512>& typed) {
   const std::string label = option_label(row.name, OptionSpelling::cli);
   const std::string id = "##" + std::string(row.name);
   const OptionValue value = row.get(request);
@@ -193,10 +195,10 @@ bool option_control(const OptionRow<mapping::MapRequest>& row, mapping::MapReque
         }
         ImGui::EndCombo();
       }
-      static thread_local char typed[512] = "";
-      if (ImGui::InputTextWithHint((id + "file").c_str(), "or a layout FILE.json, Enter", typed,
-                                   sizeof typed, ImGuiInputTextFlags_EnterReturnsTrue)) {
-        changed = apply(std::string(typed));
+      if (ImGui::InputTextWithHint((id + "file").c_str(), "or a layout FILE.json, Enter",
+                                   typed.data(), typed.size(),
+                                   ImGuiInputTextFlags_EnterReturnsTrue)) {
+        changed = apply(std::string(typed.data()));
       }
       return changed;
     }
@@ -305,7 +307,8 @@ const char* const kHelp =
     "  N           next normalisation   T  next strain mode\n"
     "  Y           next built-in layout\n"
     "  G, shift+G  gain x2 / divided by 2\n"
-    "  F, shift+F  peak fraction +/- 0.1 E, shift+E  reference frame +/- 10\n"
+    "  F, shift+F  peak fraction +/- 0.1\n"
+    "  E, shift+E  reference frame +/- 10\n"
     "  R           rate: the layout's own, a half, a quarter\n"
     "  P           pin the current mapping as A\n"
     "  Tab         show A / the current mapping (B)\n"
@@ -349,6 +352,7 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
   bool playing = false, loop_audition = false, show_a = false, help = false;
   double position = 0;  // fractional display frame of the shown mapping
   std::string problem, status;
+  std::array<char, 512> typed_layout{};
   Audition audition;
   double last_t = glfwGetTime();
   Clock::time_point first_frame{};
@@ -436,7 +440,7 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
     bool changed = false;
     for (const auto& row : mapping::map_options()) {
       if (row.positional) continue;
-      changed = option_control(row, edited, problem) || changed;
+      changed = option_control(row, edited, problem, typed_layout) || changed;
     }
     ImGui::PopAllowKeyboardFocus();
     ImGui::PopItemWidth();

@@ -35,8 +35,9 @@ struct Saved {
 // out_dir` would (experiments::run_movie_path, stamp_run_provenance), each from the outcome
 // given, not mapped again; the current one also as HJIF and WAV (export's). Every file is
 // written atomically; the experiment is read back with the experiment library's own reader
-// first, so that a mapping it would refuse is refused here. Throws tactile::FormatError or
-// std::invalid_argument naming the problem, std::runtime_error when a file cannot be written.
+// first, so that a mapping it would refuse is refused here, and nothing is written over the
+// strain file or a layout file the mappings read (OutputIsInputError). Throws tactile::FormatError
+// or std::invalid_argument naming the problem, std::runtime_error when a file cannot be written.
 Saved save_authoring(const std::filesystem::path& out_dir, const std::string& name,
                      const std::filesystem::path& strain_file, const MappingOutcome* a,
                      const MappingOutcome& current);
