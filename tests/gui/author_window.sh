@@ -69,6 +69,22 @@ set -e
 grep -q "mapped #1 (stress integrated" shot.log || fail "the screenshot's mapping is not reported"
 [ -s shot.png ] || fail "no screenshot"
 [ ! -e shots ] || fail "a screenshot saved a mapping nobody asked to save"
+# What it must show, read with Debian's matplotlib (setup.sh): at the default 1400 x 860, the
+# strain field's pane (x 340-870) mostly its dark blue background with edges over it, the array's
+# pane (x 870-1400) grey with white contactors (the demo's strain is small: few are coloured).
+/usr/bin/python3 - shot.png <<'PY' || fail "the screenshot does not show the panes"
+import sys
+import matplotlib.image as image
+import numpy as np
+img = (image.imread(sys.argv[1])[:, :, :3] * 255).round().astype(int)
+assert img.shape == (860, 1400, 3), img.shape
+field, array = img[28:686, 340:870], img[28:686, 870:1400]
+background = np.all(field == [20, 40, 70], axis=2).mean()
+edges = np.all(field > 100, axis=2).mean()
+white = np.all(array > 240, axis=2).mean()
+assert 0.5 < background < 0.99 and edges > 0.005, (background, edges)
+assert white > 0.02, white
+PY
 
 "$tactile" author demo/strain.h5 --out saved --name ab >run.log 2>&1 &
 pid=$!
