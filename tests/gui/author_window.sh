@@ -18,17 +18,6 @@ fail() {
   [ -f run.log ] && sed 's/^/  run.log: /' run.log
   exit 1
 }
-# Waits up to 60 s for a line of run.log matching the extended regular expression $1.
-wait_for() {
-  i=0
-  until grep -Eq "$1" run.log; do
-    i=$((i + 1))
-    [ $i -gt 600 ] && fail "no line matching '$1' within 60 s"
-    kill -0 "$pid" 2>/dev/null || fail "the window closed before '$1'"
-    sleep 0.1
-  done
-}
-
 # Waits up to 60 s for $2 lines of run.log matching $1.
 wait_count() {
   i=0
@@ -38,6 +27,10 @@ wait_count() {
     kill -0 "$pid" 2>/dev/null || fail "the window closed before $2 lines matching '$1'"
     sleep 0.1
   done
+}
+# Waits up to 60 s for a line of run.log matching the extended regular expression $1.
+wait_for() {
+  wait_count "$1" 1
 }
 
 # Waits for the window of the program started last ($pid) and gives it the keyboard's focus.

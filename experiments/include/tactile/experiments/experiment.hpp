@@ -72,7 +72,8 @@ struct Experiment {
   std::vector<ExperimentSource> sources;
   std::vector<movie::Layout> layouts;
   std::vector<std::filesystem::path> layout_files;  // the layouts read from files
-  // Each layout as named: a built-in name, or its file's path (relative ones from the file's folder)
+  // Each layout as the file names it: a built-in name, or a layout file's path (a relative one
+  // joined to the experiment file's folder).
   std::vector<std::string> layout_refs;
   std::vector<ExperimentRun> runs;
   std::optional<ExperimentPerception> perception;
