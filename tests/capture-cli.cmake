@@ -93,8 +93,9 @@ train_pores_cli_expect(negative_l2 2 "l2" train-pores --prints ${tp_dir}/three -
                        --out ${tp_dir}/never.json --l2 -1)
 train_pores_cli_expect(corrupt_model 1 "corrupt.json: not valid JSON" features ${tp_print4}
                        --px-per-mm 47 --pores ridge-blob --pore-model ${tp_dir}/corrupt.json)
-# A held-out print that is not in the folder is named before any sequence is rendered.
-train_pores_cli_expect(bench_prints_unknown_held_out 1 "--held-out 99: .*three holds no print image_99"
+# A held-out print that is not in the folder is named before any sequence is rendered: a wrong
+# value given (usage, 2), as bench live's --print.
+train_pores_cli_expect(bench_prints_unknown_held_out 2 "--held-out 99: .*three holds no print image_99"
                        bench prints ${tp_dir}/three --held-out 99 --out ${tp_dir}/bench-never)
 train_pores_cli_expect(model_with_paper_rule 2 "pore-model: goes with --pores ridge-blob"
                        features ${tp_print4} --px-per-mm 47 --pores paper
