@@ -93,6 +93,8 @@ class Audition {
     }
     return collect();
   }
+  // Why the last audition failed (empty: it did not).
+  const std::string& error() const { return error_; }
   // The finished audition's result, once.
   std::optional<display::PlayResult> finished() {
     if (!result_.valid() || running()) return std::nullopt;
@@ -120,8 +122,6 @@ class Audition {
   int stop_pipe_[2] = {-1, -1};
   std::future<display::PlayResult> result_;
   std::function<void(const std::string&)> say_;
-
- public:
   std::string error_;
 };
 
@@ -451,8 +451,7 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
     bool toggle_ab = ImGui::Button(show_a ? "Show B (Tab)" : "Show A (Tab)");
     bool audition_key = ImGui::Button(audition.running() ? "Stop (Enter)" : "Audition (Enter)");
     ImGui::SameLine();
-    bool loop_key = ImGui::Checkbox("looped (O)", &loop_audition);
-    (void)loop_key;
+    ImGui::Checkbox("looped (O)", &loop_audition);
     bool save = ImGui::Button("Save (S)");
     ImGui::SameLine();
     bool help_key = ImGui::Button("Help (H)");
@@ -486,8 +485,8 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
       if (ao) ImGui::TextWrapped("A -> B: %s", describe_change(ao->request, b.request).c_str());
     }
     if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
-    if (!audition.error_.empty())
-      ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "audition: %s", audition.error_.c_str());
+    if (!audition.error().empty())
+      ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "audition: %s", audition.error().c_str());
     ImGui::End();
 
     // The strip along the top, the chart along the bottom.
