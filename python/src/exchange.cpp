@@ -3,16 +3,51 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "bindings.hpp"
 #include "movies.hpp"
+#include "request_kwargs.hpp"
+#include "tactile/movie/export_request.hpp"
 #include "tactile/movie/hjif.hpp"
 #include "tactile/movie/wav.hpp"
 
 namespace tactile::python {
 
+namespace {
+
+// export(movie, hjif=..., wav=...): the files `tactile export` writes, by the same run.
+py::dict export_movie(const movie::TactileMovie& mv, const py::kwargs& kwargs) {
+  movie::ExportRequest request;
+  set_from_kwargs(request, movie::export_options(), kwargs, "export");
+  movie::ExportSummary s;
+  {
+    py::gil_scoped_release unlocked;
+    s = movie::run_export(request, mv, OptionSpelling::python);
+  }
+  py::dict d;
+  if (s.hjif) {
+    d["hjif_channels"] = s.hjif->channels;
+    d["hjif_timescale"] = s.hjif->timescale;
+    d["hjif_full_scale_um"] = s.hjif->full_scale_um;
+  }
+  if (s.wav_full_scale_um) d["wav_full_scale_um"] = *s.wav_full_scale_um;
+  d["summary"] = s.lines;
+  return d;
+}
+
+}  // namespace
+
 void bind_exchange(py::module_& m) {
   using movie::TactileMovie;
+  // pybind11 keeps the pointer to the docstring: it must outlive the module.
+  static const std::string export_doc =
+      ("Writes the movie in formats other tools read, as `tactile export`: every file given or\n"
+       "none, atomically. Returns what was written (HJIF channels, timescale and the deflection\n"
+       "written as amplitude 1; the WAV's full scale) and the summary lines. Keywords (the\n"
+       "command line's options, with underscores):" +
+       kwargs_doc(movie::export_options()));
+  m.def("export", &export_movie, py::arg("movie"), export_doc.c_str());
   m.def(
       "export_hjif",
       [](const std::filesystem::path& path, const TactileMovie& mv, int ticks_per_sample) {

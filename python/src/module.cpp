@@ -7,7 +7,8 @@ PYBIND11_MODULE(tactile, m) {
   namespace tp = tactile::python;
   m.doc() =
       "tactile-movies from Python: tactile movies and strain movies as NumPy arrays, layouts,\n"
-      "mapping, playing, capture and the classifier; errors carry the `tactile` program's\n"
+      "mapping, playing, synthetic sequences, capture and the classifier; errors carry the "
+      "`tactile` program's\n"
       "messages.";
   m.attr("__version__") = tactile::kVersion;
   // Built against Debian's NumPy for Debian's interpreter: say so when another interpreter, one
@@ -28,4 +29,5 @@ PYBIND11_MODULE(tactile, m) {
   tp::bind_classifier(m);
   tp::bind_exchange(m);
   tp::bind_live(m);
+  tp::bind_synth(m);
 }

@@ -22,7 +22,20 @@ inline OptionValue option_value_of(const py::handle& value, OptionKind kind) {
     if (kind != OptionKind::flag) throw py::type_error("takes a number, name or path, not a bool");
     return value.cast<bool>();
   }
-  if (py::isinstance<py::int_>(value)) return value.cast<std::int64_t>();
+  if (py::isinstance<py::int_>(value)) {
+    try {
+      return value.cast<std::int64_t>();
+    } catch (const py::cast_error&) {
+      if (kind != OptionKind::seed) throw py::type_error("the number is too large");
+    }
+    // A seed beyond the signed range; beyond 2^64 - 1 (or below the signed range) its row
+    // refuses the digits as given.
+    try {
+      return value.cast<std::uint64_t>();
+    } catch (const py::cast_error&) {
+      return py::str(value).cast<std::string>();
+    }
+  }
   if (py::isinstance<py::float_>(value)) return value.cast<double>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (kind == OptionKind::path && py::hasattr(value, "__fspath__")) {

@@ -17,9 +17,9 @@ DEMO = pathlib.Path(os.environ["TACTILE_E2E_DEMO_DIR"])
 CLI_ONLY = {"capture": {"--out", "--csv", "--maps"}, "map": {"--out", "--csv"},
             "live": {"--headless", "--window", "--screenshot", "--latero", "--blade-centre-raw",
                      "--blade-raw-per-unit", "--blade-max-raw", "--blade-full-scale-um"},
-            "play": set()}
+            "play": set(), "synth": set(), "export": set()}
 COMMANDS = [("capture", tactile.capture), ("map", tactile.map), ("live", tactile.live),
-            ("play", tactile.play)]
+            ("play", tactile.play), ("synth", tactile.synth), ("export", tactile.export)]
 
 
 def help_flags(cli, command):
@@ -44,7 +44,7 @@ def python_keywords(function):
 def test_help_python_and_readme_name_the_same_options(cli, command, function):
     flags = help_flags(cli, command)
     keywords = python_keywords(function)
-    assert len(keywords) >= 8
+    assert len(keywords) >= 3
     assert flags - CLI_ONLY[command] == {"--" + k.replace("_", "-") for k in keywords}
     assert readme_flags(command) == flags
 
@@ -53,7 +53,9 @@ def test_every_documented_keyword_is_taken(tmp_path):
     strain = tactile.read_strain_movie(DEMO / "strain.h5")
     for function, first in [(tactile.capture, tmp_path), (tactile.map, strain),
                             (tactile.live, str(tmp_path)),
-                            (tactile.play, tactile.read_movie(DEMO / "movie.h5"))]:
+                            (tactile.play, tactile.read_movie(DEMO / "movie.h5")),
+                            (tactile.synth, tmp_path / "synth"),
+                            (tactile.export, tactile.read_movie(DEMO / "movie.h5"))]:
         for keyword in python_keywords(function) - {"layout"}:
             # A value no option takes: the complaint must be about the value, not the keyword.
             with pytest.raises(TypeError) as error:
@@ -82,3 +84,32 @@ def test_python_ranges_and_rules_are_the_command_lines(cli, tmp_path):
         run = subprocess.run([cli, "capture", str(tmp_path), "--out", str(tmp_path / "s.h5"),
                               *flags.split()], capture_output=True, text=True)
         assert run.returncode == 2 and words in run.stderr, run.stderr
+
+
+def test_synth_rules_are_the_command_lines(cli, tmp_path):
+    """The rules between synth's options (a scene's options are not a print's) and its seed's
+    whole range are the same words from Python and from the command line."""
+    print_ = pathlib.Path(os.environ["TACTILE_TEST_DATA_DIR"]) / "polyu-hrf-pores" / "image_12.jpg"
+    cases = [({"from_print": print_, "speed": 3}, f"--from-print {print_} --speed 3",
+              "speed: describes a synthetic scene, not"),
+             ({"warp": "wave"}, "--warp wave", "warp: needs"),
+             ({"from_print": print_, "slide_speed": 2, "slide_x": 0.1},
+              f"--from-print {print_} --slide-speed 2 --slide-x 0.1", "not with"),
+             ({"seed": -1}, "--seed -1", "-1 is not a whole number from 0 to 2^64 - 1"),
+             ({"frames": 1}, "--frames 1", "1 is out of range: must be from 2 to 100000")]
+    for keywords, flags, words in cases:
+        with pytest.raises(ValueError) as error:
+            tactile.synth(tmp_path / "never", **keywords)
+        assert words in str(error.value)
+        run = subprocess.run([cli, "synth", str(tmp_path / "never"), *flags.split()],
+                             capture_output=True, text=True)
+        assert run.returncode == 2 and words in run.stderr, run.stderr
+    assert not (tmp_path / "never").exists()
+
+
+def test_export_needs_an_output_in_both(cli, tmp_path):
+    movie = tactile.read_movie(DEMO / "movie.h5")
+    with pytest.raises(ValueError, match="give hjif OUT.hjif, wav OUT.wav or both"):
+        tactile.export(movie)
+    run = subprocess.run([cli, "export", str(DEMO / "movie.h5")], capture_output=True, text=True)
+    assert run.returncode == 2 and "give --hjif OUT.hjif, --wav OUT.wav or both" in run.stderr

@@ -1,22 +1,26 @@
 // `tactile demo`: the whole pipeline on the built-in scene, each stage computed from the last.
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "command.hpp"
 #include "mode_option.hpp"
 #include "progress.hpp"
-#include "scene_options.hpp"
+#include "request_options.hpp"
 #include "tactile/capture/calibrate.hpp"
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/capture/capture.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/synth.hpp"
+#include "tactile/capture/synth_request.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
@@ -37,7 +41,8 @@ struct DemoOptions {
   bool keep = false;
   bool headless = false;
   std::string layout = "stress";
-  capture::SceneSpec scene;
+  capture::SceneRequest scene_request;
+  capture::SceneSpec scene;  // the request's scene, when the command line is read
   // Frame-to-frame strains are fractions of a percent; scaling the movie to 80 % of the range
   // makes the demo feelable whatever the scene. p99 rather than peak: a few badly tracked
   // triangles must not shrink the whole movie.
@@ -73,8 +78,8 @@ int run_demo(DemoOptions& opt, const std::string& command_line) {
   mapping::resolve_mapping_params(opt.mapping, layout);  // fail before any work
   refuse_output_over_input({output_folder("--out", opt.out, {})}, {});
   if (opt.keep) {
-    refuse_stale_frames(fmt::format("--out {}: its frames folder", opt.out.string()),
-                        opt.out / "frames", opt.scene.frame_count);
+    capture::refuse_stale_frames(fmt::format("--out {}: its frames folder", opt.out.string()),
+                                 opt.out / "frames", opt.scene.frame_count);
   }
   fs::create_directories(opt.out);
   Progress progress;
@@ -178,14 +183,18 @@ void add_demo(CLI::App& app, Action& action, const std::string& command_line) {
                 "movie)");
   sub->add_flag("--headless", opt->headless,
                 "Play into the emulated device and write a preview, even if a screen exists");
-  sub->add_option("--layout", opt->layout, "Contactor layout: stress, stress2 or latero")
-      ->check(CLI::IsMember({"stress", "stress2", "latero"}))
+  sub->add_option("--layout", opt->layout,
+                  fmt::format("Contactor layout: {}", fmt::join(movie::kBuiltinLayoutNames, ", ")))
+      ->check(CLI::IsMember(std::vector<std::string>(movie::kBuiltinLayoutNames.begin(),
+                                                     movie::kBuiltinLayoutNames.end())))
       ->capture_default_str();
   add_mode_option(*sub, "--method", opt->mapping.method, mapping::kMappingMethodNames,
                   "Mapping method (see tactile map --help); the demo prints how well the movie\n"
                   "reproduces the measured strain");
-  add_scene_options(*sub, opt->scene);
+  add_request_options(*sub, std::shared_ptr<capture::SceneRequest>(opt, &opt->scene_request),
+                      capture::scene_options());
   sub->callback([opt, &action, &command_line] {
+    opt->scene = capture::scene_spec(opt->scene_request);
     action = [opt, &command_line] { return run_demo(*opt, command_line); };
   });
 }

@@ -9,61 +9,34 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
-#include "tactile/common/atomic_write.hpp"
+#include "request_options.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/version.hpp"
+#include "tactile/movie/export_request.hpp"
 #include "tactile/movie/hjif.hpp"
 #include "tactile/movie/layout_json.hpp"
 #include "tactile/movie/movie_io.hpp"
-#include "tactile/movie/wav.hpp"
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
 void add_export(CLI::App& app, Action& action) {
-  struct Options {
-    fs::path movie;
-    std::optional<fs::path> hjif, wav;
-  };
-  auto opt = std::make_shared<Options>();
+  auto request = std::make_shared<movie::ExportRequest>();
   CLI::App* sub = app.add_subcommand(
       "export",
       "Write a tactile movie in formats other tools read: MPEG-I Haptics (.hjif, one Position\n"
       "channel per contactor) or a multichannel float WAV (one channel per contactor).\n"
       "Mapping and what is lost: docs/formats.md.");
-  sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_option("--hjif", opt->hjif, "MPEG-I Haptics interchange file to write");
-  sub->add_option("--wav", opt->wav, "WAV file to write (float32, 1.0 = full scale)");
-  sub->callback([opt, &action] {
-    if (!opt->hjif && !opt->wav) {
-      throw CLI::ValidationError("export", "give --hjif OUT.hjif, --wav OUT.wav or both");
-    }
-    action = [opt] {
-      std::vector<Output> outputs;
-      // Other tools pick the reader by the name: a WAV named x.hjif is a file none can open.
-      if (opt->hjif) outputs.push_back(output_file_ending("--hjif", *opt->hjif, ".hjif"));
-      if (opt->wav) outputs.push_back(output_file_ending("--wav", *opt->wav, ".wav"));
-      refuse_output_over_input(outputs, {{"MOVIE_H5", opt->movie}});
-      const movie::TactileMovie movie = movie::read_tactile_movie(opt->movie);
-      CommitTogether together;
-      if (opt->hjif) {
-        const movie::HjifSummary s = movie::write_hjif(movie, *opt->hjif);
-        fmt::print(
-            "export: {} channels, level {}, timescale {}, {} effect(s) per channel, amplitude 1 = "
-            "{:g} um -> {}\n",
-            s.channels, s.level, s.timescale, s.effects_per_channel, s.full_scale_um,
-            opt->hjif->string());
+  add_request_options(*sub, request, movie::export_options());
+  sub->callback([request, &action] {
+    movie::check_request(*request, OptionSpelling::cli);
+    action = [request] {
+      movie::check_outputs(*request, OptionSpelling::cli);
+      const movie::TactileMovie movie = movie::read_tactile_movie(request->movie);
+      for (const auto& line : movie::run_export(*request, movie, OptionSpelling::cli).lines) {
+        fmt::print("{}\n", line);
       }
-      if (opt->wav) {
-        const double scale = movie::write_wav(movie, *opt->wav);
-        fmt::print("export: {} channels at {:g} Hz, {} frames, 1.0 = {:g} um -> {}\n",
-                   movie.layout.contactor_count(), movie.rate_hz, movie.frame_count, scale,
-                   opt->wav->string());
-      }
-      together.commit();
       return 0;
     };
   });

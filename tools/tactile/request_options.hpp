@@ -21,6 +21,17 @@ namespace tactile::cli {
 // so that option_problem words its complaint ("takes a number").
 template <typename R>
 OptionValue value_from_text(const OptionRow<R>& row, const std::string& text) {
+  if (row.kind == OptionKind::seed) {
+    // Digits only: "-0", "1e3" and " 7" are not how a seed is written down.
+    std::uint64_t u{};
+    const char* end = text.data() + text.size();
+    if (const auto [stop, error] = std::from_chars(text.data(), end, u);
+        !text.empty() && text.find_first_not_of("0123456789") == std::string::npos &&
+        error == std::errc() && stop == end) {
+      return u;
+    }
+    return text;
+  }
   if (row.kind == OptionKind::integer || row.kind == OptionKind::number) {
     std::int64_t i{};
     const char* end = text.data() + text.size();
@@ -44,6 +55,7 @@ OptionValue value_from_text(const OptionRow<R>& row, const std::string& text) {
 template <typename R>
 std::string validator_text(const OptionRow<R>& row) {
   if (row.kind == OptionKind::choice) return fmt::format("{{{}}}", fmt::join(row.choices, ","));
+  if (row.kind == OptionKind::seed) return "0 to 2^64 - 1";
   if (row.kind != OptionKind::integer && row.kind != OptionKind::number) return {};
   const bool low = std::isfinite(row.min), high = std::isfinite(row.max);
   if (low && high) return fmt::format("{} to {}", row.min, row.max);
@@ -102,6 +114,7 @@ void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
     if (row.must_exist && !row.positional) option->check(CLI::ExistingFile);
     switch (row.kind) {
       case OptionKind::integer:
+      case OptionKind::seed:
         option->type_name("INT");
         break;
       case OptionKind::number:

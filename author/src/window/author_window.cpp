@@ -236,6 +236,7 @@ bool option_control(const OptionRow<mapping::MapRequest>& row, mapping::MapReque
     }
     case OptionKind::flag:
     case OptionKind::text:
+    case OptionKind::seed:
       return false;  // the mapping's table has none
   }
   return false;

@@ -32,12 +32,18 @@ namespace tactile {
 
 // text: a name that is not a path or a choice (an address); path and text both refuse the empty
 // string, so that a forgotten value is never taken as the current folder or as nothing at all.
-enum class OptionKind { integer, number, choice, path, text, flag };
+// seed: a whole number from 0 to 2^64 - 1 exactly as typed (digits only), since a seed read
+// through a double or a signed type would become another seed without a word.
+enum class OptionKind { integer, number, choice, path, text, flag, seed };
 
 // A value as a front end hands it over: unset (Python's None, for an option that is unset by
-// default), a switch, a whole number, a number, or a name or path (text). The table's row turns
-// it into the request's field.
-using OptionValue = std::variant<std::monostate, bool, std::int64_t, double, std::string>;
+// default), a switch, a whole number (unsigned only beyond the signed range, for seeds), a
+// number, or a name or path (text). The table's row turns it into the request's field.
+using OptionValue =
+    std::variant<std::monostate, bool, std::int64_t, double, std::string, std::uint64_t>;
+
+// The words of every refused seed, after the value as typed.
+inline constexpr std::string_view kSeedRule = "is not a whole number from 0 to 2^64 - 1";
 
 // A usage error found in a request's values or in the rules between them (the command line's
 // exit 2, Python's ValueError). The message names the option as the front end spells it when
@@ -141,6 +147,16 @@ std::string option_problem(const OptionRow<R>& row, const OptionValue& value) {
     }
     case OptionKind::flag:
       return std::holds_alternative<bool>(value) ? std::string() : "takes true or false";
+    case OptionKind::seed:
+      if (std::holds_alternative<std::uint64_t>(value)) return {};
+      if (const auto* i = std::get_if<std::int64_t>(&value)) {
+        return *i >= 0 ? std::string() : fmt::format("{} {}", *i, kSeedRule);
+      }
+      if (const auto* d = std::get_if<double>(&value)) return fmt::format("{} {}", *d, kSeedRule);
+      if (const auto* text = std::get_if<std::string>(&value)) {
+        return fmt::format("{} {}", *text, kSeedRule);
+      }
+      return "takes a whole number";
   }
   return {};
 }
@@ -189,6 +205,9 @@ inline std::string shown_value(bool v) {
 inline std::string shown_value(int v) {
   return std::to_string(v);
 }
+inline std::string shown_value(std::uint64_t v) {
+  return std::to_string(v);
+}
 inline std::string shown_value(double v) {
   return fmt::format("{}", v);
 }
@@ -208,6 +227,9 @@ inline OptionValue value_of(bool v) {
 }
 inline OptionValue value_of(int v) {
   return std::int64_t{v};
+}
+inline OptionValue value_of(std::uint64_t v) {
+  return v;
 }
 inline OptionValue value_of(double v) {
   return v;
@@ -341,6 +363,33 @@ OptionRow<R> flag(std::string_view name, Field field, std::string help) {
   return row;
 }
 
+// A row for a random seed (a std::uint64_t field, or an optional one unset by default): the
+// whole range, no rounding, no wrapping.
+template <typename R, typename Field>
+OptionRow<R> seed(std::string_view name, Field field, std::string help) {
+  using F = field_of<R, Field>;
+  static_assert(std::is_same_v<typename field_type<F>::type, std::uint64_t>);
+  OptionRow<R> row;
+  row.name = name;
+  row.kind = OptionKind::seed;
+  row.help = std::move(help);
+  row.optional = !std::is_same_v<F, std::uint64_t>;
+  row.set = [field](R& r, const OptionValue& v) {
+    if (std::holds_alternative<std::monostate>(v)) {
+      if constexpr (!std::is_same_v<F, std::uint64_t>) std::invoke(field, r) = std::nullopt;
+      return;
+    }
+    if (const auto* u = std::get_if<std::uint64_t>(&v)) {
+      std::invoke(field, r) = *u;
+    } else {
+      std::invoke(field, r) = static_cast<std::uint64_t>(std::get<std::int64_t>(v));
+    }
+  };
+  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
+  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  return row;
+}
+
 // A row for text that is neither a path nor a choice (an optional std::string field), shown in
 // `--help` as `metavar`; `check` says what else is wrong with it (empty: nothing).
 template <typename R, typename Field>
@@ -424,6 +473,7 @@ std::string describe_option(const OptionRow<R>& row, bool with_range = true) {
   if (with_range && (row.kind == OptionKind::integer || row.kind == OptionKind::number)) {
     if (std::isfinite(row.min) || std::isfinite(row.max)) facts.push_back(range_rule(row));
   }
+  if (with_range && row.kind == OptionKind::seed) facts.emplace_back("from 0 to 2^64 - 1");
   if (with_range && row.kind == OptionKind::choice) {
     facts.push_back(fmt::format("{}", fmt::join(row.choices, " | ")));
   }

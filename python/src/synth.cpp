@@ -1,0 +1,51 @@
+// synth(out_dir, ...): a synthetic sequence with exact ground truth, or a real print moved by an
+// exact warp (from_print=...), written by the run `tactile synth` makes (capture::run_synth),
+// its keywords made from the synth request's option table; returns what was written.
+
+#include <string>
+
+#include "bindings.hpp"
+#include "request_kwargs.hpp"
+#include "tactile/capture/synth_request.hpp"
+
+namespace tactile::python {
+
+namespace {
+
+py::dict synth(const std::filesystem::path& out_dir, const py::kwargs& kwargs) {
+  capture::SynthRequest request;
+  request.out_dir = out_dir;
+  set_from_kwargs(request, capture::synth_options(), kwargs, "synth");
+  const capture::ResolvedSynth run = capture::resolve(request, OptionSpelling::python);
+  capture::SynthSummary s;
+  {
+    py::gil_scoped_release unlocked;
+    s = with_inputs({run.print, run.marks.value_or(std::filesystem::path{})},
+                    [&] { return capture::run_synth(run, "python: tactile.synth"); });
+  }
+  py::dict d;
+  d["frames"] = s.frames;
+  d["width_px"] = s.width_px;
+  d["height_px"] = s.height_px;
+  d["landmark_positions"] = s.landmark_positions;
+  d["marked_pores"] = s.marked_pores;
+  d["seconds"] = s.seconds;
+  d["summary"] = s.text;
+  return d;
+}
+
+}  // namespace
+
+void bind_synth(py::module_& m) {
+  // pybind11 keeps the pointer to the docstring: it must outlive the module.
+  static const std::string doc =
+      ("Writes a synthetic fingerprint sequence with exact ground truth into out_dir, as `tactile\n"
+       "synth`: frame_NNN.png, landmarks.csv and scene.json (and calibration/dot_grid.png for a\n"
+       "scene); with from_print, a real print moved by an exact warp. Returns frames, width_px,\n"
+       "height_px, landmark_positions, marked_pores, seconds and the summary line. Keywords\n"
+       "(the command line's options, with underscores):" +
+       kwargs_doc(capture::synth_options()));
+  m.def("synth", &synth, py::arg("out_dir"), doc.c_str());
+}
+
+}  // namespace tactile::python
