@@ -31,12 +31,8 @@ const std::vector<OptionRow<ExportRequest>>& export_options() {
 }
 
 void check_request(const ExportRequest& request, OptionSpelling spelling) {
-  for (const auto& row : export_options()) {
-    if (row.positional) continue;  // the caller's (a checked input or a Movie)
-    if (const std::string problem = option_problem(row, row.get(request)); !problem.empty()) {
-      throw RequestError(fmt::format("{}: {}", option_label(row.name, spelling), problem));
-    }
-  }
+  // The movie is the caller's (a checked input or a Movie).
+  check_named_options(request, export_options(), spelling);
   if (!request.hjif && !request.wav) {
     throw RequestError(fmt::format("give {} OUT.hjif, {} OUT.wav or both",
                                    option_label("hjif", spelling), option_label("wav", spelling)));

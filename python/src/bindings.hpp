@@ -49,5 +49,6 @@ void bind_classifier(py::module_& m);
 void bind_exchange(py::module_& m);
 void bind_live(py::module_& m);
 void bind_synth(py::module_& m);
+void bind_experiment(py::module_& m);
 
 }  // namespace tactile::python

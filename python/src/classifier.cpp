@@ -9,10 +9,14 @@
 #include <variant>
 
 #include "bindings.hpp"
+#include "request_kwargs.hpp"
 #include "tactile/common/names.hpp"
+#include "tactile/common/output_paths.hpp"
 #include "tactile/perception/classifier_model.hpp"
+#include "tactile/perception/classify_request.hpp"
 #include "tactile/perception/model_selection.hpp"
 #include "tactile/perception/recording_csv.hpp"
+#include "tactile/perception/report.hpp"
 
 namespace tactile::python {
 
@@ -27,13 +31,6 @@ std::shared_ptr<ClassifierModel> model_argument(const ModelArgument& model) {
   const fs::path& path = std::get<fs::path>(model);
   return std::make_shared<ClassifierModel>(
       with_inputs({path}, [&] { return perception::read_classifier_model(path); }));
-}
-
-void check_threads(int threads) {
-  if (threads < 0 || threads > 256) {
-    throw std::invalid_argument(
-        fmt::format("threads: {} is out of range: must be in [0, 256] (0: all cores)", threads));
-  }
 }
 
 // The options a model's rows were analysed with, and its SVM's, by the names the command line
@@ -116,37 +113,16 @@ py::dict report_dict(const perception::ClassifierTrainingRun& run,
   return out;
 }
 
-py::object train(const fs::path& recordings, const fs::path& labels, std::optional<fs::path> out,
-                 const std::string& procedure, std::optional<std::string> baseline_at,
-                 std::optional<std::string> electrodes, std::optional<double> trim,
-                 std::optional<std::vector<std::string>> inputs, std::optional<int> kernel_degree,
-                 std::optional<double> c, bool select, std::optional<int> cv, int threads) {
-  check_threads(threads);
-  perception::ClassifierTraining training;
-  training.procedure = perception::parse_recording_procedure(procedure);
-  training.trim = trim;
-  training.kernel_degree = kernel_degree;
-  training.c = c;
-  training.select = select;
-  if (baseline_at) training.baseline_at = perception::parse_baseline_at(*baseline_at);
-  if (electrodes) training.electrodes = perception::parse_electrodes(*electrodes);
-  for (const auto& name : inputs.value_or(std::vector<std::string>{}))
-    training.inputs.push_back(perception::parse_input_group(name));
-  if (kernel_degree && *kernel_degree != 1 && *kernel_degree != 2) {
-    throw std::invalid_argument(fmt::format("kernel_degree: {} is not 1 or 2", *kernel_degree));
-  }
-  if (c && !(*c >= 0.001 && *c <= 100000)) {
-    throw std::invalid_argument(
-        fmt::format("c: {:g} is out of range: must be in [0.001, 100000]", *c));
-  }
-  if (cv && (*cv < 2 || *cv > 1000)) {
-    throw std::invalid_argument(fmt::format(
-        "cv: {} is out of range: must be in [2, 1000] (None: no cross-validation)", *cv));
-  }
-  training.cv_folds = cv.value_or(0);
+py::object train(const fs::path& recordings, const fs::path& labels, const py::kwargs& kwargs) {
+  perception::TrainRequest request;
+  request.recordings = recordings;
+  request.labels = labels;
+  set_from_kwargs(request, perception::train_options(), kwargs, "train");
   // Checked before any recording is read, as on the command line.
-  perception::recording_inputs_for(training);
-  perception::svm_options_for(training);
+  const perception::ClassifierTraining training =
+      perception::resolve(request, OptionSpelling::python);
+  const int threads = request.threads;
+  const std::optional<fs::path>& out = request.out;
   perception::ClassifierTrainingRun run;
   {
     py::gil_scoped_release unlocked;
@@ -161,8 +137,20 @@ py::object train(const fs::path& recordings, const fs::path& labels, std::option
 }
 
 py::dict test(const ModelArgument& model_arg, const fs::path& recordings, const fs::path& labels,
-              int threads) {
-  check_threads(threads);
+              const py::kwargs& kwargs) {
+  perception::TestRequest request;
+  request.recordings = recordings;
+  request.labels = labels;
+  set_from_kwargs(request, perception::test_options(), kwargs, "test");
+  perception::check_request(request, OptionSpelling::python);
+  const int threads = request.threads;
+  if (request.csv) {
+    const auto* path = std::get_if<fs::path>(&model_arg);
+    refuse_output_over_input(
+        {output_folder("csv", *request.csv, perception::kTestReportFiles)},
+        perception::classify_inputs(recordings, labels, path ? *path : fs::path(),
+                                    OptionSpelling::python));
+  }
   const auto model = model_argument(model_arg);
   perception::ClassifierTest t;
   perception::LabelledInputs data;
@@ -174,6 +162,10 @@ py::dict test(const ModelArgument& model_arg, const fs::path& recordings, const 
                                                   model->class_names, threads);
     });
     t = perception::test_classifier(fitted, model->class_names.size(), data);
+    if (request.csv) {
+      perception::write_test_report(*request.csv, model->class_names, data, t,
+                                    fitted.has_values() && !data.values.empty());
+    }
   }
   const auto n = static_cast<py::ssize_t>(model->class_names.size());
   py::array_t<int> confusion({n, n});
@@ -237,27 +229,30 @@ void bind_classifier(py::module_& m) {
   m.def(
       "read_classifier_model", [](const fs::path& path) { return model_argument(path); },
       py::arg("path"));
-  m.def("train", &train, py::arg("recordings"), py::arg("labels"), py::kw_only(),
-        py::arg("out") = py::none(), py::arg("procedure") = "stroke",
-        py::arg("baseline_at") = py::none(), py::arg("electrodes") = py::none(),
-        py::arg("trim") = py::none(), py::arg("inputs") = py::none(),
-        py::arg("kernel_degree") = py::none(), py::arg("c") = py::none(), py::arg("select") = false,
-        py::arg("cv") = py::none(), py::arg("threads") = 0,
-        "Trains a classifier of the labelled recordings (labels CSV file,class[,value]) as\n"
-        "`tactile classify train`: options left unset are the procedure's defaults (stroke,\n"
-        "static, dp, ru, roll), or with select=True chosen by 5-fold cross-validation on these\n"
-        "recordings (`--select`; the comparison recorded in the model); cv=K also scores it by\n"
-        "stratified K-fold cross-validation (`--cv K`; nested with select, the choice made again\n"
-        "inside each fold). Writes the model file when `out` is given. The model's `report` is\n"
-        "what the command prints: recordings, class_names, the options used (inputs,\n"
-        "baseline_at, electrodes, trim, kernel_degree, c), training_correct/_tested, `cv` (folds,\n"
-        "fold_accuracy, mean, spread, correct, tested, nested; with select also inner_folds,\n"
-        "candidates and the candidate each fold chose) and `selection` (folds, candidates with\n"
-        "their accuracy, chosen index), each None when not asked for.");
-  m.def("test", &test, py::arg("model"), py::arg("recordings"), py::arg("labels"), py::kw_only(),
-        py::arg("threads") = 0,
-        "Accuracy of a model (a ClassifierModel or its file) on labelled recordings: accuracy,\n"
-        "correct, tested, class_names, confusion [true][predicted], files, predicted.");
+  // pybind11 keeps the pointer to the docstring: it must outlive the module.
+  static const std::string train_doc =
+      ("Trains a classifier of the labelled recordings (labels CSV file,class[,value]) as\n"
+       "`tactile classify train`: options left unset are the procedure's defaults (stroke,\n"
+       "static, dp, ru, roll), or with select=True chosen by 5-fold cross-validation on these\n"
+       "recordings (`--select`; the comparison recorded in the model); cv=K also scores it by\n"
+       "stratified K-fold cross-validation (`--cv K`; nested with select, the choice made again\n"
+       "inside each fold). Writes the model file when `out` is given. The model's `report` is\n"
+       "what the command prints: recordings, class_names, the options used (inputs,\n"
+       "baseline_at, electrodes, trim, kernel_degree, c), training_correct/_tested, `cv` (folds,\n"
+       "fold_accuracy, mean, spread, correct, tested, nested; with select also inner_folds,\n"
+       "candidates and the candidate each fold chose) and `selection` (folds, candidates with\n"
+       "their accuracy, chosen index), each None when not asked for. Keywords (the command\n"
+       "line's options, with underscores; inputs also as a list):" +
+       kwargs_doc(perception::train_options()));
+  m.def("train", &train, py::arg("recordings"), py::arg("labels"), train_doc.c_str());
+  static const std::string test_doc =
+      ("Accuracy of a model (a ClassifierModel or its file) on labelled recordings: accuracy,\n"
+       "correct, tested, class_names, confusion [true][predicted], files, predicted; with csv,\n"
+       "also the files `classify test --csv` writes. Keywords (the command line's options, with\n"
+       "underscores):" +
+       kwargs_doc(perception::test_options()));
+  m.def("test", &test, py::arg("model"), py::arg("recordings"), py::arg("labels"),
+        test_doc.c_str());
   m.def("predict", &predict, py::arg("model"), py::arg("files"),
         "(class, value or None) of each recording (BioTac-style CSV).");
 }

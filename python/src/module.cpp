@@ -7,7 +7,8 @@ PYBIND11_MODULE(tactile, m) {
   namespace tp = tactile::python;
   m.doc() =
       "tactile-movies from Python: tactile movies and strain movies as NumPy arrays, layouts,\n"
-      "mapping, playing, synthetic sequences, capture and the classifier; errors carry the "
+      "mapping, playing, synthetic sequences, capture, experiments and the classifier; errors "
+      "carry the "
       "`tactile` program's\n"
       "messages.";
   m.attr("__version__") = tactile::kVersion;
@@ -30,4 +31,5 @@ PYBIND11_MODULE(tactile, m) {
   tp::bind_exchange(m);
   tp::bind_live(m);
   tp::bind_synth(m);
+  tp::bind_experiment(m);
 }

@@ -38,6 +38,16 @@ inline OptionValue option_value_of(const py::handle& value, OptionKind kind) {
   }
   if (py::isinstance<py::float_>(value)) return value.cast<double>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (kind == OptionKind::choice_list &&
+      (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))) {
+    std::string joined;
+    for (const auto& item : value) {
+      if (!py::isinstance<py::str>(item)) throw py::type_error("takes a list of names");
+      if (!joined.empty()) joined += ',';
+      joined += item.cast<std::string>();
+    }
+    return joined;
+  }
   if (kind == OptionKind::path && py::hasattr(value, "__fspath__")) {
     return py::module_::import("os").attr("fspath")(value).cast<std::string>();
   }
@@ -53,11 +63,11 @@ void set_from_kwargs(R& request, const std::vector<OptionRow<R>>& table, const p
                      const std::string& function) {
   std::vector<std::string> names;
   for (const auto& row : table)
-    if (!row.positional) names.emplace_back(row.name);
+    if (!row.positional && !row.required) names.emplace_back(row.name);
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::cast<std::string>(key);
     const OptionRow<R>* row = find_option(table, name);
-    if (!row || row->positional) {
+    if (!row || row->positional || row->required) {
       const auto near = closest_name(name, names);
       throw py::type_error(fmt::format("{}() got an unexpected keyword argument '{}'{}", function,
                                        name,
@@ -78,7 +88,7 @@ template <typename R>
 std::string kwargs_doc(const std::vector<OptionRow<R>>& table) {
   std::string doc;
   for (const auto& row : table) {
-    if (row.positional) continue;
+    if (row.positional || row.required) continue;
     std::string help = describe_option(row);
     for (char& c : help)
       if (c == '\n') c = ' ';

@@ -34,7 +34,7 @@ def test_classifier_bad_input(tmp_path, data_dir):
     rec = data_dir / "biotac-materials"
     with pytest.raises(FileNotFoundError):
         tactile.train(rec, tmp_path / "absent.csv")
-    with pytest.raises(ValueError, match=r"unknown procedure 'sideways' \(known: stroke, static, dp, ru, roll\)"):
+    with pytest.raises(ValueError, match=r"procedure: unknown value 'sideways' \(known: stroke, static, dp, ru, roll\)"):
         tactile.train(rec, rec / "labels.csv", procedure="sideways")
     with pytest.raises(ValueError, match="trim"):
         tactile.train(rec, rec / "labels.csv", trim=0.7)
@@ -125,7 +125,7 @@ def test_train_select_with_cv_is_nested_and_records_the_choice(tmp_path, data_di
 
 def test_train_select_and_cv_bad_input(tmp_path, data_dir):
     rec, labels = first_trials(tmp_path, data_dir)
-    with pytest.raises(ValueError, match=r"cv: 1 is out of range: must be in \[2, 1000\]"):
+    with pytest.raises(ValueError, match=r"cv: 1 is out of range: must be from 2 to 1000"):
         tactile.train(rec, labels, cv=1)
     # More folds than a class has recordings (3 each): a fold would miss the class.
     with pytest.raises(ValueError, match="fold"):

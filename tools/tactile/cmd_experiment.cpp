@@ -13,8 +13,10 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "request_options.hpp"
 #include "tactile/experiments/cells.hpp"
 #include "tactile/experiments/experiment.hpp"
+#include "tactile/experiments/experiment_request.hpp"
 #include "tactile/experiments/slurm.hpp"
 
 namespace tactile::cli {
@@ -74,10 +76,7 @@ int print_status(const experiments::Plan& plan, const fs::path& out) {
 
 void add_experiment(CLI::App& app, Action& action) {
   struct Options {
-    fs::path file;
-    std::optional<fs::path> out;
-    int threads = 0;
-    bool quiet = false;
+    experiments::ExperimentRequest request;
     bool plan = false, merge = false, status = false, slurm = false, submit = false;
     std::vector<std::string> cells;
     experiments::SlurmOptions slurm_options;
@@ -94,14 +93,8 @@ void add_experiment(CLI::App& app, Action& action) {
       "The grid is a list of independent cells (manifest.tsv): --plan writes it, --cell runs\n"
       "one cell, --merge gathers them; --slurm writes a Slurm job array for them\n"
       "(docs/experiments.md). Without these, all three happen here.");
-  sub->add_option("EXP_JSON", opt->file, "Experiment file (JSON)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_option("--out", opt->out, "Output folder (default: <experiment name>-results)");
-  sub->add_option("--threads", opt->threads, "Worker threads (0: all cores)")
-      ->check(within(0, 256))
-      ->capture_default_str();
-  sub->add_flag("--quiet", opt->quiet, "Print only the summary");
+  add_request_options(*sub, std::shared_ptr<experiments::ExperimentRequest>(opt, &opt->request),
+                      experiments::experiment_options());
   auto* plan = sub->add_flag("--plan", opt->plan,
                              "Only write the manifest of cells (manifest.tsv) and experiment.json");
   auto* cell = sub->add_option("--cell", opt->cells,
@@ -149,13 +142,10 @@ void add_experiment(CLI::App& app, Action& action) {
   sub->callback([opt, &action] {
     action = [opt] {
       const auto t0 = std::chrono::steady_clock::now();
-      experiments::Experiment ex = experiments::read_experiment(opt->file);
-      const fs::path out = opt->out.value_or(fs::path(ex.name + "-results"));
-      std::vector<NamedPath> inputs = {{"EXP_JSON", opt->file}};
-      for (const auto& s : ex.sources)
-        if (!s.path.empty()) inputs.push_back({"source '" + s.name + "'", s.path});
-      for (const auto& layout : ex.layout_files) inputs.push_back({"layout", layout});
-      refuse_output_over_input({experiments::experiment_output("--out", out)}, inputs);
+      experiments::ResolvedExperiment resolved =
+          experiments::resolve(opt->request, OptionSpelling::cli);
+      experiments::Experiment& ex = resolved.experiment;
+      const fs::path& out = resolved.out;
       if (opt->slurm) {
         try {
           experiments::check_slurm_options(opt->slurm_options, fs::absolute(out));
@@ -194,10 +184,11 @@ void add_experiment(CLI::App& app, Action& action) {
           const auto& c = plan.cells[index];
           try {
             const auto outcome = experiments::run_cell(ex, plan, index, out,
-                                                       {.threads = opt->threads,
+                                                       {.threads = opt->request.threads,
                                                         .runner = runner_name(),
                                                         .progress = [&](const std::string& m) {
-                                                          if (!opt->quiet) fmt::print("  {}\n", m);
+                                                          if (!opt->request.quiet)
+                                                            fmt::print("  {}\n", m);
                                                         }});
             if (outcome.skipped)
               fmt::print("cell {} {} ({}): already done, skipped\n", index, c.id, c.name);
@@ -215,7 +206,7 @@ void add_experiment(CLI::App& app, Action& action) {
       }
       if (opt->merge && opt->status) return print_status(plan, out);
       if (opt->merge) {
-        const auto merged = experiments::merge_experiment(ex, plan, out, opt->threads);
+        const auto merged = experiments::merge_experiment(ex, plan, out, opt->request.threads);
         if (!merged.incomplete.empty()) {
           fmt::print(stderr, "tactile experiment: {} of {} cells are not done; nothing merged:\n",
                      merged.incomplete.size(), plan.cells.size());
@@ -232,7 +223,7 @@ void add_experiment(CLI::App& app, Action& action) {
         try {
           jobs = experiments::write_slurm_jobs(plan, fs::absolute(out),
                                                fs::read_symlink("/proc/self/exe"),
-                                               fs::absolute(opt->file), opt->slurm_options);
+                                               fs::absolute(opt->request.file), opt->slurm_options);
         } catch (const std::invalid_argument& e) {
           fmt::print(stderr, "tactile experiment: {}\n", e.what());
           return 2;
@@ -257,12 +248,12 @@ void add_experiment(CLI::App& app, Action& action) {
       fmt::print("experiment '{}': {} -> {} runs ({} cells), checked; writing {}\n", ex.name,
                  ex.grid, ex.runs.size(), plan.cells.size(), out.string());
       std::mutex print_mutex;
-      const auto report =
-          experiments::run_experiment(ex, out, opt->threads, [&](const std::string& message) {
-            if (opt->quiet) return;
-            const std::lock_guard lock(print_mutex);
-            fmt::print("  {}\n", message);
-          });
+      const auto report = experiments::run_experiment(ex, out, opt->request.threads,
+                                                      [&](const std::string& message) {
+                                                        if (opt->request.quiet) return;
+                                                        const std::lock_guard lock(print_mutex);
+                                                        fmt::print("  {}\n", message);
+                                                      });
       const double total_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       print_results(ex, report.results, report.lines);

@@ -55,6 +55,9 @@ OptionValue value_from_text(const OptionRow<R>& row, const std::string& text) {
 template <typename R>
 std::string validator_text(const OptionRow<R>& row) {
   if (row.kind == OptionKind::choice) return fmt::format("{{{}}}", fmt::join(row.choices, ","));
+  if (row.kind == OptionKind::choice_list) {
+    return fmt::format("{{{}}},...", fmt::join(row.choices, ","));
+  }
   if (row.kind == OptionKind::seed) return "0 to 2^64 - 1";
   if (row.kind != OptionKind::integer && row.kind != OptionKind::number) return {};
   const bool low = std::isfinite(row.min), high = std::isfinite(row.max);
@@ -109,9 +112,14 @@ void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
         },
         describe_option(row, false));
     option->check(row_check(row));
-    if (row.positional) option->required();
-    if (row.must_exist && row.positional) option->check(CLI::ExistingPath);
-    if (row.must_exist && !row.positional) option->check(CLI::ExistingFile);
+    if (row.positional || row.required) option->required();
+    if (row.must_exist && row.folder) {
+      option->check(CLI::ExistingDirectory);
+    } else if (row.must_exist && row.positional) {
+      option->check(CLI::ExistingPath);
+    } else if (row.must_exist) {
+      option->check(CLI::ExistingFile);
+    }
     switch (row.kind) {
       case OptionKind::integer:
       case OptionKind::seed:
@@ -122,6 +130,9 @@ void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
         break;
       case OptionKind::choice:
         option->type_name("NAME");
+        break;
+      case OptionKind::choice_list:
+        option->type_name("NAMES");
         break;
       case OptionKind::path:
         option->type_name("PATH");

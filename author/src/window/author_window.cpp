@@ -237,6 +237,7 @@ bool option_control(const OptionRow<mapping::MapRequest>& row, mapping::MapReque
     case OptionKind::flag:
     case OptionKind::text:
     case OptionKind::seed:
+    case OptionKind::choice_list:
       return false;  // the mapping's table has none
   }
   return false;

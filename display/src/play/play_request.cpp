@@ -69,13 +69,8 @@ const std::vector<OptionRow<PlayRequest>>& play_options() {
 
 ResolvedPlay resolve(const PlayRequest& request, OptionSpelling spelling, int stop_fd) {
   const auto label = [spelling](std::string_view name) { return option_label(name, spelling); };
-  for (const auto& row : play_options()) {
-    // The movie is the caller's (the command line's checked input, a Movie object).
-    if (row.positional) continue;
-    if (const std::string problem = option_problem(row, row.get(request)); !problem.empty()) {
-      throw RequestError(fmt::format("{}: {}", label(row.name), problem));
-    }
-  }
+  // The movie is the caller's (the command line's checked input, a Movie object).
+  check_named_options(request, play_options(), spelling);
   if (request.latero && request.headless) {
     throw RequestError(fmt::format("{}: not with {}: a Latero plays on the Latero",
                                    label("headless"), label("latero")));

@@ -13,6 +13,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "tactile/common/atomic_write.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/parallel_for.hpp"
 
@@ -317,6 +318,15 @@ std::vector<std::string> confusion_lines(const std::vector<std::string>& class_n
                                 wrong.empty() ? "" : "; taken for ", fmt::join(wrong, ", ")));
   }
   return lines;
+}
+
+void write_test_report(const std::filesystem::path& dir,
+                       const std::vector<std::string>& class_names, const LabelledInputs& data,
+                       const ClassifierTest& test, bool with_values) {
+  CommitTogether together;
+  write_confusion_report(dir, class_names, test.confusion);
+  write_predictions_csv(dir / "predictions.csv", class_names, data, test, with_values);
+  together.commit();
 }
 
 }  // namespace tactile::perception

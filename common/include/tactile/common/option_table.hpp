@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -34,7 +35,8 @@ namespace tactile {
 // string, so that a forgotten value is never taken as the current folder or as nothing at all.
 // seed: a whole number from 0 to 2^64 - 1 exactly as typed (digits only), since a seed read
 // through a double or a signed type would become another seed without a word.
-enum class OptionKind { integer, number, choice, path, text, flag, seed };
+// choice_list: names from the enum's table, comma-separated ("means,bands").
+enum class OptionKind { integer, number, choice, path, text, flag, seed, choice_list };
 
 // A value as a front end hands it over: unset (Python's None, for an option that is unset by
 // default), a switch, a whole number (unsigned only beyond the signed range, for seeds), a
@@ -63,6 +65,17 @@ inline std::string option_label(std::string_view name, OptionSpelling spelling) 
   return "--" + label;
 }
 
+// "means,bands" as {"means", "bands"} (a choice_list's value).
+inline std::vector<std::string> split_names(std::string_view text) {
+  std::vector<std::string> names;
+  for (std::size_t from = 0;;) {
+    const std::size_t comma = text.find(',', from);
+    names.emplace_back(text.substr(from, comma == std::string_view::npos ? comma : comma - from));
+    if (comma == std::string_view::npos) return names;
+    from = comma + 1;
+  }
+}
+
 template <typename R>
 struct OptionRow {
   std::string_view name;  // snake_case
@@ -73,10 +86,14 @@ struct OptionRow {
   double max = std::numeric_limits<double>::infinity();
   std::vector<std::string> choices;  // OptionKind::choice: the accepted names, in table order
   bool positional = false;           // the command line's first argument (required)
-  std::string_view metavar;          // positional and text: its name in `--help`, e.g. IMAGE_DIR
-  bool optional = false;             // the field may be unset (std::optional)
-  std::string_view cli_alias;        // an older command-line spelling still taken, e.g. --strain
-  bool must_exist = false;           // a path that must name an existing file or folder
+  // A named option that must be given (--recordings DIR): a positional argument of the Python
+  // function, not a keyword.
+  bool required = false;
+  std::string_view metavar;    // positional and text: its name in `--help`, e.g. IMAGE_DIR
+  bool optional = false;       // the field may be unset (std::optional)
+  std::string_view cli_alias;  // an older command-line spelling still taken, e.g. --strain
+  bool must_exist = false;     // a path that must name an existing file or folder
+  bool folder = false;         // with must_exist: a folder, not a file
   // OptionKind::path: what else is wrong with the text (empty: nothing), e.g. a name that is
   // neither a built-in layout nor a .json file.
   std::function<std::string(const std::string&)> check_text;
@@ -132,6 +149,17 @@ std::string option_problem(const OptionRow<R>& row, const OptionValue& value) {
         if (c == *name) return {};
       return fmt::format("unknown value '{}' (known: {})", *name, fmt::join(row.choices, ", "));
     }
+    case OptionKind::choice_list: {
+      const auto* names = std::get_if<std::string>(&value);
+      if (!names) return "takes names";
+      if (names->empty()) return "is empty";
+      for (const std::string& name : split_names(*names)) {
+        if (std::find(row.choices.begin(), row.choices.end(), name) == row.choices.end()) {
+          return fmt::format("unknown value '{}' (known: {})", name, fmt::join(row.choices, ", "));
+        }
+      }
+      return {};
+    }
     case OptionKind::path: {
       const auto* path = std::get_if<std::string>(&value);
       if (!path) return "takes a path";
@@ -178,6 +206,19 @@ template <typename R>
 void check_options(const R& request, const std::vector<OptionRow<R>>& table,
                    OptionSpelling spelling) {
   for (const auto& row : table) {
+    if (const std::string problem = option_problem(row, row.get(request)); !problem.empty()) {
+      throw RequestError(fmt::format("{}: {}", option_label(row.name, spelling), problem));
+    }
+  }
+}
+
+// As check_options, leaving out the front end's own arguments (positional and required rows: an
+// input it has checked, or an object such as a movie passed instead of a file).
+template <typename R>
+void check_named_options(const R& request, const std::vector<OptionRow<R>>& table,
+                         OptionSpelling spelling) {
+  for (const auto& row : table) {
+    if (row.positional || row.required) continue;
     if (const std::string problem = option_problem(row, row.get(request)); !problem.empty()) {
       throw RequestError(fmt::format("{}: {}", option_label(row.name, spelling), problem));
     }
@@ -363,6 +404,42 @@ OptionRow<R> flag(std::string_view name, Field field, std::string help) {
   return row;
 }
 
+// A row for a list of names from an enum's table (a std::vector<E> field, empty by default: the
+// operation decides, as the help says).
+template <typename R, typename Field, typename E, std::size_t N>
+OptionRow<R> choice_list(std::string_view name, Field field, const std::array<Named<E>, N>& table,
+                         std::string help) {
+  static_assert(std::is_same_v<field_of<R, Field>, std::vector<E>>);
+  OptionRow<R> row;
+  row.name = name;
+  row.kind = OptionKind::choice_list;
+  row.help = std::move(help);
+  for (const auto& entry : table) row.choices.emplace_back(entry.name);
+  row.optional = true;
+  row.set = [field, table, name](R& r, const OptionValue& v) {
+    auto& list = std::invoke(field, r);
+    list.clear();
+    if (std::holds_alternative<std::monostate>(v)) return;
+    for (const std::string& each : split_names(std::get<std::string>(v))) {
+      list.push_back(parse_name(name, each, table));
+    }
+  };
+  const auto text = [field, table](const R& r) {
+    std::string joined;
+    for (const E e : std::invoke(field, r)) {
+      if (!joined.empty()) joined += ',';
+      joined += name_in(table, e);
+    }
+    return joined;
+  };
+  row.get = [text](const R& r) -> OptionValue {
+    std::string joined = text(r);
+    return joined.empty() ? OptionValue{} : OptionValue(std::move(joined));
+  };
+  row.shown = text;
+  return row;
+}
+
 // A row for a random seed (a std::uint64_t field, or an optional one unset by default): the
 // whole range, no rounding, no wrapping.
 template <typename R, typename Field>
@@ -438,6 +515,8 @@ OptionRow<Outer> nested(const OptionRow<Inner>& row, Access access) {
   out.metavar = row.metavar;
   out.optional = row.optional;
   out.must_exist = row.must_exist;
+  out.folder = row.folder;
+  out.required = row.required;
   out.cli_alias = row.cli_alias;
   out.check_text = row.check_text;
   out.check_number = row.check_number;
@@ -474,7 +553,7 @@ std::string describe_option(const OptionRow<R>& row, bool with_range = true) {
     if (std::isfinite(row.min) || std::isfinite(row.max)) facts.push_back(range_rule(row));
   }
   if (with_range && row.kind == OptionKind::seed) facts.emplace_back("from 0 to 2^64 - 1");
-  if (with_range && row.kind == OptionKind::choice) {
+  if (with_range && (row.kind == OptionKind::choice || row.kind == OptionKind::choice_list)) {
     facts.push_back(fmt::format("{}", fmt::join(row.choices, " | ")));
   }
   if (!row.positional) {

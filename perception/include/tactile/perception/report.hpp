@@ -72,6 +72,16 @@ void write_predictions_csv(const std::filesystem::path& path,
                            const std::vector<std::string>& class_names, const LabelledInputs& data,
                            const ClassifierTest& test, bool with_values);
 
+// The files of a test's report (`classify test --csv`), in `dir`.
+inline const std::vector<std::filesystem::path> kTestReportFiles = {
+    "confusion.csv", "confusion.svg", "confusion.png", "predictions.csv"};
+
+// write_confusion_report and write_predictions_csv into `dir`: the four files describe one test,
+// replaced together or not at all.
+void write_test_report(const std::filesystem::path& dir,
+                       const std::vector<std::string>& class_names, const LabelledInputs& data,
+                       const ClassifierTest& test, bool with_values);
+
 // One line per true class that was tested, for the terminal: its correct count and the classes
 // it was taken for, e.g. "oak: 8/10 correct; taken for pine 2".
 std::vector<std::string> confusion_lines(const std::vector<std::string>& class_names,
