@@ -20,6 +20,7 @@
 #include "tactile/display/play_request.hpp"
 #include "tactile/display/player.hpp"
 #include "tactile/display/viewer.hpp"
+#include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::cli {
 namespace {
@@ -187,7 +188,8 @@ void add_emulate(CLI::App& app, Action& action) {
 void add_bench_latero(CLI::App& bench, Action& action) {
   struct Options {
     double seconds = 10;
-    double rate_hz = 750;
+    // The layout's own rate: what a Latero plays at.
+    double rate_hz = movie::latero_layout().max_rate_hz;
     std::uint32_t drop_every = 0;
   };
   auto opt = std::make_shared<Options>();
@@ -199,7 +201,7 @@ void add_bench_latero(CLI::App& bench, Action& action) {
       ->check(within(0.1, 600.0))
       ->capture_default_str();
   sub->add_option("--rate-hz", opt->rate_hz, "Frame rate")
-      ->check(within(1.0, 750.0))
+      ->check(within(1.0, movie::latero_layout().max_rate_hz))
       ->capture_default_str();
   sub->add_option("--drop-every", opt->drop_every, "Emulator leaves out every N-th reply")
       ->check(within<std::uint32_t>(0, 1000000))
