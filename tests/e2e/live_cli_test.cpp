@@ -177,7 +177,7 @@ TEST_F(Live, StrainAgainstTheTruthBesideTheBatchCapture) {
   EXPECT_LT(live_rms, 10 * batch_rms);
 }
 
-// Skin sliding through the view (full slip at 25 mm/s, 7 px a frame): the live session, frame
+// Skin sliding through the view (full slip at 25 mm/s, 20 px a frame): the live session, frame
 // by frame, keeps tracks as short as the skin stays in view and measures the strain field the
 // skin crosses. Held-out prints 13 and 15, nothing tuned on them. Measured here as this test
 // plays them (10 Hz; twice, the same figures): RMS error 0.00111 and 0.00116, correlation 0.957
