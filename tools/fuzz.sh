@@ -7,6 +7,13 @@
 # count depends on the CPU the machine spares); exits 1 on a finding (its input is kept in
 # build/release/tests/*fuzz*/).
 #   bash tools/fuzz.sh 600
+# Overnight, every fast reader past 10^7 executions: `bash tools/fuzz.sh 28800` gives each of the
+# 12 targets 4800 s of one core on a 2-core machine. Measured on such a machine (clang's
+# libFuzzer with ASan and UBSan, 10 s each, otherwise idle): labels CSV 11000 executions a second,
+# pore marks 8800, classifier model 5000, calibration 4400, pore model 4400, experiment 4000, HJIF
+# 1800 (4800 s: 8.6 x 10^6, the one short of 10^7), the movie readers 280 (one reading child
+# for all inputs; 30 when they forked one per input). labels CSV was run to 10^7 by hand
+# (`reader_fuzz -runs=10000000`, see docs/architecture.md for the figure).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:?usage: tools/fuzz.sh SECONDS}
@@ -51,10 +58,10 @@ fuzz_one() {
     # ours. Above the movie readers' own bound for a stalled HDF5 (10 s for a small file).
     leaks=0
     timeout=20
-    # The movie readers fork a child for every file (crash containment), and a fork copies the
-    # page tables of everything the process has touched: AddressSanitizer's quarantine of freed
-    # memory (256 MB by default) made each fork several times dearer. 16 MB still holds the
-    # frees of many inputs for use-after-free checks.
+    # The movie readers' reading child is forked again after every input that crashed it, and a
+    # fork copies the page tables of everything the process has touched: AddressSanitizer's
+    # quarantine of freed memory (256 MB by default) made each fork several times dearer. 16 MB
+    # still holds the frees of many inputs for use-after-free checks.
     asan+=:quarantine_size_mb=16
   fi
   ASAN_OPTIONS=detect_leaks=$leaks:$asan TACTILE_FUZZ_READER=$target "$fuzzer" \
@@ -89,7 +96,8 @@ for target in "${targets[@]}"; do
     printf '%-24s %12s executions in %d s  FINDING (log: %s)\n' "$target" "$runs" "$each" "$dir/log"
     grep -m3 -E 'ERROR|SUMMARY|==[0-9]+==|deadly|terminate' "$dir/log" | sed 's/^/    /' || true
   else
-    printf '%-24s %12s executions in %d s\n' "$target" "$runs" "$each"
+    printf '%-24s %12s executions in %d s (%d a second)\n' "$target" "$runs" "$each" \
+      $((runs / each))
   fi
 done
 printf '%-24s %12s executions, %d finding(s)\n' "total" "$total" "$findings"

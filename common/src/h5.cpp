@@ -16,7 +16,9 @@
 
 #include <cerrno>
 #include <csignal>
+#include <cstdint>
 #include <cstring>
+#include <string>
 
 #include "provenance_fields.hpp"
 #include "tactile/common/atomic_write.hpp"
@@ -171,12 +173,123 @@ void write_file_atomically(const std::filesystem::path& path,
   write_atomically(path, std::string_view(image.data(), image.size()));
 }
 
-void read_in_child_first(const std::filesystem::path& path, const std::string& what,
-                         const std::function<void()>& read) {
+namespace {
+
+// Generous for any disk: a child still reading after this is stuck in a damaged structure.
+int read_limit_s(const std::filesystem::path& path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
-  // Generous for any disk: a child still reading after this is stuck in a damaged structure.
-  const int limit_s = 10 + static_cast<int>((ec ? 0 : size) / (4 << 20));
+  return 10 + static_cast<int>((ec ? 0 : size) / (4 << 20));
+}
+
+// In a reading child just forked: it dies with its parent, a crash ends it by its signal, and
+// Ctrl-C is the parent's. Returns false when the parent ended before PDEATHSIG was set.
+bool become_reading_child(pid_t parent) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) return false;
+  // A crash is the child's verdict on the file: it ends the child by its signal, reported by
+  // the parent, not by whatever handler the process installed.
+  for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
+  // Ctrl-C is the parent's to handle (its handler removes the parent's temporary files); the
+  // child ends with the parent through PDEATHSIG.
+  std::signal(SIGINT, SIG_IGN);
+  std::signal(SIGTERM, SIG_IGN);
+  if (&__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
+  return true;
+}
+
+// Waits until `fd` is readable or closed, or `limit_s` has passed (false).
+bool wait_readable(int fd, int limit_s) {
+  pollfd pfd{fd, POLLIN, 0};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limit_s);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    const int n = ::poll(&pfd, 1, static_cast<int>(left.count()));
+    if (n > 0 || (n < 0 && errno != EINTR)) return true;
+  }
+}
+
+int reap(pid_t child) {
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  return status;
+}
+
+// The damaged-file error for a child that did not finish (timed out) or ended by `status`.
+FormatError damaged(const std::filesystem::path& path, const std::string& what, int limit_s,
+                    bool timed_out, int status) {
+  if (timed_out) {
+    return FormatError(fmt::format("{}: damaged file: reading it as {} did not finish within {} s",
+                                   path.string(), what, limit_s));
+  }
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    return FormatError(
+        fmt::format("{}: damaged file: reading it as {} crashed the HDF5 library "
+                    "(signal {}, {})",
+                    path.string(), what, sig, ::strsignal(sig)));
+  }
+  return FormatError(
+      fmt::format("{}: damaged file: reading it as {} crashed the HDF5 library "
+                  "(exit status {})",
+                  path.string(), what, WIFEXITED(status) ? WEXITSTATUS(status) : -1));
+}
+
+bool write_all(int fd, const void* data, std::size_t size) {
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+bool read_all(int fd, void* data, std::size_t size) {
+  char* p = static_cast<char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::read(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// A request to the reading child: the reader's address, the path's length, the path.
+struct ReadRequest {
+  ChildRead read;
+  std::uint32_t path_bytes;
+};
+
+[[noreturn]] void serve_reads(int requests, int answers) {
+  for (;;) {
+    ReadRequest request{};
+    if (!read_all(requests, &request, sizeof request) || request.path_bytes > (1u << 20)) {
+      ::_exit(0);
+    }
+    std::string path(request.path_bytes, '\0');
+    if (!read_all(requests, path.data(), path.size())) ::_exit(0);
+    try {
+      request.read(path);
+    } catch (...) {
+    }
+    const char done = 'k';
+    if (!write_all(answers, &done, 1)) ::_exit(0);
+  }
+}
+
+}  // namespace
+
+void read_in_child_first(const std::filesystem::path& path, const std::string& what,
+                         const std::function<void()>& read) {
+  const int limit_s = read_limit_s(path);
   int pipe_fds[2];
   if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return;  // no protection, but still a reader
   const pid_t parent = ::getpid();
@@ -188,16 +301,7 @@ void read_in_child_first(const std::filesystem::path& path, const std::string& w
   }
   if (child == 0) {
     ::close(pipe_fds[0]);
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(0);  // the parent ended before PDEATHSIG was set
-    // A crash is the child's verdict on the file: it ends the child by its signal, reported by
-    // the parent, not by whatever handler the process installed.
-    for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
-    // Ctrl-C is the parent's to handle (its handler removes the parent's temporary files); the
-    // child ends with the parent through PDEATHSIG.
-    std::signal(SIGINT, SIG_IGN);
-    std::signal(SIGTERM, SIG_IGN);
-    if (&__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
+    if (!become_reading_child(parent)) ::_exit(0);
     try {
       read();
     } catch (...) {
@@ -206,41 +310,98 @@ void read_in_child_first(const std::filesystem::path& path, const std::string& w
   }
   ::close(pipe_fds[1]);
   // The pipe's write end closes when the child ends, however it ends.
-  pollfd pfd{pipe_fds[0], POLLIN, 0};
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limit_s);
-  bool timed_out = false;
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
-      timed_out = true;
-      break;
-    }
-    const int n = ::poll(&pfd, 1, static_cast<int>(left.count()));
-    if (n > 0 || (n < 0 && errno != EINTR)) break;
-  }
+  const bool timed_out = !wait_readable(pipe_fds[0], limit_s);
   ::close(pipe_fds[0]);
   if (timed_out) ::kill(child, SIGKILL);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  const int status = reap(child);
+  if (timed_out || WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0)) {
+    throw damaged(path, what, limit_s, timed_out, status);
   }
-  if (timed_out) {
-    throw FormatError(fmt::format("{}: damaged file: reading it as {} did not finish within {} s",
-                                  path.string(), what, limit_s));
+}
+
+void read_in_child_first(const std::filesystem::path& path, const std::string& what, ChildRead read,
+                         ReadingProcess* process) {
+  if (process != nullptr) {
+    process->read(path, what, read);
+  } else {
+    read_in_child_first(path, what, [&] { read(path); });
   }
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    throw FormatError(
-        fmt::format("{}: damaged file: reading it as {} crashed the HDF5 library "
-                    "(signal {}, {})",
-                    path.string(), what, sig, ::strsignal(sig)));
+}
+
+ReadingProcess::~ReadingProcess() {
+  stop();
+}
+
+void ReadingProcess::start() {
+  int requests[2], answers[2];
+  if (::pipe2(requests, O_CLOEXEC) != 0) return;
+  if (::pipe2(answers, O_CLOEXEC) != 0) {
+    ::close(requests[0]);
+    ::close(requests[1]);
+    return;
   }
-  if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
-    throw FormatError(
-        fmt::format("{}: damaged file: reading it as {} crashed the HDF5 library "
-                    "(exit status {})",
-                    path.string(), what, WEXITSTATUS(status)));
+  const pid_t parent = ::getpid();
+  const pid_t child = ::fork();
+  if (child < 0) {
+    for (const int fd : {requests[0], requests[1], answers[0], answers[1]}) ::close(fd);
+    return;
   }
+  if (child == 0) {
+    ::close(requests[1]);
+    ::close(answers[0]);
+    if (!become_reading_child(parent)) ::_exit(0);
+    serve_reads(requests[0], answers[1]);
+  }
+  ::close(requests[0]);
+  ::close(answers[1]);
+  child_ = child;
+  to_child_ = requests[1];
+  from_child_ = answers[0];
+  reads_ = 0;
+  ++forks_;
+}
+
+void ReadingProcess::stop() {
+  if (child_ < 0) return;
+  ::close(to_child_);  // the child ends at the end of its requests
+  ::close(from_child_);
+  ::kill(child_, SIGKILL);
+  reap(child_);
+  child_ = to_child_ = from_child_ = -1;
+}
+
+void ReadingProcess::read(const std::filesystem::path& path, const std::string& what,
+                          ChildRead read) {
+  if (child_ >= 0 && reads_ >= kReadsPerChild) stop();
+  // A child ended from outside (the OOM killer) would make the request's write a SIGPIPE.
+  int ended = 0;
+  if (child_ >= 0 && ::waitpid(child_, &ended, WNOHANG) == child_) {
+    ::close(to_child_);
+    ::close(from_child_);
+    child_ = to_child_ = from_child_ = -1;
+  }
+  if (child_ < 0) start();
+  if (child_ < 0) return;  // no protection, but still a reader
+  ++reads_;
+  const std::string text = path.string();
+  const ReadRequest request{read, static_cast<std::uint32_t>(text.size())};
+  if (!write_all(to_child_, &request, sizeof request) ||
+      !write_all(to_child_, text.data(), text.size())) {
+    stop();
+    read_in_child_first(path, what, read, nullptr);
+    return;
+  }
+  const int limit_s = read_limit_s(path);
+  const bool answered = wait_readable(from_child_, limit_s);
+  char done = 0;
+  if (answered && read_all(from_child_, &done, 1)) return;
+  // No answer: the child died on this file, or is stuck in it.
+  if (!answered) ::kill(child_, SIGKILL);
+  const int status = reap(child_);
+  ::close(to_child_);
+  ::close(from_child_);
+  child_ = to_child_ = from_child_ = -1;
+  throw damaged(path, what, limit_s, !answered, status);
 }
 
 H5::H5File open_for_reading(const std::filesystem::path& path, bool* unfinished) {

@@ -7,10 +7,15 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 using tactile::test::error_of;
 
@@ -204,4 +209,66 @@ TEST_F(H5Test, ReadThatCrashesInTheChildIsADamagedFileError) {
   EXPECT_NO_THROW(tactile::h5::read_in_child_first(p, "a test file", [] {}));
   EXPECT_NO_THROW(tactile::h5::read_in_child_first(
       p, "a test file", [] { throw tactile::FormatError("refused in the child"); }));
+}
+
+// Readers for the reading child (plain functions, as it takes): each writes the process that
+// ran it into the file it is given, and crashes or hangs on the files named so.
+void note_reader(const fs::path& p) {
+  if (p.filename() == "crash.txt") std::raise(SIGSEGV);
+  if (p.filename() == "exit.txt") std::_Exit(4);
+  if (p.filename() == "hang.txt") {
+    for (;;) ::pause();
+  }
+  if (p.filename() == "refuse.txt") throw tactile::FormatError("refused in the child");
+  std::ofstream(p, std::ios::app) << ::getpid() << '\n';
+}
+
+std::vector<std::string> lines_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// One child reads many files: a fuzzer's thousands of inputs cost one fork, not one each.
+TEST_F(H5Test, AReadingProcessServesManyFilesFromOneChild) {
+  tactile::h5::ReadingProcess process;
+  const fs::path notes = dir_ / "notes.txt";
+  for (int i = 0; i < 50; ++i) process.read(notes, "a test file", &note_reader);
+  EXPECT_NO_THROW(process.read(dir_ / "refuse.txt", "a test file", &note_reader));
+  process.read(notes, "a test file", &note_reader);
+  EXPECT_EQ(process.forks(), 1);
+  const auto pids = lines_of(notes);
+  ASSERT_EQ(pids.size(), 51u);
+  for (const auto& pid : pids) EXPECT_EQ(pid, pids.front());
+  EXPECT_NE(pids.front(), std::to_string(::getpid()));
+}
+
+// A file that kills the child is reported as read_in_child_first reports it; the next file is
+// read by a new child.
+TEST_F(H5Test, AReadingProcessThatDiesReportsTheFileAndGoesOn) {
+  tactile::h5::ReadingProcess process;
+  const fs::path notes = dir_ / "notes.txt";
+  process.read(notes, "a test file", &note_reader);
+  EXPECT_THAT(error_of([&] { process.read(dir_ / "crash.txt", "a test file", &note_reader); }),
+              HasSubstr("crash.txt: damaged file: reading it as a test file crashed the HDF5 "
+                        "library (signal 11"));
+  EXPECT_THAT(error_of([&] { process.read(dir_ / "exit.txt", "a test file", &note_reader); }),
+              HasSubstr("exit status 4"));
+  process.read(notes, "a test file", &note_reader);
+  EXPECT_EQ(process.forks(), 3);
+  EXPECT_EQ(lines_of(notes).size(), 2u);
+}
+
+// A file that the child never finishes is a damaged file after the bound (10 s for a small
+// file), the child killed.
+TEST_F(H5Test, AReadingProcessStuckInAFileIsStopped) {
+  tactile::h5::ReadingProcess process;
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_THAT(error_of([&] { process.read(dir_ / "hang.txt", "a test file", &note_reader); }),
+              HasSubstr("hang.txt: damaged file: reading it as a test file did not finish "
+                        "within 10 s"));
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(30));
+  process.read(dir_ / "notes.txt", "a test file", &note_reader);
+  EXPECT_EQ(process.forks(), 2);
 }

@@ -26,6 +26,7 @@
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/h5.hpp"
 #include "tactile/experiments/experiment.hpp"
 #include "tactile/movie/hjif.hpp"
 #include "tactile/movie/layout_json.hpp"
@@ -92,17 +93,24 @@ movie::TactileMovie small_tactile_movie(int frames) {
   return m;
 }
 
+// One reading child for the whole run: the movie readers' crash containment forks once, and
+// again only after an input that crashed or hung the child (see h5::ReadingProcess).
+h5::ReadingProcess& reading_process() {
+  static h5::ReadingProcess process;
+  return process;
+}
+
 const std::map<std::string, Reader>& readers() {
   static const fs::path data = fs::path(TACTILE_SOURCE_DIR) / "tests" / "data";
   static const std::map<std::string, Reader> all = {
       {"strain-movie",
-       {".h5", [](const fs::path& p) { capture::read_strain_movie(p); },
+       {".h5", [](const fs::path& p) { capture::read_strain_movie(p, &reading_process()); },
         [](const fs::path& dir) {
           capture::write_strain_movie(dir / "one.h5", small_strain_movie(3));
           capture::write_strain_movie(dir / "some.h5", small_strain_movie(8));
         }}},
       {"tactile-movie",
-       {".h5", [](const fs::path& p) { movie::read_tactile_movie(p); },
+       {".h5", [](const fs::path& p) { movie::read_tactile_movie(p, &reading_process()); },
         [](const fs::path& dir) {
           movie::write_tactile_movie(dir / "one.h5", small_tactile_movie(1));
           movie::write_tactile_movie(dir / "some.h5", small_tactile_movie(5));

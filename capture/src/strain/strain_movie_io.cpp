@@ -436,8 +436,17 @@ StrainMovie read_in_process(const std::filesystem::path& path) {
 
 }  // namespace
 
-StrainMovie read_strain_movie(const std::filesystem::path& path) {
-  h5::read_in_child_first(path, "a strain movie", [&] { read_in_process(path); });
+namespace {
+
+// The read a reading child makes (a plain function, so that one child serves many files).
+void read_and_forget(const std::filesystem::path& path) {
+  read_in_process(path);
+}
+
+}  // namespace
+
+StrainMovie read_strain_movie(const std::filesystem::path& path, h5::ReadingProcess* process) {
+  h5::read_in_child_first(path, "a strain movie", &read_and_forget, process);
   return read_in_process(path);
 }
 

@@ -12,6 +12,10 @@
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/common/h5_growing.hpp"
 
+namespace tactile::h5 {
+class ReadingProcess;
+}  // namespace tactile::h5
+
 namespace tactile::capture {
 
 inline constexpr const char* kStrainMovieFormat = "tactile-strain-movie";
@@ -53,7 +57,10 @@ class StrainMovieAppender {
 // Throws tactile::FormatError naming the file, the object and the problem: missing file, not
 // HDF5, another format or version, missing groups/datasets/attributes, wrong types or ranks,
 // inconsistent sizes or references (e.g. an edge naming a track that does not exist).
-StrainMovie read_strain_movie(const std::filesystem::path& path);
+// The file is read first in a child process (h5::read_in_child_first): `process`, when given,
+// is one kept for many files (h5::ReadingProcess); else one is forked for this file.
+StrainMovie read_strain_movie(const std::filesystem::path& path,
+                              h5::ReadingProcess* process = nullptr);
 
 // Writes dir/tracks.csv (track_id,frame,type,x_px,y_px,x_mm,y_mm) and dir/edges.csv
 // (frame_from,frame_to,track_a,track_b,length_from_mm,length_to_mm,rel_change); creates dir.

@@ -32,6 +32,50 @@ void write_file_atomically(const std::filesystem::path& path,
 void read_in_child_first(const std::filesystem::path& path, const std::string& what,
                          const std::function<void()>& read);
 
+// A reader that runs in a child process: a plain function, so that a child forked once can
+// call it for any file (the same program, the same address).
+using ChildRead = void (*)(const std::filesystem::path& path);
+
+// The child of read_in_child_first kept for many files: forked at the first read, it reads
+// every file sent to it over a pipe and answers, so that a program reading thousands of files
+// (a fuzzer) pays for a fork only after a file that crashed or hung the child, and every
+// kReadsPerChild files (HDF5 keeps a little memory per damaged file). The verdicts and their
+// words are read_in_child_first's, with one difference: the child carries HDF5's library state
+// from file to file, so a file read after a damaged one may crash it where a fresh child would
+// not, and is then called damaged too (never the reverse: what the child accepts, the caller
+// reads in-process as before). For a fuzzer that is a skipped input; a program that reads a few
+// files keeps a child per file. Not shared between threads.
+class ReadingProcess {
+ public:
+  static constexpr int kReadsPerChild = 2000;
+  ReadingProcess() = default;
+  ~ReadingProcess();
+  ReadingProcess(const ReadingProcess&) = delete;
+  ReadingProcess& operator=(const ReadingProcess&) = delete;
+
+  // Runs `read` on `path` in the child; throws FormatError naming `path` and `what` when the
+  // child dies or does not answer within read_in_child_first's bound. A read that returned or
+  // threw is forgotten.
+  void read(const std::filesystem::path& path, const std::string& what, ChildRead read);
+
+  // Children forked so far (for tests and for a fuzzer's statistics).
+  int forks() const { return forks_; }
+
+ private:
+  void start();
+  void stop();
+  int child_ = -1;
+  int to_child_ = -1;
+  int from_child_ = -1;
+  int reads_ = 0;
+  int forks_ = 0;
+};
+
+// read_in_child_first through `process` when given (one child for many files), else in a child
+// of its own.
+void read_in_child_first(const std::filesystem::path& path, const std::string& what, ChildRead read,
+                         ReadingProcess* process);
+
 // The HDF5 type of the numbers the files hold (double, float, std::int32_t).
 template <typename T>
 const H5::PredType& native_type();

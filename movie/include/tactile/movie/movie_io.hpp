@@ -8,6 +8,10 @@
 #include "tactile/common/h5_growing.hpp"
 #include "tactile/movie/tactile_movie.hpp"
 
+namespace tactile::h5 {
+class ReadingProcess;
+}  // namespace tactile::h5
+
 namespace tactile::movie {
 
 // Version of the HDF5 schema written by write_tactile_movie (root attribute format_version).
@@ -50,7 +54,10 @@ class TactileMovieAppender {
 // the problem: missing, empty, truncated or not HDF5; wrong format attribute or version;
 // missing attribute or dataset; wrong dataset type or rank; sizes that disagree with the
 // layout; non-finite deflections.
-TactileMovie read_tactile_movie(const std::filesystem::path& path);
+// The file is read first in a child process (h5::read_in_child_first): `process`, when given,
+// is one kept for many files (h5::ReadingProcess); else one is forked for this file.
+TactileMovie read_tactile_movie(const std::filesystem::path& path,
+                                h5::ReadingProcess* process = nullptr);
 
 // Exports one row per frame: `frame,t_s,r0c0_um,r0c1_um,...` (row-major contactor order,
 // t_s = frame / rate_hz). Throws std::runtime_error if the file cannot be written.
