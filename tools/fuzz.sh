@@ -7,13 +7,13 @@
 # count depends on the CPU the machine spares); exits 1 on a finding (its input is kept in
 # build/release/tests/*fuzz*/).
 #   bash tools/fuzz.sh 600
-# Overnight, every fast reader past 10^7 executions: `bash tools/fuzz.sh 28800` gives each of the
-# 12 targets 4800 s of one core on a 2-core machine. Measured on such a machine (clang's
-# libFuzzer with ASan and UBSan, 10 s each, otherwise idle): labels CSV 11000 executions a second,
-# pore marks 8800, classifier model 5000, calibration 4400, pore model 4400, experiment 4000, HJIF
-# 1800 (4800 s: 8.6 x 10^6, the one short of 10^7), the movie readers 280 (one reading child
-# for all inputs; 30 when they forked one per input). labels CSV was run to 10^7 by hand
-# (`reader_fuzz -runs=10000000`, see docs/architecture.md for the figure).
+# Overnight, every fast reader past 10^7 executions: `bash tools/fuzz.sh 36000` (10 h) gives each
+# of the 12 targets 6000 s of one core on a 2-core machine. Measured on such a machine (clang's
+# libFuzzer with ASan and UBSan, 10 s a reader, nothing else running): labels CSV 11000
+# executions a second, pore marks 8800, classifier model 5000, calibration 4400, pore model 4400,
+# experiment 4000, HJIF 1800 (so at least 1.08 x 10^7 each in 6000 s if the rates hold as the
+# corpus grows; they fall somewhat), the movie readers 280 (one reading child for all inputs;
+# 30 when they forked one per input).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:?usage: tools/fuzz.sh SECONDS}

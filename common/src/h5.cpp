@@ -11,6 +11,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -238,10 +239,12 @@ FormatError damaged(const std::filesystem::path& path, const std::string& what, 
                   path.string(), what, WIFEXITED(status) ? WEXITSTATUS(status) : -1));
 }
 
-bool write_all(int fd, const void* data, std::size_t size) {
+// Over the reading child's socket: a child that has died is EPIPE here, not a SIGPIPE that
+// would end the caller.
+bool send_all(int fd, const void* data, std::size_t size) {
   const char* p = static_cast<const char*>(data);
   while (size > 0) {
-    const ssize_t n = ::write(fd, p, size);
+    const ssize_t n = ::send(fd, p, size, MSG_NOSIGNAL);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     p += n;
@@ -268,20 +271,20 @@ struct ReadRequest {
   std::uint32_t path_bytes;
 };
 
-[[noreturn]] void serve_reads(int requests, int answers) {
+[[noreturn]] void serve_reads(int socket) {
   for (;;) {
     ReadRequest request{};
-    if (!read_all(requests, &request, sizeof request) || request.path_bytes > (1u << 20)) {
+    if (!read_all(socket, &request, sizeof request) || request.path_bytes > (1u << 20)) {
       ::_exit(0);
     }
     std::string path(request.path_bytes, '\0');
-    if (!read_all(requests, path.data(), path.size())) ::_exit(0);
+    if (!read_all(socket, path.data(), path.size())) ::_exit(0);
     try {
       request.read(path);
     } catch (...) {
     }
     const char done = 'k';
-    if (!write_all(answers, &done, 1)) ::_exit(0);
+    if (!send_all(socket, &done, 1)) ::_exit(0);
   }
 }
 
@@ -333,74 +336,59 @@ ReadingProcess::~ReadingProcess() {
 }
 
 void ReadingProcess::start() {
-  int requests[2], answers[2];
-  if (::pipe2(requests, O_CLOEXEC) != 0) return;
-  if (::pipe2(answers, O_CLOEXEC) != 0) {
-    ::close(requests[0]);
-    ::close(requests[1]);
-    return;
-  }
+  int ends[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) return;
   const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0) {
-    for (const int fd : {requests[0], requests[1], answers[0], answers[1]}) ::close(fd);
+    ::close(ends[0]);
+    ::close(ends[1]);
     return;
   }
   if (child == 0) {
-    ::close(requests[1]);
-    ::close(answers[0]);
+    ::close(ends[0]);
     if (!become_reading_child(parent)) ::_exit(0);
-    serve_reads(requests[0], answers[1]);
+    serve_reads(ends[1]);
   }
-  ::close(requests[0]);
-  ::close(answers[1]);
+  ::close(ends[1]);
   child_ = child;
-  to_child_ = requests[1];
-  from_child_ = answers[0];
+  socket_ = ends[0];
   reads_ = 0;
   ++forks_;
 }
 
 void ReadingProcess::stop() {
   if (child_ < 0) return;
-  ::close(to_child_);  // the child ends at the end of its requests
-  ::close(from_child_);
+  ::close(socket_);  // the child ends at the end of its requests
   ::kill(child_, SIGKILL);
   reap(child_);
-  child_ = to_child_ = from_child_ = -1;
+  child_ = socket_ = -1;
 }
 
 void ReadingProcess::read(const std::filesystem::path& path, const std::string& what,
                           ChildRead read) {
   if (child_ >= 0 && reads_ >= kReadsPerChild) stop();
-  // A child ended from outside (the OOM killer) would make the request's write a SIGPIPE.
-  int ended = 0;
-  if (child_ >= 0 && ::waitpid(child_, &ended, WNOHANG) == child_) {
-    ::close(to_child_);
-    ::close(from_child_);
-    child_ = to_child_ = from_child_ = -1;
-  }
   if (child_ < 0) start();
   if (child_ < 0) return;  // no protection, but still a reader
   ++reads_;
   const std::string text = path.string();
   const ReadRequest request{read, static_cast<std::uint32_t>(text.size())};
-  if (!write_all(to_child_, &request, sizeof request) ||
-      !write_all(to_child_, text.data(), text.size())) {
+  // A child ended from outside (the OOM killer) cannot take the request: a child of its own.
+  if (!send_all(socket_, &request, sizeof request) ||
+      !send_all(socket_, text.data(), text.size())) {
     stop();
     read_in_child_first(path, what, read, nullptr);
     return;
   }
   const int limit_s = read_limit_s(path);
-  const bool answered = wait_readable(from_child_, limit_s);
+  const bool answered = wait_readable(socket_, limit_s);
   char done = 0;
-  if (answered && read_all(from_child_, &done, 1)) return;
+  if (answered && read_all(socket_, &done, 1)) return;
   // No answer: the child died on this file, or is stuck in it.
   if (!answered) ::kill(child_, SIGKILL);
   const int status = reap(child_);
-  ::close(to_child_);
-  ::close(from_child_);
-  child_ = to_child_ = from_child_ = -1;
+  ::close(socket_);
+  child_ = socket_ = -1;
   throw damaged(path, what, limit_s, !answered, status);
 }
 

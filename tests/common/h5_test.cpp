@@ -211,9 +211,10 @@ TEST_F(H5Test, ReadThatCrashesInTheChildIsADamagedFileError) {
       p, "a test file", [] { throw tactile::FormatError("refused in the child"); }));
 }
 
-// Readers for the reading child (plain functions, as it takes): each writes the process that
-// ran it into the file it is given, and crashes or hangs on the files named so.
-void note_reader(const fs::path& p) {
+// A stand-in for a reader (a plain function, as the reading child takes) and for HDF5 on damaged
+// files: it writes the process that ran it into the file it is given, and crashes, exits, hangs
+// or refuses on the files named so.
+void stand_in_reader(const fs::path& p) {
   if (p.filename() == "crash.txt") std::raise(SIGSEGV);
   if (p.filename() == "exit.txt") std::_Exit(4);
   if (p.filename() == "hang.txt") {
@@ -234,9 +235,9 @@ std::vector<std::string> lines_of(const fs::path& p) {
 TEST_F(H5Test, AReadingProcessServesManyFilesFromOneChild) {
   tactile::h5::ReadingProcess process;
   const fs::path notes = dir_ / "notes.txt";
-  for (int i = 0; i < 50; ++i) process.read(notes, "a test file", &note_reader);
-  EXPECT_NO_THROW(process.read(dir_ / "refuse.txt", "a test file", &note_reader));
-  process.read(notes, "a test file", &note_reader);
+  for (int i = 0; i < 50; ++i) process.read(notes, "a test file", &stand_in_reader);
+  EXPECT_NO_THROW(process.read(dir_ / "refuse.txt", "a test file", &stand_in_reader));
+  process.read(notes, "a test file", &stand_in_reader);
   EXPECT_EQ(process.forks(), 1);
   const auto pids = lines_of(notes);
   ASSERT_EQ(pids.size(), 51u);
@@ -249,13 +250,13 @@ TEST_F(H5Test, AReadingProcessServesManyFilesFromOneChild) {
 TEST_F(H5Test, AReadingProcessThatDiesReportsTheFileAndGoesOn) {
   tactile::h5::ReadingProcess process;
   const fs::path notes = dir_ / "notes.txt";
-  process.read(notes, "a test file", &note_reader);
-  EXPECT_THAT(error_of([&] { process.read(dir_ / "crash.txt", "a test file", &note_reader); }),
+  process.read(notes, "a test file", &stand_in_reader);
+  EXPECT_THAT(error_of([&] { process.read(dir_ / "crash.txt", "a test file", &stand_in_reader); }),
               HasSubstr("crash.txt: damaged file: reading it as a test file crashed the HDF5 "
                         "library (signal 11"));
-  EXPECT_THAT(error_of([&] { process.read(dir_ / "exit.txt", "a test file", &note_reader); }),
+  EXPECT_THAT(error_of([&] { process.read(dir_ / "exit.txt", "a test file", &stand_in_reader); }),
               HasSubstr("exit status 4"));
-  process.read(notes, "a test file", &note_reader);
+  process.read(notes, "a test file", &stand_in_reader);
   EXPECT_EQ(process.forks(), 3);
   EXPECT_EQ(lines_of(notes).size(), 2u);
 }
@@ -265,10 +266,10 @@ TEST_F(H5Test, AReadingProcessThatDiesReportsTheFileAndGoesOn) {
 TEST_F(H5Test, AReadingProcessStuckInAFileIsStopped) {
   tactile::h5::ReadingProcess process;
   const auto t0 = std::chrono::steady_clock::now();
-  EXPECT_THAT(error_of([&] { process.read(dir_ / "hang.txt", "a test file", &note_reader); }),
+  EXPECT_THAT(error_of([&] { process.read(dir_ / "hang.txt", "a test file", &stand_in_reader); }),
               HasSubstr("hang.txt: damaged file: reading it as a test file did not finish "
                         "within 10 s"));
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(30));
-  process.read(dir_ / "notes.txt", "a test file", &note_reader);
+  process.read(dir_ / "notes.txt", "a test file", &stand_in_reader);
   EXPECT_EQ(process.forks(), 2);
 }

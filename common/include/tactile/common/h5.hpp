@@ -39,7 +39,8 @@ using ChildRead = void (*)(const std::filesystem::path& path);
 // The child of read_in_child_first kept for many files: forked at the first read, it reads
 // every file sent to it over a pipe and answers, so that a program reading thousands of files
 // (a fuzzer) pays for a fork only after a file that crashed or hung the child, and every
-// kReadsPerChild files (HDF5 keeps a little memory per damaged file). The verdicts and their
+// kReadsPerChild files (HDF5 keeps a little memory per damaged file); requests and answers go
+// over a socket pair. The verdicts and their
 // words are read_in_child_first's, with one difference: the child carries HDF5's library state
 // from file to file, so a file read after a damaged one may crash it where a fresh child would
 // not, and is then called damaged too (never the reverse: what the child accepts, the caller
@@ -65,8 +66,7 @@ class ReadingProcess {
   void start();
   void stop();
   int child_ = -1;
-  int to_child_ = -1;
-  int from_child_ = -1;
+  int socket_ = -1;  // requests to the child, its answers back
   int reads_ = 0;
   int forks_ = 0;
 };
