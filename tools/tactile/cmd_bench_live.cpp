@@ -98,7 +98,8 @@ void add_bench_live(CLI::App& bench, Action& action) {
       XYChart chart{.title = "Live session: latency against strain accuracy (8 % wave)",
                     .x = {.label = "latency p99 (ms)", .scale = AxisScale::log},
                     .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
-                    .y_targets = {{.value = 0.0025, .label = "RMS 0.0025"}},
+                    .y_targets = {{.value = capture::kPrintStrainTarget,
+                                   .label = fmt::format("RMS {:g}", capture::kPrintStrainTarget)}},
                     .width = 960,
                     .height = 600};
       for (const auto& r : rows) {
@@ -109,14 +110,10 @@ void add_bench_live(CLI::App& bench, Action& action) {
             s.frames_processed, s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms,
             s.latency_max_ms, s.track_p50_ms, r.live.rms_error, r.live.correlation,
             r.live.median_tracked_points, r.batch.rms_error, r.batch.correlation);
-        const std::string label = fmt::format("{} x {} px (points: 30, 60, 120, 240 Hz)",
-                                              r.scene.width_px, r.scene.height_px);
-        auto it = std::find_if(chart.series.begin(), chart.series.end(),
-                               [&](const ChartSeries& c) { return c.label == label; });
-        if (it == chart.series.end())
-          it = chart.series.insert(chart.series.end(), {.label = label});
-        it->x.push_back(s.latency_p99_ms);
-        it->y.push_back(r.live.rms_error);
+        add_point(chart,
+                  fmt::format("{} x {} px (points: 30, 60, 120, 240 Hz)", r.scene.width_px,
+                              r.scene.height_px),
+                  s.latency_p99_ms, r.live.rms_error);
       }
       csv::finish(csv, csv_path);
       const ChartFiles plot = write_scatter_chart(opt->out / "latency_accuracy_live.png", chart);
