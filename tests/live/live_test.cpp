@@ -1,15 +1,19 @@
 // The live session's parts that need no camera: the queue that drops the oldest frame instead
-// of waiting, and the request built from the capture and map requests' rows.
+// of waiting, the request built from the capture and map requests' rows, and a session on a
+// thread of its own.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
 #include <thread>
 
 #include "../common/temp_dir.hpp"
+#include "tactile/common/error.hpp"
 #include "tactile/live/frame_queue.hpp"
 #include "tactile/live/live_request.hpp"
+#include "tactile/live/live_session.hpp"
 
 namespace {
 
@@ -107,6 +111,24 @@ TEST(LiveRequest, DevicesAndStreamsAreNotFiles) {
   EXPECT_FALSE(tactile::live::is_rehearsal_source("udp://127.0.0.1:5000"));
   EXPECT_TRUE(tactile::live::is_rehearsal_source("frames/"));
   EXPECT_TRUE(tactile::live::is_rehearsal_source("session.mkv"));
+}
+
+TEST(SessionThread, WhatTheSessionThrowsComesBackFromResultAfterOnEnd) {
+  const tactile::test::TempDir dir("live");  // a folder with no frames: the source fails
+  const auto session = tactile::live::resolve(request_for(dir.path()), OptionSpelling::cli);
+  tactile::display::EmulatedDevice device(tactile::live::emulated_display_options(session.layout));
+  std::atomic<bool> stop{false};
+  std::atomic<int> ended{0};
+  tactile::live::SessionThread worker(session, device, stop, {}, [&] { ++ended; });
+  try {
+    worker.result();
+    ADD_FAILURE() << "a session without frames returned a summary";
+  } catch (const tactile::FormatError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no image files"));
+  }
+  EXPECT_TRUE(worker.done());
+  EXPECT_EQ(ended.load(), 1);
+  EXPECT_FALSE(stop.load());  // it ended by itself
 }
 
 }  // namespace
