@@ -70,6 +70,10 @@ TEST(CaptureBenchReport, StrainTargetsAreTheDocumentedOnes) {
   EXPECT_DOUBLE_EQ(kSceneStrainTarget, 0.005);
   EXPECT_DOUBLE_EQ(kPrintStrainTarget, 0.0025);
   EXPECT_DOUBLE_EQ(SweepLimits{}.max_rms, kSceneStrainTarget);
+  EXPECT_DOUBLE_EQ(kSceneSweepLimits.max_rms, 0.005);
+  EXPECT_DOUBLE_EQ(kSceneSweepLimits.min_points, 100);
+  EXPECT_DOUBLE_EQ(kPrintSweepLimits.max_rms, 0.0025);
+  EXPECT_DOUBLE_EQ(kPrintSweepLimits.min_points, 150);
 }
 
 TEST(CaptureBenchReport, SceneCsvRowHasEveryHeaderColumnInOrder) {

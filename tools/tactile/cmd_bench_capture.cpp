@@ -39,9 +39,7 @@ void add_bench_capture(CLI::App& bench, Action& action) {
   struct Options {
     int frames = 90;
     bool quick = false;
-    BenchSweepOptions common{.out = "bench-capture",
-                             .sweeps = false,
-                             .limits = {.max_rms = capture::kSceneStrainTarget, .min_points = 100}};
+    BenchSweepOptions common{.out = "bench-capture", .limits = capture::kSceneSweepLimits};
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = bench.add_subcommand(

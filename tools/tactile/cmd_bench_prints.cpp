@@ -37,9 +37,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
     bool touch = false;
     bool slip = false;
     std::vector<int> frame_px;  // empty: each print's own size
-    BenchSweepOptions common{.out = "bench-prints",
-                             .sweeps = false,
-                             .limits = {.max_rms = capture::kPrintStrainTarget, .min_points = 150}};
+    BenchSweepOptions common{.out = "bench-prints", .limits = capture::kPrintSweepLimits};
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = bench.add_subcommand(

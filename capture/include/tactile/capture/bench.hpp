@@ -42,6 +42,9 @@ struct SweepLimits {
   double max_rms = kSceneStrainTarget;
   double min_points = 100;
 };
+// Where each bench's sweeps fail unless told otherwise (--max-rms, --min-points).
+inline constexpr SweepLimits kSceneSweepLimits{.max_rms = kSceneStrainTarget, .min_points = 100};
+inline constexpr SweepLimits kPrintSweepLimits{.max_rms = kPrintStrainTarget, .min_points = 150};
 
 // ---------------------------------------------------------------- synthetic scenes
 
