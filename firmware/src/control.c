@@ -30,15 +30,22 @@ size_t tfw_encode_info(const tfw_device* dev, uint8_t* out, size_t capacity) {
   return TFW_INFO_BYTES;
 }
 
+/* The status reply and the fill report begin with the same 8 bytes (state, FIFO fill and
+ * capacity, rate), written here for both so that they cannot come apart. `s` receives the status
+ * they were taken from, for the rest of the reply. */
+static void put_report_head(const tfw_device* dev, uint8_t* out, size_t bytes, tfw_status* s) {
+  tfw_device_status(dev, s);
+  memset(out, 0, bytes);
+  out[0] = s->state;
+  tfw_put_u16(out + 2, s->fifo_fill);
+  tfw_put_u16(out + 4, s->fifo_capacity);
+  tfw_put_u16(out + 6, dev->config.rate_hz);
+}
+
 size_t tfw_encode_status(const tfw_device* dev, uint8_t* out, size_t capacity) {
   if (capacity < TFW_STATUS_BYTES) return 0;
   tfw_status s;
-  tfw_device_status(dev, &s);
-  memset(out, 0, TFW_STATUS_BYTES);
-  out[0] = s.state;
-  tfw_put_u16(out + 2, s.fifo_fill);
-  tfw_put_u16(out + 4, s.fifo_capacity);
-  tfw_put_u16(out + 6, dev->config.rate_hz);
+  put_report_head(dev, out, TFW_STATUS_BYTES, &s);
   const uint32_t counters[] = {
       s.frames_received, s.frames_played, s.malformed_total,     s.overflows,
       s.underruns,       s.sequence_gaps, s.clamped_samples,     s.slew_limited_samples,
@@ -99,12 +106,7 @@ tfw_result tfw_decode_status(const uint8_t* bytes, size_t len, tfw_status_report
 size_t tfw_encode_fill(const tfw_device* dev, uint8_t* out, size_t capacity) {
   if (capacity < TFW_FILL_BYTES) return 0;
   tfw_status s;
-  tfw_device_status(dev, &s);
-  memset(out, 0, TFW_FILL_BYTES);
-  out[0] = s.state;
-  tfw_put_u16(out + 2, s.fifo_fill);
-  tfw_put_u16(out + 4, s.fifo_capacity);
-  tfw_put_u16(out + 6, dev->config.rate_hz);
+  put_report_head(dev, out, TFW_FILL_BYTES, &s);
   tfw_put_u32(out + 8, s.frames_played);
   tfw_put_u32(out + 12, s.underruns);
   return TFW_FILL_BYTES;

@@ -120,4 +120,55 @@ std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
   return rows;
 }
 
+std::string live_bench_table_header() {
+  return fmt::format(
+      "{:>9} {:>5} {:>6} {:>6} {:>5} {:>7} {:>7} {:>7} {:>9} {:>6} {:>9} {:>6} {:>6}\n", "frame",
+      "Hz", "in", "done", "drop", "p50_ms", "p99_ms", "max_ms", "live_rms", "live_r", "batch_rms",
+      "batch_r", "ratio");
+}
+
+std::string live_bench_table_row(const LiveBenchRow& r) {
+  const auto& s = r.summary;
+  return fmt::format(
+      "{:>4} x {:<3} {:>5.0f} {:>6} {:>6} {:>5} {:>7.2f} {:>7.2f} {:>7.2f} {:>9.5f} {:>6.3f} "
+      "{:>9.5f} {:>6.3f} {:>6.2f}\n",
+      r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in, s.frames_processed,
+      s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms, r.live.rms_error,
+      r.live.correlation, r.batch.rms_error, r.batch.correlation,
+      r.batch.rms_error > 0 ? r.live.rms_error / r.batch.rms_error : NAN);
+}
+
+std::string live_bench_csv_header() {
+  return "width_px,height_px,camera_rate_hz,frames_in,frames_processed,frames_dropped,"
+         "latency_p50_ms,latency_p99_ms,latency_max_ms,track_p50_ms,live_rms_error,"
+         "live_correlation,live_median_points,batch_rms_error,batch_correlation";
+}
+
+std::string live_bench_csv_row(const LiveBenchRow& r) {
+  const auto& s = r.summary;
+  return fmt::format(
+      "{},{},{:g},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.5f},{:.0f},{:.6g},{:.5f}\n",
+      r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in, s.frames_processed,
+      s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms, s.track_p50_ms,
+      r.live.rms_error, r.live.correlation, r.live.median_tracked_points, r.batch.rms_error,
+      r.batch.correlation);
+}
+
+XYChart live_bench_chart(const std::vector<LiveBenchRow>& rows) {
+  XYChart chart{.title = "Live session: latency against strain accuracy (8 % wave)",
+                .x = {.label = "latency p99 (ms)", .scale = AxisScale::log},
+                .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
+                .y_targets = {{.value = capture::kPrintStrainTarget,
+                               .label = fmt::format("RMS {:g}", capture::kPrintStrainTarget)}},
+                .width = 960,
+                .height = 600};
+  for (const auto& r : rows) {
+    add_point(chart,
+              fmt::format("{} x {} px (points: 30, 60, 120, 240 Hz)", r.scene.width_px,
+                          r.scene.height_px),
+              r.summary.latency_p99_ms, r.live.rms_error);
+  }
+  return chart;
+}
+
 }  // namespace tactile::live

@@ -248,6 +248,37 @@ LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
   return run_live_from(*source, start, session, device, stop, callbacks, options);
 }
 
+SessionThread::SessionThread(const ResolvedLive& session, display::Transport& device,
+                             std::atomic<bool>& stop, LiveCallbacks callbacks,
+                             std::function<void()> on_end)
+    : stop_(stop),
+      thread_(
+          [this, &session, &device, callbacks = std::move(callbacks), on_end = std::move(on_end)] {
+            try {
+              summary_ = run_live(session, device, stop_, callbacks);
+            } catch (...) {
+              failure_ = std::current_exception();
+            }
+            if (on_end) on_end();
+            done_ = true;
+          }) {}
+
+SessionThread::~SessionThread() {
+  if (!thread_.joinable()) return;
+  stop_ = true;
+  thread_.join();
+}
+
+void SessionThread::wait() {
+  if (thread_.joinable()) thread_.join();
+}
+
+LiveSummary SessionThread::result() {
+  wait();
+  if (failure_) std::rethrow_exception(failure_);
+  return summary_;
+}
+
 LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
                           const ResolvedLive& session, display::Transport& device,
                           const std::atomic<bool>& stop, const LiveCallbacks& callbacks,

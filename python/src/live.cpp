@@ -4,7 +4,6 @@
 // a KeyboardInterrupt (Ctrl-C, a notebook's stop) ends it cleanly with the device at rest.
 
 #include <atomic>
-#include <exception>
 #include <thread>
 
 #include "bindings.hpp"
@@ -47,34 +46,23 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
   if (session.record) recording = std::make_unique<live::SessionRecording>(*session.record);
   live::LiveCallbacks callbacks;
   if (recording) recording->attach(callbacks);
-  std::atomic<bool> stop{false}, done{false};
-  live::LiveSummary summary;
-  std::exception_ptr failure;
-  std::thread worker([&] {
-    try {
-      summary = live::run_live(session, device, stop, callbacks);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    done = true;
-  });
-  bool interrupted = false;
-  while (!done.load()) {
+  std::atomic<bool> stop{false};
+  live::SessionThread worker(session, device, stop, callbacks);
+  while (!worker.done()) {
     {
       py::gil_scoped_release unlocked;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     if (PyErr_CheckSignals() != 0) {
-      interrupted = true;
       stop = true;
-      py::gil_scoped_release unlocked;
-      worker.join();
-      break;
+      {
+        py::gil_scoped_release unlocked;
+        worker.wait();
+      }
+      throw py::error_already_set();
     }
   }
-  if (worker.joinable()) worker.join();
-  if (interrupted) throw py::error_already_set();
-  if (failure) std::rethrow_exception(failure);
+  const live::LiveSummary summary = worker.result();
   if (recording) {
     recording->finish();
   }

@@ -100,6 +100,25 @@ TEST_F(ChartTest, ScatterWritesPngAndSvgWhateverTheExtensionGiven) {
   }
 }
 
+TEST(Chart, AddPointFindsItsSeriesByLabelOrAddsItAtTheEnd) {
+  tactile::XYChart c;
+  c.series.push_back({.label = "given", .x = {1}, .y = {2}});
+  tactile::add_point(c, "lk", 10, 0.1);
+  tactile::add_point(c, "dis", 20, 0.2);
+  tactile::add_point(c, "lk", 30, 0.3);
+  tactile::add_point(c, "given", 4, 5);
+  ASSERT_EQ(c.series.size(), 3u);
+  EXPECT_EQ(c.series[0].label, "given");
+  EXPECT_EQ(c.series[0].x, (std::vector<double>{1, 4}));
+  EXPECT_EQ(c.series[0].y, (std::vector<double>{2, 5}));
+  EXPECT_EQ(c.series[1].label, "lk");
+  EXPECT_EQ(c.series[1].x, (std::vector<double>{10, 30}));
+  EXPECT_EQ(c.series[1].y, (std::vector<double>{0.1, 0.3}));
+  EXPECT_EQ(c.series[2].label, "dis");
+  EXPECT_EQ(c.series[2].x, (std::vector<double>{20}));
+  EXPECT_FALSE(c.series[1].emphasis);
+}
+
 TEST_F(ChartTest, TheSameChartIsTheSameBytes) {
   // However many charts the process drew before (cairo numbers its surfaces).
   tactile::write_scatter_chart(dir_ / "first", speed_accuracy());

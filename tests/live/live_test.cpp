@@ -1,15 +1,23 @@
 // The live session's parts that need no camera: the queue that drops the oldest frame instead
-// of waiting, and the request built from the capture and map requests' rows.
+// of waiting, the request built from the capture and map requests' rows, and a session on a
+// thread of its own.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
+#include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "../common/temp_dir.hpp"
+#include "tactile/common/error.hpp"
+#include "tactile/live/bench_live.hpp"
 #include "tactile/live/frame_queue.hpp"
 #include "tactile/live/live_request.hpp"
+#include "tactile/live/live_session.hpp"
 
 namespace {
 
@@ -107,6 +115,92 @@ TEST(LiveRequest, DevicesAndStreamsAreNotFiles) {
   EXPECT_FALSE(tactile::live::is_rehearsal_source("udp://127.0.0.1:5000"));
   EXPECT_TRUE(tactile::live::is_rehearsal_source("frames/"));
   EXPECT_TRUE(tactile::live::is_rehearsal_source("session.mkv"));
+}
+
+TEST(SessionThread, WhatTheSessionThrowsComesBackFromResultAfterOnEnd) {
+  const tactile::test::TempDir dir("live");  // a folder with no frames: the source fails
+  const auto session = tactile::live::resolve(request_for(dir.path()), OptionSpelling::cli);
+  tactile::display::EmulatedDevice device(tactile::live::emulated_display_options(session.layout));
+  std::atomic<bool> stop{false};
+  std::atomic<int> ended{0};
+  tactile::live::SessionThread worker(session, device, stop, {}, [&] { ++ended; });
+  try {
+    worker.result();
+    ADD_FAILURE() << "a session without frames returned a summary";
+  } catch (const tactile::FormatError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no image files"));
+  }
+  EXPECT_TRUE(worker.done());
+  EXPECT_EQ(ended.load(), 1);
+  EXPECT_FALSE(stop.load());  // it ended by itself
+}
+
+tactile::live::LiveBenchRow bench_row(int width, int height, double rate_hz, double p99_ms,
+                                      double live_rms) {
+  tactile::live::LiveBenchRow r;
+  r.scene = {.width_px = width, .height_px = height, .camera_rate_hz = rate_hz};
+  r.summary.frames_in = 600;
+  r.summary.frames_processed = 590;
+  r.summary.frames_dropped = 10;
+  r.summary.latency_p50_ms = 7.5;
+  r.summary.latency_p99_ms = p99_ms;
+  r.summary.latency_max_ms = 60.125;
+  r.summary.track_p50_ms = 3.25;
+  r.live.rms_error = live_rms;
+  r.live.correlation = 0.99;
+  r.live.median_tracked_points = 201;
+  r.batch.rms_error = 0.001;
+  r.batch.correlation = 0.998;
+  return r;
+}
+
+std::vector<std::string> split(const std::string& line, char by) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == by) {
+      out.emplace_back();
+    } else if (c != '\n') {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+TEST(LiveBenchReport, CsvRowOfKnownFigures) {
+  const auto header = split(tactile::live::live_bench_csv_header(), ',');
+  ASSERT_EQ(header.size(), 15u);
+  EXPECT_EQ(header[2], "camera_rate_hz");
+  EXPECT_EQ(header[7], "latency_p99_ms");
+  EXPECT_EQ(header[10], "live_rms_error");
+  const std::vector<std::string> expected = {"320",   "240",     "120",    "600",    "590",
+                                             "10",    "7.500",   "45.000", "60.125", "3.250",
+                                             "0.002", "0.99000", "201",    "0.001",  "0.99800"};
+  EXPECT_EQ(split(tactile::live::live_bench_csv_row(bench_row(320, 240, 120, 45, 0.002)), ','),
+            expected);
+}
+
+TEST(LiveBenchReport, TableRowEndsWithTheRatioOfLiveToBatchError) {
+  std::istringstream header(tactile::live::live_bench_table_header());
+  std::vector<std::string> names;
+  for (std::string w; header >> w;) names.push_back(w);
+  ASSERT_EQ(names.size(), 13u);
+  EXPECT_EQ(names.back(), "ratio");
+  const std::string line = tactile::live::live_bench_table_row(bench_row(640, 484, 60, 45, 0.002));
+  EXPECT_EQ(line.rfind(" 640 x 484", 0), 0u) << line;
+  EXPECT_TRUE(line.ends_with(" 2.00\n")) << line;  // 0.002 / 0.001
+}
+
+TEST(LiveBenchReport, ChartHasASeriesPerFrameSizeAndThePrintTarget) {
+  const auto chart = tactile::live::live_bench_chart({bench_row(320, 240, 30, 20, 0.002),
+                                                      bench_row(640, 484, 30, 80, 0.003),
+                                                      bench_row(320, 240, 60, 25, 0.0015)});
+  ASSERT_EQ(chart.series.size(), 2u);
+  EXPECT_EQ(chart.series[0].label, "320 x 240 px (points: 30, 60, 120, 240 Hz)");
+  EXPECT_EQ(chart.series[0].x, (std::vector<double>{20, 25}));
+  EXPECT_EQ(chart.series[0].y, (std::vector<double>{0.002, 0.0015}));
+  EXPECT_EQ(chart.series[1].x, (std::vector<double>{80}));
+  ASSERT_EQ(chart.y_targets.size(), 1u);
+  EXPECT_DOUBLE_EQ(chart.y_targets[0].value, 0.0025);
 }
 
 }  // namespace

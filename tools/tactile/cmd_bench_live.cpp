@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -74,52 +73,17 @@ void add_bench_live(CLI::App& bench, Action& action) {
           "{} ({:g} s of skin a case, 8 % wave at {:g} mm/s; latency: frame available -> "
           "its first device frame sent)\n",
           print->name, opt->bench.seconds, opt->bench.travel_mm_per_s);
-      fmt::print("{:>9} {:>5} {:>6} {:>6} {:>5} {:>7} {:>7} {:>7} {:>9} {:>6} {:>9} {:>6} {:>6}\n",
-                 "frame", "Hz", "in", "done", "drop", "p50_ms", "p99_ms", "max_ms", "live_rms",
-                 "live_r", "batch_rms", "batch_r", "ratio");
+      fmt::print("{}", live::live_bench_table_header());
       const auto rows = live::bench_live(*print, opt->bench, [](const live::LiveBenchRow& r) {
-        const auto& s = r.summary;
-        fmt::print(
-            "{:>4} x {:<3} {:>5.0f} {:>6} {:>6} {:>5} {:>7.2f} {:>7.2f} {:>7.2f} {:>9.5f} {:>6.3f} "
-            "{:>9.5f} {:>6.3f} {:>6.2f}\n",
-            r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in,
-            s.frames_processed, s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms,
-            s.latency_max_ms, r.live.rms_error, r.live.correlation, r.batch.rms_error,
-            r.batch.correlation,
-            r.batch.rms_error > 0 ? r.live.rms_error / r.batch.rms_error : NAN);
+        fmt::print("{}", live::live_bench_table_row(r));
         std::fflush(stdout);
       });
       const auto csv_path = opt->out / "bench_live.csv";
-      auto csv = csv::open_with_header(
-          csv_path,
-          "width_px,height_px,camera_rate_hz,frames_in,frames_processed,frames_dropped,"
-          "latency_p50_ms,latency_p99_ms,latency_max_ms,track_p50_ms,live_rms_error,"
-          "live_correlation,live_median_points,batch_rms_error,batch_correlation");
-      XYChart chart{.title = "Live session: latency against strain accuracy (8 % wave)",
-                    .x = {.label = "latency p99 (ms)", .scale = AxisScale::log},
-                    .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
-                    .y_targets = {{.value = 0.0025, .label = "RMS 0.0025"}},
-                    .width = 960,
-                    .height = 600};
-      for (const auto& r : rows) {
-        const auto& s = r.summary;
-        csv << fmt::format(
-            "{},{},{:g},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.5f},{:.0f},{:.6g},{:.5f}\n",
-            r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in,
-            s.frames_processed, s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms,
-            s.latency_max_ms, s.track_p50_ms, r.live.rms_error, r.live.correlation,
-            r.live.median_tracked_points, r.batch.rms_error, r.batch.correlation);
-        const std::string label = fmt::format("{} x {} px (points: 30, 60, 120, 240 Hz)",
-                                              r.scene.width_px, r.scene.height_px);
-        auto it = std::find_if(chart.series.begin(), chart.series.end(),
-                               [&](const ChartSeries& c) { return c.label == label; });
-        if (it == chart.series.end())
-          it = chart.series.insert(chart.series.end(), {.label = label});
-        it->x.push_back(s.latency_p99_ms);
-        it->y.push_back(r.live.rms_error);
-      }
+      auto csv = csv::open_with_header(csv_path, live::live_bench_csv_header());
+      for (const auto& r : rows) csv << live::live_bench_csv_row(r);
       csv::finish(csv, csv_path);
-      const ChartFiles plot = write_scatter_chart(opt->out / "latency_accuracy_live.png", chart);
+      const ChartFiles plot =
+          write_scatter_chart(opt->out / "latency_accuracy_live.png", live::live_bench_chart(rows));
       fmt::print("bench live: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
                  plot.svg.string());
       return 0;

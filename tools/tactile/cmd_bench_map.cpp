@@ -4,20 +4,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <memory>
 #include <thread>
 
 #include "command.hpp"
 #include "number_checks.hpp"
 #include "tactile/author/outcome.hpp"
-#include "tactile/capture/capture.hpp"
-#include "tactile/capture/ground_truth.hpp"
+#include "tactile/capture/synth.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/common/stopwatch.hpp"
-#include "tactile/mapping/map.hpp"
-#include "tactile/mapping/profile.hpp"
+#include "tactile/mapping/bench.hpp"
+#include "tactile/mapping/map_request.hpp"
 #include "tactile/movie/tactile_movie.hpp"
 
 namespace tactile::cli {
@@ -47,49 +44,14 @@ void add_bench_map(CLI::App& bench, Action& action) {
     action = [opt] {
       capture::SceneSpec spec;
       spec.frame_count = opt->frames + 1;
-      auto movie = capture::ground_truth_strain_movie(spec, opt->spacing_mm);
-      // Measured movies come Delaunay-triangulated with an edge list; make this one alike.
-      std::size_t points = 0;
-      for (auto& f : movie.frames) {
-        f.edges.clear();
-        f.triangles.clear();
-        capture::triangulate_strain(f.points_from, f.points_to, 3.0, f.edges, f.triangles);
-        points += f.points_from.size();
-      }
+      const auto movie = mapping::bench_strain_movie(spec, opt->spacing_mm);
       const auto layout = movie::stress_layout();
-      fmt::print(
-          "bench map: {} strain frames, {:.0f} landmarks and {:.0f} triangles per frame on "
-          "average -> {} {}x{} at 700 Hz; {} hardware threads\n",
-          movie.frames.size(), static_cast<double>(points) / movie.frames.size(),
-          static_cast<double>(movie.frames.front().triangles.size()), layout.name, layout.rows,
-          layout.cols, std::thread::hardware_concurrency());
-      fmt::print("{:<14} {:<12} {:>8} {:>10} {:>10} {:>10} {:>12}\n", "method", "strain", "frames",
-                 "median ms", "min ms", "max ms", "median cpu ms");
-      for (const auto strain : mapping::kStrainModes) {
-        mapping::MappingParams params;
-        params.strain = strain;
-        const auto source = mapping::strain_source(movie, params);
-        for (const auto method : mapping::kMappingMethods) {
-          params.method = method;
-          if (method == mapping::MappingMethod::profile)
-            params.profile = mapping::profile_of_scene(spec);
-          std::vector<double> ms, cpu_ms;
-          std::int32_t frames = 0;
-          for (int r = 0; r < opt->repeats; ++r) {
-            const Stopwatch clock;
-            frames = mapping::map_strain_frames(source, layout, params).movie.frame_count;
-            // CPU time of the whole process (all worker threads): what the mapping costs when
-            // other programs share the cores and wall time says more about them than about us.
-            cpu_ms.push_back(1e3 * clock.cpu_s());
-            ms.push_back(1e3 * clock.wall_s());
-          }
-          std::sort(ms.begin(), ms.end());
-          std::sort(cpu_ms.begin(), cpu_ms.end());
-          fmt::print("{:<14} {:<12} {:>8} {:>10.1f} {:>10.1f} {:>10.1f} {:>12.1f}\n",
-                     to_string(method), to_string(strain), frames, median(ms), ms.front(),
-                     ms.back(), median(cpu_ms));
-        }
-      }
+      fmt::print("{}",
+                 mapping::map_bench_heading(movie, layout, std::thread::hardware_concurrency()));
+      fmt::print("{}", mapping::map_bench_table_header());
+      mapping::bench_mapping(movie, spec, layout, opt->repeats, [](const mapping::MapBenchRow& r) {
+        fmt::print("{}", mapping::map_bench_table_row(r));
+      });
       fmt::print(
           "(accumulated: time of the mapping after accumulate_along_tracks; target "
           "<= 50 ms per movie)\n");

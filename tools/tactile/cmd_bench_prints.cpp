@@ -17,6 +17,7 @@
 #include "command.hpp"
 #include "number_checks.hpp"
 #include "tactile/capture/bench.hpp"
+#include "tactile/capture/bench_report.hpp"
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/common/chart.hpp"
 #include "tactile/common/csv.hpp"
@@ -25,16 +26,6 @@
 
 namespace tactile::cli {
 namespace fs = std::filesystem;
-
-namespace {
-
-void print_row(const capture::PrintBenchRow& r, const std::string& lead) {
-  fmt::print("{} {:<20} {:>7.1f} {:>7.2f} {:>9.5f} {:>9.5f} {:>7.4f} {:>7.0f}\n", lead, r.method,
-             r.frames_per_s, r.cpu_ms_per_frame, r.eval.rms_error, r.eval.rms_truth,
-             r.eval.correlation, r.eval.median_tracked_points);
-}
-
-}  // namespace
 
 void add_bench_prints(CLI::App& bench, Action& action) {
   struct Options {
@@ -46,8 +37,7 @@ void add_bench_prints(CLI::App& bench, Action& action) {
     bool touch = false;
     bool slip = false;
     std::vector<int> frame_px;  // empty: each print's own size
-    BenchSweepOptions common{
-        .out = "bench-prints", .sweeps = false, .limits = {.max_rms = 0.0025, .min_points = 150}};
+    BenchSweepOptions common{.out = "bench-prints", .limits = capture::kPrintSweepLimits};
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = bench.add_subcommand(
@@ -121,53 +111,26 @@ void add_bench_prints(CLI::App& bench, Action& action) {
                     : opt->touch ? capture::touch_bench_cases()
                                  : capture::print_bench_cases(opt->quick);
       bench.method_count = opt->quick ? 2 : all.size();
-      fmt::print("{:<6} {:<8} {:<10} {:>5} {:<20} {:>7} {:>7} {:>9} {:>9} {:>7} {:>7}\n", "print",
-                 "group", "pattern", "strain", "method", "frames/s", "cpu_ms", "rms_err",
-                 "rms_true", "corr", "points");
+      fmt::print("{}", capture::print_bench_table_header());
       const auto rows =
           capture::bench_prints(prints, all, bench, [](const capture::PrintBenchRow& r) {
-            print_row(r,
-                      fmt::format("{:<6} {:<8} {:<10} {:>4.0f}%", r.print,
-                                  r.held_out ? "held-out" : "tuning", r.pattern, 100 * r.strain));
+            fmt::print("{}", capture::print_bench_table_row(r));
           });
 
       fmt::print("\nsummary (medians over sequences; correlation over the non-rigid ones)\n");
-      fmt::print("{:<20} {:<8} {:>7} {:>9} {:>8} {:>8} {:>10} {:>7}\n", "method", "group", "points",
-                 "rms_err", "corr", "min_corr", "frames/s", "cpu_ms");
+      fmt::print("{}", capture::print_summary_table_header());
       std::vector<std::string> names;
       for (std::size_t k = 0; k < bench.method_count; ++k) names.push_back(all[k].name);
       for (const auto& m : capture::summarise_print_bench(rows, names)) {
-        fmt::print("{:<20} {:<8} {:>7.0f} {:>9.5f} {:>8.4f} {:>8.4f} {:>10.1f} {:>7.2f}\n",
-                   m.method, m.held_out ? "held-out" : "tuning", m.points, m.rms_error,
-                   m.correlation, m.min_correlation, m.frames_per_s, m.cpu_ms_per_frame);
+        fmt::print("{}", capture::print_summary_table_row(m));
       }
 
       const auto csv_path = opt->common.out / "bench_prints.csv";
-      auto csv = csv::open_with_header(
-          csv_path,
-          "print,group,pattern,strain,method,frames_per_s,rms_error,rms_truth,correlation,"
-          "median_tracked_points,edges");
-      XYChart chart{.title = "Strain on real prints under exact warps",
-                    .x = {.label = "frames per second (whole pipeline)", .scale = AxisScale::log},
-                    .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
-                    .y_targets = {{.value = 0.0025, .label = "RMS 0.0025"}},
-                    .width = 960,
-                    .height = 600};
-      for (const auto& r : rows) {
-        csv << fmt::format("{},{},{},{},\"{}\",{:.2f},{:.6g},{:.6g},{:.5f},{:.0f},{}\n", r.print,
-                           r.held_out ? "held-out" : "tuning", r.pattern, r.strain, r.method,
-                           r.frames_per_s, r.eval.rms_error, r.eval.rms_truth, r.eval.correlation,
-                           r.eval.median_tracked_points, r.eval.edges);
-        const std::string label = r.method + (r.held_out ? ", held-out" : ", tuning");
-        auto it = std::find_if(chart.series.begin(), chart.series.end(),
-                               [&](const ChartSeries& s) { return s.label == label; });
-        if (it == chart.series.end()) it = chart.series.insert(it, {.label = label});
-        it->x.push_back(r.frames_per_s);
-        it->y.push_back(r.eval.rms_error);
-      }
+      auto csv = csv::open_with_header(csv_path, capture::print_bench_csv_header());
+      for (const auto& r : rows) csv << capture::print_bench_csv_row(r);
       csv::finish(csv, csv_path);
-      const ChartFiles plot =
-          write_scatter_chart(opt->common.out / "speed_accuracy_prints.png", chart);
+      const ChartFiles plot = write_scatter_chart(opt->common.out / "speed_accuracy_prints.png",
+                                                  capture::print_bench_chart(rows));
       fmt::print("bench prints: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
                  plot.svg.string());
       if (!opt->common.sweeps) return 0;
@@ -178,59 +141,29 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       });
       const auto& print = first_held != prints.end() ? *first_held : prints.front();
       const auto sweep_path = opt->common.out / "prints_sweeps.csv";
-      auto sw = csv::open_with_header(sweep_path,
-                                      "condition,method,value,rms_error,rms_truth,correlation,"
-                                      "median_tracked_points,frames_per_s,"
-                                      "passes");
+      auto sw = csv::open_with_header(sweep_path, capture::print_sweep_csv_header());
       fmt::print(
           "\nstability sweeps ({} wave 4 %, {} frames; failure: rms error > {} or < {} "
           "points)\n",
           print.name, opt->frames, opt->common.limits.max_rms, opt->common.limits.min_points);
       // Accuracy against exploration speed, and frames/s against accuracy, for every method.
-      XYChart by_speed{.title = "Strain error at the speed of touch (8 % wave, 60 Hz)",
-                       .x = {.label = "exploration speed (mm/s)"},
-                       .y = {.label = "edge strain RMS error", .scale = AxisScale::log},
-                       .y_targets = {{.value = opt->common.limits.max_rms, .label = "failure"}},
-                       .width = 960,
-                       .height = 600};
-      XYChart fps_error{.title = "Frames per second against strain error (speed and rate sweeps)",
-                        .x = {.label = "edge strain RMS error", .scale = AxisScale::log},
-                        .y = {.label = "frames per second", .scale = AxisScale::log},
-                        .width = 960,
-                        .height = 600};
-      auto add_point = [](XYChart& chart, const std::string& label, double x, double y) {
-        auto it = std::find_if(chart.series.begin(), chart.series.end(),
-                               [&](const ChartSeries& c) { return c.label == label; });
-        if (it == chart.series.end())
-          it = chart.series.insert(chart.series.end(), {.label = label});
-        it->x.push_back(x);
-        it->y.push_back(y);
-      };
+      auto charts = capture::print_sweep_charts(opt->common.limits.max_rms);
       for (const auto& s : capture::print_sweeps()) {
         const std::size_t method_count = s.every_method ? all.size() : 1;
         for (std::size_t k = 0; k < method_count; ++k) {
           const auto failures = capture::run_print_sweep(
               s, all[k], print, bench, opt->common.limits, [&](const capture::PrintSweepPoint& p) {
-                const auto& r = p.row;
-                print_row(r, fmt::format("{:<34} {:>6g}", s.name, p.value));
-                sw << fmt::format("\"{}\",\"{}\",{},{:.6g},{:.6g},{:.5f},{:.0f},{:.2f},{}\n",
-                                  s.name, r.method, p.value, r.eval.rms_error, r.eval.rms_truth,
-                                  r.eval.correlation, r.eval.median_tracked_points, r.frames_per_s,
-                                  p.accurate && p.enough ? 1 : 0);
-                if (s.every_method && r.eval.edges > 0) {
-                  if (s.name.rfind("exploration", 0) == 0) {
-                    add_point(by_speed, r.method, p.value, r.eval.rms_error);
-                  }
-                  add_point(fps_error, r.method, r.eval.rms_error, r.frames_per_s);
-                }
+                fmt::print("{}", capture::print_sweep_table_row(s.name, p));
+                sw << capture::print_sweep_csv_row(s.name, p);
+                capture::add_print_sweep_point(charts, s, p);
               });
           fmt::print("{}", failures.summary(s.name + ", " + all[k].name, s.values.back()));
         }
       }
       const ChartFiles speed_plot =
-          write_line_chart(opt->common.out / "accuracy_speed_prints.png", by_speed);
+          write_line_chart(opt->common.out / "accuracy_speed_prints.png", charts.by_speed);
       const ChartFiles fps_plot =
-          write_scatter_chart(opt->common.out / "fps_accuracy_prints.png", fps_error);
+          write_scatter_chart(opt->common.out / "fps_accuracy_prints.png", charts.fps_error);
       fmt::print("bench prints: wrote {}, {}\n", speed_plot.png.string(), fps_plot.png.string());
       csv::finish(sw, sweep_path);
       fmt::print("bench prints: wrote {}\n", sweep_path.string());

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <exception>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -106,48 +105,35 @@ live::LiveSummary run_in_window(const live::ResolvedLive& session, display::Tran
     if (!t.dropped) state.latency_ms = t.latency_ms;
     state.time_s = t.source_time_s;
   };
-  live::LiveSummary summary;
-  std::exception_ptr failure;
-  std::thread worker([&] {
-    try {
-      summary = live::run_live(session, device, stop, callbacks);
-    } catch (...) {
-      failure = std::current_exception();
-    }
+  live::SessionThread worker(session, device, stop, callbacks, [&] {
     std::lock_guard lock(state.mutex);
     state.over = true;
   });
   display::ViewerResult shown;
   display::LiveViewerOptions options;
   options.keep_last_image = !screenshot.empty();
-  try {
-    // Strain of 1 % a frame in full colour: the edges' colours match the contactors'.
-    shown = display::run_live_viewer(
-        session.layout,
-        [&]() -> std::optional<display::LiveFrame> {
-          std::lock_guard lock(state.mutex);
-          if (state.over) return std::nullopt;
-          display::LiveFrame f;
-          f.deflection_um = state.deflection_um;
-          if (state.camera) {
-            f.camera = *state.camera;
-            f.camera->edges = state.edges;
-            f.camera->full_scale = state.full_scale;
-          }
-          f.lines = {fmt::format("{}  t = {:.1f} s", session.source, state.time_s),
-                     fmt::format("{} frames processed, {} dropped, latency {:.2f} ms",
-                                 state.processed, state.dropped, state.latency_ms)};
-          return f;
-        },
-        options);
-  } catch (...) {
-    stop = true;
-    worker.join();
-    throw;
-  }
+  // Strain of 1 % a frame in full colour: the edges' colours match the contactors'. Should the
+  // window throw, `worker` stops the session and waits for it as it goes.
+  shown = display::run_live_viewer(
+      session.layout,
+      [&]() -> std::optional<display::LiveFrame> {
+        std::lock_guard lock(state.mutex);
+        if (state.over) return std::nullopt;
+        display::LiveFrame f;
+        f.deflection_um = state.deflection_um;
+        if (state.camera) {
+          f.camera = *state.camera;
+          f.camera->edges = state.edges;
+          f.camera->full_scale = state.full_scale;
+        }
+        f.lines = {fmt::format("{}  t = {:.1f} s", session.source, state.time_s),
+                   fmt::format("{} frames processed, {} dropped, latency {:.2f} ms",
+                               state.processed, state.dropped, state.latency_ms)};
+        return f;
+      },
+      options);
   stop = true;  // the window was closed, or the session ended
-  worker.join();
-  if (failure) std::rethrow_exception(failure);
+  const live::LiveSummary summary = worker.result();
   if (!screenshot.empty() && shown.last_image.width > 0) {
     display::write_png(screenshot, shown.last_image);
     fmt::print("live: wrote {}\n", screenshot.string());

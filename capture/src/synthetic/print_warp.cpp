@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "camera/cv_image.hpp"
+#include "synthetic/carried_edge.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/json.hpp"
 #include "tactile/common/stats.hpp"
@@ -396,10 +397,9 @@ double warp_contact(const PrintWarpSpec& s, PointMm image, double frame) {
 double warp_rel_change(const PrintWarpSpec& s, PointMm a_from, PointMm b_from, int frame_from,
                        int frame_to) {
   const Warp warp(s);
-  const PointMm a = warp.to_image(warp.to_material(a_from, frame_from), frame_to);
-  const PointMm b = warp.to_image(warp.to_material(b_from, frame_from), frame_to);
-  const double before = std::hypot(b_from.x_mm - a_from.x_mm, b_from.y_mm - a_from.y_mm);
-  const double after = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
+  const auto [before, after] = carried_edge(a_from, b_from, [&](PointMm p) {
+    return warp.to_image(warp.to_material(p, frame_from), frame_to);
+  });
   return before > 0 ? (after - before) / before : 0.0;
 }
 

@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "synthetic/carried_edge.hpp"
+
 namespace tactile::capture {
 
 namespace {
@@ -235,10 +237,9 @@ PointMm image_to_skin(const SceneSpec& spec, PointMm image, int frame) {
 double true_rel_change(const SceneSpec& spec, PointMm a_from, PointMm b_from, int frame_from,
                        int frame_to) {
   const SceneModel model(spec);
-  const PointMm a_to = model.to_image(model.to_skin(a_from, frame_from), frame_to);
-  const PointMm b_to = model.to_image(model.to_skin(b_from, frame_from), frame_to);
-  const double l0 = std::hypot(b_from.x_mm - a_from.x_mm, b_from.y_mm - a_from.y_mm);
-  const double l1 = std::hypot(b_to.x_mm - a_to.x_mm, b_to.y_mm - a_to.y_mm);
+  const auto [l0, l1] = carried_edge(a_from, b_from, [&](PointMm p) {
+    return model.to_image(model.to_skin(p, frame_from), frame_to);
+  });
   if (l0 <= 0) throw std::invalid_argument("true_rel_change: the two points coincide");
   return (l1 - l0) / l0;
 }

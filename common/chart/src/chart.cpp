@@ -459,6 +459,14 @@ ChartFiles write_xy(const std::filesystem::path& path, const XYChart& chart, Mar
 
 }  // namespace
 
+void add_point(XYChart& chart, const std::string& label, double x, double y) {
+  auto it = std::find_if(chart.series.begin(), chart.series.end(),
+                         [&](const ChartSeries& s) { return s.label == label; });
+  if (it == chart.series.end()) it = chart.series.insert(chart.series.end(), {.label = label});
+  it->x.push_back(x);
+  it->y.push_back(y);
+}
+
 ChartFiles write_scatter_chart(const std::filesystem::path& path, const XYChart& chart) {
   return write_xy(path, chart, Marks::dots);
 }

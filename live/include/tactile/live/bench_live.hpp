@@ -7,10 +7,12 @@
 // camera would (no file decoding), played into the emulated display on the real clock.
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/pore_training.hpp"
+#include "tactile/common/chart.hpp"
 #include "tactile/live/live_session.hpp"
 
 namespace tactile::live {
@@ -45,5 +47,16 @@ struct LiveBenchRow {
 std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
                                      const LiveBenchOptions& options,
                                      const std::function<void(const LiveBenchRow&)>& on_row);
+
+// What the bench reports, built from its rows as plain text and a chart description (the
+// command line prints them and writes the files): the table's column names and one line per row
+// (ratio: the live strain error over the batch's), the CSV header (without its newline) and rows,
+// and latency p99 against the live strain error, a series per frame size, with
+// capture::kPrintStrainTarget as the goal.
+std::string live_bench_table_header();
+std::string live_bench_table_row(const LiveBenchRow& row);
+std::string live_bench_csv_header();
+std::string live_bench_csv_row(const LiveBenchRow& row);
+XYChart live_bench_chart(const std::vector<LiveBenchRow>& rows);
 
 }  // namespace tactile::live

@@ -17,8 +17,10 @@
 
 #include <atomic>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
@@ -101,6 +103,34 @@ struct LiveOptions {
 LiveSummary run_live(const ResolvedLive& session, display::Transport& device,
                      const std::atomic<bool>& stop, const LiveCallbacks& callbacks = {},
                      const LiveOptions& options = {});
+
+// run_live on a thread of its own, for a caller whose thread must stay free while the session
+// runs (a window, which GLFW keeps on the main thread; an interpreter answering Ctrl-C).
+// `on_end` runs on the session's thread once run_live has returned or thrown. result() waits
+// and returns the summary or rethrows what the session threw. An object destroyed while its
+// session still runs (the caller is leaving on an exception) sets `stop` and waits, so the
+// device is left at rest and no thread outlives what it uses.
+class SessionThread {
+ public:
+  SessionThread(const ResolvedLive& session, display::Transport& device, std::atomic<bool>& stop,
+                LiveCallbacks callbacks = {}, std::function<void()> on_end = {});
+  SessionThread(const SessionThread&) = delete;
+  SessionThread& operator=(const SessionThread&) = delete;
+  ~SessionThread();
+
+  // True once run_live has returned or thrown and on_end has run.
+  bool done() const { return done_.load(); }
+  // Waits for the session to end, without looking at how it ended.
+  void wait();
+  LiveSummary result();
+
+ private:
+  std::atomic<bool>& stop_;
+  LiveSummary summary_;
+  std::exception_ptr failure_;
+  std::atomic<bool> done_{false};
+  std::thread thread_;  // last: started once the members it uses exist
+};
 
 // The emulated device a session plays into when no display is named: the layout's own, on the
 // real clock, recording nothing (a session may run for hours).

@@ -69,6 +69,10 @@ struct XYChart {
   int height = 500;
 };
 
+// Appends (x, y) to the series labelled `label`, first adding that series at the end when the
+// chart has none: points measured one at a time then share their series' colour.
+void add_point(XYChart& chart, const std::string& label, double x, double y);
+
 // Horizontal bars, one per label, from 0 (or the nearer limit) to the value, with the value
 // printed beside it ("n/a" for a non-finite one, which is left out).
 struct BarChart {
