@@ -34,10 +34,16 @@ wait_for() {
 }
 
 # Waits for the window of the program started last ($pid) and gives it the keyboard's focus.
+# A window is found by its name as soon as it exists, before it is mapped, and focusing an
+# unmapped window is an X error (BadMatch): wait until it is visible, and try again a while.
 focus_window() {
-  wid=$(timeout 30 xdotool search --sync --name "tactile author" | head -1)
-  [ -n "$wid" ] || fail "no window named 'tactile author'"
-  xdotool windowfocus --sync "$wid" 2>/dev/null || xdotool windowfocus "$wid"
+  wid=$(timeout 30 xdotool search --sync --onlyvisible --name "tactile author" | head -1)
+  [ -n "$wid" ] || fail "no visible window named 'tactile author'"
+  for _ in $(seq 50); do
+    timeout 2 xdotool windowfocus --sync "$wid" 2>/dev/null && return 0
+    sleep 0.1
+  done
+  fail "the window $wid did not take the keyboard's focus in 5 s"
 }
 
 "$tactile" demo --headless --frames 60 --out demo >demo.log 2>&1 || fail "demo failed"
