@@ -11,9 +11,9 @@
 # of the 12 targets 6000 s of one core on a 2-core machine. Measured on such a machine (clang's
 # libFuzzer with ASan and UBSan, 10 s a fast reader and 15 s a movie reader, load about 1):
 # labels CSV 11000 executions a second, pore marks 8800, classifier model 5000, calibration
-# 4400, pore model 4400, experiment 4000, HJIF 1800 (so at least 1.08 x 10^7 each in 6000 s if the rates hold as the
-# corpus grows; they fall somewhat), the movie readers 280 (one reading child for all inputs;
-# 30 when they forked one per input).
+# 4400, pore model 4400, experiment 4000, HJIF 1800 (so at least 1.08 x 10^7 each in 6000 s if
+# the rates hold as the corpus grows; they fall somewhat), the movie readers 280 (one reading
+# child for all inputs; 30 when they forked one per input).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:?usage: tools/fuzz.sh SECONDS}
