@@ -99,10 +99,11 @@ const std::string kDatagrams =
 const std::string kEmulatorReplies = R"(replies\s+(\d+) sent, (\d+) left out)";
 const std::string kBladesLeft = R"(blades\s+left at raw (\d+)\.\.(\d+))";
 
-// Starts the emulator in the background, runs `client_args`, stops the emulator with SIGINT and
-// returns everything both printed (the client first).
-// `seconds`: how long the emulator answers at most (the SIGINT of a shell's background job may
-// not reach it, so it ends on its own then).
+// Starts the emulator in the background, runs `client_args`, stops the emulator with SIGTERM and
+// returns everything both printed (the client first). SIGTERM, not SIGINT: a non-interactive
+// shell starts its background jobs with SIGINT ignored, and the emulator keeps an ignored SIGINT
+// ignored (as nohup expects), so SIGINT would leave it answering until `seconds` ran out.
+// `seconds`: how long the emulator answers at most, should the stop never arrive.
 tactile::test::RunResult with_emulator(int port, const std::string& emulator_args,
                                        const std::string& client_args, const fs::path& dir,
                                        int seconds = 60) {
@@ -111,7 +112,7 @@ tactile::test::RunResult with_emulator(int port, const std::string& emulator_arg
   return run_tactile("emulate --latero --port " + std::to_string(port) + " --seconds " +
                      std::to_string(seconds) + " " + emulator_args + " > " + log +
                      " 2>&1 & E=$!; sleep 0.3; " + bin + " " + client_args +
-                     " 2>&1; rc=$?; kill -INT $E; wait $E; cat " + log + "; exit $rc");
+                     " 2>&1; rc=$?; kill -TERM $E; wait $E; cat " + log + "; exit $rc");
 }
 
 }  // namespace
