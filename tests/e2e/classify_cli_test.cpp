@@ -273,6 +273,10 @@ TEST(ClassifyCli, UsageErrors) {
       run_tactile("classify predict --model /nonexistent.json " + kMaterials + "/mat1_1_bio.csv")
           .exit_code,
       2);
+  // Without recordings the message names what is missing as `--help` shows it.
+  const auto no_files = run_tactile("classify predict --model " + kMaterials + "/labels.csv");
+  EXPECT_EQ(no_files.exit_code, 2);
+  EXPECT_NE(no_files.output.find("RECORDINGS is required"), std::string::npos) << no_files.output;
 }
 
 // The simulated data set exported as recordings + labels (class: curvature, value: signed

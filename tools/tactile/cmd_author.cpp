@@ -42,25 +42,24 @@ const char* target_name(display::PlaybackTarget target) {
 
 }  // namespace
 
-void add_author(CLI::App& app, Action& action) {
+void add_author(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     std::optional<fs::path> experiment;
     fs::path out = "authored";
     std::string name = "authored";
     std::optional<fs::path> screenshot;
   };
-  auto request = std::make_shared<mapping::MapRequest>();
-  auto opt = std::make_shared<Options>();
-  auto latero = std::make_shared<display::LateroPlayTarget>();
-  CLI::App* sub = app.add_subcommand(
-      "author",
+  const auto [request, sub] = add_request_command<mapping::MapRequest>(
+      app, "author",
       "Author a mapping in a window: the mapping's choices in a panel (those of `tactile map`),\n"
       "re-mapped in the background on every change, the strain and the contactor array side\n"
       "by side, the fidelity figures and their chart over time, contactors at a limit outlined.\n"
       "P pins the mapping as A, Tab switches A and B, Enter auditions on whatever `play` would\n"
       "choose (a display, else the emulated device; with --latero, that Latero), S saves A and\n"
-      "B as an experiment that `tactile experiment` runs to the same movies. H lists every key.");
-  add_request_options(*sub, request, mapping::map_options());
+      "B as an experiment that `tactile experiment` runs to the same movies. H lists every key.",
+      mapping::map_options());
+  auto opt = std::make_shared<Options>();
+  auto latero = std::make_shared<display::LateroPlayTarget>();
   sub->add_option("--experiment", opt->experiment,
                   "Start from an experiment file's mappings (its first run as A, its last as the "
                   "current one; options given here change the current one)")

@@ -5,17 +5,11 @@
 
 namespace tactile::cli {
 
-void add_bench(CLI::App& app, Action& action) {
+void add_bench(CLI::App& app, Action& action, const std::string& command_line) {
   CLI::App* bench = app.add_subcommand(
       "bench", "Benchmarks: print throughput and accuracy figures (see each one's --help).");
   bench->require_subcommand(1);
-  add_bench_map(*bench, action);
-  add_bench_capture(*bench, action);
-  add_bench_prints(*bench, action);
-  add_bench_stream(*bench, action);
-  add_bench_perceive(*bench, action);
-  add_bench_latero(*bench, action);
-  add_bench_live(*bench, action);
+  for (AddCommand* add : kBenchmarks) add(*bench, action, command_line);
 }
 
 }  // namespace tactile::cli

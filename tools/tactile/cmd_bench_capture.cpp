@@ -14,9 +14,11 @@
 #include <thread>
 #include <vector>
 
+#include "bench_files.hpp"
 #include "bench_sweep_options.hpp"
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/capture/bench.hpp"
 #include "tactile/capture/bench_report.hpp"
 #include "tactile/common/chart.hpp"
@@ -35,15 +37,14 @@ std::string load_average() {
 
 }  // namespace
 
-void add_bench_capture(CLI::App& bench, Action& action) {
+void add_bench_capture(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     int frames = 90;
     bool quick = false;
     BenchSweepOptions common{.out = "bench-capture", .limits = capture::kSceneSweepLimits};
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "capture",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "capture",
       "Strain measurement on every synthetic scene (bump, hole, flat-slide, flat-rotate,\n"
       "flat-stick-slip; 640 x 484): frames/s\n"
       "of extract + match + track + strain, and accuracy against the exact ground truth, for the\n"
@@ -51,9 +52,7 @@ void add_bench_capture(CLI::App& bench, Action& action) {
       "and OUT/speed_accuracy.png (and .svg); --sweeps also pushes each image condition until "
       "failure\n"
       "(OUT/sweeps.csv).");
-  sub->add_option("--frames", opt->frames, "Frames per sequence")
-      ->check(within(35, 2000))
-      ->capture_default_str();
+  add_ranged(*sub, "--frames", opt->frames, "Frames per sequence", 35, 2000);
   add_bench_sweep_options(*sub, opt->common);
   sub->add_flag("--quick", opt->quick, "Only the default pipeline and the two baselines");
   sub->callback([opt, &action] {
@@ -67,15 +66,11 @@ void add_bench_capture(CLI::App& bench, Action& action) {
           capture::bench_scenes(opt->frames, all, [](const capture::SceneBenchResult& r) {
             fmt::print("{}", capture::scene_bench_table_row(r));
           });
-      const auto csv_path = opt->common.out / "bench_capture.csv";
-      auto csv = csv::open_with_header(csv_path, capture::scene_bench_csv_header());
-      for (const auto& r : results) csv << capture::scene_bench_csv_row(r);
-      csv::finish(csv, csv_path);
-      const ChartFiles plot = write_scatter_chart(opt->common.out / "speed_accuracy.png",
-                                                  capture::scene_bench_chart(results));
       fmt::print("load average after the run: {}\n", load_average());
-      fmt::print("bench capture: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
-                 plot.svg.string());
+      write_bench_files("bench capture", opt->common.out / "bench_capture.csv",
+                        capture::scene_bench_csv_header(), results, capture::scene_bench_csv_row,
+                        opt->common.out / "speed_accuracy.png",
+                        capture::scene_bench_chart(results));
 
       if (!opt->common.sweeps) return 0;
       const auto& pipeline = all.front();

@@ -9,8 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "bench_files.hpp"
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/capture/bench.hpp"
 #include "tactile/capture/pore_training_io.hpp"
 #include "tactile/common/chart.hpp"
@@ -22,7 +24,7 @@
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
-void add_bench_live(CLI::App& bench, Action& action) {
+void add_bench_live(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path prints;
     std::string print = "12";
@@ -30,9 +32,8 @@ void add_bench_live(CLI::App& bench, Action& action) {
     fs::path out = "bench-live";
     live::LiveBenchOptions bench;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "live",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "live",
       "The live session on a real print: the print (image_NN + pores_NN.txt of PRINTS_DIR, e.g.\n"
       "tests/data/polyu-hrf-pores; print 12 is held out of the capture's tuning) mirrored to\n"
       "320 x 240 and 640 x 484 px and moved by an 8 % wave crossing at the speed of touch, held\n"
@@ -40,17 +41,11 @@ void add_bench_live(CLI::App& bench, Action& action) {
       "emulated display. Prints frames in, processed, dropped, latency p50/p99/max and the live\n"
       "strain's error and correlation against the truth beside the batch capture's on the same\n"
       "frames; writes OUT/bench_live.csv and OUT/latency_accuracy_live.png (and .svg).");
-  sub->add_option("PRINTS_DIR", opt->prints, "Folder of marked prints")
-      ->required()
-      ->check(CLI::ExistingDirectory);
+  add_input_folder(*sub, "PRINTS_DIR", opt->prints, "Folder of marked prints");
   sub->add_option("--print", opt->print, "Number NN of the print to use")->capture_default_str();
-  sub->add_option("--seconds", opt->bench.seconds, "Seconds of skin per case")
-      ->check(within(0.5, 600.0))
-      ->capture_default_str();
-  sub->add_option("--travel", opt->bench.travel_mm_per_s,
-                  "Speed of the wave across the contact (mm/s)")
-      ->check(within(1.0, 500.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--seconds", opt->bench.seconds, "Seconds of skin per case", 0.5, 600.0);
+  add_ranged(*sub, "--travel", opt->bench.travel_mm_per_s,
+             "Speed of the wave across the contact (mm/s)", 1.0, 500.0);
   sub->add_flag("--quick", opt->quick, "Only 320 x 240 at 60 and 120 Hz and 640 x 484 at 60 Hz");
   sub->add_option("--out", opt->out, "Folder for the CSV and the chart")->capture_default_str();
   sub->callback([opt, &action] {
@@ -78,14 +73,9 @@ void add_bench_live(CLI::App& bench, Action& action) {
         fmt::print("{}", live::live_bench_table_row(r));
         std::fflush(stdout);
       });
-      const auto csv_path = opt->out / "bench_live.csv";
-      auto csv = csv::open_with_header(csv_path, live::live_bench_csv_header());
-      for (const auto& r : rows) csv << live::live_bench_csv_row(r);
-      csv::finish(csv, csv_path);
-      const ChartFiles plot =
-          write_scatter_chart(opt->out / "latency_accuracy_live.png", live::live_bench_chart(rows));
-      fmt::print("bench live: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
-                 plot.svg.string());
+      write_bench_files("bench live", opt->out / "bench_live.csv", live::live_bench_csv_header(),
+                        rows, live::live_bench_csv_row, opt->out / "latency_accuracy_live.png",
+                        live::live_bench_chart(rows));
       return 0;
     };
   });

@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/author/outcome.hpp"
 #include "tactile/capture/synth.hpp"
 #include "tactile/common/stats.hpp"
@@ -19,27 +20,22 @@
 
 namespace tactile::cli {
 
-void add_bench_map(CLI::App& bench, Action& action) {
+void add_bench_map(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     int repeats = 7;
     int frames = 180;
     double spacing_mm = 0.34;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "map",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "map",
       "Time the mapping of a synthetic strain movie (the bump scene's exact strain on a\n"
       "landmark grid, Delaunay-triangulated like a measured movie) onto STReSS 10 x 10 at\n"
       "700 Hz, for every method; target <= 50 ms per 180-frame movie.");
-  sub->add_option("--repeats", opt->repeats, "Timed repetitions (the median is reported)")
-      ->check(within(1, 1000))
-      ->capture_default_str();
-  sub->add_option("--frames", opt->frames, "Camera frames of the strain movie")
-      ->check(within(2, 100000))
-      ->capture_default_str();
-  sub->add_option("--spacing-mm", opt->spacing_mm, "Landmark spacing (0.34 mm: ~500 per frame)")
-      ->check(within(0.1, 5.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--repeats", opt->repeats, "Timed repetitions (the median is reported)", 1,
+             1000);
+  add_ranged(*sub, "--frames", opt->frames, "Camera frames of the strain movie", 2, 100000);
+  add_ranged(*sub, "--spacing-mm", opt->spacing_mm, "Landmark spacing (0.34 mm: ~500 per frame)",
+             0.1, 5.0);
   sub->callback([opt, &action] {
     action = [opt] {
       capture::SceneSpec spec;

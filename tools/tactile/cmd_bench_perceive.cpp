@@ -15,6 +15,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/common/stopwatch.hpp"
 #include "tactile/perception/arff.hpp"
 #include "tactile/perception/report.hpp"
@@ -47,21 +48,18 @@ double run_weka(const std::string& java, const std::string& jar, const std::stri
 
 }  // namespace
 
-void add_bench_perceive(CLI::App& bench, Action& action) {
+void add_bench_perceive(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     int trials = 20;
     std::string java = "java";
     std::string weka_jar = "/usr/share/java/weka.jar";
     bool no_weka = false;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "perceive",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "perceive",
       "Time training + testing every model of one Table 2 (paper 2) on the simulated sensor:\n"
       "target <= 1 s; WEKA's SMO and SMOreg timed on the same data in the same run.");
-  sub->add_option("--trials", opt->trials, "Trials per feature (paper: 20)")
-      ->check(within(2, 1000))
-      ->capture_default_str();
+  add_ranged(*sub, "--trials", opt->trials, "Trials per feature (paper: 20)", 2, 1000);
   sub->add_option("--java", opt->java, "Java launcher")->capture_default_str();
   sub->add_option("--weka-jar", opt->weka_jar, "weka.jar")->capture_default_str();
   sub->add_flag("--no-weka", opt->no_weka, "Skip the WEKA timing");

@@ -13,9 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "bench_files.hpp"
 #include "bench_sweep_options.hpp"
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/capture/bench.hpp"
 #include "tactile/capture/bench_report.hpp"
 #include "tactile/capture/pore_training_io.hpp"
@@ -27,7 +29,7 @@
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
-void add_bench_prints(CLI::App& bench, Action& action) {
+void add_bench_prints(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path prints;
     std::vector<std::string> held_out = {"11", "12", "13", "14", "15"};
@@ -39,9 +41,8 @@ void add_bench_prints(CLI::App& bench, Action& action) {
     std::vector<int> frame_px;  // empty: each print's own size
     BenchSweepOptions common{.out = "bench-prints", .limits = capture::kPrintSweepLimits};
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "prints",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "prints",
       "Strain on real skin: each hand-marked print of PRINTS_DIR (image_NN + pores_NN.txt, e.g.\n"
       "the PolyU HRF prints in tests/data/polyu-hrf-pores) moved by exact warps (5 patterns at\n"
       "4 %, the wave also at 1 and 8 %, and 8 % crossing at 25 mm/s) and measured by the landmark "
@@ -50,20 +51,14 @@ void add_bench_prints(CLI::App& bench, Action& action) {
       "OUT/bench_prints.csv and OUT/speed_accuracy_prints.png (and .svg); --sweeps pushes noise,\n"
       "blur, strain, slide, exploration speed and camera rate on the first held-out print until\n"
       "failure (OUT/prints_sweeps.csv, accuracy_speed_prints.png, fps_accuracy_prints.png).");
-  sub->add_option("PRINTS_DIR", opt->prints, "Folder of marked prints")
-      ->required()
-      ->check(CLI::ExistingDirectory);
+  add_input_folder(*sub, "PRINTS_DIR", opt->prints, "Folder of marked prints");
   add_bench_sweep_options(*sub, opt->common);
   sub->add_option("--held-out", opt->held_out,
                   "Numbers NN of the prints kept out of tuning (reported apart)")
       ->delimiter(',')
       ->capture_default_str();
-  sub->add_option("--frames", opt->frames, "Frames per sequence")
-      ->check(within(12, 1000))
-      ->capture_default_str();
-  sub->add_option("--px-per-mm", opt->px_per_mm, "Scale of the prints")
-      ->check(within(5.0, 500.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--frames", opt->frames, "Frames per sequence", 12, 1000);
+  add_ranged(*sub, "--px-per-mm", opt->px_per_mm, "Scale of the prints", 5.0, 500.0);
   sub->add_option("--frame-px", opt->frame_px,
                   "Film W x H px frames: each print mirrored about its edges until it fills them\n"
                   "(marks mirrored too), e.g. --frame-px 640 484 for a 640 x 484 camera; default:\n"
@@ -125,14 +120,10 @@ void add_bench_prints(CLI::App& bench, Action& action) {
         fmt::print("{}", capture::print_summary_table_row(m));
       }
 
-      const auto csv_path = opt->common.out / "bench_prints.csv";
-      auto csv = csv::open_with_header(csv_path, capture::print_bench_csv_header());
-      for (const auto& r : rows) csv << capture::print_bench_csv_row(r);
-      csv::finish(csv, csv_path);
-      const ChartFiles plot = write_scatter_chart(opt->common.out / "speed_accuracy_prints.png",
-                                                  capture::print_bench_chart(rows));
-      fmt::print("bench prints: wrote {}, {} and {}\n", csv_path.string(), plot.png.string(),
-                 plot.svg.string());
+      write_bench_files("bench prints", opt->common.out / "bench_prints.csv",
+                        capture::print_bench_csv_header(), rows, capture::print_bench_csv_row,
+                        opt->common.out / "speed_accuracy_prints.png",
+                        capture::print_bench_chart(rows));
       if (!opt->common.sweeps) return 0;
 
       const std::set<std::string> held(opt->held_out.begin(), opt->held_out.end());

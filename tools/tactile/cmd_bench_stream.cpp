@@ -12,6 +12,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/common/stopwatch.hpp"
 #include "tactile/display/emulated_device.hpp"
@@ -140,26 +141,21 @@ Pacing paced(const movie::Layout& layout, double rate_hz, double seconds) {
 
 }  // namespace
 
-void add_bench_stream(CLI::App& bench, Action& action) {
+void add_bench_stream(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     int frames = 20000;
     double seconds = 2.0;
     double rate_hz = 1000;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "stream",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "stream",
       "Host CPU time per frame, highest sustained frame rate through the emulated device,\n"
       "spread of frame submission times on a real-time device, against the USB budget.");
-  sub->add_option("--frames", opt->frames, "Frames pushed per array size for the throughput")
-      ->check(within(100, 10000000))
-      ->capture_default_str();
-  sub->add_option("--seconds", opt->seconds, "Length of the real-time paced stream")
-      ->check(within(0.1, 600.0))
-      ->capture_default_str();
-  sub->add_option("--rate-hz", opt->rate_hz, "Rate of the real-time paced stream (Hz)")
-      ->check(within(1.0, 10000.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--frames", opt->frames, "Frames pushed per array size for the throughput", 100,
+             10000000);
+  add_ranged(*sub, "--seconds", opt->seconds, "Length of the real-time paced stream", 0.1, 600.0);
+  add_ranged(*sub, "--rate-hz", opt->rate_hz, "Rate of the real-time paced stream (Hz)", 1.0,
+             10000.0);
   sub->callback([opt, &action] {
     action = [opt] {
       const auto links = display::usb_link_budgets();

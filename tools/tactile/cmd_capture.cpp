@@ -14,6 +14,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "progress.hpp"
 #include "request_options.hpp"
 #include "tactile/capture/calibrate.hpp"
@@ -159,24 +160,19 @@ double process_cpu_s() {
 
 }  // namespace
 
-void add_calibrate(CLI::App& app, Action& action) {
+void add_calibrate(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path image;
     double spacing_mm = 0.5;
     fs::path out = "calibration.json";
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "calibrate",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "calibrate",
       "Calibrate the camera from an image of the dot grid (0.5 mm pitch by default): the\n"
       "pixel-to-millimetre homography (perspective of the prism) and the mean scale.");
-  sub->add_option("DOT_GRID_IMAGE", opt->image, "Image of the dot grid")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input_file(*sub, "DOT_GRID_IMAGE", opt->image, "Image of the dot grid");
   // A grid of at least 4 x 4 dots in a fingertip camera's 5-50 mm field.
-  sub->add_option("--spacing-mm", opt->spacing_mm, "Dot spacing in mm")
-      ->check(within(0.01, 10.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--spacing-mm", opt->spacing_mm, "Dot spacing in mm", 0.01, 10.0);
   sub->add_option("--out", opt->out, "Calibration file to write (JSON)")->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
@@ -204,7 +200,7 @@ void add_calibrate(CLI::App& app, Action& action) {
   });
 }
 
-void add_features(CLI::App& app, Action& action) {
+void add_features(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path image;
     std::optional<fs::path> calib;
@@ -213,14 +209,11 @@ void add_features(CLI::App& app, Action& action) {
     std::string pores = "paper";
     std::optional<fs::path> pore_model;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "features",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "features",
       "Find skin landmarks (sweat pores, valley endings, bifurcations) in one image, as in the\n"
       "first paper. Prints counts; --csv writes type,x_px,y_px,x_mm,y_mm,orientation_rad.");
-  sub->add_option("IMAGE", opt->image, "Fingerprint image (ridges dark, valleys bright)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input_file(*sub, "IMAGE", opt->image, "Fingerprint image (ridges dark, valleys bright)");
   add_calibration_options(*sub, opt->calib, opt->px_per_mm);
   sub->add_option("--csv", opt->csv, "Write the features to this CSV file");
   add_pore_options(*sub, opt->pores, opt->pore_model);
@@ -264,15 +257,14 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
     std::optional<fs::path> csv_dir;
     std::optional<fs::path> maps_dir;
   };
-  auto request = std::make_shared<capture::CaptureRequest>();
-  auto outputs = std::make_shared<Outputs>();
-  CLI::App* sub = app.add_subcommand(
-      "capture",
+  const auto [request, sub] = add_request_command<capture::CaptureRequest>(
+      app, "capture",
       "Measure skin strain from a sequence of fingerprint images (the image files of IMAGE_DIR\n"
       "in name order, or the frames of a video .mp4 .avi .mkv .mov): extract landmarks, match\n"
       "and track them, triangulate (Delaunay) and write each edge's relative length change\n"
-      "between frames i and i+span. Frames are read one at a time.");
-  add_request_options(*sub, request, capture::capture_options());
+      "between frames i and i+span. Frames are read one at a time.",
+      capture::capture_options());
+  auto outputs = std::make_shared<Outputs>();
   sub->add_option("--out", outputs->out, "Strain movie to write (HDF5)")->required();
   sub->add_option("--csv", outputs->csv_dir,
                   "Also write tracks.csv and edges.csv into this folder");

@@ -12,6 +12,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "request_options.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/names.hpp"
@@ -157,7 +158,7 @@ int predict(const std::filesystem::path& model_path,
 
 }  // namespace
 
-void add_classify(CLI::App& app, Action& action) {
+void add_classify(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   CLI::App* sub = app.add_subcommand(
       "classify",
       "Classifier of labelled real recordings (BioTac-style CSV, one per trial) with the paper's\n"
@@ -166,11 +167,10 @@ void add_classify(CLI::App& app, Action& action) {
       "with a numeric `value` column in the labels, also one SVR per class for the value.");
   sub->require_subcommand(1);
 
-  auto t = std::make_shared<perception::TrainRequest>();
-  CLI::App* tr = sub->add_subcommand(
-      "train",
-      "Analyse labelled recordings, train, write a model file (optionally cross-validate)");
-  add_request_options(*tr, t, perception::train_options());
+  const auto [t, tr] = add_request_command<perception::TrainRequest>(
+      *sub, "train",
+      "Analyse labelled recordings, train, write a model file (optionally cross-validate)",
+      perception::train_options());
   // Python may keep the model in memory; the command line has nowhere else to put it.
   tr->get_option("--out")->required();
   tr->callback([t, &action] {
@@ -178,10 +178,10 @@ void add_classify(CLI::App& app, Action& action) {
     action = [t, training] { return train(*t, training); };
   });
 
-  auto te = std::make_shared<perception::TestRequest>();
-  CLI::App* ts = sub->add_subcommand(
-      "test", "Accuracy of a model on labelled recordings: per class, overall, confusion matrix");
-  add_request_options(*ts, te, perception::test_options());
+  const auto [te, ts] = add_request_command<perception::TestRequest>(
+      *sub, "test",
+      "Accuracy of a model on labelled recordings: per class, overall, confusion matrix",
+      perception::test_options());
   ts->callback([te, &action] {
     perception::check_request(*te, OptionSpelling::cli);
     action = [te] { return test(*te); };
@@ -191,12 +191,11 @@ void add_classify(CLI::App& app, Action& action) {
     std::filesystem::path model;
     std::vector<std::filesystem::path> files;
   };
-  auto pr = std::make_shared<PredictOptions>();
-  CLI::App* ps = sub->add_subcommand("predict", "Class (and value) of each recording");
-  ps->add_option("--model", pr->model, "Model file from `classify train`")
-      ->required()
-      ->check(CLI::ExistingFile);
-  ps->add_option("files", pr->files, "Recordings (BioTac-style CSV)")->required();
+  const auto [pr, ps] =
+      add_own_command<PredictOptions>(*sub, "predict", "Class (and value) of each recording");
+  add_input_file(*ps, "--model", pr->model, "Model file from `classify train`");
+  // Named as `--help` shows it, so that "RECORDINGS is required" says what is missing.
+  ps->add_option("RECORDINGS", pr->files, "Recordings (BioTac-style CSV files)")->required();
   ps->callback([pr, &action] { action = [pr] { return predict(pr->model, pr->files); }; });
 }
 

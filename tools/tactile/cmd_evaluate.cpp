@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "command.hpp"
+#include "own_options.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/atomic_write.hpp"
@@ -16,25 +17,20 @@
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
-void add_evaluate(CLI::App& app, Action& action) {
+void add_evaluate(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path sequence_dir;
     fs::path strain;
     std::optional<fs::path> csv_dir;
     bool per_frame = false;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "evaluate",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "evaluate",
       "Compare a strain movie (from `tactile capture` on a `tactile synth` folder) with the\n"
       "folder's exact ground truth: RMS error of each edge's relative length change (overall\n"
       "and by frame), landmark localisation error, tracked landmarks per frame, track lengths.");
-  sub->add_option("SEQ_DIR", opt->sequence_dir, "Folder written by `tactile synth`")
-      ->required()
-      ->check(CLI::ExistingDirectory);
-  sub->add_option("STRAIN", opt->strain, "Strain movie (HDF5) measured on that folder")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input_folder(*sub, "SEQ_DIR", opt->sequence_dir, "Folder written by `tactile synth`");
+  add_input_file(*sub, "STRAIN", opt->strain, "Strain movie (HDF5) measured on that folder");
   sub->add_option("--csv", opt->csv_dir,
                   "Write evaluation_frames.csv and evaluation_summary.csv into this folder");
   sub->add_flag("--per-frame", opt->per_frame, "Print the table for every frame pair");

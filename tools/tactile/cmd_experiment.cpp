@@ -13,6 +13,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "request_options.hpp"
 #include "tactile/experiments/cells.hpp"
 #include "tactile/experiments/experiment.hpp"
@@ -74,16 +75,15 @@ int print_status(const experiments::Plan& plan, const fs::path& out) {
 
 }  // namespace
 
-void add_experiment(CLI::App& app, Action& action) {
+void add_experiment(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     experiments::ExperimentRequest request;
     bool plan = false, merge = false, status = false, slurm = false, submit = false;
     std::vector<std::string> cells;
     experiments::SlurmOptions slurm_options;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "experiment",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "experiment",
       "Run a mapping experiment: every source x layout x method x parameter combination in\n"
       "EXP.json, in parallel, into one folder (movies, metrics.csv, plots, the configuration).\n"
       "The whole file is checked before any work starts. Schema: docs/formats.md;\n"

@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "request_options.hpp"
 #include "tactile/common/h5.hpp"
 #include "tactile/common/output_paths.hpp"
@@ -21,14 +22,13 @@
 namespace tactile::cli {
 namespace fs = std::filesystem;
 
-void add_export(CLI::App& app, Action& action) {
-  auto request = std::make_shared<movie::ExportRequest>();
-  CLI::App* sub = app.add_subcommand(
-      "export",
+void add_export(CLI::App& app, Action& action, const std::string& /*command_line*/) {
+  const auto [request, sub] = add_request_command<movie::ExportRequest>(
+      app, "export",
       "Write a tactile movie in formats other tools read: MPEG-I Haptics (.hjif, one Position\n"
       "channel per contactor) or a multichannel float WAV (one channel per contactor).\n"
-      "Mapping and what is lost: docs/formats.md.");
-  add_request_options(*sub, request, movie::export_options());
+      "Mapping and what is lost: docs/formats.md.",
+      movie::export_options());
   sub->callback([request, &action] {
     movie::check_request(*request, OptionSpelling::cli);
     action = [request] {
@@ -48,14 +48,11 @@ void add_import(CLI::App& app, Action& action, const std::string& command_line) 
     fs::path out;
     std::optional<std::string> layout;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "import",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "import",
       "Read an MPEG-I Haptics interchange file (.hjif) as a tactile movie: one Position\n"
       "perception whose channels target the contactors of a grid (docs/formats.md).");
-  sub->add_option("IN_HJIF", opt->in, "MPEG-I Haptics interchange file")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input_file(*sub, "IN_HJIF", opt->in, "MPEG-I Haptics interchange file");
   sub->add_option("--out", opt->out, "Tactile movie to write (HDF5)")->required();
   sub->add_option("--layout", opt->layout,
                   "Display layout: stress, stress2, latero or FILE.json (default: the layout the\n"

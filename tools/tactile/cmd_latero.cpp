@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "request_options.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/latero_emulator.hpp"
@@ -115,7 +116,7 @@ int print_latero_device(const std::string& address) {
   return 0;
 }
 
-void add_emulate(CLI::App& app, Action& action) {
+void add_emulate(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     bool latero = false;
     display::LateroEmulatorOptions emulator;
@@ -124,27 +125,22 @@ void add_emulate(CLI::App& app, Action& action) {
     bool window = false;
     display::LateroBladeMapping mapping;  // how --window turns blade bytes into deflections
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "emulate",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "emulate",
       "Run an emulated device on the network. --latero: answer the OpenLatero UDP protocol as a\n"
       "Latero controller does (replies, status words, buttons), on 127.0.0.1 unless --bind says\n"
       "otherwise; malformed datagrams are counted and dropped. Prints its counters when it stops\n"
       "(Ctrl-C, or after --seconds).");
   sub->add_flag("--latero", opt->latero, "Emulate a Latero (the only device emulated so far)")
       ->required();
-  sub->add_option("--port", opt->emulator.port, "UDP port (0: any free port, printed)")
-      ->check(within(0, 65535))
-      ->capture_default_str();
+  add_ranged(*sub, "--port", opt->emulator.port, "UDP port (0: any free port, printed)", 0, 65535);
   sub->add_option("--bind", opt->emulator.bind_address, "Local address to answer on")
       ->capture_default_str();
-  sub->add_option("--seconds", opt->seconds, "Stop after this long (0: until Ctrl-C)")
-      ->check(within(0.0, 604800.0))
-      ->capture_default_str();
-  sub->add_option("--drop-every", opt->emulator.drop_every_nth_reply,
-                  "Leave out every N-th reply (0: none), to test a client's loss accounting")
-      ->check(within<std::uint32_t>(0, 1000000))
-      ->capture_default_str();
+  add_ranged(*sub, "--seconds", opt->seconds, "Stop after this long (0: until Ctrl-C)", 0.0,
+             604800.0);
+  add_ranged(*sub, "--drop-every", opt->emulator.drop_every_nth_reply,
+             "Leave out every N-th reply (0: none), to test a client's loss accounting", 0,
+             1000000);
   sub->add_flag("--no-io-board", opt->no_io_board,
                 "Report no IO board (status 0), as a Latero with its IO board unplugged");
   sub->add_flag("--window", opt->window,
@@ -185,27 +181,22 @@ void add_emulate(CLI::App& app, Action& action) {
   });
 }
 
-void add_bench_latero(CLI::App& bench, Action& action) {
+void add_bench_latero(CLI::App& bench, Action& action, const std::string& /*command_line*/) {
   struct Options {
     double seconds = 10;
     // The layout's own rate: what a Latero plays at.
     double rate_hz = movie::latero_layout().max_rate_hz;
     std::uint32_t drop_every = 0;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = bench.add_subcommand(
-      "latero",
+  const auto [opt, sub] = add_own_command<Options>(
+      bench, "latero",
       "Play a movie on an emulated Latero over loopback UDP (127.0.0.1) and print the achieved\n"
       "rate, the send-time jitter, missed replies and the emulator's counters.");
-  sub->add_option("--seconds", opt->seconds, "Length of the movie")
-      ->check(within(0.1, 600.0))
-      ->capture_default_str();
-  sub->add_option("--rate-hz", opt->rate_hz, "Frame rate")
-      ->check(within(1.0, movie::latero_layout().max_rate_hz))
-      ->capture_default_str();
-  sub->add_option("--drop-every", opt->drop_every, "Emulator leaves out every N-th reply")
-      ->check(within<std::uint32_t>(0, 1000000))
-      ->capture_default_str();
+  add_ranged(*sub, "--seconds", opt->seconds, "Length of the movie", 0.1, 600.0);
+  add_ranged(*sub, "--rate-hz", opt->rate_hz, "Frame rate", 1.0,
+             movie::latero_layout().max_rate_hz);
+  add_ranged(*sub, "--drop-every", opt->drop_every, "Emulator leaves out every N-th reply", 0,
+             1000000);
   sub->callback([opt, &action] {
     action = [opt] {
       display::LateroEmulatorOptions e;

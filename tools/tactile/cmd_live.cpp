@@ -143,16 +143,9 @@ live::LiveSummary run_in_window(const live::ResolvedLive& session, display::Tran
 
 }  // namespace
 
-void add_live(CLI::App& app, Action& action) {
-  auto request = std::make_shared<live::LiveRequest>();
-  // The output is asked for by name (the emulated device or a Latero), so that a session never
-  // goes somewhere its user did not choose.
-  auto headless = std::make_shared<bool>(false);
-  auto window = std::make_shared<bool>(false);
-  auto screenshot = std::make_shared<fs::path>();
-  auto latero = std::make_shared<display::LateroPlayTarget>();
-  CLI::App* sub = app.add_subcommand(
-      "live",
+void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/) {
+  const auto [request, sub] = add_request_command<live::LiveRequest>(
+      app, "live",
       "A live session: frames from a camera (/dev/videoN), a stream (udp://, tcp://, rtsp://)\n"
       "or a video file or folder of frames played at its rate as a camera would deliver it,\n"
       "each processed as it arrives (no look-ahead): landmarks followed by alignment, the\n"
@@ -163,8 +156,14 @@ void add_live(CLI::App& app, Action& action) {
       "sent) p50/p99/max with the median of each stage. The display is the emulated device\n"
       "(--headless, or --window to watch it: the camera image with the strain of every\n"
       "tracked edge drawn over it beside the contactors) or a Latero (--latero HOST[:PORT],\n"
-      "with --layout latero); USB and hidapi are not yet outputs of a live session.");
-  add_request_options(*sub, request, live::live_options());
+      "with --layout latero); USB and hidapi are not yet outputs of a live session.",
+      live::live_options());
+  // The output is asked for by name (the emulated device or a Latero), so that a session never
+  // goes somewhere its user did not choose.
+  auto headless = std::make_shared<bool>(false);
+  auto window = std::make_shared<bool>(false);
+  auto screenshot = std::make_shared<fs::path>();
+  auto latero = std::make_shared<display::LateroPlayTarget>();
   CLI::Option* headless_flag =
       sub->add_flag("--headless", *headless, "Play into the emulated device, with no window");
   CLI::Option* window_flag = sub->add_flag(

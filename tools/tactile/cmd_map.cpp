@@ -24,15 +24,14 @@ namespace tactile::cli {
 namespace fs = std::filesystem;
 
 void add_map(CLI::App& app, Action& action, const std::string& command_line) {
-  auto request = std::make_shared<mapping::MapRequest>();
-  auto csv = std::make_shared<std::optional<fs::path>>();
-  auto out = std::make_shared<fs::path>();
-  CLI::App* sub = app.add_subcommand(
-      "map",
+  const auto [request, sub] = add_request_command<mapping::MapRequest>(
+      app, "map",
       "Map a strain movie (from `tactile capture`) onto a contactor layout: sample the strain\n"
       "at each contactor, turn it into deflections with the chosen method, resample to the\n"
-      "display rate, clamp and slew-limit as the firmware will.");
-  add_request_options(*sub, request, mapping::map_options());
+      "display rate, clamp and slew-limit as the firmware will.",
+      mapping::map_options());
+  auto csv = std::make_shared<std::optional<fs::path>>();
+  auto out = std::make_shared<fs::path>();
   sub->add_option("--out", *out, "Tactile movie to write (HDF5)")->required();
   sub->add_option("--csv", *csv, "Also export the movie as CSV");
   sub->callback([request, out, csv, &action, &command_line] {

@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "mode_option.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "progress.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/csv.hpp"
@@ -89,7 +90,7 @@ int analyse_recordings(const std::vector<std::filesystem::path>& files,
 
 }  // namespace
 
-void add_perceive(CLI::App& app, Action& action) {
+void add_perceive(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     std::filesystem::path out_dir;
     int trials = 20;
@@ -103,9 +104,8 @@ void add_perceive(CLI::App& app, Action& action) {
     std::vector<double> footprints_mm;
     perception::ElectrodeField electrode_field = perception::ElectrodeField::gaussian;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "perceive",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "perceive",
       "Perception evaluation of paper 2 (Ponce Wong et al.): 48 features x 4 exploratory\n"
       "procedures on the simulated fingertip sensor, 76 inputs, SVC for the order of curvature\n"
       "then curvature-specific SVR for the signed footprint (90/10 split per feature).\n"
@@ -123,24 +123,18 @@ void add_perceive(CLI::App& app, Action& action) {
                                 "Repeat Table 2 on this many data sets, seeds SEED, SEED+1, ...; "
                                 "the other files are those of the first")
                     ->check(within(1, 1000));
-  sub->add_option("--threads", opt->threads,
-                  "Worker threads simulating and analysing trials (0: all cores); the results do "
-                  "not depend on it")
-      ->check(within(0, 256))
-      ->capture_default_str();
-  sub->add_option("--position-variation", opt->variation.position,
-                  "Scale of the trial-to-trial spread of the feature's position (+-0.1 mm) and of "
-                  "the contact angle (+-0.1 degree); 0 = none")
-      ->check(within(0.0, 100.0))
-      ->capture_default_str();
-  sub->add_option("--depth-variation", opt->variation.depth,
-                  "Scale of the spread of the commanded depth (3 %); 0 = none")
-      ->check(within(0.0, 100.0))
-      ->capture_default_str();
-  sub->add_option("--speed-variation", opt->variation.speed,
-                  "Scale of the spread of the speed (0.5 %); 0 = none")
-      ->check(within(0.0, 100.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--threads", opt->threads,
+             "Worker threads simulating and analysing trials (0: all cores); the results do "
+             "not depend on it",
+             0, 256);
+  add_ranged(*sub, "--position-variation", opt->variation.position,
+             "Scale of the trial-to-trial spread of the feature's position (+-0.1 mm) and of "
+             "the contact angle (+-0.1 degree); 0 = none",
+             0.0, 100.0);
+  add_ranged(*sub, "--depth-variation", opt->variation.depth,
+             "Scale of the spread of the commanded depth (3 %); 0 = none", 0.0, 100.0);
+  add_ranged(*sub, "--speed-variation", opt->variation.speed,
+             "Scale of the spread of the speed (0.5 %); 0 = none", 0.0, 100.0);
   add_mode_option(*sub, "--electrode-field", opt->electrode_field, perception::kElectrodeFieldNames,
                   "How an electrode weighs the skin: gaussian (its face and a 0.4 mm margin) or "
                   "sheet (the fluid as a thin conducting sheet: 1/r^2 out to 3 mm, smooth in the "

@@ -8,6 +8,7 @@
 #include "command.hpp"
 #include "latero_cli.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "request_options.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/common/h5.hpp"
@@ -51,14 +52,13 @@ movie::TactileMovie read_movie_to_play(const fs::path& path) {
 
 }  // namespace
 
-void add_play(CLI::App& app, Action& action) {
-  auto request = std::make_shared<display::PlayRequest>();
-  CLI::App* sub = app.add_subcommand(
-      "play",
+void add_play(CLI::App& app, Action& action, const std::string& /*command_line*/) {
+  const auto [request, sub] = add_request_command<display::PlayRequest>(
+      app, "play",
       "Play a tactile movie: on an attached display; with none, in the emulator window; with no\n"
       "screen either, headless into the emulated device (firmware limits applied), writing a\n"
-      "preview image strip and printing a summary.");
-  add_request_options(*sub, request, display::play_options());
+      "preview image strip and printing a summary.",
+      display::play_options());
   sub->callback([request, &action] {
     action = [request] {
       // Before reading: fail fast on options that do not go together.
@@ -87,7 +87,7 @@ void add_play(CLI::App& app, Action& action) {
   });
 }
 
-void add_view(CLI::App& app, Action& action) {
+void add_view(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path movie;
     fs::path strain;
@@ -95,18 +95,15 @@ void add_view(CLI::App& app, Action& action) {
     fs::path screenshot;
     display::ViewerOptions viewer;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "view",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "view",
       "Open the emulator window: contactors drawn at their rest positions, displaced by their\n"
       "deflection (magnified) and coloured by the stretch between neighbours, as the emulated\n"
       "device outputs them, with the source strain movie's edges beside them (black compressed\n"
       "... white stretched) when the movie's provenance names one that exists, or --strain.\n"
       "Keys: space play/pause, arrows step, up/down speed, L loop, Esc quit; drag the bottom\n"
       "bar to seek.");
-  sub->add_option("MOVIE_H5", opt->movie, "Tactile movie (HDF5)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input_file(*sub, "MOVIE_H5", opt->movie, "Tactile movie (HDF5)");
   CLI::Option* strain =
       sub->add_option("--strain", opt->strain, "Strain movie to show beside the array (HDF5)")
           ->check(CLI::ExistingFile);
@@ -175,7 +172,7 @@ void add_view(CLI::App& app, Action& action) {
   });
 }
 
-void add_devices(CLI::App& app, Action& action) {
+void add_devices(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   auto latero = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand(
       "devices", "List attached tactile displays (USB vendor/product 1209:0001) and their state.");
@@ -201,12 +198,10 @@ void add_devices(CLI::App& app, Action& action) {
   });
 }
 
-void add_info(CLI::App& app, Action& action) {
+void add_info(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   auto file = std::make_shared<fs::path>();
   CLI::App* sub = app.add_subcommand("info", "Describe a strain movie or tactile movie file.");
-  sub->add_option("FILE_H5", *file, "Strain or tactile movie (HDF5)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input_file(*sub, "FILE_H5", *file, "Strain or tactile movie (HDF5)");
   sub->callback([file, &action] {
     action = [file] {
       const std::string kind = [&] {

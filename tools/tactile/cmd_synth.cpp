@@ -15,16 +15,15 @@
 namespace tactile::cli {
 
 void add_synth(CLI::App& app, Action& action, const std::string& command_line) {
-  auto request = std::make_shared<capture::SynthRequest>();
-  CLI::App* sub = app.add_subcommand(
-      "synth",
+  const auto [request, sub] = add_request_command<capture::SynthRequest>(
+      app, "synth",
       "Render a synthetic prism (FTIR) fingerprint sequence with exact ground truth.\n"
       "Writes frame_NNN.png, calibration/dot_grid.png (0.5 mm grid through the same camera),\n"
       "landmarks.csv (true position of every landmark in every frame) and scene.json.\n"
       "With --from-print IMAGE: a real print moved by a known smooth warp (slide, rotation and a\n"
       "strain pattern) and filmed with blur, noise and a brightness drift, so that `tactile\n"
-      "evaluate` scores a capture of real skin against the exact warp.");
-  add_request_options(*sub, request, capture::synth_options());
+      "evaluate` scores a capture of real skin against the exact warp.",
+      capture::synth_options());
   // The old spelling of --rate-hz, hidden from --help and kept for scripts written against it
   // (a hidden option has no name in CLI11's messages, so its rules are checked below).
   const auto* rate_row = find_option(capture::synth_options(), "rate_hz");

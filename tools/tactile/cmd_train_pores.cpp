@@ -13,6 +13,7 @@
 
 #include "command.hpp"
 #include "number_checks.hpp"
+#include "own_options.hpp"
 #include "tactile/capture/pore_model_io.hpp"
 #include "tactile/capture/pore_score.hpp"
 #include "tactile/capture/pore_training.hpp"
@@ -51,7 +52,7 @@ capture::PoreScore print_score_table(const std::string& title,
 
 }  // namespace
 
-void add_train_pores(CLI::App& app, Action& action) {
+void add_train_pores(CLI::App& app, Action& action, const std::string& /*command_line*/) {
   struct Options {
     fs::path prints_dir;
     double px_per_mm = 0;
@@ -60,9 +61,8 @@ void add_train_pores(CLI::App& app, Action& action) {
     double l2 = capture::PoreTrainingSettings{}.l2;
     bool held_out = false;
   };
-  auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(
-      "train-pores",
+  const auto [opt, sub] = add_own_command<Options>(
+      app, "train-pores",
       "Train the ridge-blob pore model (--pores ridge-blob) on your own hand-marked prints and\n"
       "write it as a model file for --pore-model.\n"
       "The --prints folder holds pairs image_NN.<jpg|png|bmp|tif> + pores_NN.txt (the PolyU\n"
@@ -85,13 +85,10 @@ void add_train_pores(CLI::App& app, Action& action) {
   sub->add_option("--out", opt->out, "Model file to write (JSON)")
       ->type_name("MODEL.json")
       ->required();
-  sub->add_option("--label-radius-mm", opt->label_radius_mm,
-                  "A candidate this close to a marked pore counts as a pore")
-      ->check(within(0.01, 1.0))
-      ->capture_default_str();
-  sub->add_option("--l2", opt->l2, "L2 penalty on every coefficient but the intercept")
-      ->check(within(0.0, 1000000.0))
-      ->capture_default_str();
+  add_ranged(*sub, "--label-radius-mm", opt->label_radius_mm,
+             "A candidate this close to a marked pore counts as a pore", 0.01, 1.0);
+  add_ranged(*sub, "--l2", opt->l2, "L2 penalty on every coefficient but the intercept", 0.0,
+             1000000.0);
   sub->add_flag("--held-out", opt->held_out,
                 "Also score each print with a model trained on the others (leave one print out)");
   sub->callback([opt, &action] {

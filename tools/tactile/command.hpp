@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <functional>
 #include <string>
 
@@ -13,33 +14,24 @@ namespace tactile::cli {
 
 using Action = std::function<int()>;
 
-void add_demo(CLI::App& app, Action& action, const std::string& command_line);
-void add_synth(CLI::App& app, Action& action, const std::string& command_line);
-void add_calibrate(CLI::App& app, Action& action);
-void add_features(CLI::App& app, Action& action);
-void add_capture(CLI::App& app, Action& action, const std::string& command_line);
-void add_train_pores(CLI::App& app, Action& action);
-void add_evaluate(CLI::App& app, Action& action);
-void add_map(CLI::App& app, Action& action, const std::string& command_line);
-void add_experiment(CLI::App& app, Action& action);
-void add_perceive(CLI::App& app, Action& action);
-void add_classify(CLI::App& app, Action& action);
-void add_play(CLI::App& app, Action& action);
-void add_view(CLI::App& app, Action& action);
-void add_author(CLI::App& app, Action& action);
-void add_devices(CLI::App& app, Action& action);
-void add_info(CLI::App& app, Action& action);
-void add_export(CLI::App& app, Action& action);
-void add_import(CLI::App& app, Action& action, const std::string& command_line);
-void add_emulate(CLI::App& app, Action& action);
-void add_live(CLI::App& app, Action& action);
-void add_bench(CLI::App& app, Action& action);
-void add_bench_map(CLI::App& bench, Action& action);
-void add_bench_capture(CLI::App& bench, Action& action);
-void add_bench_prints(CLI::App& bench, Action& action);
-void add_bench_stream(CLI::App& bench, Action& action);
-void add_bench_perceive(CLI::App& bench, Action& action);
-void add_bench_latero(CLI::App& bench, Action& action);
-void add_bench_live(CLI::App& bench, Action& action);
+// Every command registers alike; `command_line` is the command line as typed, for the provenance
+// of the files a command writes (a command that writes none leaves it unused).
+using AddCommand = void(CLI::App& parent, Action& action, const std::string& command_line);
+
+AddCommand add_demo, add_synth, add_calibrate, add_features, add_capture, add_train_pores,
+    add_evaluate, add_map, add_experiment, add_perceive, add_classify, add_play, add_view,
+    add_author, add_devices, add_info, add_export, add_import, add_emulate, add_live, add_bench;
+AddCommand add_bench_map, add_bench_capture, add_bench_prints, add_bench_stream, add_bench_perceive,
+    add_bench_latero, add_bench_live;
+
+// The commands in the order `tactile --help` lists them.
+inline constexpr std::array<AddCommand*, 21> kCommands = {
+    &add_demo,     &add_synth,  &add_calibrate,  &add_features, &add_capture,  &add_train_pores,
+    &add_evaluate, &add_map,    &add_experiment, &add_perceive, &add_classify, &add_play,
+    &add_view,     &add_author, &add_devices,    &add_info,     &add_export,   &add_import,
+    &add_emulate,  &add_live,   &add_bench};
+inline constexpr std::array<AddCommand*, 7> kBenchmarks = {
+    &add_bench_map,      &add_bench_capture, &add_bench_prints, &add_bench_stream,
+    &add_bench_perceive, &add_bench_latero,  &add_bench_live};
 
 }  // namespace tactile::cli

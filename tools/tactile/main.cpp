@@ -65,27 +65,7 @@ int main(int argc, char** argv) {
 
   tactile::cli::Action action;
   const std::string command_line = tactile::command_line_of(argc, argv);
-  tactile::cli::add_demo(app, action, command_line);
-  tactile::cli::add_synth(app, action, command_line);
-  tactile::cli::add_calibrate(app, action);
-  tactile::cli::add_features(app, action);
-  tactile::cli::add_capture(app, action, command_line);
-  tactile::cli::add_train_pores(app, action);
-  tactile::cli::add_evaluate(app, action);
-  tactile::cli::add_map(app, action, command_line);
-  tactile::cli::add_experiment(app, action);
-  tactile::cli::add_perceive(app, action);
-  tactile::cli::add_classify(app, action);
-  tactile::cli::add_play(app, action);
-  tactile::cli::add_view(app, action);
-  tactile::cli::add_author(app, action);
-  tactile::cli::add_devices(app, action);
-  tactile::cli::add_info(app, action);
-  tactile::cli::add_export(app, action);
-  tactile::cli::add_import(app, action, command_line);
-  tactile::cli::add_emulate(app, action);
-  tactile::cli::add_live(app, action);
-  tactile::cli::add_bench(app, action);
+  for (tactile::cli::AddCommand* add : tactile::cli::kCommands) add(app, action, command_line);
   tactile::cli::refuse_empty_values(app);
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.

@@ -13,6 +13,7 @@
 
 #include <fmt/ranges.h>
 
+#include "own_options.hpp"
 #include "tactile/common/option_table.hpp"
 
 namespace tactile::cli {
@@ -90,6 +91,29 @@ CLI::Validator row_check(const OptionRow<R>& row) {
       validator_text(row));
 }
 
+// What `--help` shows for the value: INT, FLOAT, NAME, PATH, or the row's own name for text.
+template <typename R>
+std::string type_name(const OptionRow<R>& row) {
+  switch (row.kind) {
+    case OptionKind::integer:
+    case OptionKind::seed:
+      return "INT";
+    case OptionKind::number:
+      return "FLOAT";
+    case OptionKind::choice:
+      return "NAME";
+    case OptionKind::choice_list:
+      return "NAMES";
+    case OptionKind::path:
+      return "PATH";
+    case OptionKind::text:
+      return std::string(row.metavar);
+    case OptionKind::flag:
+      return "BOOL";
+  }
+  return {};
+}
+
 // Adds every row of `table` to `sub`, writing into `*request`.
 template <typename R>
 void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
@@ -120,31 +144,17 @@ void add_request_options(CLI::App& sub, const std::shared_ptr<R>& request,
     } else if (row.must_exist) {
       option->check(CLI::ExistingFile);
     }
-    switch (row.kind) {
-      case OptionKind::integer:
-      case OptionKind::seed:
-        option->type_name("INT");
-        break;
-      case OptionKind::number:
-        option->type_name("FLOAT");
-        break;
-      case OptionKind::choice:
-        option->type_name("NAME");
-        break;
-      case OptionKind::choice_list:
-        option->type_name("NAMES");
-        break;
-      case OptionKind::path:
-        option->type_name("PATH");
-        break;
-      case OptionKind::text:
-        option->type_name(std::string(row.metavar));
-        break;
-      case OptionKind::flag:
-        option->type_name("BOOL");
-        break;
-    }
+    option->type_name(type_name(row));
   }
+}
+
+// A subcommand whose options are a request's table, and the request its callbacks share.
+template <typename R>
+OwnCommand<R> add_request_command(CLI::App& parent, const std::string& name,
+                                  const std::string& help, const std::vector<OptionRow<R>>& table) {
+  OwnCommand<R> command = add_own_command<R>(parent, name, help);
+  add_request_options(*command.sub, command.opt, table);
+  return command;
 }
 
 }  // namespace tactile::cli
