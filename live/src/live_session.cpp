@@ -306,12 +306,14 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   std::vector<SourceFrame> dropped;
   std::mutex dropped_mutex;
   std::int64_t frames_in = 0;
+  std::int64_t frames_driver_stamped = 0;
   std::thread acquisition([&] {
     try {
       SourceFrame frame;
       while (!stop.load() && !halt.load() && source->next(frame)) {
         if (end_at && frame.available > *end_at) break;
         ++frames_in;
+        if (frame.driver_stamped) ++frames_driver_stamped;
         callbacks.received(frame.index,
                            std::chrono::duration<double>(frame.available - start).count(),
                            frame.image);
@@ -531,6 +533,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   if (acquisition_failure) std::rethrow_exception(acquisition_failure);
 
   summary.frames_in = frames_in;
+  summary.frames_driver_stamped = frames_driver_stamped;
   summary.frames_dropped = queue.dropped() + left_waiting;
   summary.device_frames_sent = frames_sent;
   std::vector<double> latency, wait, track, strain, map, send, points;
@@ -572,9 +575,14 @@ std::string format_summary(const LiveSummary& s) {
                      s.frames_in, s.frames_processed, s.frames_dropped, s.width_px, s.height_px,
                      s.camera_rate_hz);
   out += fmt::format(
-      "latency     p50 {:.2f} ms, p99 {:.2f} ms, max {:.2f} ms (frame available "
+      "latency     p50 {:.2f} ms, p99 {:.2f} ms, max {:.2f} ms (frame available{} "
       "-> its first device frame sent)\n",
-      s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms);
+      s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms,
+      s.frames_driver_stamped == 0 ? std::string()
+      : s.frames_driver_stamped == s.frames_in
+          ? std::string(": the driver's timestamp")
+          : fmt::format(": the driver's timestamp for {} of {} frames, else arrival",
+                        s.frames_driver_stamped, s.frames_in));
   out += fmt::format(
       "stages      medians: queue {:.2f} ms, tracking {:.2f} ms, strain {:.2f} ms, "
       "mapping {:.2f} ms, to the device {:.2f} ms\n",

@@ -5,7 +5,10 @@
 #include <stdlib.h>
 #include <opencv2/imgproc.hpp>
 
+#include <chrono>
+#include <cmath>
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <thread>
 
 #include "tactile/capture/capture_run.hpp"
@@ -89,8 +92,9 @@ class InMemory final : public Paced {
 
 class Device final : public FrameSource {
  public:
-  Device(const std::string& source, std::optional<double> rate_hz) : source_(source) {
-    const bool camera = source.rfind("/dev/", 0) == 0;
+  Device(const std::string& source, std::optional<double> rate_hz)
+      : source_(source), camera_(source.rfind("/dev/", 0) == 0) {
+    const bool camera = camera_;
     bool opened = false;
     if (camera) {
       opened = capture_.open(source, cv::CAP_V4L2);
@@ -132,6 +136,13 @@ class Device final : public FrameSource {
       return false;  // a stream's end, or nothing from it for kStreamReadTimeoutMs
     }
     out.available = Clock::now();
+    out.driver_stamped = false;
+    if (camera_) {
+      if (const auto stamped = driver_time(capture_.get(cv::CAP_PROP_POS_MSEC), out.available)) {
+        out.available = *stamped;
+        out.driver_stamped = true;
+      }
+    }
     cv::Mat grey;
     if (frame.channels() == 1) {
       grey = frame;
@@ -160,6 +171,7 @@ class Device final : public FrameSource {
 
  private:
   std::string source_;
+  bool camera_ = false;
   cv::VideoCapture capture_;
   std::optional<double> asked_hz_;
   double rate_hz_ = 0;
@@ -178,6 +190,14 @@ std::unique_ptr<FrameSource> open_rehearsal(const std::string& source,
 std::unique_ptr<FrameSource> open_in_memory(const std::vector<capture::GrayImage>& frames,
                                             double rate_hz, Clock::time_point start) {
   return std::make_unique<InMemory>(frames, rate_hz, start);
+}
+
+std::optional<Clock::time_point> driver_time(double pos_msec, Clock::time_point arrival) {
+  if (!(pos_msec > 0) || !std::isfinite(pos_msec)) return std::nullopt;
+  const Clock::time_point stamped{std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double, std::milli>(pos_msec))};
+  if (stamped > arrival || arrival - stamped > std::chrono::seconds(1)) return std::nullopt;
+  return stamped;
 }
 
 std::unique_ptr<FrameSource> open_device(const std::string& source, std::optional<double> rate_hz) {

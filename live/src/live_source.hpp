@@ -11,16 +11,18 @@
 #include <vector>
 
 #include "tactile/capture/image.hpp"
+#include "tactile/live/driver_time.hpp"
 #include "tactile/live/live_session.hpp"
 
 namespace tactile::live {
 
-using Clock = std::chrono::steady_clock;
-
 struct SourceFrame {
   std::int64_t index = 0;
   capture::GrayImage image;
-  Clock::time_point available;  // scheduled time (rehearsal) or arrival (camera, stream)
+  // Scheduled time (rehearsal); a camera's driver timestamp where it gives a plausible one, else
+  // arrival (camera, stream).
+  Clock::time_point available;
+  bool driver_stamped = false;  // `available` is the driver's timestamp
 };
 
 class FrameSource {

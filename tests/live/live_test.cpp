@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -15,6 +17,7 @@
 #include "../common/temp_dir.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/live/bench_live.hpp"
+#include "tactile/live/driver_time.hpp"
 #include "tactile/live/frame_queue.hpp"
 #include "tactile/live/live_request.hpp"
 #include "tactile/live/live_session.hpp"
@@ -204,3 +207,29 @@ TEST(LiveBenchReport, ChartHasASeriesPerFrameSizeAndThePrintTarget) {
 }
 
 }  // namespace
+
+// A V4L2 driver's buffer timestamp stands for the frame's time when it can be: on the arrival's
+// clock, before the arrival and less than a second before it. Zero (no timestamp), a time after
+// the arrival or far before it (another clock: the realtime clock is decades ahead of the
+// monotonic one) leave the arrival.
+TEST(DriverTime, TakesAPlausibleDriverTimestampAndRefusesTheRest) {
+  using tactile::live::Clock;
+  using tactile::live::driver_time;
+  const Clock::time_point arrival{std::chrono::seconds(5000)};
+  const auto at_ms = [](double ms) {
+    return Clock::time_point{
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(ms))};
+  };
+  const auto stamped = driver_time(4999987.5, arrival);  // 12.5 ms before arrival
+  ASSERT_TRUE(stamped.has_value());
+  const double before_ms = std::chrono::duration<double, std::milli>(arrival - *stamped).count();
+  EXPECT_NEAR(before_ms, 12.5, 1e-3);
+  EXPECT_EQ(*stamped, at_ms(4999987.5));
+  EXPECT_FALSE(driver_time(0, arrival).has_value());
+  EXPECT_FALSE(driver_time(-3, arrival).has_value());
+  EXPECT_FALSE(driver_time(std::nan(""), arrival).has_value());
+  EXPECT_FALSE(driver_time(5000000.5, arrival).has_value());  // after the arrival
+  EXPECT_FALSE(driver_time(4998998.0, arrival).has_value());  // 1.002 s before it
+  EXPECT_FALSE(driver_time(1.8e12, arrival).has_value());     // the realtime clock, in ms
+  EXPECT_TRUE(driver_time(4999000.0, arrival).has_value());   // exactly one second before
+}

@@ -12,8 +12,9 @@
 // `fifo_target_frames` deep.
 //
 // Latency of a camera frame: from the moment it was available (a file's frame: its scheduled
-// time; a camera or stream: its arrival) to the first device frame carrying it leaving the host
-// (send_frame returning).
+// time; a camera: the driver's timestamp of its buffer where plausible, else its arrival; a
+// stream: its arrival) to the first device frame carrying it leaving the host (send_frame
+// returning).
 
 #include <atomic>
 #include <cstdint>
@@ -55,6 +56,9 @@ struct LiveSummary {
   std::int64_t frames_in = 0;
   std::int64_t frames_processed = 0;
   std::int64_t frames_dropped = 0;
+  // Of frames_in, those whose time came from the camera driver's timestamp (the others: arrival,
+  // or a rehearsal's schedule).
+  std::int64_t frames_driver_stamped = 0;
   std::int64_t device_frames_sent = 0;
   double latency_p50_ms = 0, latency_p99_ms = 0, latency_max_ms = 0;
   // Medians of each stage over the processed frames.
