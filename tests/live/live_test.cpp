@@ -2,12 +2,15 @@
 // of waiting, the request built from the capture and map requests' rows, and a session on a
 // thread of its own.
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -136,6 +139,38 @@ TEST(SessionThread, WhatTheSessionThrowsComesBackFromResultAfterOnEnd) {
   EXPECT_TRUE(worker.done());
   EXPECT_EQ(ended.load(), 1);
   EXPECT_FALSE(stop.load());  // it ended by itself
+}
+
+// A SessionThread left while its session runs (its owner leaving on an exception) stops the
+// session itself: `stop` set, on_end run, and the device ramped to rest before it returns.
+TEST(SessionThread, LeftWhileRunningStopsTheSessionAndLeavesTheDeviceAtRest) {
+  const tactile::test::TempDir dir("live");
+  // 20 frames of a real print at 5 Hz: a four-second session.
+  const std::filesystem::path print =
+      std::filesystem::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores" / "image_12.jpg";
+  for (int f = 0; f < 20; ++f) {
+    std::filesystem::copy_file(print, dir.path() / fmt::format("frame_{:03d}.jpg", f));
+  }
+  auto request = request_for(dir.path());
+  request.capture.rate_hz = 5;
+  const auto session = tactile::live::resolve(request, OptionSpelling::cli);
+  auto options = tactile::live::emulated_display_options(session.layout);
+  options.record_outputs = true;
+  tactile::display::EmulatedDevice device(options);
+  std::atomic<bool> stop{false};
+  std::atomic<int> ended{0};
+  {
+    tactile::live::SessionThread worker(session, device, stop, {}, [&] { ++ended; });
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    ASSERT_FALSE(worker.done()) << "the session ended before it was left";
+  }
+  EXPECT_TRUE(stop.load());
+  EXPECT_EQ(ended.load(), 1);
+  const auto played = device.recording();
+  ASSERT_GT(played.frame_count, 0);
+  const auto n = static_cast<std::size_t>(played.layout.contactor_count());
+  const auto last = played.deflection_um.end() - static_cast<std::ptrdiff_t>(n);
+  EXPECT_TRUE(std::all_of(last, played.deflection_um.end(), [](float d) { return d == 0; }));
 }
 
 tactile::live::LiveBenchRow bench_row(int width, int height, double rate_hz, double p99_ms,
