@@ -240,6 +240,9 @@ check "bad-movie-file" err -m movie -- export "$STRAIN" --wav "$W/x.wav"
 # Attributes of a movie set to nonsense.
 for attr in rate_hz layout_pitch_x_mm layout_deflection_max_um layout_max_rate_hz layout_contactor_width_mm; do
   for v in nan inf -inf 0 -5 1e308 1e-300; do
+    # A maximum of 0 (or 1e-300) with the minimum at -50 um is a one-sided range that holds rest:
+    # a display deflecting one way only, legal (tests/movie/movie_io_test.cpp), not damage.
+    [ $attr = layout_deflection_max_um ] && { [ $v = 0 ] || [ $v = 1e-300 ]; } && continue
     cp "$MOVIE" "$W/t.h5"
     $H5ATTR "$W/t.h5" $attr $v
     NOTE="$attr=$v" check "tampered-movie" fail -m "$attr" -m t.h5 -- info "$W/t.h5"
