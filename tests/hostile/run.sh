@@ -146,10 +146,10 @@ sigcase() {
   local before
   before=$(sum_of "$keepf")
   # A terminal's Ctrl-C reaches a foreground process whose SIGINT is not ignored; a background
-  # job of a script starts with SIGINT ignored, so reset it before exec.
-  (cd "$W" && exec $PY -c 'import os,signal,sys
-signal.signal(signal.SIGINT, signal.SIG_DFL)
-os.execv(sys.argv[1], sys.argv[1:])' "$B" "$@" >"$W/sig.txt" 2>&1 </dev/null) &
+  # job of a script starts with SIGINT ignored, so reset it before exec. Not with a Python
+  # wrapper: a SIGINT early enough reached Python itself, whose KeyboardInterrupt exited 1 before
+  # `tactile` ran; env installs no handler of its own.
+  (cd "$W" && exec env --default-signal=INT "$B" "$@" >"$W/sig.txt" 2>&1 </dev/null) &
   local pid=$!
   sleep "$delay"
   kill -"$sig" $pid 2>/dev/null
@@ -1024,9 +1024,7 @@ if [[ signal-latero =~ $FILTER ]]; then
   sleep 0.8
   port=$(grep -Eo '127\.0\.0\.1:[0-9]+' "$W/emu2.txt" | head -1 | cut -d: -f2)
   for d in 0.3 1.0; do
-    (exec $PY -c 'import os,signal,sys
-signal.signal(signal.SIGINT, signal.SIG_DFL)
-os.execv(sys.argv[1], sys.argv[1:])' "$B" play "$LATERO_MOVIE" --loops 50 --latero "127.0.0.1:$port" >"$W/pl.txt" 2>&1) &
+    (exec env --default-signal=INT "$B" play "$LATERO_MOVIE" --loops 50 --latero "127.0.0.1:$port" >"$W/pl.txt" 2>&1) &
     ppid=$!
     sleep $d
     kill -INT $ppid
