@@ -421,7 +421,10 @@ check "bad-video" fail -m v.mp4 -n "$W/s.h5" -- capture "$W/img/v.mp4" --calib "
 head -c 50000 /dev/urandom >"$W/img/r.avi"
 check "bad-video" fail -m r.avi -n "$W/s.h5" -- capture "$W/img/r.avi" --calib "$CALIB" --out "$W/s.h5"
 check "bad-capture" fail -m frame -n "$W/s.h5" -- capture "$FRAMES" --calib "$CALIB" --out "$W/s.h5" --start 39
-check "bad-capture" fail -m start -n "$W/s.h5" -- capture "$FRAMES" --calib "$CALIB" --out "$W/s.h5" --start 500
+# A frame index past the input's end is a usage error naming the option (tools/tactile/main.cpp,
+# RequestError), as `view --at` past the movie's end; a --start inside it that leaves too few
+# frames, or a --span longer than the tracks, is work that measured nothing: exit 1.
+check "bad-capture" usage -m start -n "$W/s.h5" -- capture "$FRAMES" --calib "$CALIB" --out "$W/s.h5" --start 500
 check "bad-capture" fail -m span -n "$W/s.h5" -- capture "$FRAMES" --calib "$CALIB" --out "$W/s.h5" --span 100
 check "bad-capture" err -m pore -n "$W/s.h5" -- capture "$FRAMES" --calib "$CALIB" --out "$W/s.h5" --pores ridge-blob --pore-model "$F/model.json"
 # Stale frames of a longer earlier synth run left in the folder capture reads.
