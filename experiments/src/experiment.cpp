@@ -229,6 +229,15 @@ ParameterGrid parameter_grid(const Context& cx, const json& j) {
     grid = std::move(next);
     names = std::move(next_names);
   }
+  // Only accumulated strain has a reference frame: with no such run, the value was ignored
+  // and an experiment said to vary it ran the same mapping.
+  if (j.contains("reference_frame") &&
+      std::none_of(grid.begin(), grid.end(),
+                   [](const MappingParams& p) { return p.strain == StrainMode::accumulated; })) {
+    cx.fail(
+        "parameters.reference_frame is used only by strain 'accumulated', and no run has it "
+        "(add \"strain\": [\"accumulated\"] to parameters, or remove reference_frame)");
+  }
   return {std::move(grid), std::move(names), std::move(varying)};
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
 
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
@@ -110,6 +111,53 @@ TEST(Cli, NonImageIsAClearError) {
   const auto r = run_tactile("features " + (d / "finger.png").string() + " --px-per-mm 47");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("finger.png"));
+}
+
+namespace {
+
+// A 24-bit BMP of `w` x `h` mid-grey pixels, written by hand (no image library in these tests).
+void write_grey_bmp(const std::filesystem::path& path, int w, int h) {
+  const int row = (3 * w + 3) / 4 * 4;
+  const int size = 54 + row * h;
+  std::string b(static_cast<std::size_t>(size), '\0');
+  const auto put = [&b](int at, int value, int bytes) {
+    for (int i = 0; i < bytes; ++i)
+      b[static_cast<std::size_t>(at + i)] = static_cast<char>(value >> (8 * i));
+  };
+  b[0] = 'B';
+  b[1] = 'M';
+  put(2, size, 4);
+  put(10, 54, 4);
+  put(14, 40, 4);
+  put(18, w, 4);
+  put(22, h, 4);
+  put(26, 1, 2);
+  put(28, 24, 2);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < 3 * w; ++x) b[static_cast<std::size_t>(54 + y * row + x)] = '\x80';
+  }
+  std::ofstream(path, std::ios::binary) << b;
+}
+
+}  // namespace
+
+// An image of a pixel or a few holds no ridge: reporting "0 pores" in it would read as a
+// measurement, so it is refused naming the file and its size, like any unusable image.
+TEST(Cli, ImageTooSmallForAFingerprintIsRefused) {
+  const tactile::test::TempDir d_tmp("tiny");
+  const std::filesystem::path& d = d_tmp.path();
+  write_grey_bmp(d / "one.bmp", 1, 1);
+  write_grey_bmp(d / "narrow.bmp", 15, 40);
+  write_grey_bmp(d / "enough.bmp", 16, 16);
+  const auto one = run_tactile("features " + (d / "one.bmp").string() + " --px-per-mm 47");
+  EXPECT_EQ(one.exit_code, 1) << one.output;
+  EXPECT_THAT(one.output, HasSubstr((d / "one.bmp").string() +
+                                    ": the image is 1x1 px, too small to hold a fingerprint"));
+  const auto narrow = run_tactile("features " + (d / "narrow.bmp").string() + " --px-per-mm 47");
+  EXPECT_EQ(narrow.exit_code, 1) << narrow.output;
+  EXPECT_THAT(narrow.output, HasSubstr("15x40 px"));
+  const auto enough = run_tactile("features " + (d / "enough.bmp").string() + " --px-per-mm 47");
+  EXPECT_EQ(enough.exit_code, 0) << enough.output;
 }
 
 TEST(Cli, BadCalibrationFileIsNamed) {

@@ -419,6 +419,29 @@ TEST(StopCli, SignalMidHeadlessPlayEndsTheFirmwareOutputsAtRest) {
   }
 }
 
+// A signal while the movie is still being read (a long one takes about a second) stops the
+// play there, saying so and that nothing reached a display, instead of ending the process by
+// the default action with nothing printed.
+TEST(StopCli, SignalWhileReadingTheMovieSaysNothingWasSent) {
+  const tactile::test::TempDir d_tmp("reading");
+  const fs::path& d = d_tmp.path();
+  const fs::path movie = write_movie(d, tactile::movie::latero_layout(), 750, 150000);  // 200 s
+  tactile::test::Started play(
+      {"play", movie.string(), "--headless", "--preview", (d / "preview.png").string()},
+      d / "play.log");
+  ASSERT_TRUE(play.wait_until_watching(SIGINT, 30)) << text_of(d / "play.log");
+  play.signal(SIGINT);
+  const auto ended = play.wait(30);
+  const std::string out = text_of(d / "play.log");
+  ASSERT_TRUE(ended.ended) << out;
+  EXPECT_EQ(ended.killed_by, 0) << out;
+  EXPECT_EQ(ended.exit_code, 130) << out;
+  EXPECT_THAT(out, HasSubstr("play: stopped by SIGINT while reading " + movie.string() +
+                             ": nothing was sent to any display"));
+  EXPECT_THAT(out, ::testing::Not(HasSubstr("frames played")));
+  EXPECT_FALSE(fs::exists(d / "preview.png"));
+}
+
 // A live session played on the Latero: every frame the session sent reached the emulator
 // (it also counts the stop ramp's), none malformed, and the blades were left at rest.
 TEST(LateroCli, LiveSessionPlaysOnTheLateroAndEndsAtRest) {

@@ -233,6 +233,11 @@ TEST(Experiment, RefusesBadFilesBeforeAnyWork) {
           "grid_spacing_mm = 0 is not in [0.05, 5]");
   // Found by the second hostile-input run: a key given twice was read as its last value.
   refused(edit("\"seed\": 3,", "\"seed\": 3, \"seed\": 4,"), "field 'seed' appears twice");
+  // No run accumulates strain, so a reference frame would change nothing.
+  refused(edit("[\"per-frame\", \"accumulated\"]", "[\"per-frame\"], \"reference_frame\": 5"),
+          "parameters.reference_frame is used only by strain 'accumulated', and no run has it");
+  EXPECT_NO_THROW(parse_experiment(
+      edit("\"accumulated\"]", "\"accumulated\"], \"reference_frame\": 5"), "ok.json", "."));
 }
 
 // Each name of the file becomes part of a path (the default output folder NAME-results, the

@@ -228,6 +228,12 @@ void add_features(CLI::App& app, Action& action, const std::string& /*command_li
       const auto from_file = calibration_file(opt->calib);
       const auto model = pore_model_file(opt->pore_model);
       const capture::GrayImage image = capture::read_image(opt->image);
+      // Smaller, there is no ridge to find landmarks on, and "0 pores" read as a measurement.
+      if (image.width_px < 16 || image.height_px < 16) {
+        throw FormatError(fmt::format(
+            "{}: the image is {}x{} px, too small to hold a fingerprint (need at least 16x16 px)",
+            opt->image.string(), image.width_px, image.height_px));
+      }
       if (from_file) {
         capture::check_calibration_fits(*from_file, image.width_px, image.height_px,
                                         opt->calib->string(), opt->image.string());

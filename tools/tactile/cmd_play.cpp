@@ -69,11 +69,18 @@ void add_play(CLI::App& app, Action& action, const std::string& /*command_line*/
         refuse_output_over_input({output_file_ending("--preview", *request->preview, ".png")},
                                  {{"MOVIE_H5", request->movie}});
       }
-      const movie::TactileMovie movie = read_movie_to_play(request->movie);
       // Before any device is opened: the threads USB libraries and the window start inherit
-      // the blocked signals, so Ctrl-C reaches the player and not the default action.
+      // the blocked signals, so Ctrl-C reaches the player and not the default action. Before
+      // reading too: a long movie takes a second to read, and a Ctrl-C then ended the process
+      // silently, leaving the user to guess whether anything had reached the display.
       StopSignals stop;
       choice.stop_fd = stop.fd();
+      const movie::TactileMovie movie = read_movie_to_play(request->movie);
+      if (const int signal = stop.received(); signal != 0) {
+        fmt::print("play: stopped by {} while reading {}: nothing was sent to any display\n",
+                   signal == SIGINT ? "SIGINT" : "SIGTERM", request->movie.string());
+        return exit_code_for_signal(signal);
+      }
       // A stopped playback returns too, after its summary; the signal decides the exit code.
       display::play_anywhere(
           movie, choice, [](const std::string& text) { fmt::print("{}", text); },
