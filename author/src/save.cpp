@@ -78,8 +78,14 @@ std::string experiment_json(const std::string& name, const fs::path& strain_file
   nlohmann::ordered_json parameters;
   parameters["strain"] =
       distinct(mappings, [](const auto& m) { return to_string(m.params.strain); });
-  parameters["reference_frame"] =
-      distinct(mappings, [](const auto& m) { return m.params.accumulate.reference_frame; });
+  // Only accumulated strain has a reference frame, and an experiment refuses one that no run
+  // would use.
+  if (std::any_of(mappings.begin(), mappings.end(), [](const auto& m) {
+        return m.params.strain == mapping::StrainMode::accumulated;
+      })) {
+    parameters["reference_frame"] =
+        distinct(mappings, [](const auto& m) { return m.params.accumulate.reference_frame; });
+  }
   parameters["normalisation"] =
       distinct(mappings, [](const auto& m) { return to_string(m.params.normalisation); });
   parameters["peak_fraction"] =

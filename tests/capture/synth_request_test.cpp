@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -147,6 +148,22 @@ TEST(SynthRequest, StaleFramesInTheOutputAreRefusedBeforeAnyWork) {
                 tactile::capture::run_synth(tactile::capture::resolve(r, OptionSpelling::cli), "");
               }),
               HasSubstr("OUT_DIR " + r.out_dir.string() + " already holds 1 image file(s)"));
+}
+
+// A marks file that is not one names the option that gave it, then the file and its line.
+TEST(SynthRequest, BadMarksAreNamedByTheirOption) {
+  const tactile::test::TempDir dir("synth_marks");
+  const auto marks = dir.path() / "marks.txt";
+  std::ofstream(marks) << "12 34\nnot a mark\n";
+  SynthRequest r = print_request();
+  r.out_dir = dir.path() / "seq";
+  r.marks = marks;
+  r.scene.frames = 2;
+  EXPECT_THAT(error_of([&] {
+                tactile::capture::run_synth(tactile::capture::resolve(r, OptionSpelling::cli), "");
+              }),
+              HasSubstr("--marks: " + marks.string() + ":2:"));
+  EXPECT_FALSE(std::filesystem::exists(r.out_dir / "frame_000.png"));
 }
 
 }  // namespace

@@ -286,6 +286,8 @@ TEST(LabelledRecordings, BadRecordingsAndLabelsNameTheFile) {
   EXPECT_NE(brief.find("too short for two windows"), std::string::npos) << brief;
   const auto missing = error("gone_bio.csv,x\n");
   EXPECT_NE(missing.find("gone_bio.csv: labelled in"), std::string::npos) << missing;
+  // Which folder it was looked for in: the labels may belong to another one.
+  EXPECT_NE(missing.find("but not in the recordings folder"), std::string::npos) << missing;
   const auto unknown = error("good_bio.csv,velvet\n", {"mat1", "mat7"});
   EXPECT_NE(unknown.find("good_bio.csv: unknown label 'velvet'"), std::string::npos) << unknown;
   EXPECT_EQ(error("good_bio.csv,x\n"), "(no error)");

@@ -303,7 +303,15 @@ SynthSummary run_synth(const ResolvedSynth& synth, const std::string& command_li
   warp.width_px = print.width_px;
   warp.height_px = print.height_px;
   std::vector<std::array<double, 2>> pores;
-  if (synth.marks) pores = read_pore_marks(*synth.marks, print.width_px, print.height_px);
+  if (synth.marks) {
+    // The file's own complaint, led by the option that named it (or would have: marks found
+    // beside the print are the option's default).
+    try {
+      pores = read_pore_marks(*synth.marks, print.width_px, print.height_px);
+    } catch (const FormatError& e) {
+      throw FormatError(fmt::format("{}: {}", label("marks"), e.what()));
+    }
+  }
   // The warp's own checks know the print's size, not its file.
   const PrintSequence seq = [&] {
     try {

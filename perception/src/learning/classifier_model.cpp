@@ -178,8 +178,8 @@ LabelledRecordings read_labelled_recordings(const std::filesystem::path& dir,
   for (const auto& l : labels.rows) {
     const auto path = dir / l.file;
     if (!std::filesystem::is_regular_file(path))
-      throw std::runtime_error(
-          fmt::format("{}: labelled in {} but not found", path.string(), labels_path.string()));
+      throw std::runtime_error(fmt::format("{}: labelled in {} but not in the recordings folder {}",
+                                           path.string(), labels_path.string(), dir.string()));
     auto it = std::find(d.class_names.begin(), d.class_names.end(), l.label);
     if (it == d.class_names.end()) {
       if (!known_classes.empty())
