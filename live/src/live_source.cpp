@@ -94,9 +94,8 @@ class Device final : public FrameSource {
  public:
   Device(const std::string& source, std::optional<double> rate_hz)
       : source_(source), camera_(source.rfind("/dev/", 0) == 0) {
-    const bool camera = camera_;
     bool opened = false;
-    if (camera) {
+    if (camera_) {
       opened = capture_.open(source, cv::CAP_V4L2);
     } else {
       // FFmpeg reads a second or more of a stream to learn its format before the first frame
@@ -112,12 +111,12 @@ class Device final : public FrameSource {
     }
     if (!opened) {
       throw FormatError(
-          camera
+          camera_
               ? fmt::format("{}: cannot open it as a V4L2 camera", source)
               : fmt::format("{}: cannot open it as a video stream (nothing readable within {} s)",
                             source, kStreamOpenTimeoutMs / 1000));
     }
-    if (rate_hz && camera) capture_.set(cv::CAP_PROP_FPS, *rate_hz);
+    if (rate_hz && camera_) capture_.set(cv::CAP_PROP_FPS, *rate_hz);
     asked_hz_ = rate_hz;
     rate_hz_ = capture_.get(cv::CAP_PROP_FPS);
     if (!(rate_hz_ > 0 && rate_hz_ < 1e5)) rate_hz_ = rate_hz.value_or(capture::kCameraRateHz);
@@ -127,7 +126,7 @@ class Device final : public FrameSource {
   bool next(SourceFrame& out) override {
     cv::Mat frame;
     if (!capture_.read(frame) || frame.empty()) {
-      if (source_.rfind("/dev/", 0) == 0) {
+      if (camera_) {
         throw FormatError(
             fmt::format("{}: the camera gave no frame after frame {} (removed or "
                         "stopped?)",

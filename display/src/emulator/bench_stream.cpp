@@ -15,10 +15,6 @@ namespace tactile::display {
 
 namespace {
 
-double wall_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 movie::Layout square_layout(int side, double max_rate_hz) {
   movie::Layout l = movie::stress_layout();
   l.name = fmt::format("{}x{}", side, side);
@@ -56,11 +52,11 @@ StreamThroughput measure_stream_throughput(int side, int frames) {
   out.side = side;
   const Patterns pattern(layout.contactor_count());
   out.frame_bytes = encode_frame(pattern(0), 1).size();
-  double t0 = process_cpu_s();
+  const Stopwatch encoding;
   for (int f = 0; f < frames; ++f) {
     if (encode_frame(pattern(static_cast<std::uint32_t>(f)), f + 1).empty()) return out;
   }
-  out.encode_cpu_us = 1e6 * (process_cpu_s() - t0) / frames;
+  out.encode_cpu_us = 1e6 * encoding.cpu_s() / frames;
 
   EmulatedDeviceOptions options;
   options.layout = layout;
@@ -68,16 +64,14 @@ StreamThroughput measure_stream_throughput(int side, int frames) {
   EmulatedDevice device(options);
   device.start(layout.max_rate_hz);
   const auto tick = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / layout.max_rate_hz));
-  t0 = process_cpu_s();
-  const double w0 = wall_seconds();
+  const Stopwatch delivery;
   for (int f = 0; f < frames;) {
     const auto bytes = encode_frame(pattern(static_cast<std::uint32_t>(f)), f + 1);
     while (!device.send_frame(bytes)) device.wait(tick);
     ++f;
   }
-  const double wall = wall_seconds() - w0;
-  out.total_cpu_us = 1e6 * (process_cpu_s() - t0) / frames;
-  out.frames_per_s = frames / wall;
+  out.total_cpu_us = 1e6 * delivery.cpu_s() / frames;
+  out.frames_per_s = frames / delivery.wall_s();
   out.malformed = device.status().malformed;
   return out;
 }
@@ -95,7 +89,7 @@ StreamPacing measure_stream_pacing(double rate_hz, double seconds) {
   const Patterns pattern(layout.contactor_count());
   const auto total = static_cast<std::uint32_t>(rate_hz * seconds);
   device.start(rate_hz);
-  const double c0 = process_cpu_s();
+  const Stopwatch run;
   std::uint32_t seq = 1;
   while (seq <= total) {
     const auto s = device.status();
@@ -117,7 +111,7 @@ StreamPacing measure_stream_pacing(double rate_hz, double seconds) {
   const auto s = device.status();
   out.underruns = s.underruns;
   out.played = s.frames_played;
-  out.cpu_per_frame_us = 1e6 * (process_cpu_s() - c0) / total;
+  out.cpu_per_frame_us = 1e6 * run.cpu_s() / total;
   device.stop();
   return out;
 }
