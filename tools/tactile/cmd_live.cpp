@@ -271,8 +271,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       }
       fmt::print("{}", live::format_summary(summary));
       if (const int signal = signals.received(); signal != 0) {
-        fmt::print("live: stopped by {}; the display is at rest\n",
-                   signal == SIGINT ? "SIGINT" : "SIGTERM");
+        fmt::print("live: stopped by {}; the display is at rest\n", stop_signal_name(signal));
         return exit_code_for_signal(signal);
       }
       return 0;

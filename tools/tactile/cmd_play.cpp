@@ -78,7 +78,7 @@ void add_play(CLI::App& app, Action& action, const std::string& /*command_line*/
       const movie::TactileMovie movie = read_movie_to_play(request->movie);
       if (const int signal = stop.received(); signal != 0) {
         fmt::print("play: stopped by {} while reading {}: nothing was sent to any display\n",
-                   signal == SIGINT ? "SIGINT" : "SIGTERM", request->movie.string());
+                   stop_signal_name(signal), request->movie.string());
         return exit_code_for_signal(signal);
       }
       // A stopped playback returns too, after its summary; the signal decides the exit code.
@@ -86,7 +86,7 @@ void add_play(CLI::App& app, Action& action, const std::string& /*command_line*/
           movie, choice, [](const std::string& text) { fmt::print("{}", text); },
           display::with_window(display::usb_play_backends()));
       if (const int signal = stop.received(); signal != 0) {
-        fmt::print("play: stopped by {}\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
+        fmt::print("play: stopped by {}\n", stop_signal_name(signal));
         return exit_code_for_signal(signal);
       }
       return 0;

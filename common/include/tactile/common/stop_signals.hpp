@@ -47,4 +47,9 @@ constexpr int exit_code_for_signal(int signal) {
   return 128 + signal;
 }
 
+// The name a person reads for one of the two stop signals StopSignals watches.
+constexpr const char* stop_signal_name(int signal) {
+  return signal == SIGINT ? "SIGINT" : "SIGTERM";
+}
+
 }  // namespace tactile
