@@ -101,14 +101,19 @@ wait_for "showing B"
 xdotool key Return
 wait_for "audition of B"
 wait_count "outputs ended at most" 1
-# A's audition: the emulated device's output must differ from B's (another method).
+# A's audition: the emulated device's output must differ from B's (another method). The
+# switches are counted: each waits for its own line, not an earlier one.
 xdotool key Tab
-wait_for "showing A"
+wait_count "showing A" 2
 xdotool key Return
 wait_for "audition of A"
 wait_count "outputs ended at most" 2
-xdotool key Tab
-wait_for "showing B"
+# A switch and an audition in one burst (both keys can land in one frame): the audition must
+# play what the switch chose, B, and so give B's output again.
+xdotool key --delay 0 Tab Return
+wait_count "showing B" 2
+wait_count "audition of B" 2
+wait_count "outputs ended at most" 3
 xdotool key s
 wait_for "saved saved/ab.json"
 xdotool key q
@@ -120,6 +125,8 @@ grep -Eq "audition 2: played on the emulated device \(headless\): [1-9][0-9]* fr
   fail "A's audition did not play whole"
 outputs=$(grep "audition: deflection  peak" run.log | sort -u | wc -l)
 [ "$outputs" -eq 2 ] || fail "A's and B's auditions gave the same device output (or none)"
+[ "$(grep "audition: deflection  peak" run.log | sed -n 1p)" = "$(grep "audition: deflection  peak" run.log | sed -n 3p)" ] ||
+  fail "the audition after a switch to B in the same burst did not play B"
 [ "$(ls saved/movies/*.h5 | wc -l)" -eq 2 ] || fail "not two movies saved (A and B)"
 ls saved/movies/*proportional*.h5 >/dev/null || fail "B's movie (proportional) not saved"
 [ -s saved/movies/$(basename "$(ls saved/movies/*proportional*.h5)" .h5).hjif ] ||

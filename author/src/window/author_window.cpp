@@ -393,8 +393,12 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
                         done.outcome->error.empty() ? "" : ": " + done.outcome->error));
       }
     }
-    const Slot& shown_slot = show_a && slot_a && slot_a->outcome ? *slot_a : slot_b;
-    const std::shared_ptr<const MappingOutcome> shown = shown_slot.outcome;
+    // The shown slot is asked again after the keys: a switch and an audition can come in the
+    // same frame, and the audition must play what the switch chose.
+    const auto shown_outcome = [&] {
+      return show_a && slot_a && slot_a->outcome ? slot_a->outcome : slot_b.outcome;
+    };
+    const std::shared_ptr<const MappingOutcome> shown = shown_outcome();
     const bool view_current = shown && remapper.latest().number >= asked;
 
     const auto [fb_w, fb_h] = window.framebuffer_px();
@@ -662,16 +666,17 @@ AuthorWindowResult run_author_window(std::shared_ptr<const capture::StrainMovie>
     if (audition_key) {
       if (audition.running()) {
         if (auto r = audition.stop()) result.auditions.push_back(*r);
-      } else if (shown && shown->error.empty()) {
-        const auto& m = shown->movie;
+      } else if (const auto chosen = shown_outcome(); chosen && chosen->error.empty()) {
+        const auto& m = chosen->movie;
         movie::TactileMovie from_here = m;
         const auto n = static_cast<std::size_t>(m.layout.contactor_count());
-        from_here.frame_count = m.frame_count - frame;
+        const std::int32_t from = std::clamp(frame, 0, std::max(m.frame_count - 1, 0));
+        from_here.frame_count = m.frame_count - from;
         from_here.deflection_um.erase(
             from_here.deflection_um.begin(),
-            from_here.deflection_um.begin() + static_cast<std::ptrdiff_t>(frame * n));
+            from_here.deflection_um.begin() + static_cast<std::ptrdiff_t>(from * n));
         say(fmt::format("author: audition of {} from {:.3f} s{}", show_a ? "A" : "B",
-                        frame / m.rate_hz, loop_audition ? ", looped" : ""));
+                        from / m.rate_hz, loop_audition ? ", looped" : ""));
         audition.start(std::move(from_here), loop_audition ? kLoopedAuditionLoops : 1,
                        options.audition_backends, options.audition_latero, say);
       }
