@@ -12,6 +12,12 @@
 
 namespace tactile::mapping {
 
+std::int32_t last_reference_frame(const capture::StrainMovie& movie) {
+  std::int32_t last_frame = movie.camera_frame_count - 1;
+  for (const auto& p : movie.tracks) last_frame = std::max(last_frame, p.frame);
+  return last_frame;
+}
+
 capture::StrainMovie accumulate_along_tracks(const capture::StrainMovie& movie,
                                              const AccumulateOptions& options) {
   if (movie.tracks.empty()) {
@@ -24,8 +30,7 @@ capture::StrainMovie accumulate_along_tracks(const capture::StrainMovie& movie,
     throw std::invalid_argument(
         fmt::format("accumulate: frame rate {} Hz must be positive", movie.frame_rate_hz));
   }
-  std::int32_t last_frame = movie.camera_frame_count - 1;
-  for (const auto& p : movie.tracks) last_frame = std::max(last_frame, p.frame);
+  const std::int32_t last_frame = last_reference_frame(movie);
   const std::int32_t reference = options.reference_frame >= 0
                                      ? options.reference_frame
                                      : (movie.frames.empty() ? 0 : movie.frames.front().frame_from);

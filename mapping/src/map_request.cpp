@@ -107,6 +107,18 @@ ResolvedMap resolve(const MapRequest& request, const movie::Layout& layout,
   return r;
 }
 
+void check_against_strain(const ResolvedMap& resolved, const capture::StrainMovie& strain,
+                          const std::string& input, OptionSpelling spelling) {
+  const auto& params = resolved.params;
+  if (params.strain != StrainMode::accumulated || params.accumulate.reference_frame < 0) return;
+  const std::int32_t last = last_reference_frame(strain);
+  if (params.accumulate.reference_frame > last) {
+    throw RequestError(fmt::format("{}: frame {} is not in {}, whose frames are 0 to {}",
+                                   option_label("reference_frame", spelling),
+                                   params.accumulate.reference_frame, input, last));
+  }
+}
+
 ResolvedMap resolve(const MapRequest& request, OptionSpelling spelling) {
   if (const std::string problem = layout_name_problem(request.layout); !problem.empty()) {
     throw RequestError(fmt::format("{}: {}", option_label("layout", spelling), problem));

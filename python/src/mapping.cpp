@@ -26,6 +26,7 @@ std::shared_ptr<movie::TactileMovie> map_strain(const capture::StrainMovie& stra
   if (strain.frames.empty()) {
     throw std::invalid_argument("map: the strain movie has no strain frames");
   }
+  mapping::check_against_strain(resolved, strain, "the strain movie", OptionSpelling::python);
   py::gil_scoped_release unlocked;
   return std::make_shared<movie::TactileMovie>(
       mapping::map_strain_movie(strain, resolved.layout, resolved.params));

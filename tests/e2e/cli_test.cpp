@@ -265,6 +265,28 @@ TEST(Cli, MapRefusesAStrainChangeNoSkinCanHave) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A reference frame the strain movie does not have: a usage error naming the option, the file
+// and the frames it has, before anything is written.
+TEST(Cli, MapRefusesAReferenceFrameTheStrainMovieDoesNotHave) {
+  const tactile::test::TempDir dir("reference_frame");
+  const fs::path strain = demo_dir() / "strain.h5";
+  const auto m = tactile::capture::read_strain_movie(strain);
+  const fs::path out = dir.path() / "movie.h5";
+  const auto beyond = std::to_string(m.camera_frame_count + 100);
+  const auto r = run_tactile("map " + strain.string() + " --strain accumulated --reference-frame " +
+                             beyond + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output,
+              HasSubstr("--reference-frame: frame " + beyond + " is not in " + strain.string() +
+                        ", whose frames are 0 to " + std::to_string(m.camera_frame_count - 1)));
+  EXPECT_FALSE(fs::exists(out));
+  // The last frame is one it has.
+  const auto last =
+      run_tactile("map " + strain.string() + " --strain accumulated " + "--reference-frame " +
+                  std::to_string(m.camera_frame_count - 1) + " --out " + out.string());
+  EXPECT_THAT(last.output, Not(HasSubstr("is not in"))) << last.output;
+}
+
 // Options that cannot mean anything together are refused naming both, not taken silently.
 TEST(Cli, OptionsThatContradictEachOtherAreUsageErrors) {
   const tactile::test::TempDir dir("contradict");

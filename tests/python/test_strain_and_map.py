@@ -97,6 +97,8 @@ def test_map_refuses_what_the_command_line_refuses(tmp_path, strain, cli):
         tactile.map(tactile.StrainMovie(frame_rate_hz=60, tracks=strain.tracks, frames=[]))
     with pytest.raises(TypeError):
         tactile.map(np.zeros(3))
+    with pytest.raises(ValueError, match="reference_frame: frame 5000 is not in the strain movie"):
+        tactile.map(strain, strain_mode="accumulated", reference_frame=5000)
 
 
 def test_accumulated_strain():

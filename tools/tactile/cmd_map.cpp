@@ -50,6 +50,8 @@ void add_map(CLI::App& app, Action& action, const std::string& command_line) {
         throw std::runtime_error(fmt::format("map: {}: the strain movie has no strain frames",
                                              request->strain.string()));
       }
+      mapping::check_against_strain(resolved, strain, request->strain.string(),
+                                    OptionSpelling::cli);
       const auto t0 = std::chrono::steady_clock::now();
       resolved.params.program_version = kVersion;
       const capture::StrainMovie source = mapping::strain_source(strain, resolved.params);

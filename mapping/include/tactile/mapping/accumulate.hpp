@@ -29,6 +29,9 @@ struct AccumulateOptions {
 // One StrainFrame per camera frame f after the reference for which at least three tracks are
 // alive at both R and f (t_s = f / frame_rate_hz). Throws std::invalid_argument when the movie has
 // no tracks, a reference frame outside [0, camera_frame_count), or a non-positive frame rate.
+// The last camera frame a reference can be: the movie's last frame, or a later tracked one.
+std::int32_t last_reference_frame(const capture::StrainMovie& movie);
+
 capture::StrainMovie accumulate_along_tracks(const capture::StrainMovie& movie,
                                              const AccumulateOptions& options = {});
 

@@ -38,4 +38,10 @@ ResolvedMap resolve(const MapRequest& request, OptionSpelling spelling);
 ResolvedMap resolve(const MapRequest& request, const movie::Layout& layout,
                     OptionSpelling spelling);
 
+// What the parameters ask of the strain movie itself, checked before any mapping: an
+// accumulated strain's reference frame must be one of its frames. A RequestError naming the
+// option and `input` (the strain movie's name for a person).
+void check_against_strain(const ResolvedMap& resolved, const capture::StrainMovie& strain,
+                          const std::string& input, OptionSpelling spelling);
+
 }  // namespace tactile::mapping
