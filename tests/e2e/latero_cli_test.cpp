@@ -3,10 +3,12 @@
 // sender's and the emulator's counters compared; mapping for the latero layout; bad input;
 // SIGINT and SIGTERM in the middle of a playback (on the Latero and headless).
 
+#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <signal.h>
@@ -440,6 +442,38 @@ TEST(StopCli, SignalWhileReadingTheMovieSaysNothingWasSent) {
                              ": nothing was sent to any display"));
   EXPECT_THAT(out, ::testing::Not(HasSubstr("frames played")));
   EXPECT_FALSE(fs::exists(d / "preview.png"));
+}
+
+// A stop signal that comes while `tactile` is still starting (its libraries' initialisers, the
+// command line being parsed) waits until the command would begin, and is then answered in
+// words and the signal's exit code. Made certain here, not left to timing: the child blocks
+// SIGINT and sends it to itself before exec, which keeps both the block and the pending signal.
+TEST(StopCli, ASignalBeforeTheCommandBeganIsAnsweredInWords) {
+  const tactile::test::TempDir d_tmp("early");
+  const fs::path log = d_tmp.path() / "play.log";
+  const fs::path preview = d_tmp.path() / "preview.png";
+  const std::string movie = (tactile::test::demo_dir() / "movie.h5").string();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0 || ::dup2(out, 1) < 0 || ::dup2(out, 2) < 0) _exit(101);
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    if (sigprocmask(SIG_BLOCK, &set, nullptr) != 0 || ::kill(::getpid(), SIGINT) != 0) _exit(102);
+    ::execl(TACTILE_CLI_PATH, TACTILE_CLI_PATH, "play", movie.c_str(), "--headless", "--preview",
+            preview.c_str(), static_cast<char*>(nullptr));
+    _exit(103);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  const std::string out = text_of(log);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status) << ": " << out;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << out;
+  EXPECT_THAT(out, HasSubstr("tactile play: stopped by SIGINT before it began: nothing was done"));
+  EXPECT_THAT(out, ::testing::Not(HasSubstr("frames played")));
+  EXPECT_FALSE(fs::exists(preview));
 }
 
 // A live session played on the Latero: every frame the session sent reached the emulator

@@ -20,6 +20,7 @@
 #include "tactile/common/option_table.hpp"
 #include "tactile/common/output_paths.hpp"
 #include "tactile/common/provenance.hpp"
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/common/version.hpp"
 #include "usage_hints.hpp"
 
@@ -44,11 +45,25 @@ void block_stop_signals_before_the_libraries(int, char**, char**) {
 [[gnu::used, gnu::section(".preinit_array")]] void (*const block_stop_signals)(
     int, char**, char**) = &block_stop_signals_before_the_libraries;
 
+// A stop signal that came while `tactile` started (loading its libraries, parsing): the main
+// thread keeps both blocked until a command begins, so such a signal waits, and is answered in
+// words instead of ending the process silently. 0: none came. One the process ignores does not
+// count (a blocked ignored signal is kept pending, and dropped once unblocked).
+int stop_signal_before_the_command() {
+  sigset_t pending;
+  if (sigpending(&pending) != 0) return 0;
+  for (const int sig : {SIGINT, SIGTERM}) {
+    struct sigaction now {};
+    const bool ignored = sigaction(sig, nullptr, &now) == 0 && (now.sa_flags & SA_SIGINFO) == 0 &&
+                         now.sa_handler == SIG_IGN;
+    if (!ignored && sigismember(&pending, sig) == 1) return sig;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  // This thread takes the signals as it was started to (the library threads keep the block).
-  ::syscall(SYS_rt_sigprocmask, SIG_SETMASK, &g_mask_at_start, nullptr, sizeof g_mask_at_start);
   // The capture frees a detector's images, and each frame's buffers, just before it needs as
   // much again. glibc would hand blocks of a frame's size back to the kernel and fault them in
   // again page by page (a 120-frame 640 x 484 capture: 71 000 page faults, 43 000 with these
@@ -107,6 +122,14 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "tactile {}: error: {}\n", command, why);
     return 1;
   };
+  if (const int sig = stop_signal_before_the_command(); sig != 0) {
+    fmt::print(stderr, "tactile {}: stopped by {} before it began: nothing was done\n", command,
+               tactile::stop_signal_name(sig));
+    return tactile::exit_code_for_signal(sig);
+  }
+  // The command takes the signals as `tactile` was started to (the library threads keep the
+  // block); one that watches them (StopSignals) blocks them again in its first steps.
+  ::syscall(SYS_rt_sigprocmask, SIG_SETMASK, &g_mask_at_start, nullptr, sizeof g_mask_at_start);
   try {
     return action();
   } catch (const tactile::OutputPathError& e) {
