@@ -255,4 +255,62 @@ TEST_F(SafeWrite, SigtermWhileMapWritesItsCsvReplacesNeitherOutput) {
   EXPECT_THAT(temporary_files(out), ::testing::IsEmpty());
 }
 
+// Found by the hostile-input run: SIGINT to `capture --out --csv --maps` while it wrote its
+// maps left the new strain movie and CSV files beside old maps. The maps are now committed with
+// them, and a stop while they are written replaces none of the outputs and says so.
+TEST_F(SafeWrite, SigintWhileCaptureWritesItsMapsReplacesNoOutput) {
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out / "csv");
+  fs::create_directories(out / "maps");
+  std::ofstream(out / "s.h5") << "old strain";
+  std::ofstream(out / "csv" / "edges.csv") << "old edges";
+  std::ofstream(out / "maps" / "strain_000.png") << "old map";
+  Started capture({"capture", (kDemo / "frames").string(), "--calib",
+                   (kDemo / "calibration.json").string(), "--out", (out / "s.h5").string(), "--csv",
+                   (out / "csv").string(), "--maps", (out / "maps").string()},
+                  dir_ / "log.txt");
+  // The demo's 179 maps take a few seconds to draw; progress shows the first quarter of them.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (bytes(dir_ / "log.txt").find("  maps ") == std::string::npos &&
+         std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_THAT(bytes(dir_ / "log.txt"), HasSubstr("  maps "));
+  capture.signal(SIGINT);
+  const Started::Ended end = capture.wait(60);
+  ASSERT_TRUE(end.ended) << "still running 60 s after the signal";
+  const std::string log = bytes(dir_ / "log.txt");
+  ASSERT_EQ(end.killed_by, 0) << log;
+  EXPECT_EQ(end.exit_code, 130) << log;
+  EXPECT_THAT(log, HasSubstr("capture: stopped by SIGINT while writing its outputs: none of them "
+                             "was replaced"));
+  EXPECT_TRUE(bytes(out / "s.h5") == "old strain") << "s.h5 was replaced";
+  EXPECT_EQ(bytes(out / "csv" / "edges.csv"), "old edges");
+  EXPECT_FALSE(fs::exists(out / "csv" / "tracks.csv"));
+  EXPECT_EQ(bytes(out / "maps" / "strain_000.png"), "old map");
+  EXPECT_FALSE(fs::exists(out / "maps" / "strain_001.png"));
+  EXPECT_THAT(temporary_files(out), ::testing::IsEmpty());
+}
+
+// A stop while it measures (the frames read on OpenCV's worker threads) is taken at the next
+// progress step: a message and 130, not the end of the process by a worker's default action.
+TEST_F(SafeWrite, SigtermWhileCaptureMeasuresWritesNothingAndSaysSo) {
+  const fs::path out = dir_ / "s.h5";
+  std::ofstream(out) << "old strain";
+  Started capture({"capture", (kDemo / "frames").string(), "--calib",
+                   (kDemo / "calibration.json").string(), "--out", out.string()},
+                  dir_ / "log.txt");
+  ASSERT_TRUE(capture.wait_until_watching(SIGTERM, 60)) << bytes(dir_ / "log.txt");
+  capture.signal(SIGTERM);
+  const Started::Ended end = capture.wait(60);
+  ASSERT_TRUE(end.ended) << "still running 60 s after the signal";
+  const std::string log = bytes(dir_ / "log.txt");
+  ASSERT_EQ(end.killed_by, 0) << log;
+  EXPECT_EQ(end.exit_code, 143) << log;
+  EXPECT_THAT(log, ::testing::ContainsRegex("capture: stopped by SIGTERM at [a-z]+ [0-9]+/[0-9]+: "
+                                            "nothing written"));
+  EXPECT_EQ(bytes(out), "old strain");
+  EXPECT_THAT(temporary_files(dir_), ::testing::IsEmpty());
+}
+
 }  // namespace

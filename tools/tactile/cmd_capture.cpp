@@ -31,6 +31,7 @@
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/output_paths.hpp"
+#include "tactile/common/stop_signals.hpp"
 #include "tactile/common/version.hpp"
 
 namespace tactile::cli {
@@ -133,7 +134,10 @@ std::string map_name(int frame_from) {
   return fmt::format("strain_{:03d}.png", frame_from);
 }
 
-void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress& progress) {
+// The maps, written until `stop_fd` asks to stop. Their files are committed with the strain
+// movie's (a CommitTogether is alive): a stop replaces none.
+void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress& progress,
+                int stop_fd) {
   const double full_scale = capture::strain_map_full_scale(movie);
   if (!(full_scale > 0)) {
     fmt::print("capture: no strain edges, so no maps written\n");
@@ -142,14 +146,13 @@ void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress
   fs::create_directories(dir);
   const int total = static_cast<int>(movie.frames.size());
   for (int i = 0; i < total; ++i) {
+    if (stop_requested(stop_fd)) return;
     const auto& frame = movie.frames[static_cast<std::size_t>(i)];
     capture::write_strain_map_png(dir / map_name(frame.frame_from), frame, movie.calibration,
                                   {.full_scale = full_scale});
     progress("maps", i + 1, total);
   }
   progress.finish();
-  fmt::print("capture: wrote {} strain maps (full scale {:.2f} %) in {}\n", total, 100 * full_scale,
-             dir.string());
 }
 
 // CPU time of the whole process (every thread), seconds: the machine may be shared, so the wall
@@ -280,6 +283,10 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
   sub->callback([request, outputs, &action, &command_line] {
     capture::check_request(*request, OptionSpelling::cli);
     action = [request, outputs, &command_line] {
+      // Before the first thread (OpenCV's workers, FFmpeg's readers), which inherit the block:
+      // a stop signal is then a request, taken at the next progress step, and not a thread's
+      // default action that ends the process while its outputs are half replaced.
+      StopSignals stop;
       capture::ResolvedCapture run = capture::resolve(*request, OptionSpelling::cli);
       const capture::FrameRange& input = *run.frames;
       const auto inputs =
@@ -311,9 +318,26 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
               [](const std::string& text) { fmt::print(stderr, "capture: warning: {}\n", text); }};
       const auto t0 = std::chrono::steady_clock::now();
       const double cpu0 = process_cpu_s();
-      capture::StrainMovie movie = capture::capture_strain(
-          *run.frames, run.calibration, run.px_per_mm, run.rate_hz, run.settings, messages,
-          [&](const std::string& stage, int done, int total) { progress(stage, done, total); });
+      struct Stopped {
+        std::string stage;
+        int done, total;
+      };
+      capture::StrainMovie movie;
+      try {
+        movie = capture::capture_strain(*run.frames, run.calibration, run.px_per_mm, run.rate_hz,
+                                        run.settings, messages,
+                                        [&](const std::string& stage, int done, int total) {
+                                          if (stop_requested(stop.fd()))
+                                            throw Stopped{stage, done, total};
+                                          progress(stage, done, total);
+                                        });
+      } catch (const Stopped& at) {
+        progress.finish();
+        const int signal = stop.received();
+        fmt::print(stderr, "capture: stopped by {} at {} {}/{}: nothing written\n",
+                   stop_signal_name(signal), at.stage, at.done, at.total);
+        return exit_code_for_signal(signal);
+      }
       progress.finish();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       // An empty strain movie maps to a still display: report the reason instead of writing it.
@@ -327,13 +351,22 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       const int n = movie.camera_frame_count;
       movie.provenance.input = request->source.string();
       movie.provenance.command_line = command_line;
-      // The strain movie and its CSV files replace the old ones together (the maps, one file a
-      // frame, are too many to hold back: they follow).
+      // The strain movie, its CSV files and its maps replace the old ones together or not at all;
+      // a stop is taken between files (the maps can be hundreds, more than the temporary files a
+      // signal handler could remove).
       CommitTogether together;
       capture::write_strain_movie(outputs->out, movie);
       if (outputs->csv_dir) {
         fs::create_directories(*outputs->csv_dir);
         capture::export_strain_csv(*outputs->csv_dir, movie);
+      }
+      if (outputs->maps_dir) write_maps(*outputs->maps_dir, movie, progress, stop.fd());
+      if (const int signal = stop.received(); signal != 0) {
+        fmt::print(stderr,
+                   "capture: stopped by {} while writing its outputs: none of them was "
+                   "replaced\n",
+                   stop_signal_name(signal));
+        return exit_code_for_signal(signal);
       }
       together.commit();
       fmt::print(
@@ -347,7 +380,11 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       if (outputs->csv_dir) {
         fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", outputs->csv_dir->string());
       }
-      if (outputs->maps_dir) write_maps(*outputs->maps_dir, movie, progress);
+      if (outputs->maps_dir && capture::strain_map_full_scale(movie) > 0) {
+        fmt::print("capture: wrote {} strain maps (full scale {:.2f} %) in {}\n",
+                   movie.frames.size(), 100 * capture::strain_map_full_scale(movie),
+                   outputs->maps_dir->string());
+      }
       return 0;
     };
   });
