@@ -56,9 +56,12 @@ void add_evaluate(CLI::App& app, Action& action, const std::string& /*command_li
         fmt::print("{:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8}\n", "from", "to", "edges",
                    "rms_error", "rms_truth", "tracked", "truth");
         for (const auto& f : ev.frames) {
-          fmt::print("{:>6} {:>6} {:>6} {:>10.5f} {:>10.5f} {:>8} {:>8}\n", f.frame_from,
-                     f.frame_to, f.edges, f.rms_error, f.rms_truth, f.tracked_points,
-                     f.truth_landmarks);
+          fmt::print("{:>6} {:>6} {:>6} {:>10.5f} {:>10.5f} {:>8} {:>8}", f.frame_from, f.frame_to,
+                     f.edges, f.rms_error, f.rms_truth, f.tracked_points, f.truth_landmarks);
+          if (ev.has_gap) {
+            fmt::print("  in contact {:>6} {:>10.5f}", f.edges_in_contact, f.rms_error_in_contact);
+          }
+          fmt::print("\n");
         }
       }
       const std::string scene =
@@ -70,6 +73,13 @@ void add_evaluate(CLI::App& app, Action& action, const std::string& /*command_li
       fmt::print("  edge strain RMS error      {:.5f}  (true strain RMS {:.5f}, {} edges)\n",
                  ev.rms_error, ev.rms_truth, ev.edges);
       fmt::print("  correlation with truth     {:.4f}\n", ev.correlation);
+      if (ev.has_gap) {
+        fmt::print(
+            "  in full contact            RMS error {:.5f}, correlation {:.4f}  ({} edges; {} "
+            "edges across the contact gap)\n",
+            ev.rms_error_in_contact, ev.correlation_in_contact, ev.edges_in_contact,
+            ev.edges_across_gap);
+      }
       fmt::print("  localisation RMS           {:.4f} mm  ({} points within {} mm, {} not)\n",
                  ev.localisation_rms_mm, ev.located_points, ev.match_bound_mm, ev.unmatched_points);
       fmt::print("  tracked landmarks / frame  median {:.0f}  (median yield {:.2f} of the true)\n",

@@ -42,6 +42,14 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   }
   auto true_mm = [&](const TrackedPoint& p) { return to_mm(truth.calibration, p.x_px, p.y_px); };
 
+  // How much an end of an edge touches the glass, where the scene lifts off.
+  ev.has_gap = truth.warp && truth.warp->contact_loss > 0;
+  const auto contact = [&](const TrackedPoint& p, int frame) {
+    return ev.has_gap ? warp_contact(*truth.warp, true_mm(p), frame) : 1.0;
+  };
+  double se_contact = 0;
+  std::vector<double> measured_contact, truth_contact;
+
   double se_all = 0, st_all = 0;
   std::vector<double> measured_all, truth_all;  // every compared edge, for the correlation
   std::vector<double> tracked, yields;
@@ -68,6 +76,23 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
         truth_all.push_back(t);
         st += t * t;
         ++fe.edges;
+        if (ev.has_gap) {
+          const double least = std::min({contact(f.points_from[a->second], f.frame_from),
+                                         contact(f.points_from[b->second], f.frame_from),
+                                         contact(f.points_to[a->second], f.frame_to),
+                                         contact(f.points_to[b->second], f.frame_to)});
+          if (least < 0.5) ++ev.edges_across_gap;
+          if (least >= 1.0) {
+            ++fe.edges_in_contact;
+            fe.rms_error_in_contact += (e.rel_change - t) * (e.rel_change - t);
+            se_contact += (e.rel_change - t) * (e.rel_change - t);
+            measured_contact.push_back(e.rel_change);
+            truth_contact.push_back(t);
+          }
+        }
+      }
+      if (fe.edges_in_contact > 0) {
+        fe.rms_error_in_contact = std::sqrt(fe.rms_error_in_contact / fe.edges_in_contact);
       }
       if (fe.edges > 0) {
         fe.rms_error = std::sqrt(se / fe.edges);
@@ -86,6 +111,11 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
     ev.rms_truth = std::sqrt(st_all / static_cast<double>(ev.edges));
     // A truth without strain (rigid motion) varies by rounding only: no correlation to report.
     ev.correlation = pearson(measured_all, truth_all, 1e-18);
+  }
+  ev.edges_in_contact = static_cast<std::int64_t>(measured_contact.size());
+  if (ev.edges_in_contact > 0) {
+    ev.rms_error_in_contact = std::sqrt(se_contact / static_cast<double>(ev.edges_in_contact));
+    ev.correlation_in_contact = pearson(measured_contact, truth_contact, 1e-18);
   }
   ev.median_tracked_points = median(tracked);
   ev.median_yield = median(yields);

@@ -42,6 +42,9 @@ struct FrameEvaluation {
   double rms_truth = 0;  // RMS of the true relative change on the same edges
   std::int32_t tracked_points = 0;   // tracked landmarks at frame_from
   std::int32_t truth_landmarks = 0;  // true landmarks in view and in contact at frame_from
+  // Where the skin lifts off (Evaluation::has_gap): the edges in full contact, and their error.
+  std::int32_t edges_in_contact = 0;
+  double rms_error_in_contact = 0;
 };
 
 struct Evaluation {
@@ -63,6 +66,15 @@ struct Evaluation {
   std::int32_t track_count = 0;
   double median_track_frames = 0;
   double mean_track_frames = 0;
+  // A scene whose skin lifts off and lands again (PrintWarpSpec::contact_loss > 0): the same
+  // figures over the edges whose two ends were in full contact at both frames (outside the gap
+  // and its rim), and how many compared edges touched the gap, where no strain should be
+  // reported (an end in less than half contact at either frame). Zero for other scenes.
+  bool has_gap = false;
+  std::int64_t edges_in_contact = 0;
+  double rms_error_in_contact = 0;
+  double correlation_in_contact = 0;
+  std::int64_t edges_across_gap = 0;
 };
 
 // True positions come from each point's pixel position through the true calibration, so a
