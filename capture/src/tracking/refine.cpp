@@ -318,6 +318,10 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
   Eigen::Vector2d position(x_px, y_px);
   Eigen::Matrix2d l = linear;
   double correlation = 0;
+  // The frame's mean grey over the reference's, in the reference's spreads: skin that lifts off
+  // the glass turns bright and loses its ridges, and the alignment's gain and offset would
+  // follow it there; a track ends instead (no strain across a gap of contact).
+  double brightening = 0;
   bool converged = false;
   // The steps alternate between the window's even rows and its odd rows, each at half a whole
   // window's cost. The two halves see the same texture through different samples of the
@@ -439,6 +443,7 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
     const double ref_spread = std::sqrt(std::max(0.0, swtt / sw - ref_mean * ref_mean));
     if (spread < 1e-3 || ref_spread < 1e-3) return a;
     correlation = (swit / sw - mean * ref_mean) / (spread * ref_spread);
+    brightening = (mean - ref_mean) / ref_spread;
     // Grey levels of the frame brought to the reference's mean and spread: the error at a
     // sample is ref_mean + gain (warped - mean) - grey, and the update sums weight x error x
     // descent.
@@ -486,7 +491,7 @@ Aligned align(const Reference& ref, const cv::Mat& frame, double x_px, double y_
   a.y_px = position.y();
   a.linear = l;
   const double distortion = (l - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff();
-  a.ok = converged && correlation >= params.min_correlation &&
+  a.ok = converged && correlation >= params.min_correlation && brightening < 0.5 &&
          distortion <= params.max_distortion && std::isfinite(a.x_px) && std::isfinite(a.y_px);
   return a;
 }
