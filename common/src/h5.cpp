@@ -331,6 +331,12 @@ void read_in_child_first(const std::filesystem::path& path, const std::string& w
   }
 }
 
+void throw_unreadable(const std::filesystem::path& path, const std::string& what,
+                      const H5::Exception& e) {
+  throw FormatError(fmt::format("{}: cannot read as {} (damaged file?): {}", path.string(), what,
+                                e.getDetailMsg()));
+}
+
 ReadingProcess::~ReadingProcess() {
   stop();
 }

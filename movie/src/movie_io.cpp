@@ -240,32 +240,8 @@ TactileMovie read_checked(const std::filesystem::path& path) {
 
 }  // namespace
 
-namespace {
-
-TactileMovie read_in_process(const std::filesystem::path& path) {
-  // HDF5's own exceptions are not std::exceptions: none may leave this reader raw.
-  try {
-    return read_checked(path);
-  } catch (const H5::Exception& e) {
-    throw FormatError(fmt::format("{}: cannot read as a tactile movie (damaged file?): {}",
-                                  path.string(), e.getDetailMsg()));
-  }
-}
-
-}  // namespace
-
-namespace {
-
-// The read a reading child makes (a plain function, so that one child serves many files).
-void read_and_forget(const std::filesystem::path& path) {
-  read_in_process(path);
-}
-
-}  // namespace
-
 TactileMovie read_tactile_movie(const std::filesystem::path& path, h5::ReadingProcess* process) {
-  h5::read_in_child_first(path, "a tactile movie", &read_and_forget, process);
-  return read_in_process(path);
+  return h5::read_guarded<&read_checked>(path, "a tactile movie", process);
 }
 
 void export_tactile_csv(const std::filesystem::path& csv_path, const TactileMovie& movie) {

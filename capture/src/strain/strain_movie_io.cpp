@@ -422,32 +422,8 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path);
 
 }  // namespace
 
-namespace {
-
-StrainMovie read_in_process(const std::filesystem::path& path) {
-  // HDF5's own exceptions are not std::exceptions: none may leave this reader raw.
-  try {
-    return read_strain_movie_checked(path);
-  } catch (const H5::Exception& e) {
-    throw FormatError(fmt::format("{}: cannot read as a strain movie (damaged file?): {}",
-                                  path.string(), e.getDetailMsg()));
-  }
-}
-
-}  // namespace
-
-namespace {
-
-// The read a reading child makes (a plain function, so that one child serves many files).
-void read_and_forget(const std::filesystem::path& path) {
-  read_in_process(path);
-}
-
-}  // namespace
-
 StrainMovie read_strain_movie(const std::filesystem::path& path, h5::ReadingProcess* process) {
-  h5::read_in_child_first(path, "a strain movie", &read_and_forget, process);
-  return read_in_process(path);
+  return h5::read_guarded<&read_strain_movie_checked>(path, "a strain movie", process);
 }
 
 namespace {

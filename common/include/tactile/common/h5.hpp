@@ -76,6 +76,31 @@ class ReadingProcess {
 void read_in_child_first(const std::filesystem::path& path, const std::string& what, ChildRead read,
                          ReadingProcess* process);
 
+// Throws FormatError saying that `path` cannot be read as `what` ("a tactile movie"): a reader
+// lets no H5::Exception out raw, since it is not a std::exception.
+[[noreturn]] void throw_unreadable(const std::filesystem::path& path, const std::string& what,
+                                   const H5::Exception& e);
+
+// The child's side of read_guarded: what the read returns or throws is forgotten there.
+template <auto ReadChecked>
+void read_and_forget(const std::filesystem::path& path) {
+  static_cast<void>(ReadChecked(path));
+}
+
+// A whole reader of one format: `ReadChecked` (a plain function that reads and checks the file)
+// runs first in a child (read_in_child_first, through `process` when given), then in-process,
+// where HDF5's exceptions become FormatError (throw_unreadable).
+template <auto ReadChecked>
+auto read_guarded(const std::filesystem::path& path, const std::string& what,
+                  ReadingProcess* process) {
+  read_in_child_first(path, what, &read_and_forget<ReadChecked>, process);
+  try {
+    return ReadChecked(path);
+  } catch (const H5::Exception& e) {
+    throw_unreadable(path, what, e);
+  }
+}
+
 // The HDF5 type of the numbers the files hold (double, float, std::int32_t).
 template <typename T>
 const H5::PredType& native_type();
