@@ -90,6 +90,16 @@ nlohmann::json read_json_object(const std::filesystem::path& path, const std::st
   return j;
 }
 
+nlohmann::json read_json_of_format(const std::filesystem::path& path, const std::string& what,
+                                   const std::string& format) {
+  nlohmann::json j = read_json_object(path, what);
+  const std::string where = path.string();
+  if (json_field<std::string>(j, "format", where) != format) {
+    throw FormatError(fmt::format("{}: 'format' is not {}", where, format));
+  }
+  return j;
+}
+
 void json_only_keys(const JsonOrigin& at, const nlohmann::json& j, const std::string& where,
                     const std::set<std::string>& known) {
   if (!j.is_object()) at.fail(fmt::format("{} must be a JSON object, got {}", where, j.dump()));

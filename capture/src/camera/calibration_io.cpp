@@ -54,10 +54,7 @@ void write_calibration_json(const std::filesystem::path& path, const Calibration
 
 Calibration read_calibration_json(const std::filesystem::path& path) {
   const std::string where = path.string();
-  const nlohmann::json j = read_json_object(path, "calibration file");
-  if (json_field<std::string>(j, "format", where) != "tactile-calibration") {
-    throw FormatError(fmt::format("{}: 'format' is not tactile-calibration", where));
-  }
+  const nlohmann::json j = read_json_of_format(path, "calibration file", "tactile-calibration");
   // A later version may mean the fields differently: refused rather than guessed.
   const JsonOrigin at{where};
   const auto version =

@@ -48,10 +48,7 @@ void write_pore_model_json(const std::filesystem::path& path, const PoreModelFil
 
 PoreModelFile read_pore_model_json(const std::filesystem::path& path) {
   const std::string where = path.string();
-  const nlohmann::json j = read_json_object(path, "pore model file");
-  if (json_field<std::string>(j, "format", where) != kFormat) {
-    throw FormatError(fmt::format("{}: 'format' is not {}", where, kFormat));
-  }
+  const nlohmann::json j = read_json_of_format(path, "pore model file", kFormat);
   const int version = json_field<int>(j, "format_version", where);
   if (version != kFormatVersion) {
     throw FormatError(fmt::format("{}: format_version {} is not supported (this program reads {})",

@@ -29,6 +29,10 @@ nlohmann::json parse_json(const JsonOrigin& at, const std::string& text);
 // "expected a JSON object".
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what);
 
+// read_json_object of a file that names its own format: also "<path>: 'format' is not <format>".
+nlohmann::json read_json_of_format(const std::filesystem::path& path, const std::string& what,
+                                   const std::string& format);
+
 // `j` is an object whose keys are all in `known`: "<where> must be a JSON object, got ..." or
 // "<where>: unknown field 'k' (known: ...)".
 void json_only_keys(const JsonOrigin& at, const nlohmann::json& j, const std::string& where,
