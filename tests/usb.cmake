@@ -6,7 +6,7 @@ pkg_check_modules(UMOCKDEV REQUIRED IMPORTED_TARGET umockdev-1.0)
 find_program(TACTILE_UMOCKDEV_WRAPPER umockdev-wrapper REQUIRED)
 
 tactile_add_test_binary(usb_tests usb tactile_display_usb)
-target_link_libraries(usb_tests PRIVATE PkgConfig::UMOCKDEV tactile_firmware)
+target_link_libraries(usb_tests PRIVATE PkgConfig::UMOCKDEV tactile_firmware tactile_live)
 target_include_directories(usb_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/firmware/target
                                              ${CMAKE_CURRENT_SOURCE_DIR}/display)
 add_test(NAME usb.libusb COMMAND ${TACTILE_UMOCKDEV_WRAPPER} $<TARGET_FILE:usb_tests>

@@ -21,6 +21,7 @@
 #include "tactile/common/error.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/display/frame_codec.hpp"
+#include "tactile/display/player.hpp"
 #include "tactile/live/frame_queue.hpp"
 #include "tactile/mapping/methods.hpp"
 #include "tactile/mapping/placement.hpp"
@@ -295,7 +296,9 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
                                                   std::chrono::duration<double>(*session.seconds)))
                       : std::nullopt;
 
-  // Before any thread: a device that cannot start fails here, with nothing to join.
+  // Before any thread: a device that cannot take the layout or start fails here, with nothing
+  // to join.
+  display::check_layout_against_device(session.layout, device_rate_hz, device.info());
   device.start(device_rate_hz);
 
   // Acquisition: never waits for processing.

@@ -228,6 +228,23 @@ TEST_F(Live, ARecordingFolderThatHoldsFilesIsRefused) {
   EXPECT_EQ(kept, "mine");
 }
 
+// No output named: where `play` would play. With no display attached (none is, in the tests)
+// and no screen (DISPLAY and WAYLAND_DISPLAY emptied), that is the emulated device, said so.
+TEST_F(Live, WithNoOutputNamedItGoesWherePlayWould) {
+  // No screen for it, whatever this test runs under; put back afterwards.
+  std::vector<std::pair<std::string, std::string>> kept;
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"}) {
+    if (const char* v = std::getenv(name)) kept.emplace_back(name, v);
+    ::unsetenv(name);
+  }
+  const auto r = run_tactile("live " + frames().string() + " --px-per-mm 47 --seconds 0.5");
+  for (const auto& [name, value] : kept) ::setenv(name.c_str(), value.c_str(), 1);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("live: no display attached; no screen either: playing headless "
+                                  "into the emulated device"));
+  EXPECT_THAT(r.output, HasSubstr("device frames sent"));
+}
+
 TEST_F(Live, FallingBehindDropsTheOldestFrameAndCountsIt) {
   // 60 frames handed over at 5000 Hz, one every 0.2 ms: faster than a 320 x 240 frame is
   // tracked (about 3 ms of CPU in the batch capture).

@@ -182,5 +182,13 @@ TEST(UsbHidraw, SigtermMidPlayRampsTheFirmwareOutputsToRest) {
   for (const std::int16_t v : fake.outputs()) EXPECT_EQ(v, 0);
 }
 
+TEST(UsbHidraw, LiveSessionStreamsToTheDisplayAndLeavesItAtRest) {
+  StopSignals stop;
+  test::FakeHidraw fake;
+  auto t = open_usb_transport(*find_hid());
+  testing::live_and_check(*t);
+  for (const std::int16_t v : fake.outputs()) EXPECT_EQ(v, 0);
+}
+
 }  // namespace
 }  // namespace tactile::display

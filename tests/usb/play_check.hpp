@@ -9,9 +9,16 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "../common/temp_dir.hpp"
 #include "../movie/test_movies.hpp"
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/player.hpp"
+#include "tactile/live/live_request.hpp"
+#include "tactile/live/live_session.hpp"
 
 namespace tactile::display::testing {
 
@@ -61,6 +68,33 @@ inline PlaybackReport play_and_signal(Transport& transport, StopSignals& stop, i
   EXPECT_GE(r.frames_sent, 300);
   EXPECT_LT(r.frames_sent, 400);
   return r;
+}
+
+// A live session on `transport`: 12 frames of a real print rehearsed as a 20 Hz camera, each
+// measured, mapped onto the STReSS layout and streamed at the device's rate. Every device frame
+// the session sent reached the firmware, none malformed; the session returns the summary.
+inline live::LiveSummary live_and_check(Transport& transport) {
+  const tactile::test::TempDir dir("live-usb");
+  const std::filesystem::path print =
+      std::filesystem::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores" / "image_12.jpg";
+  for (int f = 0; f < 12; ++f) {
+    std::filesystem::copy_file(print, dir.path() / fmt::format("frame_{:03d}.jpg", f));
+  }
+  live::LiveRequest request;
+  request.source = dir.path().string();
+  request.capture.px_per_mm = 47;
+  request.capture.rate_hz = 20;
+  const live::ResolvedLive session = live::resolve(request, OptionSpelling::cli);
+  std::atomic<bool> stop{false};
+  const live::LiveSummary summary = live::run_live(session, transport, stop);
+  std::printf("%s", live::format_summary(summary).c_str());
+  EXPECT_EQ(summary.frames_in, 12);
+  EXPECT_GT(summary.frames_processed, 0);
+  EXPECT_GT(summary.device_frames_sent, 100);  // 0.6 s of a 700 Hz device
+  const DeviceStatus status = transport.status();
+  EXPECT_EQ(static_cast<std::int64_t>(status.frames_received), summary.device_frames_sent);
+  EXPECT_EQ(status.malformed, 0u);
+  return summary;
 }
 
 }  // namespace tactile::display::testing

@@ -149,5 +149,15 @@ TEST(UsbLibusb, SigintMidPlayRampsTheFirmwareOutputsToRest) {
   for (const std::int16_t v : fake.outputs()) EXPECT_EQ(v, 0);
 }
 
+// A live session with the display on USB as its output: the frames reach the firmware, and it
+// is left at rest when the session ends.
+TEST(UsbLibusb, LiveSessionStreamsToTheDisplayAndLeavesItAtRest) {
+  StopSignals stop;  // before libusb starts its threads, as `tactile live` does
+  test::FakeDisplay fake;
+  auto t = open_usb_transport(*find(Backend::libusb));
+  testing::live_and_check(*t);
+  for (const std::int16_t v : fake.outputs()) EXPECT_EQ(v, 0);
+}
+
 }  // namespace
 }  // namespace tactile::display

@@ -24,6 +24,8 @@
 #include "tactile/common/stop_signals.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/latero_transport.hpp"
+#include "tactile/display/playback_plan.hpp"
+#include "tactile/display/usb_transports.hpp"
 #include "tactile/display/viewer.hpp"
 #include "tactile/live/live_request.hpp"
 #include "tactile/live/live_session.hpp"
@@ -153,13 +155,15 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       "the display at its own rate (the newest frame held between camera frames). When the\n"
       "processing falls behind, the oldest waiting frame is dropped and counted. Prints frames\n"
       "in / processed / dropped and the latency (frame available -> its first device frame\n"
-      "sent) p50/p99/max with the median of each stage. The display is the emulated device\n"
-      "(--headless, or --window to watch it: the camera image with the strain of every\n"
-      "tracked edge drawn over it beside the contactors) or a Latero (--latero HOST[:PORT],\n"
-      "with --layout latero); USB and hidapi are not yet outputs of a live session.",
+      "sent) p50/p99/max with the median of each stage. The display is where `tactile play`\n"
+      "would play: an attached display over USB (libusb, else hidapi), else the emulator\n"
+      "window when there is a screen, else the emulated device headless; or, by name, the\n"
+      "emulated device (--headless, or --window to watch it: the camera image with the strain\n"
+      "of every tracked edge drawn over it beside the contactors) or a Latero (--latero\n"
+      "HOST[:PORT], with --layout latero).",
       live::live_options());
-  // The output is asked for by name (the emulated device or a Latero), so that a session never
-  // goes somewhere its user did not choose.
+  // The output by name (the emulated device or a Latero), else play's choice (an attached
+  // display first), said before the session starts.
   auto headless = std::make_shared<bool>(false);
   auto window = std::make_shared<bool>(false);
   auto screenshot = std::make_shared<fs::path>();
@@ -180,12 +184,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
   sub->get_option("--latero")->excludes(headless_flag);
   sub->get_option("--latero")->excludes(window_flag);
   sub->callback([request, headless, window, screenshot, latero, &action] {
-    if (!*headless && !*window && latero->address.empty()) {
-      throw CLI::RequiredError(
-          "one of --headless (the emulated device), --window (the emulated device, shown) or "
-          "--latero HOST[:PORT]");
-    }
-    action = [request, latero, window, screenshot] {
+    action = [request, latero, headless, window, screenshot] {
       const live::ResolvedLive session = live::resolve(*request, OptionSpelling::cli);
       if (!screenshot->empty()) {
         refuse_output_over_input({output_file_ending("--screenshot", *screenshot, ".png")},
@@ -194,9 +193,35 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       if (*window && !display::screen_available()) {
         throw RequestError("--window: no screen (DISPLAY or WAYLAND_DISPLAY) to open it on");
       }
-      StopSignals signals;  // before any thread, so that they inherit the block
+      StopSignals signals;  // before any thread (libusb's too), so that they inherit the block
       std::unique_ptr<display::Transport> device;
-      if (!latero->address.empty()) {
+      bool in_window = *window;
+      if (!*headless && !*window && latero->address.empty()) {
+        // Where `play` would play: an attached display (its vendor interface, else its HID
+        // one), else the emulator window when there is a screen, else headless.
+        const display::PlaybackPlan plan = display::plan_playback(
+            false, display::list_usb_devices(), [] { return display::screen_available(); });
+        if (plan.unopenable) {
+          fmt::print(
+              "live: found a display at {} but cannot open it (permissions: install "
+              "display/udev/70-tactile-display.rules, see README); using the emulator\n",
+              plan.unopenable->path);
+        }
+        if (plan.target == display::PlaybackTarget::device) {
+          fmt::print("live: streaming to {} {} ({} {})\n",
+                     plan.device->product.empty() ? "display" : plan.device->product,
+                     plan.device->serial, to_string(plan.device->backend), plan.device->path);
+          device = display::open_usb_transport(*plan.device);
+        } else {
+          in_window = plan.target == display::PlaybackTarget::window;
+          fmt::print("live: no display attached; {}\n",
+                     in_window ? "opening the emulator window"
+                               : "no screen either: playing headless into the emulated device");
+        }
+      }
+      if (device) {
+        // The attached display, opened above.
+      } else if (!latero->address.empty()) {
         // The Latero's own geometry: a movie of another layout would land on the wrong blades.
         if (session.layout.name != "latero") {
           throw RequestError(
@@ -251,7 +276,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       if (recording) recording->attach(callbacks);
       live::LiveSummary summary;
       try {
-        if (*window) {
+        if (in_window) {
           summary = run_in_window(session, *device, stop, callbacks, *screenshot);
         } else {
           summary = live::run_live(session, *device, stop, callbacks);

@@ -78,10 +78,7 @@ bool close(double a, double b) {
 
 }  // namespace
 
-void check_movie_against_device(const movie::TactileMovie& movie, const DeviceInfo& device,
-                                const PlayOptions& options) {
-  validate_movie(movie);
-  const movie::Layout& m = movie.layout;
+void check_layout_against_device(const movie::Layout& m, double rate_hz, const DeviceInfo& device) {
   const movie::Layout& d = device.layout;
   if (m.rows != d.rows || m.cols != d.cols) {
     throw std::invalid_argument(
@@ -93,11 +90,19 @@ void check_movie_against_device(const movie::TactileMovie& movie, const DeviceIn
         "movie layout '{}' has pitch {} x {} mm but device '{}' ({}) has {} x {} mm", m.name,
         m.pitch_x_mm, m.pitch_y_mm, device.name, d.name, d.pitch_x_mm, d.pitch_y_mm));
   }
-  if (movie.rate_hz > d.max_rate_hz) {
-    throw std::invalid_argument(fmt::format("movie rate {} Hz exceeds the device maximum {} Hz",
-                                            movie.rate_hz, d.max_rate_hz));
+  if (rate_hz > d.max_rate_hz) {
+    throw std::invalid_argument(
+        fmt::format("movie rate {} Hz exceeds the device maximum {} Hz", rate_hz, d.max_rate_hz));
   }
-  movie::require_playable_rate(movie.rate_hz, "movie rate");
+  movie::require_playable_rate(rate_hz, "movie rate");
+}
+
+void check_movie_against_device(const movie::TactileMovie& movie, const DeviceInfo& device,
+                                const PlayOptions& options) {
+  validate_movie(movie);
+  const movie::Layout& m = movie.layout;
+  const movie::Layout& d = device.layout;
+  check_layout_against_device(m, movie.rate_hz, device);
   if (!options.allow_out_of_range) {
     const auto n = static_cast<std::size_t>(m.contactor_count());
     for (std::size_t i = 0; i < movie.deflection_um.size(); ++i) {

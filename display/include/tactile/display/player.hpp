@@ -54,6 +54,10 @@ struct PlaybackReport {
 // deflections outside the device range (unless allowed), movie invalid.
 void check_movie_against_device(const movie::TactileMovie& movie, const DeviceInfo& device,
                                 const PlayOptions& options = {});
+// The part of it that needs no frames (a live session's, before any is made): grid size and
+// pitch of `layout` against the device's, `rate_hz` against its maximum.
+void check_layout_against_device(const movie::Layout& layout, double rate_hz,
+                                 const DeviceInfo& device);
 
 // Checks, starts the device at the movie's rate, streams ramp-in, the movie (loops times) and
 // ramp-out (last frame marked end-of-stream), waits for the FIFO to drain, stops the device
