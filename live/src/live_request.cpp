@@ -112,4 +112,13 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
   return r;
 }
 
+void require_latero_layout(const ResolvedLive& session, OptionSpelling spelling) {
+  if (session.layout.name != "latero") {
+    throw RequestError(
+        fmt::format("{}: a Latero plays the latero layout (8 x 8 blades); give "
+                    "latero, not {}",
+                    option_label("layout", spelling), session.layout.name));
+  }
+}
+
 }  // namespace tactile::live

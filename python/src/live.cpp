@@ -1,5 +1,6 @@
-// live(source, ...): a live session into the emulated device, as `tactile live --headless`, its
-// keywords made from the live request's option table; returns the summary as a dict. The
+// live(source, ...): a live session as `tactile live` runs it (an attached display, a Latero or
+// the emulated device), its keywords made from the live request's option table and play's for
+// the output; returns the summary as a dict. The
 // session runs on its own thread while this one waits with the GIL released in short steps, so
 // a KeyboardInterrupt (Ctrl-C, a notebook's stop) ends it cleanly with the device at rest.
 
@@ -9,6 +10,10 @@
 #include "bindings.hpp"
 #include "request_kwargs.hpp"
 #include "tactile/display/emulated_device.hpp"
+#include "tactile/display/latero_transport.hpp"
+#include "tactile/display/play_request.hpp"
+#include "tactile/display/playback_plan.hpp"
+#include "tactile/display/usb_transports.hpp"
 #include "tactile/live/live_request.hpp"
 #include "tactile/live/live_session.hpp"
 #include "tactile/live/recording.hpp"
@@ -36,18 +41,54 @@ py::dict summary_dict(const live::LiveSummary& s) {
   return d;
 }
 
+// The output's keywords are play's (headless, latero, blade_*), read with play's table so that
+// they mean and are checked the same; the others are the live request's.
+bool output_keyword(const std::string& name) {
+  return name == "headless" || name == "latero" || name.rfind("blade_", 0) == 0;
+}
+
 py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
+  py::kwargs session_kwargs, output_kwargs;
+  for (const auto& [key, value] : kwargs) {
+    (output_keyword(key.cast<std::string>()) ? output_kwargs : session_kwargs)[key] = value;
+  }
   live::LiveRequest request;
   request.source = source;
-  set_from_kwargs(request, live::live_options(), kwargs, "live");
+  set_from_kwargs(request, live::live_options(), session_kwargs, "live");
   const live::ResolvedLive session = live::resolve(request, OptionSpelling::python);
-  display::EmulatedDevice device(live::emulated_display_options(session.layout));
+  display::PlayRequest output_request;
+  set_from_kwargs(output_request, display::play_options(), output_kwargs, "live");
+  const display::ResolvedPlay output = display::resolve(output_request, OptionSpelling::python);
+  // Where `tactile live` plays: the Latero named, else an attached display (no window here:
+  // the module links no GUI), else the emulated device. A device that cannot take the session's
+  // layout is refused by the session before it starts.
+  std::unique_ptr<display::Transport> device;
+  std::string target = "headless";
+  if (output.latero) {
+    live::require_latero_layout(session, OptionSpelling::python);
+    display::LateroTransportOptions options;
+    options.mapping = output.latero->mapping;
+    device = std::make_unique<display::LateroTransport>(
+        display::parse_latero_address(output.latero->address), options);
+    target = "latero";
+  } else if (!output.headless) {
+    const display::PlaybackPlan plan =
+        display::plan_playback(false, display::list_usb_devices(), [] { return false; });
+    if (plan.target == display::PlaybackTarget::device) {
+      device = display::open_usb_transport(*plan.device);
+      target = "device";
+    }
+  }
+  if (!device) {
+    device =
+        std::make_unique<display::EmulatedDevice>(live::emulated_display_options(session.layout));
+  }
   std::unique_ptr<live::SessionRecording> recording;
   if (session.record) recording = std::make_unique<live::SessionRecording>(*session.record);
   live::LiveCallbacks callbacks;
   if (recording) recording->attach(callbacks);
   std::atomic<bool> stop{false};
-  live::SessionThread worker(session, device, stop, callbacks);
+  live::SessionThread worker(session, *device, stop, callbacks);
   while (!worker.done()) {
     {
       py::gil_scoped_release unlocked;
@@ -66,7 +107,9 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
   if (recording) {
     recording->finish();
   }
-  return summary_dict(summary);
+  py::dict d = summary_dict(summary);
+  d["target"] = target;
+  return d;
 }
 
 }  // namespace
@@ -74,10 +117,12 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
 void bind_live(py::module_& m) {
   // pybind11 keeps the pointer to the docstring: it must outlive the module.
   static const std::string doc =
-      "A live session into the emulated device, as `tactile live SOURCE --headless`; returns\n"
-      "its summary (frames in, processed, dropped, latency p50/p99/max in ms). Ctrl-C (or a\n"
-      "notebook's stop) ends it with the device at rest. Keywords (the command line's options,\n"
-      "with underscores):" +
+      "A live session as `tactile live SOURCE` runs it, without its window: on an attached\n"
+      "display (its vendor interface first), else into the emulated device; headless=True: the\n"
+      "emulated device only; latero='HOST[:PORT]' (with layout='latero'): that Latero, with\n"
+      "the blade mapping blade_* as play() takes them. Returns its summary (target, frames in,\n"
+      "processed, dropped, latency p50/p99/max in ms). Ctrl-C (or a notebook's stop) ends it\n"
+      "with the device at rest. Keywords (the command line's options, with underscores):" +
       kwargs_doc(live::live_options());
   m.def("live", &run_session, py::arg("source"), doc.c_str());
 }

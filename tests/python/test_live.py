@@ -30,3 +30,32 @@ def test_bad_keywords_are_the_command_lines_errors(tmp_path):
         tactile.live(str(tmp_path))
     with pytest.raises(ValueError, match="queue_frames: 0 is out of range"):
         tactile.live(str(tmp_path), px_per_mm=47, queue_frames=0)
+
+
+def test_a_session_on_the_emulated_latero_leaves_every_blade_at_rest(cli):
+    from test_play import EmulatedLatero, counters
+
+    with EmulatedLatero(cli) as latero:
+        summary = tactile.live(str(DEMO / "frames"), calib=DEMO / "calibration.json", rate_hz=20,
+                               seconds=1.0, layout="latero", latero=latero.address,
+                               blade_centre_raw=128, blade_max_raw=255)
+        got = counters(latero.stop())
+    assert summary["target"] == "latero"
+    assert summary["frames_processed"] > 0 and summary["device_frames_sent"] > 0
+    # Every frame the session sent, and its stop ramp, reached the Latero as a FULL request,
+    # none malformed; the blades ended at the centre the blade mapping names.
+    assert got["full"] >= summary["device_frames_sent"] and got["malformed"] == 0
+    assert got["blades"] == (128, 128)
+
+
+def test_the_output_keywords_are_plays(tmp_path):
+    assert tactile.live(str(DEMO / "frames"), calib=DEMO / "calibration.json", rate_hz=20,
+                        seconds=0.3, headless=True)["target"] == "headless"
+    with pytest.raises(ValueError, match="headless: not with latero"):
+        tactile.live(str(tmp_path), px_per_mm=47, headless=True, latero="127.0.0.1:9")
+    with pytest.raises(ValueError, match="the blade mapping is only for a Latero"):
+        tactile.live(str(tmp_path), px_per_mm=47, blade_max_raw=200)
+    # A Latero plays the latero layout only: refused before anything is sent.
+    with pytest.raises(ValueError, match="layout: a Latero plays the latero layout"):
+        tactile.live(str(DEMO / "frames"), calib=DEMO / "calibration.json", seconds=0.3,
+                     latero="127.0.0.1:9")

@@ -222,13 +222,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       if (device) {
         // The attached display, opened above.
       } else if (!latero->address.empty()) {
-        // The Latero's own geometry: a movie of another layout would land on the wrong blades.
-        if (session.layout.name != "latero") {
-          throw RequestError(
-              fmt::format("--latero plays the latero layout; give --layout latero "
-                          "(not {})",
-                          session.layout.name));
-        }
+        live::require_latero_layout(session, OptionSpelling::cli);
         display::LateroTransportOptions options;
         options.mapping = latero->mapping;
         device = std::make_unique<display::LateroTransport>(

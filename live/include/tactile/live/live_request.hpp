@@ -58,4 +58,8 @@ struct ResolvedLive {
 // frame, not the profile method); the record folder new or empty.
 ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling);
 
+// A Latero plays the latero layout only (a movie of another lands on the wrong blades):
+// RequestError naming the layout option, before anything is sent to it.
+void require_latero_layout(const ResolvedLive& session, OptionSpelling spelling);
+
 }  // namespace tactile::live
