@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -163,6 +164,81 @@ TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
       }
     }
   }
+}
+
+// The contact patch as its spec says (the geometry alone, no image): an ellipse of semi-axes
+// 0.4 x the view, centred mid-sequence, moving at its speed and breathing by its fraction.
+TEST(FullSlip, AContactPatchMovesAndBreathesAsItsSpecSays) {
+  PrintWarpSpec s;
+  s.pattern = WarpPattern::full_slip;
+  s.travel_speed_mm_per_s = 10;
+  s.width_px = 320;
+  s.height_px = 240;
+  const double w_mm = 320 / s.px_per_mm, h_mm = 240 / s.px_per_mm;
+  const PointMm c{319 / (2 * s.px_per_mm), 239 / (2 * s.px_per_mm)};
+  // No patch: all of the view touches.
+  EXPECT_EQ(warp_contact(s, {0, 0}, 0), 1.0);
+  EXPECT_FALSE(has_contact_patch(s));
+  s.patch_speed_mm_per_s = 6;
+  s.patch_breathing = 0.2;
+  ASSERT_TRUE(has_contact_patch(s));
+  const double last = s.frame_count - 1, half_s = sequence_duration_s(s) / 2;
+  // Mid-sequence: the view's centre in contact, its corners not.
+  EXPECT_EQ(warp_contact(s, c, last / 2), 1.0);
+  EXPECT_EQ(warp_contact(s, {0, 0}, last / 2), 0.0);
+  EXPECT_EQ(warp_contact(s, {w_mm, h_mm}, last / 2), 0.0);
+  // It moves: its centre at the first frame is 6 mm/s x half the sequence left of the view's;
+  // that far right of the view's centre is outside it then (2.9 mm, against 0.95 x 2.7 mm).
+  const double shift = 6 * half_s;
+  EXPECT_EQ(warp_contact(s, {c.x_mm - shift, c.y_mm}, 0), 1.0);
+  EXPECT_EQ(warp_contact(s, {c.x_mm + shift, c.y_mm}, 0), 0.0);
+  // It breathes: 1.1 semi-axes above its centre is inside at a quarter of the sequence (1.2 x
+  // the size) and outside at three quarters (0.8 x).
+  const auto above = [&](double frame) {
+    const double t = frame / s.frame_rate_hz - half_s;
+    return PointMm{c.x_mm + 6 * t, c.y_mm - 1.1 * 0.4 * h_mm};
+  };
+  EXPECT_EQ(warp_contact(s, above(last / 4), last / 4), 1.0);
+  EXPECT_EQ(warp_contact(s, above(3 * last / 4), 3 * last / 4), 0.0);
+  // Out of range, named.
+  const auto refusal = [](const PrintWarpSpec& bad) -> std::string {
+    try {
+      validate_print_warp(bad);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  PrintWarpSpec bad = s;
+  bad.patch_breathing = 0.6;
+  EXPECT_NE(refusal(bad).find("patch_breathing 0.6 is out of range"), std::string::npos);
+  bad = s;
+  bad.patch_speed_mm_per_s = 100;  // 48 mm in the sequence, across a 6.8 mm view
+  EXPECT_NE(refusal(bad).find("patch_speed_mm_per_s 100 is out of range"), std::string::npos);
+}
+
+// Skin sliding through a contact patch that moves and breathes: no strain is reported where
+// the skin does not touch. Its accuracy there is printed, not asserted: the capture does not yet
+// hold on this scene (skin fading in at the patch's rim starts tracks whose template changes as
+// the contact grows).
+TEST(FullSlip, SkinInAMovingPatchReportsNoStrainOutsideIt) {
+  const GrayImage print = read_image(print_path("13", "image_"));
+  PrintWarpSpec s = spec_for(print, WarpPattern::full_slip, PrintWarpSpec{}.strain);
+  s.travel_speed_mm_per_s = 25;
+  s.patch_speed_mm_per_s = 5;
+  s.patch_breathing = 0.2;
+  const SlipScores scores = scored(render_print_sequence(s, print));
+  const Evaluation& ours = scores.ours;
+  std::printf(
+      "full slip in a moving breathing patch, print 13 at 25 mm/s: ours tracked %.0f, rms %.5f "
+      "corr %.4f (%lld edges, %lld across the gap); Lucas-Kanade tracked %.0f rms %.5f corr "
+      "%.4f\n",
+      ours.median_tracked_points, ours.rms_error, ours.correlation,
+      static_cast<long long>(ours.edges), static_cast<long long>(ours.edges_across_gap),
+      scores.lk.median_tracked_points, scores.lk.rms_error, scores.lk.correlation);
+  ASSERT_TRUE(ours.has_gap);
+  ASSERT_GT(ours.edges, 1000);
+  EXPECT_EQ(ours.edges_across_gap, 0);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   auto true_mm = [&](const TrackedPoint& p) { return to_mm(truth.calibration, p.x_px, p.y_px); };
 
   // How much an end of an edge touches the glass, where the scene lifts off.
-  ev.has_gap = truth.warp && truth.warp->contact_loss > 0;
+  ev.has_gap = truth.warp && (truth.warp->contact_loss > 0 || has_contact_patch(*truth.warp));
   const auto contact = [&](const TrackedPoint& p, int frame) {
     return ev.has_gap ? warp_contact(*truth.warp, true_mm(p), frame) : 1.0;
   };

@@ -48,6 +48,8 @@ void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTr
   optional_field("exposure_s", spec.exposure_s);
   optional_field("supersample", spec.supersample);
   optional_field("contact_loss", spec.contact_loss);
+  optional_field("patch_speed_mm_per_s", spec.patch_speed_mm_per_s);
+  optional_field("patch_breathing", spec.patch_breathing);
   try {
     validate_print_warp(spec);
   } catch (const std::invalid_argument& e) {

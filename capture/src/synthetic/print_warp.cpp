@@ -111,6 +111,11 @@ class Warp {
   // A region fixed on the glass, a little right of and above the centre, lifts off in the middle
   // of the sequence and comes back down.
   double contact(PointMm image, double frame) const {
+    return std::min(lift_contact(image, frame), patch_contact(image, frame));
+  }
+
+ private:
+  double lift_contact(PointMm image, double frame) const {
     if (s_.contact_loss <= 0) return 1.0;
     const double lift_s = std::sin(kPi * std::clamp(progress_of(s_, frame), 0.0, 1.0));
     const double dx = image.x_mm - c_.x_mm - 0.2 * field_w_mm_;
@@ -121,7 +126,17 @@ class Warp {
     return 1 - smoothstep01((lifted - 0.35) / 0.3);
   }
 
- private:
+  // The moving, breathing patch: 1 inside, 0 outside, over a rim of a tenth of its radius.
+  double patch_contact(PointMm image, double frame) const {
+    if (!has_contact_patch(s_)) return 1.0;
+    const double t_s = time_s(frame) - duration_s_ / 2;
+    const double size = 1 + s_.patch_breathing * std::sin(2 * kPi * progress_of(s_, frame));
+    const double dx = (image.x_mm - c_.x_mm - s_.patch_speed_mm_per_s * t_s) / (0.4 * field_w_mm_);
+    const double dy = (image.y_mm - c_.y_mm) / (0.4 * field_h_mm_);
+    const double r = std::hypot(dx, dy) / size;
+    return 1 - smoothstep01((r - 0.95) / 0.1);
+  }
+
   double time_s(double frame) const { return frame / s_.frame_rate_hz; }
 
   // How far the skin has slid along x since the first frame (full slip).
@@ -376,6 +391,16 @@ void validate_print_warp(const PrintWarpSpec& s) {
   if (!(s.contact_loss >= 0 && s.contact_loss <= 1)) {
     fail(fmt::format("contact_loss {} is out of range: must be 0 to 1", s.contact_loss));
   }
+  // The patch's centre stays within the view's middle: at most a view's width of travel.
+  if (!(std::abs(s.patch_speed_mm_per_s * sequence_duration_s(s)) <= s.width_px / s.px_per_mm)) {
+    fail(
+        fmt::format("patch_speed_mm_per_s {} is out of range: the patch would travel more than "
+                    "the view's width ({:.3g} mm) in the sequence's {:.3g} s",
+                    s.patch_speed_mm_per_s, s.width_px / s.px_per_mm, sequence_duration_s(s)));
+  }
+  if (!(s.patch_breathing >= 0 && s.patch_breathing <= 0.5)) {
+    fail(fmt::format("patch_breathing {} is out of range: must be 0 to 0.5", s.patch_breathing));
+  }
 }
 
 double sequence_duration_s(const PrintWarpSpec& s) {
@@ -388,6 +413,10 @@ PointMm warp_to_image(const PrintWarpSpec& s, PointMm material, double frame) {
 
 PointMm warp_to_material(const PrintWarpSpec& s, PointMm image, double frame) {
   return Warp(s).to_material(image, frame);
+}
+
+bool has_contact_patch(const PrintWarpSpec& s) {
+  return s.patch_speed_mm_per_s != 0 || s.patch_breathing > 0;
 }
 
 double warp_contact(const PrintWarpSpec& s, PointMm image, double frame) {
@@ -524,6 +553,8 @@ void write_print_sequence(const std::filesystem::path& dir, const PrintSequence&
                {"exposure_s", s.exposure_s},
                {"supersample", s.supersample},
                {"contact_loss", s.contact_loss},
+               {"patch_speed_mm_per_s", s.patch_speed_mm_per_s},
+               {"patch_breathing", s.patch_breathing},
                {"seed", s.seed}};
   Provenance provenance = make_provenance(print.string(), "print warp", j["warp"].dump());
   provenance.command_line = command_line;

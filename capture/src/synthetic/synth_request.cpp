@@ -98,6 +98,14 @@ const std::vector<OptionRow<WarpRequest>>& warp_options() {
                             "With a print: a region lifts off mid-sequence and lands again,\n"
                             "0 (none) to 1 (fully lifted)"),
             d.contact_loss),
+      shows(rows::number<R>("patch_speed", &R::patch_speed_mm_per_s, -1000, 1000, "mm/s",
+                            "With a print: the skin touches the glass in a patch smaller than\n"
+                            "the view (outside it: out of contact), moving along x at this speed"),
+            d.patch_speed_mm_per_s),
+      shows(rows::number<R>("patch_breathing", &R::patch_breathing, 0, 0.5, "",
+                            "With a print: the contact patch grows and shrinks by this fraction\n"
+                            "of its size, one cycle over the sequence"),
+            d.patch_breathing),
       rows::number<R>("slide_speed", &R::slide_speed_mm_per_s, -1000, 1000, "mm/s",
                       "With a print: slide along x as a speed (instead of slide-x)"),
       rows::number<R>("turn_rate", &R::turn_rate_deg_per_s, -10000, 10000, "degrees/s",
@@ -242,6 +250,8 @@ ResolvedSynth resolve(const SynthRequest& r, OptionSpelling spelling) {
   if (p.exposure_ms) w.exposure_s = *p.exposure_ms / 1000;
   w.supersample = p.supersample.value_or(w.supersample);
   w.contact_loss = p.contact_loss.value_or(w.contact_loss);
+  w.patch_speed_mm_per_s = p.patch_speed_mm_per_s.value_or(w.patch_speed_mm_per_s);
+  w.patch_breathing = p.patch_breathing.value_or(w.patch_breathing);
   w.frame_count = r.scene.frames.value_or(w.frame_count);
   w.noise_sigma = r.scene.noise.value_or(w.noise_sigma);
   w.seed = r.scene.seed.value_or(w.seed);

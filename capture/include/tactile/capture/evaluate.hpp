@@ -66,7 +66,8 @@ struct Evaluation {
   std::int32_t track_count = 0;
   double median_track_frames = 0;
   double mean_track_frames = 0;
-  // A scene whose skin lifts off and lands again (PrintWarpSpec::contact_loss > 0): the same
+  // A scene whose skin lifts off and lands again (PrintWarpSpec::contact_loss > 0) or touches
+  // in a patch smaller than the view (has_contact_patch): the same
   // figures over the edges whose two ends were in full contact at both frames (outside the gap
   // and its rim), and how many compared edges touched the gap, where no strain should be
   // reported (an end in less than half contact at either frame). Zero for other scenes.

@@ -86,6 +86,13 @@ struct PrintWarpSpec {
   // Peak strength of a region that loses contact (shown as bright skin, its pores not in the
   // truth) in the middle of the sequence and regains it; 0 = none, 1 = fully lifted.
   double contact_loss = 0;
+  // A contact patch smaller than the view, an ellipse of semi-axes 0.4 x the view's width and
+  // height: skin outside it is out of contact (bright, its pores not in the truth). It moves
+  // along x at patch_speed_mm_per_s (centred in the view mid-sequence) and its semi-axes grow
+  // and shrink by the fraction patch_breathing, one cycle over the sequence. No patch (the whole
+  // view in contact) while both are 0.
+  double patch_speed_mm_per_s = 0;
+  double patch_breathing = 0;
   double blur_sigma_px = 0.7;
   double noise_sigma = 2.0;        // grey levels, new in every frame
   double brightness_drift = 0.06;  // relative change of exposure from first to last frame
@@ -103,6 +110,9 @@ double sequence_duration_s(const PrintWarpSpec& spec);
 // (an instant within the exposure).
 PointMm warp_to_image(const PrintWarpSpec& spec, PointMm material, double frame);
 PointMm warp_to_material(const PrintWarpSpec& spec, PointMm image, double frame);
+
+// Whether the skin touches in a patch smaller than the view (patch_speed or patch_breathing).
+bool has_contact_patch(const PrintWarpSpec& spec);
 
 // How much of the skin seen at image point `image` touches the glass at `frame`, 0..1.
 double warp_contact(const PrintWarpSpec& spec, PointMm image, double frame);

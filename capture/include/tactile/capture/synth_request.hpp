@@ -57,6 +57,8 @@ struct WarpRequest {
   std::optional<double> exposure_ms;
   std::optional<int> supersample;
   std::optional<double> contact_loss;
+  std::optional<double> patch_speed_mm_per_s;
+  std::optional<double> patch_breathing;
   std::optional<double> slide_speed_mm_per_s;  // instead of slide_x_mm
   std::optional<double> turn_rate_deg_per_s;   // instead of turn_deg
 };
