@@ -108,13 +108,15 @@ class Warp {
     return {d.x_mm + c_.x_mm, d.y_mm + c_.y_mm};
   }
 
-  // A region fixed on the glass, a little right of and above the centre, lifts off in the middle
-  // of the sequence and comes back down.
+  // How much of the skin seen at `image` touches at `frame`: the lesser of the lift-off's and
+  // the contact patch's.
   double contact(PointMm image, double frame) const {
     return std::min(lift_contact(image, frame), patch_contact(image, frame));
   }
 
  private:
+  // A region fixed on the glass, a little right of and above the centre, lifts off in the middle
+  // of the sequence and comes back down.
   double lift_contact(PointMm image, double frame) const {
     if (s_.contact_loss <= 0) return 1.0;
     const double lift_s = std::sin(kPi * std::clamp(progress_of(s_, frame), 0.0, 1.0));
