@@ -197,17 +197,17 @@ class SkinMotion {
 };
 
 // Sends the held frame at the device's rate, keeping its FIFO `target` frames deep.
-void feed_device(display::Transport& device, double rate_hz, int target, HeldFrame& held,
-                 const std::atomic<bool>& done, std::int64_t& frames_sent,
-                 std::exception_ptr& failure) {
+void feed_device(display::Transport& device, std::uint32_t fifo_capacity_frames, double rate_hz,
+                 int target, HeldFrame& held, const std::atomic<bool>& done,
+                 std::int64_t& frames_sent, std::exception_ptr& failure) {
   try {
     const auto period =
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
     std::vector<float> frame;
     std::uint32_t sequence = 0;
     // A device without a FIFO (a Latero: a frame plays when it arrives) takes one a tick.
-    const int depth = std::min<int>(
-        target, static_cast<int>(std::max<std::uint32_t>(1, device.info().fifo_capacity_frames)));
+    const int depth =
+        std::min<int>(target, static_cast<int>(std::max<std::uint32_t>(1, fifo_capacity_frames)));
     auto tick = Clock::now();
     while (!done.load()) {
       const display::DeviceStatus status = device.status();
@@ -298,7 +298,9 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
 
   // Before any thread: a device that cannot take the layout or start fails here, with nothing
   // to join.
-  display::check_layout_against_device(session.layout, device_rate_hz, device.info());
+  // Asked once: a Latero answers info() with a probe over the network.
+  const display::DeviceInfo device_info = device.info();
+  display::check_layout_against_device(session.layout, device_rate_hz, device_info);
   device.start(device_rate_hz);
 
   // Acquisition: never waits for processing.
@@ -340,8 +342,8 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   std::int64_t frames_sent = 0;
   std::exception_ptr feed_failure;
   std::thread feeder([&] {
-    feed_device(device, device_rate_hz, options.fifo_target_frames, held, feeding_done, frames_sent,
-                feed_failure);
+    feed_device(device, device_info.fifo_capacity_frames, device_rate_hz,
+                options.fifo_target_frames, held, feeding_done, frames_sent, feed_failure);
   });
 
   std::unique_ptr<capture::AlignmentTracker> tracker;

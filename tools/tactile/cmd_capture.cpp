@@ -134,15 +134,11 @@ std::string map_name(int frame_from) {
   return fmt::format("strain_{:03d}.png", frame_from);
 }
 
-// The maps, written until `stop_fd` asks to stop. Their files are committed with the strain
-// movie's (a CommitTogether is alive): a stop replaces none.
-void write_maps(const fs::path& dir, const capture::StrainMovie& movie, Progress& progress,
-                int stop_fd) {
-  const double full_scale = capture::strain_map_full_scale(movie);
-  if (!(full_scale > 0)) {
-    fmt::print("capture: no strain edges, so no maps written\n");
-    return;
-  }
+// The maps, written until `stop_fd` asks to stop, at the full scale `full_scale` (above 0).
+// Their files are committed with the strain movie's (a CommitTogether is alive): a stop replaces
+// none.
+void write_maps(const fs::path& dir, const capture::StrainMovie& movie, double full_scale,
+                Progress& progress, int stop_fd) {
   fs::create_directories(dir);
   const int total = static_cast<int>(movie.frames.size());
   for (int i = 0; i < total; ++i) {
@@ -360,7 +356,10 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
         fs::create_directories(*outputs->csv_dir);
         capture::export_strain_csv(*outputs->csv_dir, movie);
       }
-      if (outputs->maps_dir) write_maps(*outputs->maps_dir, movie, progress, stop.fd());
+      const double full_scale = capture::strain_map_full_scale(movie);
+      if (outputs->maps_dir && full_scale > 0) {
+        write_maps(*outputs->maps_dir, movie, full_scale, progress, stop.fd());
+      }
       if (const int signal = stop.received(); signal != 0) {
         fmt::print(stderr,
                    "capture: stopped by {} while writing its outputs: none of them was "
@@ -380,10 +379,11 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
       if (outputs->csv_dir) {
         fmt::print("capture: wrote tracks.csv and edges.csv in {}\n", outputs->csv_dir->string());
       }
-      if (outputs->maps_dir && capture::strain_map_full_scale(movie) > 0) {
+      if (outputs->maps_dir && full_scale > 0) {
         fmt::print("capture: wrote {} strain maps (full scale {:.2f} %) in {}\n",
-                   movie.frames.size(), 100 * capture::strain_map_full_scale(movie),
-                   outputs->maps_dir->string());
+                   movie.frames.size(), 100 * full_scale, outputs->maps_dir->string());
+      } else if (outputs->maps_dir) {
+        fmt::print("capture: no strain edges, so no maps written\n");
       }
       return 0;
     };

@@ -201,16 +201,9 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
         // one), else the emulator window when there is a screen, else headless.
         const display::PlaybackPlan plan = display::plan_playback(
             false, display::list_usb_devices(), [] { return display::screen_available(); });
-        if (plan.unopenable) {
-          fmt::print(
-              "live: found a display at {} but cannot open it (permissions: install "
-              "display/udev/70-tactile-display.rules, see README); using the emulator\n",
-              plan.unopenable->path);
-        }
+        if (plan.unopenable) fmt::print("live: {}", display::cannot_open(*plan.unopenable));
         if (plan.target == display::PlaybackTarget::device) {
-          fmt::print("live: streaming to {} {} ({} {})\n",
-                     plan.device->product.empty() ? "display" : plan.device->product,
-                     plan.device->serial, to_string(plan.device->backend), plan.device->path);
+          fmt::print("live: {}", display::streaming_to(*plan.device));
           device = display::open_usb_transport(*plan.device);
         } else {
           in_window = plan.target == display::PlaybackTarget::window;
@@ -219,15 +212,13 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
                                : "no screen either: playing headless into the emulated device");
         }
       }
-      if (device) {
-        // The attached display, opened above.
-      } else if (!latero->address.empty()) {
+      if (!latero->address.empty()) {
         live::require_latero_layout(session, OptionSpelling::cli);
         display::LateroTransportOptions options;
         options.mapping = latero->mapping;
         device = std::make_unique<display::LateroTransport>(
             display::parse_latero_address(latero->address), options);
-      } else {
+      } else if (!device) {
         device = std::make_unique<display::EmulatedDevice>(
             live::emulated_display_options(session.layout));
       }

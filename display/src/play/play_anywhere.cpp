@@ -60,9 +60,7 @@ void play_headless(const movie::TactileMovie& movie, const ResolvedPlay& request
 void play_on_device(const movie::TactileMovie& movie, const ResolvedPlay& request,
                     const DeviceDescription& device, const PlayBackends& backends, const Say& say,
                     PlayResult& result) {
-  say(fmt::format("play: streaming to {} {} ({} {})\n",
-                  device.product.empty() ? "display" : device.product, device.serial,
-                  to_string(device.backend), device.path));
+  say("play: " + streaming_to(device));
   auto transport = backends.open_device(device);
   PlayOptions options;
   options.loops = request.loops;
@@ -136,10 +134,7 @@ PlayResult play_anywhere(const movie::TactileMovie& movie, const ResolvedPlay& r
   result.target = plan.target;
   result.device = plan.device;
   if (plan.unopenable) {
-    say(
-        fmt::format("play: found a display at {} but cannot open it (permissions: install "
-                    "display/udev/70-tactile-display.rules, see README); using the emulator\n",
-                    plan.unopenable->path));
+    say("play: " + cannot_open(*plan.unopenable));
   }
   switch (plan.target) {
     case PlaybackTarget::device:

@@ -33,6 +33,19 @@ PlaybackPlan plan_playback(bool headless, const std::vector<DeviceDescription>& 
   return plan;
 }
 
+std::string streaming_to(const DeviceDescription& device) {
+  return fmt::format("streaming to {} {} ({} {})\n",
+                     device.product.empty() ? "display" : device.product, device.serial,
+                     to_string(device.backend), device.path);
+}
+
+std::string cannot_open(const DeviceDescription& device) {
+  return fmt::format(
+      "found a display at {} but cannot open it (permissions: install "
+      "display/udev/70-tactile-display.rules, see README); using the emulator\n",
+      device.path);
+}
+
 std::string playback_summary_line(const PlaybackReport& r) {
   // The movie's own length apart from the ramps, so that it reads as `info` and `map` count it.
   return fmt::format(

@@ -33,6 +33,12 @@ std::optional<DeviceDescription> pick_device(const std::vector<DeviceDescription
 PlaybackPlan plan_playback(bool headless, const std::vector<DeviceDescription>& devices,
                            const std::function<bool()>& screen);
 
+// What a front end says of the plan's display, without its own prefix, ending in a newline:
+// "streaming to PRODUCT SERIAL (BACKEND PATH)", and for an attached display it cannot open, why
+// and what to install.
+std::string streaming_to(const DeviceDescription& device);
+std::string cannot_open(const DeviceDescription& device);
+
 // What a playback did in one line ending in a newline, as `tactile play` prints it
 // (format_playback_report in player.hpp gives the full account).
 std::string playback_summary_line(const PlaybackReport& report);
