@@ -128,15 +128,26 @@ int dmesg_level(const std::string& line) {
 // kernel": about 210-237 Hz at full speed, 976 Hz at high speed under TCG), rates with room for
 // a host shared with other work: 160 Hz at full speed, 500 Hz at high speed, and 100 Hz for
 // the unplug, which needs a stream, not a ceiling.
-double scenario_rate(const Options& o) {
+//
+// Under TCG the play scenarios run at half that. The guest's CPU is then emulated by a QEMU
+// thread that shares the host's two cores with QEMU's main loop and the bridge, and on a host
+// 1.5 to 2 times slower than the one these rates were first measured on (guest CPU per frame
+// 700-1300 us instead of 330-780 us), 700 Hz on libusb and 500 Hz on hidraw failed 3 runs of 3
+// with 27-246 underruns on an otherwise idle host, while 350 Hz and 250 Hz played with none.
+// What the play tests hold is the transport (every frame sent is played, none malformed, the
+// FIFO never empties once filled, the rate sustained), not the emulator's speed; a KVM guest
+// plays at the full rate.
+double scenario_rate(const Options& o, Accel accel) {
   if (o.rate_hz > 0) return o.rate_hz;
   if (o.scenario == "unplug-hidraw" && !o.high_speed) return 100;
-  if (o.scenario == "play-hidraw") return o.high_speed ? 500 : 160;
+  const double tcg = accel == Accel::tcg ? 0.5 : 1.0;
+  if (o.scenario == "play-hidraw") return tcg * (o.high_speed ? 500 : 160);
+  if (o.scenario == "play-libusb") return tcg * 700;
   return 700;
 }
 
-std::string run_steps(const Options& o) {
-  const std::string rate = std::to_string(static_cast<int>(scenario_rate(o)));
+std::string run_steps(const Options& o, Accel accel) {
+  const std::string rate = std::to_string(static_cast<int>(scenario_rate(o, accel)));
   const std::string secs = std::to_string(static_cast<int>(o.seconds));
   if (o.scenario == "enumerate") return "enumerate";
   if (o.scenario == "play-libusb") return "play:libusb:" + rate + ":" + secs;
@@ -307,44 +318,45 @@ int run(const Options& o, Accel accel) {
   const int mon_out = open((mon + ".out").c_str(), O_RDWR | O_CLOEXEC | O_NONBLOCK);
 
   const bool kvm = accel == Accel::kvm;
-  std::vector<std::string> args = {o.qemu,
-                                   "-nodefaults",
-                                   "-no-user-config",
-                                   "-display",
-                                   "none",
-                                   "-m",
-                                   "256",
-                                   "-smp",
-                                   "1",
-                                   "-nic",
-                                   "none",
-                                   "-no-reboot",
-                                   "-serial",
-                                   "stdio",
-                                   "-monitor",
-                                   "pipe:" + mon,
-                                   "-kernel",
-                                   o.kernel,
-                                   "-initrd",
-                                   o.initrd,
-                                   "-append",
-                                   "console=ttyS0 quiet panic=-1 tactile.run=" + run_steps(o),
-                                   "-device",
-                                   "qemu-xhci,id=xhci",
-                                   "-chardev",
-                                   "socket,id=usbr0,path=" + sock,
-                                   "-device",
-                                   "usb-redir,chardev=usbr0,id=disp0,bus=xhci.0"};
+  std::vector<std::string> args = {
+      o.qemu,
+      "-nodefaults",
+      "-no-user-config",
+      "-display",
+      "none",
+      "-m",
+      "256",
+      "-smp",
+      "1",
+      "-nic",
+      "none",
+      "-no-reboot",
+      "-serial",
+      "stdio",
+      "-monitor",
+      "pipe:" + mon,
+      "-kernel",
+      o.kernel,
+      "-initrd",
+      o.initrd,
+      "-append",
+      "console=ttyS0 quiet panic=-1 tactile.run=" + run_steps(o, accel),
+      "-device",
+      "qemu-xhci,id=xhci",
+      "-chardev",
+      "socket,id=usbr0,path=" + sock,
+      "-device",
+      "usb-redir,chardev=usbr0,id=disp0,bus=xhci.0"};
   if (kvm) {
     args.insert(args.begin() + 1, {"-enable-kvm", "-cpu", "host"});
     if (o.kvm_hang) args.insert(args.begin() + 1, "-S");
   } else {
     args.insert(args.begin() + 1, {"-accel", "tcg"});
   }
-  std::printf("vm: %s, scenario %s, %s-speed %d x %d device%s\n",
+  std::printf("vm: %s, scenario %s, %s-speed %d x %d device%s, steps %s\n",
               kvm ? (o.kvm_hang ? "KVM, paused (--kvm-hang)" : "KVM") : "TCG", o.scenario.c_str(),
               o.high_speed ? "high" : "full", o.rows, o.cols,
-              o.defect ? ", with a descriptor defect" : "");
+              o.defect ? ", with a descriptor defect" : "", run_steps(o, accel).c_str());
   int out_pipe[2];
   if (pipe2(out_pipe, O_CLOEXEC) != 0) return 1;
   posix_spawn_file_actions_t fa;
@@ -464,9 +476,9 @@ int run(const Options& o, Accel accel) {
       return failures > 0 && kernel_saw_it && done ? 0 : 1;
     }
   } else if (o.scenario == "play-libusb") {
-    check_play(lines, "libusb", scenario_rate(o), o.seconds, play_stats);
+    check_play(lines, "libusb", scenario_rate(o, accel), o.seconds, play_stats);
   } else if (o.scenario == "play-hidraw") {
-    check_play(lines, "hidapi", scenario_rate(o), o.seconds, play_stats);
+    check_play(lines, "hidapi", scenario_rate(o, accel), o.seconds, play_stats);
   } else if (o.scenario.rfind("unplug", 0) == 0) {
     const std::string backend = o.scenario == "unplug" ? "libusb" : "hidapi";
     check(unplugged_sent >= 0, "device_del sent while playing");
@@ -505,7 +517,7 @@ int run(const Options& o, Accel accel) {
     const auto again = first(lines, "VM: played backend=" + backend, unplugged_sent);
     check(replugged >= 0 && again && num(again->text, "played") == num(again->text, "sent"),
           "plugged back in: plays again (every frame sent is played)");
-    if (again) check_play(lines, backend, scenario_rate(o), 2, play_stats);
+    if (again) check_play(lines, backend, scenario_rate(o, accel), 2, play_stats);
     check(stats.connections == 2, "the bridge saw the device plugged in twice");
   }
   std::printf("vm: %s in %.1f s wall: %s\n", o.scenario.c_str(), wall,
@@ -551,7 +563,7 @@ int main(int argc, char** argv) {
       o.scenario = a;
     }
   }
-  if (o.qemu.empty() || o.kernel.empty() || o.initrd.empty() || run_steps(o).empty() ||
+  if (o.qemu.empty() || o.kernel.empty() || o.initrd.empty() || run_steps(o, Accel::tcg).empty() ||
       !(o.kvm_bound_s > 0 && o.kvm_bound_s <= o.timeout_s)) {
     std::fprintf(
         stderr,
@@ -604,13 +616,17 @@ int main(int argc, char** argv) {
   } else if (verdict != accel) {
     record(accel, accel == Accel::kvm ? "a KVM guest reached its init" : "no usable /dev/kvm");
   }
-  if (rc != 0 && starved) {
-    // Only a run whose failure came with a starved host (or a late unplug report on an emulated
-    // CPU) is repeated, once; both are printed.
+  // Only a run whose failure came with a starved host (or a late unplug report on an emulated
+  // CPU) is repeated, at most twice; every run is printed. An emulated guest on a 2-core host
+  // shares it with the bridge and the emulator's own threads, and one CI run had two starved
+  // runs in a row (ticks 11 ms late, 25 underruns); a run on a host that was not starved is
+  // never repeated, so a real underrun still fails.
+  for (int repeat = 1; rc != 0 && starved && repeat <= 2; ++repeat) {
     std::printf(
         "vm: the host starved the bridge (a tick over %.0f ms late) or the emulated guest "
-        "reported the unplug late during a failed run; running the scenario once more\n",
-        kStarvedMs);
+        "reported the unplug late during a failed run; running the scenario again (repeat %d "
+        "of 2)\n",
+        kStarvedMs, repeat);
     failures = 0;
     starved = false;
     rc = run(o, accel);
