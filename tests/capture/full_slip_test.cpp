@@ -13,6 +13,7 @@
 #include "real_prints.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/capture.hpp"
+#include "tactile/capture/contact_map.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/print_warp.hpp"
@@ -44,7 +45,8 @@ struct SlipScores {
 SlipScores scored(const PrintSequence& seq) {
   const CaptureParams params =
       with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
-  const StrainMovie movie = measure_strain(seq.frames, seq.calibration, 60, params);
+  StrainMovie movie = measure_strain(seq.frames, seq.calibration, 60, params);
+  movie.contact = measure_contact(seq.frames, seq.spec.px_per_mm);
   const auto settings = nlohmann::json::parse(movie.provenance.parameters_json);
   LucasKanadeParams lk;
   lk.pyramid_levels = 3;  // levels 0..3
@@ -153,6 +155,17 @@ TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
           static_cast<long long>(s.lk.edges_in_contact));
       ASSERT_TRUE(s.ours.has_gap);
       EXPECT_EQ(s.ours.edges_across_gap, 0);
+      // The contact map from the images alone, against the warp's contact: right on at least 9
+      // cells of 10, and the cells it finds out of contact mostly the truth's.
+      std::printf(
+          "  contact map right on %.3f of %lld cells (%lld out of contact), out-of-contact "
+          "overlap %.3f\n",
+          s.ours.contact_agreement, static_cast<long long>(s.ours.contact_cells),
+          static_cast<long long>(s.ours.gap_cells), s.ours.gap_overlap);
+      // A gap of a few cells over several frames, so that the overlap means something.
+      EXPECT_GE(s.ours.gap_cells, 20);
+      EXPECT_GE(s.ours.contact_agreement, 0.9);
+      EXPECT_GE(s.ours.gap_overlap, 0.8);
       EXPECT_GE(s.ours.median_tracked_points, 150);
       EXPECT_GT(s.ours.edges_in_contact, s.ours.edges / 2);
       EXPECT_LE(s.ours.rms_error_in_contact, 0.0025);
@@ -239,6 +252,15 @@ TEST(FullSlip, SkinInAMovingPatchReportsNoStrainOutsideIt) {
   ASSERT_TRUE(ours.has_gap);
   ASSERT_GT(ours.edges, 1000);
   EXPECT_EQ(ours.edges_across_gap, 0);
+  // The contact map finds the patch as it moves and breathes (the targets of the lift-off test).
+  std::printf(
+      "  contact map right on %.3f of %lld cells (%lld out of contact), out-of-contact overlap "
+      "%.3f\n",
+      ours.contact_agreement, static_cast<long long>(ours.contact_cells),
+      static_cast<long long>(ours.gap_cells), ours.gap_overlap);
+  EXPECT_GE(ours.gap_cells, 20);
+  EXPECT_GE(ours.contact_agreement, 0.9);
+  EXPECT_GE(ours.gap_overlap, 0.8);
 }
 
 }  // namespace

@@ -53,6 +53,14 @@ StrainMovie sample_movie() {
     sf.triangles.push_back({{0, 1, 2}});
     m.frames.push_back(sf);
   }
+  // Cells of 63 px over 640 x 484 px: 11 columns, 8 rows; contrasts 0..39 in turn, in contact
+  // from 20.
+  m.contact.grid = contact_grid(640, 484, 62.5);
+  m.contact.threshold = 20;
+  for (int i = 0; i < 5 * 88; ++i) {
+    m.contact.ridge_contrast.push_back(i % 40);
+    m.contact.in_contact.push_back(i % 40 >= 20 ? 1 : 0);
+  }
   return m;
 }
 
@@ -111,6 +119,33 @@ TEST(StrainMovieIo, RoundTripKeepsEveryValue) {
     ASSERT_EQ(a.triangles.size(), b.triangles.size());
     EXPECT_EQ(a.triangles[0].point_index, b.triangles[0].point_index);
   }
+}
+
+TEST(StrainMovieIo, TheContactMapRoundTripsAndAFileWithoutOneReads) {
+  TempDir dir;
+  const StrainMovie m = sample_movie();
+  ASSERT_EQ(m.contact.grid.columns, 11);
+  ASSERT_EQ(m.contact.grid.rows, 8);
+  write_strain_movie(dir.path() / "m.h5", m);
+  const StrainMovie r = read_strain_movie(dir.path() / "m.h5");
+  EXPECT_EQ(r.contact.grid.cell_px, 63);
+  EXPECT_EQ(r.contact.grid.columns, 11);
+  EXPECT_EQ(r.contact.grid.rows, 8);
+  EXPECT_EQ(r.contact.threshold, 20);
+  EXPECT_EQ(r.contact.ridge_contrast, m.contact.ridge_contrast);
+  EXPECT_EQ(r.contact.in_contact, m.contact.in_contact);
+  EXPECT_EQ(r.contact.frame_count(), 5);
+  {
+    H5::H5File f((dir.path() / "m.h5").string(), H5F_ACC_RDWR);
+    f.unlink("/contact");
+  }
+  EXPECT_FALSE(read_strain_movie(dir.path() / "m.h5").contact.measured());
+  // A map that does not fit the movie is refused before anything is written.
+  StrainMovie short_map = m;
+  short_map.contact.in_contact.resize(4 * 88);
+  short_map.contact.ridge_contrast.resize(4 * 88);
+  EXPECT_THROW(write_strain_movie(dir.path() / "short.h5", short_map), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "short.h5"));
 }
 
 TEST(StrainMovieIo, EmptyMovieRoundTrips) {
@@ -267,6 +302,48 @@ TEST_F(Tampered, RelativeChangesNoSkinCanHaveAreNamed) {
   // The ends of the range are still measurements.
   replace<double>("/frames", "edge_rel_change", {10, -1, 0.05, -0.1, 0.05, -0.1}, {6});
   EXPECT_EQ(read_strain_movie(path()).frames[0].edges[0].rel_change, 10);
+}
+
+// A contact map of another shape than the movie's frames and image, a contrast no 8-bit image
+// has, a mark that is neither 0 nor 1 or that disagrees with its contrast: each named with the
+// camera frame and the cell.
+TEST_F(Tampered, ContactMapsThatDisagreeWithTheMovieOrThemselvesAreNamed) {
+  const StrainMovie sample = sample_movie();
+  const std::vector<double> contrast = sample.contact.ridge_contrast;
+  const std::vector<std::int32_t> marks(sample.contact.in_contact.begin(),
+                                        sample.contact.in_contact.end());
+  replace<double>("/contact", "ridge_contrast", std::vector<double>(4 * 88, 30.0), {4, 8, 11});
+  EXPECT_THAT(read_error(path()), HasSubstr("/contact/ridge_contrast: has shape 4 x 8 x 11, "
+                                            "expected 5 x 8 x 11"));
+  auto hot = contrast;
+  hot[100] = 300;  // frame 1 (88 cells a frame), cell 12: row 1, column 1
+  replace<double>("/contact", "ridge_contrast", hot, {5, 8, 11});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("camera frame 1, cell row 1, column 1: ridge contrast 300 is out of "
+                        "range: must be from 0 to 255 grey levels"));
+  replace<double>("/contact", "ridge_contrast", contrast, {5, 8, 11});
+  auto two = marks;
+  two[5] = 2;
+  replace<std::int32_t>("/contact", "in_contact", two, {5, 8, 11});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("camera frame 0, cell row 0, column 5: 2 is neither 0 (no contact) nor "
+                        "1 (contact)"));
+  auto flipped = marks;
+  flipped[0] = 1;  // contrast 0
+  replace<std::int32_t>("/contact", "in_contact", flipped, {5, 8, 11});
+  EXPECT_THAT(read_error(path()), HasSubstr("marked in contact but its ridge contrast 0 is below "
+                                            "the threshold 20"));
+  replace<std::int32_t>("/contact", "in_contact", marks, {5, 8, 11});
+  EXPECT_EQ(read_strain_movie(path()).contact.frame_count(), 5);
+  for (const double bad : {-1.0, 300.0, std::nan("")}) {
+    {
+      H5::H5File f(path().string(), H5F_ACC_RDWR);
+      H5::Group g = f.openGroup("/contact");
+      g.removeAttr("threshold");
+      h5::write_attr(g, "threshold", bad);
+    }
+    EXPECT_THAT(read_error(path()), HasSubstr("threshold")) << bad;
+  }
 }
 
 // Every numeric attribute, every hostile value: refused, naming the file and the attribute.

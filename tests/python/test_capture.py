@@ -45,6 +45,16 @@ def test_capture_matches_the_command_line(frames, cli, tmp_path, capsys):
     np.testing.assert_array_equal(strain.tracks["track_id"], expected.tracks["track_id"])
     np.testing.assert_allclose(strain.tracks["x_mm"], expected.tracks["x_mm"])
     assert strain.provenance.input == str(images) and strain.provenance.method == "capture"
+    # The contact map: the same as the command line's, one cell map per camera frame, each cell in
+    # contact exactly when its ridge contrast reaches the threshold.
+    contact, cli_contact = strain.contact, expected.contact
+    rows, columns = contact["in_contact"].shape[1:]
+    assert contact["in_contact"].shape == (40, rows, columns) and rows * columns > 0
+    assert rows == -(-expected.calibration.image_height_px // contact["cell_px"])
+    np.testing.assert_array_equal(contact["in_contact"], cli_contact["in_contact"])
+    np.testing.assert_allclose(contact["ridge_contrast"], cli_contact["ridge_contrast"])
+    np.testing.assert_array_equal(contact["in_contact"] == 1,
+                                  contact["ridge_contrast"] >= contact["threshold"])
 
 
 def test_capture_a_range(frames):

@@ -27,6 +27,8 @@ def test_strain_movie_round_trip_and_views(tmp_path, strain):
     assert tracks.__array_interface__["data"][0] == back.tracks.__array_interface__["data"][0]
     assert f.points_from.__array_interface__["data"][0] == \
         back.frames[3].points_from.__array_interface__["data"][0]
+    # A movie made in Python has no contact map, and none is written for it.
+    assert strain.contact is None and back.contact is None
 
 
 def test_strain_frame_bad_input():

@@ -78,6 +78,15 @@ capture::StrainMovie small_strain_movie(int points) {
   for (int i = 0; i + 1 < points; ++i) f.edges.push_back({i, i + 1, 1.0, 1.01, 0.01});
   for (int i = 0; i + 2 < points; ++i) f.triangles.push_back({{i, i + 1, i + 2}});
   m.frames.push_back(f);
+  // A contact map of 4 x 3 cells of 160 px over both frames, so that its reader is fuzzed too.
+  if (points > 3) {
+    m.contact.grid = {160, 4, 3};
+    m.contact.threshold = 10;
+    for (int i = 0; i < 2 * 12; ++i) {
+      m.contact.ridge_contrast.push_back(i);
+      m.contact.in_contact.push_back(i >= 10 ? 1 : 0);
+    }
+  }
   return m;
 }
 

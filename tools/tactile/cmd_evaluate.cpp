@@ -80,6 +80,15 @@ void add_evaluate(CLI::App& app, Action& action, const std::string& /*command_li
             ev.rms_error_in_contact, ev.correlation_in_contact, ev.edges_in_contact,
             ev.edges_across_gap);
       }
+      if (ev.contact_cells > 0) {
+        fmt::print(
+            "  contact map                right on {:.1f}% of {} cells; out of contact ({} cells "
+            "in "
+            "the truth): overlap {:.2f}\n",
+            100 * ev.contact_agreement, ev.contact_cells, ev.gap_cells, ev.gap_overlap);
+      } else if (ev.has_gap) {
+        fmt::print("  contact map                none in the strain movie\n");
+      }
       fmt::print("  localisation RMS           {:.4f} mm  ({} points within {} mm, {} not)\n",
                  ev.localisation_rms_mm, ev.located_points, ev.match_bound_mm, ev.unmatched_points);
       fmt::print("  tracked landmarks / frame  median {:.0f}  (median yield {:.2f} of the true)\n",

@@ -30,6 +30,50 @@ double truth_rel_change(const GroundTruth& truth, PointMm a_from, PointMm b_from
   return true_rel_change(truth.spec, a_from, b_from, frame_from, frame_to);
 }
 
+namespace {
+
+// The contact map's cells against the warp's contact (Evaluation::contact_cells and after).
+void evaluate_contact(const ContactMap& map, const GroundTruth& truth, int frame_count,
+                      Evaluation& ev) {
+  if (!map.measured() || !truth.warp) return;
+  const ContactGrid& g = map.grid;
+  const int width = truth.calibration.image_width_px, height = truth.calibration.image_height_px;
+  std::int64_t right = 0, both_out = 0, either_out = 0;
+  const int frames = std::min(frame_count, map.frame_count());
+  for (int f = 0; f < frames; ++f) {
+    for (int r = 0; r < g.rows; ++r) {
+      for (int c = 0; c < g.columns; ++c) {
+        const int x0 = c * g.cell_px, y0 = r * g.cell_px;
+        const int w = std::min(g.cell_px, width - x0), h = std::min(g.cell_px, height - y0);
+        double touch = 0;
+        for (int j = 0; j < 4; ++j) {
+          for (int i = 0; i < 4; ++i) {
+            const PointMm at = to_mm(truth.calibration, x0 + (i + 0.5) * w / 4.0 - 0.5,
+                                     y0 + (j + 0.5) * h / 4.0 - 0.5);
+            touch += warp_contact(*truth.warp, at, f) / 16;
+          }
+        }
+        if (touch > 0.25 && touch < 0.75) continue;  // the rim: half a cell each way
+        const bool truth_in = touch >= 0.75;
+        const auto i = static_cast<std::size_t>((f * g.rows + r) * g.columns + c);
+        const bool map_in = map.in_contact[i] == 1;
+        ++ev.contact_cells;
+        if (!truth_in) ++ev.gap_cells;
+        if (truth_in == map_in) ++right;
+        if (!truth_in && !map_in) ++both_out;
+        if (!truth_in || !map_in) ++either_out;
+      }
+    }
+  }
+  if (ev.contact_cells > 0) {
+    ev.contact_agreement = static_cast<double>(right) / static_cast<double>(ev.contact_cells);
+    ev.gap_overlap =
+        either_out > 0 ? static_cast<double>(both_out) / static_cast<double>(either_out) : 1.0;
+  }
+}
+
+}  // namespace
+
 Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   Evaluation ev;
   const int frame_count = truth_frame_count(truth);
@@ -119,6 +163,7 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
   }
   ev.median_tracked_points = median(tracked);
   ev.median_yield = median(yields);
+  if (ev.has_gap) evaluate_contact(movie.contact, truth, frame_count, ev);
 
   // Localisation of every tracked point against the landmarks of its frame.
   double sd = 0;
@@ -187,6 +232,12 @@ void write_evaluation_csv(const std::filesystem::path& dir, const Evaluation& ev
     << fmt::format("track_count,{}\n", ev.track_count)
     << fmt::format("median_track_frames,{:.6g}\n", ev.median_track_frames)
     << fmt::format("mean_track_frames,{:.6g}\n", ev.mean_track_frames);
+  if (ev.contact_cells > 0) {
+    s << fmt::format("contact_cells,{}\n", ev.contact_cells)
+      << fmt::format("gap_cells,{}\n", ev.gap_cells)
+      << fmt::format("contact_agreement,{:.6g}\n", ev.contact_agreement)
+      << fmt::format("gap_overlap,{:.6g}\n", ev.gap_overlap);
+  }
   csv::finish(s, summary_path);
 }
 

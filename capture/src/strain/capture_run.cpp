@@ -137,15 +137,32 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
     messages.warning(warning);
   }
   params.assignment = settings.assignment;
+  // Where the skin touches, from every frame as it is read (the tracker reads them one at a
+  // time, in order).
+  const double image_px_per_mm = 1.0 / c.mm_per_px;
+  const ContactGrid grid = contact_grid(first.width_px, first.height_px, image_px_per_mm);
+  std::vector<double> contrast;
+  contrast.reserve(static_cast<std::size_t>(grid.cells()) *
+                   static_cast<std::size_t>(std::max(1, frames.count())));
+  const auto measure_contact = [&](const GrayImage& frame) {
+    const auto cells = cell_ridge_contrast(frame, grid, image_px_per_mm);
+    contrast.insert(contrast.end(), cells.begin(), cells.end());
+  };
   bool first_given = false;
-  return measure_strain(
+  StrainMovie movie = measure_strain(
       [&](GrayImage& frame) {
-        if (first_given) return frames.next(frame);
-        frame = std::move(first);
-        first_given = true;
+        if (first_given) {
+          if (!frames.next(frame)) return false;
+        } else {
+          frame = std::move(first);
+          first_given = true;
+        }
+        measure_contact(frame);
         return true;
       },
       c, frame_rate_hz, params, progress, frames.count());
+  movie.contact = contact_map(grid, std::move(contrast));
+  return movie;
 }
 
 bool measured_no_strain(const StrainMovie& movie) {

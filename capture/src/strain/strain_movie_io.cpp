@@ -143,6 +143,35 @@ void write_header(H5::H5File& file, const StrainMovie& movie) {
   h5::write_attr(cal, "method", c.method);
 }
 
+// /contact: every camera frame's cells, as frames x rows x columns. A map that does not fit the
+// movie would make a file its reader refuses: refused here instead.
+void write_contact(H5::H5File& file, const ContactMap& c, const StrainMovie& movie) {
+  const Calibration& cal = movie.calibration;
+  const auto cells_over = [&](int side_px) {
+    return (side_px + c.grid.cell_px - 1) / c.grid.cell_px;
+  };
+  if (c.grid.columns != cells_over(cal.image_width_px) ||
+      c.grid.rows != cells_over(cal.image_height_px) ||
+      c.ridge_contrast.size() != c.in_contact.size() ||
+      c.in_contact.size() != static_cast<std::size_t>(c.grid.cells()) *
+                                 static_cast<std::size_t>(std::max(0, movie.camera_frame_count))) {
+    throw std::invalid_argument(fmt::format(
+        "write_strain_movie: a contact map of {} x {} cells of {} px, {} values, does not fit "
+        "{} camera frames of {} x {} px",
+        c.grid.columns, c.grid.rows, c.grid.cell_px, c.in_contact.size(), movie.camera_frame_count,
+        cal.image_width_px, cal.image_height_px));
+  }
+  H5::Group g = file.createGroup("/contact");
+  h5::write_attr(g, "cell_px", std::int64_t{c.grid.cell_px});
+  h5::write_attr(g, "threshold", c.threshold);
+  const Dims dims{h(static_cast<std::size_t>(c.frame_count())),
+                  h(static_cast<std::size_t>(c.grid.rows)),
+                  h(static_cast<std::size_t>(c.grid.columns))};
+  h5::write_dataset(g, "ridge_contrast", c.ridge_contrast, dims);
+  h5::write_dataset(g, "in_contact",
+                    std::vector<std::int32_t>(c.in_contact.begin(), c.in_contact.end()), dims);
+}
+
 }  // namespace
 
 void write_strain_movie(const std::filesystem::path& path, const StrainMovie& movie) {
@@ -167,6 +196,7 @@ void write_strain_movie(const std::filesystem::path& path, const StrainMovie& mo
       put(name, ends, Dims{});
     };
     put_frame_columns(frames, put, put_offsets);
+    if (movie.contact.measured()) write_contact(file, movie.contact, movie);
   });
 }
 
@@ -418,6 +448,68 @@ void check_field(const StrainMovie& m, const Reader& r) {
   }
 }
 
+// A ridge contrast is the RMS of grey levels minus their local mean: it cannot exceed the
+// 8-bit range.
+constexpr double kMaxRidgeContrast = 255;
+
+// /contact, checked against the movie's camera frames and calibrated image.
+ContactMap read_contact(const H5::Group& root, const StrainMovie& m, const Reader& r) {
+  const std::string where = r.where("/contact");
+  H5::Group g = h5::open_group(root, "contact", where);
+  ContactMap c;
+  const Calibration& cal = m.calibration;
+  c.grid.cell_px = static_cast<std::int32_t>(checks::int_in_range(
+      h5::read_attr_int(g, "cell_px", where), 1, kMaxImageSidePx, where, "cell_px"));
+  c.grid.columns = (cal.image_width_px + c.grid.cell_px - 1) / c.grid.cell_px;
+  c.grid.rows = (cal.image_height_px + c.grid.cell_px - 1) / c.grid.cell_px;
+  c.threshold = checks::in_range(h5::read_attr_double(g, "threshold", where), 0, kMaxRidgeContrast,
+                                 where, "threshold");
+  const Dims expected{static_cast<hsize_t>(m.camera_frame_count), static_cast<hsize_t>(c.grid.rows),
+                      static_cast<hsize_t>(c.grid.columns)};
+  const auto check_shape = [&](const std::string& name, const Dims& dims) {
+    if (dims != expected) {
+      r.fail("/contact/" + name,
+             fmt::format("has shape {} x {} x {}, expected {} x {} x {} (camera frames x rows x "
+                         "columns of {} px cells over the {} x {} px image)",
+                         dims[0], dims[1], dims[2], expected[0], expected[1], expected[2],
+                         c.grid.cell_px, cal.image_width_px, cal.image_height_px));
+    }
+  };
+  Dims dims;
+  c.ridge_contrast =
+      h5::read_doubles(g, "ridge_contrast", 3, dims, r.where("/contact/ridge_contrast"));
+  check_shape("ridge_contrast", dims);
+  const auto in_contact = h5::read_ints(g, "in_contact", 3, dims, r.where("/contact/in_contact"));
+  check_shape("in_contact", dims);
+  const auto cell_name = [&](std::size_t i) {
+    const auto cells = static_cast<std::size_t>(c.grid.cells());
+    return fmt::format("camera frame {}, cell row {}, column {}", i / cells,
+                       i % cells / static_cast<std::size_t>(c.grid.columns),
+                       i % static_cast<std::size_t>(c.grid.columns));
+  };
+  c.in_contact.reserve(in_contact.size());
+  for (std::size_t i = 0; i < in_contact.size(); ++i) {
+    const double contrast = c.ridge_contrast[i];
+    if (!(contrast >= 0 && contrast <= kMaxRidgeContrast)) {
+      r.fail("/contact/ridge_contrast",
+             fmt::format("{}: ridge contrast {} is out of range: must be from 0 to {} grey levels",
+                         cell_name(i), contrast, kMaxRidgeContrast));
+    }
+    if (in_contact[i] != 0 && in_contact[i] != 1) {
+      r.fail("/contact/in_contact", fmt::format("{}: {} is neither 0 (no contact) nor 1 (contact)",
+                                                cell_name(i), in_contact[i]));
+    }
+    if ((in_contact[i] == 1) != (contrast >= c.threshold)) {
+      r.fail("/contact/in_contact",
+             fmt::format("{}: marked {} but its ridge contrast {} is {} the threshold {}",
+                         cell_name(i), in_contact[i] == 1 ? "in contact" : "out of contact",
+                         contrast, contrast >= c.threshold ? "at or above" : "below", c.threshold));
+    }
+    c.in_contact.push_back(static_cast<std::uint8_t>(in_contact[i]));
+  }
+  return c;
+}
+
 StrainMovie read_strain_movie_checked(const std::filesystem::path& path);
 
 }  // namespace
@@ -634,6 +726,9 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
     }
     m.frames.push_back(std::move(sf));
   }
+  // Written by capture; absent from files written before it was measured and from live
+  // recordings, whose frames are not all kept.
+  if (h5::has_child(root, "contact") && !unfinished) m.contact = read_contact(root, m, r);
   return m;
 }
 

@@ -76,6 +76,14 @@ struct Evaluation {
   double rms_error_in_contact = 0;
   double correlation_in_contact = 0;
   std::int64_t edges_across_gap = 0;
+  // The movie's contact map against the truth (has_gap, and a movie with a map): the cells at
+  // least three quarters in or out of contact in the truth (sampled on a 4 x 4 grid), the
+  // fraction of them the map got right, and the overlap of the cells out of contact (the truth's
+  // and the map's, intersection over union; 1 when neither has any). Zero otherwise.
+  std::int64_t contact_cells = 0;
+  std::int64_t gap_cells = 0;  // of contact_cells, those out of contact in the truth
+  double contact_agreement = 0;
+  double gap_overlap = 0;
 };
 
 // True positions come from each point's pixel position through the true calibration, so a

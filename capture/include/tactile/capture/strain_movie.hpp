@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tactile/capture/contact_map.hpp"
 #include "tactile/common/provenance.hpp"
 
 namespace tactile::capture {
@@ -101,6 +102,8 @@ struct StrainMovie {
   // Every smoothed point of every kept track, ordered by track, then frame.
   std::vector<TrackedPoint> tracks;
   std::vector<StrainFrame> frames;
+  // Where the skin touched in each camera frame (not measured: grid.cell_px 0).
+  ContactMap contact;
 };
 
 }  // namespace tactile::capture
