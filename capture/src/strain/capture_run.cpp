@@ -141,9 +141,7 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
   // time, in order).
   const double image_px_per_mm = 1.0 / c.mm_per_px;
   const ContactGrid grid = contact_grid(first.width_px, first.height_px, image_px_per_mm);
-  std::vector<double> contrast;
-  contrast.reserve(static_cast<std::size_t>(grid.cells()) *
-                   static_cast<std::size_t>(std::max(1, frames.count())));
+  std::vector<double> contrast;  // grows with the frames read (a video's count is an estimate)
   const auto measure_contact = [&](const GrayImage& frame) {
     const auto cells = cell_ridge_contrast(frame, grid, image_px_per_mm);
     contrast.insert(contrast.end(), cells.begin(), cells.end());
