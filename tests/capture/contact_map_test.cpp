@@ -14,10 +14,12 @@ namespace {
 
 constexpr double kPxPerMm = 20;
 
-// Ridges of period 0.45 mm (9 px at 20 px/mm) and amplitude `ridge_grey` where `touching(x, y)`,
-// the even brightness of the valleys (200) elsewhere, with camera noise of 2 grey levels.
+// Ridges of period 0.45 mm (9 px at 20 px/mm, or `period_px`) and amplitude `ridge_grey` where
+// `touching(x, y)`, the even brightness of the valleys (200) elsewhere, with camera noise of 2
+// grey levels.
 template <typename Touching>
-GrayImage skin(int width, int height, double ridge_grey, Touching touching, unsigned seed) {
+GrayImage skin(int width, int height, double ridge_grey, Touching touching, unsigned seed,
+               double period_px = 9) {
   GrayImage g;
   g.width_px = width;
   g.height_px = height;
@@ -27,7 +29,7 @@ GrayImage skin(int width, int height, double ridge_grey, Touching touching, unsi
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const double ridge =
-          touching(x, y) ? ridge_grey * std::sin(2 * M_PI * (x + 0.3 * y) / 9.0) : 0.0;
+          touching(x, y) ? ridge_grey * std::sin(2 * M_PI * (x + 0.3 * y) / period_px) : 0.0;
       const double grey = std::clamp(200 - ridge_grey + ridge + noise(rng), 0.0, 255.0);
       g.pixels[static_cast<std::size_t>(y * width + x)] = static_cast<std::uint8_t>(grey);
     }
@@ -69,6 +71,22 @@ TEST(ContactMap, CellsShowingRidgesAreInContactAndEvenCellsAreNot) {
   EXPECT_LT(map.ridge_contrast[7], 4);
   EXPECT_NEAR(contact_fraction(map, 0), 5.0 / 8.0, 1e-12);
   EXPECT_EQ(contact_fraction(map, 1), 0);
+}
+
+// Cells under 16 px are measured at the image's own resolution (larger ones at half of it): at
+// 12 px/mm, cells of 12 px and ridges of 5.4 px, the same rule holds.
+TEST(ContactMap, SmallCellsAreMeasuredAtFullResolutionByTheSameRule) {
+  const auto left = [](int x, int) { return x < 60; };
+  const ContactMap map = measure_contact({skin(96, 48, 40, left, 5, 5.4)}, 12);
+  ASSERT_EQ(map.grid.cell_px, 12);
+  ASSERT_EQ(map.grid.columns, 8);
+  ASSERT_EQ(map.grid.rows, 4);
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 8; ++c) {
+      EXPECT_EQ(map.in_contact[static_cast<std::size_t>(r * 8 + c)], c < 5 ? 1 : 0)
+          << "row " << r << " column " << c;
+    }
+  }
 }
 
 TEST(ContactMap, TheThresholdFollowsTheSequenceNotAFixedGreyLevel) {
