@@ -30,17 +30,18 @@ ContactGrid contact_grid(int width_px, int height_px, double px_per_mm) {
         fmt::format("contact_grid: an image of {} x {} px at {} px/mm has no cells", width_px,
                     height_px, px_per_mm));
   }
-  ContactGrid g;
-  g.cell_px = static_cast<std::int32_t>(std::clamp(std::lround(px_per_mm), 8L, 256L));
-  g.columns = cells_over(width_px, g.cell_px);
-  g.rows = cells_over(height_px, g.cell_px);
-  return g;
+  return contact_grid_of_cells(
+      width_px, height_px, static_cast<std::int32_t>(std::clamp(std::lround(px_per_mm), 8L, 256L)));
+}
+
+ContactGrid contact_grid_of_cells(int width_px, int height_px, std::int32_t cell_px) {
+  return {cell_px, cells_over(width_px, cell_px), cells_over(height_px, cell_px)};
 }
 
 std::vector<double> cell_ridge_contrast(const GrayImage& frame, const ContactGrid& grid,
                                         double px_per_mm) {
-  if (cells_over(frame.width_px, grid.cell_px) != grid.columns ||
-      cells_over(frame.height_px, grid.cell_px) != grid.rows) {
+  const ContactGrid fits = contact_grid_of_cells(frame.width_px, frame.height_px, grid.cell_px);
+  if (fits.columns != grid.columns || fits.rows != grid.rows) {
     throw std::invalid_argument(fmt::format(
         "cell_ridge_contrast: a {} x {} px frame does not fit a grid of {} x {} cells of {} px",
         frame.width_px, frame.height_px, grid.columns, grid.rows, grid.cell_px));

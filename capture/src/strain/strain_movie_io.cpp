@@ -147,11 +147,9 @@ void write_header(H5::H5File& file, const StrainMovie& movie) {
 // movie would make a file its reader refuses: refused here instead.
 void write_contact(H5::H5File& file, const ContactMap& c, const StrainMovie& movie) {
   const Calibration& cal = movie.calibration;
-  const auto cells_over = [&](int side_px) {
-    return (side_px + c.grid.cell_px - 1) / c.grid.cell_px;
-  };
-  if (c.grid.columns != cells_over(cal.image_width_px) ||
-      c.grid.rows != cells_over(cal.image_height_px) ||
+  const ContactGrid fits =
+      contact_grid_of_cells(cal.image_width_px, cal.image_height_px, c.grid.cell_px);
+  if (c.grid.columns != fits.columns || c.grid.rows != fits.rows ||
       c.ridge_contrast.size() != c.in_contact.size() ||
       c.in_contact.size() != static_cast<std::size_t>(c.grid.cells()) *
                                  static_cast<std::size_t>(std::max(0, movie.camera_frame_count))) {
@@ -458,10 +456,10 @@ ContactMap read_contact(const H5::Group& root, const StrainMovie& m, const Reade
   H5::Group g = h5::open_group(root, "contact", where);
   ContactMap c;
   const Calibration& cal = m.calibration;
-  c.grid.cell_px = static_cast<std::int32_t>(checks::int_in_range(
-      h5::read_attr_int(g, "cell_px", where), 1, kMaxImageSidePx, where, "cell_px"));
-  c.grid.columns = (cal.image_width_px + c.grid.cell_px - 1) / c.grid.cell_px;
-  c.grid.rows = (cal.image_height_px + c.grid.cell_px - 1) / c.grid.cell_px;
+  c.grid = contact_grid_of_cells(
+      cal.image_width_px, cal.image_height_px,
+      static_cast<std::int32_t>(checks::int_in_range(h5::read_attr_int(g, "cell_px", where), 1,
+                                                     kMaxImageSidePx, where, "cell_px")));
   c.threshold = checks::in_range(h5::read_attr_double(g, "threshold", where), 0, kMaxRidgeContrast,
                                  where, "threshold");
   const Dims expected{static_cast<hsize_t>(m.camera_frame_count), static_cast<hsize_t>(c.grid.rows),

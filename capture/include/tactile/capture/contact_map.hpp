@@ -51,6 +51,10 @@ constexpr double kContactFloorGrey = 5.0;
 // Cells of about a millimetre (at least 8 px, at most 256) over a width x height image.
 ContactGrid contact_grid(int width_px, int height_px, double px_per_mm);
 
+// Cells of `cell_px` over a width x height image (as a file names them), the last column and row
+// cut by the image's edge.
+ContactGrid contact_grid_of_cells(int width_px, int height_px, std::int32_t cell_px);
+
 // Each cell's ridge contrast in one frame (grid.rows x grid.columns, row-major). The frame must
 // be the grid's image size.
 std::vector<double> cell_ridge_contrast(const GrayImage& frame, const ContactGrid& grid,
