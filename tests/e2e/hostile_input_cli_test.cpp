@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
 #include "tactile/capture/image.hpp"
+#include "tactile/common/version.hpp"
 
 using tactile::test::demo_dir;
 using tactile::test::run_tactile;
@@ -309,4 +311,37 @@ TEST(HostileInput, SynthFromAPrintTooSmallNamesIt) {
                                   "is 1 x 1 px"))
       << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frame_000.png"));
+}
+
+// A program's library search path must not take in the folder it is run from: a file of the
+// name of a library it needs, planted there, would be loaded in place of the system's (an empty
+// entry in a RUNPATH is the current folder). Every library `tactile` loads is planted here as a
+// file that is no library at all, so loading any one of them fails the start.
+TEST(HostileInput, LibrariesPlantedInTheWorkingFolderAreNotLoaded) {
+  const tactile::test::TempDir dir("planted-libraries");
+  FILE* ldd = popen((std::string("ldd ") + TACTILE_CLI_PATH).c_str(), "r");
+  ASSERT_NE(ldd, nullptr);
+  std::string listing;
+  std::array<char, 4096> buf{};
+  for (std::size_t n = 0; (n = fread(buf.data(), 1, buf.size(), ldd)) > 0;) {
+    listing.append(buf.data(), n);
+  }
+  ASSERT_EQ(pclose(ldd), 0) << listing;
+  int planted = 0;
+  std::istringstream lines(listing);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string name, arrow;
+    if (words >> name >> arrow && arrow == "=>" && name.find('/') == std::string::npos) {
+      std::ofstream(dir.path() / name) << "not a shared library\n";
+      ++planted;
+    }
+  }
+  ASSERT_GT(planted, 20) << listing;
+  const std::filesystem::path was = std::filesystem::current_path();
+  std::filesystem::current_path(dir.path());
+  const auto r = run_tactile("--version");
+  std::filesystem::current_path(was);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(std::string("tactile ") + tactile::kVersion)) << r.output;
 }

@@ -278,7 +278,7 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
                   "most compressed .. white = most stretched, one scale for the whole movie)");
   sub->callback([request, outputs, &action, &command_line] {
     capture::check_request(*request, OptionSpelling::cli);
-    action = [request, outputs, &command_line] {
+    action = WatchingStopSignals{[request, outputs, &command_line] {
       // Before the first thread (OpenCV's workers, FFmpeg's readers), which inherit the block:
       // a stop signal is then a request, taken at the next progress step, and not a thread's
       // default action that ends the process while its outputs are half replaced.
@@ -386,7 +386,7 @@ void add_capture(CLI::App& app, Action& action, const std::string& command_line)
         fmt::print("capture: no strain edges, so no maps written\n");
       }
       return 0;
-    };
+    }};
   });
 }
 

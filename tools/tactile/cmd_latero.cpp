@@ -147,7 +147,7 @@ void add_emulate(CLI::App& app, Action& action, const std::string& /*command_lin
                 "Show the emulated blades live in the viewer window (closing it stops)");
   add_blade_mapping_options(*sub, opt->mapping);
   sub->callback([opt, &action] {
-    action = [opt] {
+    action = WatchingStopSignals{[opt] {
       if (opt->no_io_board) opt->emulator.io_status = 0;
       if (opt->window && !display::screen_available()) {
         throw std::runtime_error("--window: no screen (DISPLAY is unset or cannot be opened)");
@@ -177,7 +177,7 @@ void add_emulate(CLI::App& app, Action& action, const std::string& /*command_lin
       const auto [lo, hi] = std::minmax_element(blades.begin(), blades.end());
       fmt::print("blades      left at raw {}..{}\n", *lo, *hi);
       return 0;
-    };
+    }};
   });
 }
 

@@ -184,7 +184,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
   sub->get_option("--latero")->excludes(headless_flag);
   sub->get_option("--latero")->excludes(window_flag);
   sub->callback([request, headless, window, screenshot, latero, &action] {
-    action = [request, latero, headless, window, screenshot] {
+    action = WatchingStopSignals{[request, latero, headless, window, screenshot] {
       const live::ResolvedLive session = live::resolve(*request, OptionSpelling::cli);
       if (!screenshot->empty()) {
         refuse_output_over_input({output_file_ending("--screenshot", *screenshot, ".png")},
@@ -285,7 +285,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
         return exit_code_for_signal(signal);
       }
       return 0;
-    };
+    }};
   });
 }
 

@@ -60,7 +60,7 @@ void add_play(CLI::App& app, Action& action, const std::string& /*command_line*/
       "preview image strip and printing a summary.",
       display::play_options());
   sub->callback([request, &action] {
-    action = [request] {
+    action = WatchingStopSignals{[request] {
       // Before reading: fail fast on options that do not go together.
       display::ResolvedPlay choice = display::resolve(*request, OptionSpelling::cli);
       // Checked even if the movie ends up on a device: whether it plays headless (the one case
@@ -90,7 +90,7 @@ void add_play(CLI::App& app, Action& action, const std::string& /*command_line*/
         return exit_code_for_signal(signal);
       }
       return 0;
-    };
+    }};
   });
 }
 

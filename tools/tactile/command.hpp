@@ -14,6 +14,16 @@ namespace tactile::cli {
 
 using Action = std::function<int()>;
 
+// The work of a command whose first steps make a StopSignals (before any long work). `tactile`
+// blocks SIGINT and SIGTERM from its start; for such a command it keeps them blocked into the
+// work, so that a signal sent while the command sets out waits for the StopSignals and becomes
+// its stop request. Any other command gets the signals unblocked as `tactile` was started, and
+// a Ctrl-C during its work ends it by the default action.
+struct WatchingStopSignals {
+  std::function<int()> run;
+  int operator()() const { return run(); }
+};
+
 // Every command registers alike; `command_line` is the command line as typed, for the provenance
 // of the files a command writes (a command that writes none leaves it unused).
 using AddCommand = void(CLI::App& parent, Action& action, const std::string& command_line);

@@ -127,9 +127,12 @@ int main(int argc, char** argv) {
                tactile::stop_signal_name(sig));
     return tactile::exit_code_for_signal(sig);
   }
-  // The command takes the signals as `tactile` was started to (the library threads keep the
-  // block); one that watches them (StopSignals) blocks them again in its first steps.
-  ::syscall(SYS_rt_sigprocmask, SIG_SETMASK, &g_mask_at_start, nullptr, sizeof g_mask_at_start);
+  // A command that watches the signals takes them blocked, so that none falls between here and
+  // its StopSignals; any other takes them as `tactile` was started to (the library threads keep
+  // the block either way).
+  if (action.target<tactile::cli::WatchingStopSignals>() == nullptr) {
+    ::syscall(SYS_rt_sigprocmask, SIG_SETMASK, &g_mask_at_start, nullptr, sizeof g_mask_at_start);
+  }
   try {
     return action();
   } catch (const tactile::OutputPathError& e) {
