@@ -14,6 +14,7 @@
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/capture.hpp"
 #include "tactile/capture/contact_map.hpp"
+#include "tactile/capture/contact_strain.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
 #include "tactile/capture/print_warp.hpp"
@@ -47,6 +48,7 @@ SlipScores scored(const PrintSequence& seq) {
       with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
   StrainMovie movie = measure_strain(seq.frames, seq.calibration, 60, params);
   movie.contact = measure_contact(seq.frames, seq.spec.px_per_mm);
+  movie = strain_in_contact(std::move(movie));
   const auto settings = nlohmann::json::parse(movie.provenance.parameters_json);
   LucasKanadeParams lk;
   lk.pyramid_levels = 3;  // levels 0..3
@@ -134,10 +136,10 @@ TEST(FullSlip, HeldOutPrintsSlidingAtTheSpeedsOfExploration) {
   }
 }
 
-// Skin that lifts off while it slides: no strain reported where it has no contact, and the
-// edges in full contact measured about as well as with no lift-off (the acceptance's
-// correlation of 0.96 is not reached at 10 and 25 mm/s: see the printed figures). Lucas-Kanade
-// on the same frames, in full contact too, must stay behind.
+// Skin that lifts off while it slides: no strain reported where it has no contact or beside it
+// (the capture leaves out the strain within a cell of skin its images show out of contact), and
+// the rest measured to the targets of full slip. Lucas-Kanade on the same frames, in full
+// contact too, must stay behind. (At 10 mm/s print 15 stays under the correlation target.)
 TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
   for (const std::string nn : {"13", "15"}) {
     for (const double speed : {25.0, 100.0}) {
@@ -169,7 +171,10 @@ TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
       EXPECT_GE(s.ours.median_tracked_points, 150);
       EXPECT_GT(s.ours.edges_in_contact, s.ours.edges / 2);
       EXPECT_LE(s.ours.rms_error_in_contact, 0.0025);
-      EXPECT_GE(s.ours.correlation_in_contact, 0.94);
+      EXPECT_GE(s.ours.correlation_in_contact, 0.96);
+      // Every edge reported, the rim of the gap included.
+      EXPECT_LE(s.ours.rms_error, 0.0025);
+      EXPECT_GE(s.ours.correlation, 0.95);
       // Lucas-Kanade measuring nothing in full contact is its failure, not an error of 0.
       if (s.lk.edges_in_contact > 0) {
         EXPECT_LT(s.ours.rms_error_in_contact, s.lk.rms_error_in_contact);

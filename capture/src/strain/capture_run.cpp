@@ -8,6 +8,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "tactile/capture/contact_strain.hpp"
 #include "tactile/common/error.hpp"
 
 namespace tactile::capture {
@@ -160,6 +161,19 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
       },
       c, frame_rate_hz, params, progress, frames.count());
   movie.contact = contact_map(grid, std::move(contrast));
+  const auto edge_count = [](const StrainMovie& m) {
+    std::size_t n = 0;
+    for (const StrainFrame& f : m.frames) n += f.edges.size();
+    return n;
+  };
+  const std::size_t measured = edge_count(movie);
+  movie = strain_in_contact(std::move(movie));
+  if (const std::size_t kept = edge_count(movie); kept < measured) {
+    messages.note(fmt::format(
+        "contact: {} of {} strain edges left out, at or within {} cell ({} px) of skin the "
+        "images show out of contact, where the skin slides through the view",
+        measured - kept, measured, kGapMarginCells, grid.cell_px));
+  }
   return movie;
 }
 
@@ -169,8 +183,8 @@ bool measured_no_strain(const StrainMovie& movie) {
 }
 
 std::string sliding_note(const StrainMovie& movie) {
+  if (!skin_slides_through_view(movie)) return {};
   const auto settings = nlohmann::json::parse(movie.provenance.parameters_json, nullptr, false);
-  if (!settings.is_object() || settings.value("frames_in_view", 0.0) <= 0) return {};
   return fmt::format("capture: shortest track {} frames: {}",
                      settings.value("min_track_frames_used", 0),
                      settings.value("min_track_reason", std::string()));

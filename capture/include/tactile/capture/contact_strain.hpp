@@ -1,0 +1,36 @@
+#pragma once
+// Strain only where the skin touched the glass. Skin out of contact shows no ridges, so nothing
+// can be tracked on it, and at the rim of such a region the ridges fade: points there are found
+// and followed less surely, and an edge between two of them reports strain that the skin does
+// not have. The contact map (contact_map.hpp) says, from the images alone, which cells touched in
+// each camera frame; the strain measured at or beside a cell that did not is left out.
+
+#include <cstdint>
+
+#include "tactile/capture/strain_movie.hpp"
+
+namespace tactile::capture {
+
+// How far from a cell out of contact strain is still left out, in cells (about a millimetre
+// each): one cell holds the rim, where ridges fade over a ridge period or two.
+constexpr std::int32_t kGapMarginCells = 1;
+
+// Whether the capture found the skin sliding through the view (its provenance's
+// `frames_in_view`, from the registration of whole frames).
+bool skin_slides_through_view(const StrainMovie& movie);
+
+// The strain a capture reports. Where the skin slides through the view, it crosses the rim of
+// any region out of contact, and tracks there follow skin that is leaving or landing: the movie
+// loses the strain at or within kGapMarginCells of skin out of contact. In a still contact the
+// rim holds the same skin, which tracks as well as any, and the movie is kept as measured (with
+// the margin, one synthetic bump scene lost 57 % of its edges and 0.002 of correlation).
+StrainMovie strain_in_contact(StrainMovie movie);
+
+// The movie without the edges and triangles that have an end in a cell out of contact, or within
+// `margin_cells` of one, in the camera frame they are measured from or in the frame they are
+// measured to. The points stay (triangles index them). A movie without a contact map is
+// returned as it is.
+StrainMovie without_strain_near_gaps(StrainMovie movie,
+                                     std::int32_t margin_cells = kGapMarginCells);
+
+}  // namespace tactile::capture

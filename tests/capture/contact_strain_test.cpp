@@ -1,0 +1,112 @@
+// Strain is left out at and beside skin out of contact, and only there.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "tactile/capture/contact_strain.hpp"
+
+namespace tactile::capture {
+namespace {
+
+TrackedPoint point(std::int32_t track, std::int32_t frame, double x_px, double y_px) {
+  TrackedPoint p;
+  p.track_id = track;
+  p.frame = frame;
+  p.x_px = x_px;
+  p.y_px = y_px;
+  return p;
+}
+
+// A 10 x 4 grid of 10 px cells over two camera frames, all in contact but cell (row 1, column
+// 7) in frame `gap_frame`; one strain frame 0 -> 1 with a point in the middle of each cell of
+// row 1 (track id = column), an edge between each pair of neighbours and a triangle over each
+// three neighbours.
+StrainMovie movie_with_a_gap(std::int32_t gap_frame) {
+  StrainMovie m;
+  m.camera_frame_count = 2;
+  m.contact.grid = {10, 10, 4};
+  m.contact.threshold = 5;
+  m.contact.in_contact.assign(80, 1);
+  m.contact.ridge_contrast.assign(80, 20);
+  const std::size_t gap = static_cast<std::size_t>(gap_frame * 40 + 1 * 10 + 7);
+  m.contact.in_contact[gap] = 0;
+  m.contact.ridge_contrast[gap] = 1;
+  StrainFrame f;
+  f.frame_from = 0;
+  f.frame_to = 1;
+  for (std::int32_t c = 0; c < 10; ++c) {
+    f.points_from.push_back(point(c, 0, 10 * c + 5, 15));
+    f.points_to.push_back(point(c, 1, 10 * c + 5, 15));
+  }
+  for (std::int32_t c = 0; c + 1 < 10; ++c) f.edges.push_back({c, c + 1, 1, 1, 0});
+  for (std::int32_t c = 0; c + 2 < 10; ++c) f.triangles.push_back({{c, c + 1, c + 2}});
+  m.frames.push_back(f);
+  return m;
+}
+
+std::vector<std::int32_t> edge_starts(const StrainFrame& f) {
+  std::vector<std::int32_t> starts;
+  for (const auto& e : f.edges) starts.push_back(e.track_a);
+  return starts;
+}
+
+TEST(ContactStrain, EdgesAndTrianglesWithAnEndAtOrBesideTheGapAreLeftOut) {
+  // A gap in either frame of the strain frame counts.
+  for (const std::int32_t gap_frame : {0, 1}) {
+    SCOPED_TRACE(gap_frame);
+    const StrainMovie out = without_strain_near_gaps(movie_with_a_gap(gap_frame), 1);
+    const StrainFrame& f = out.frames.front();
+    // Columns 6, 7 and 8 are at or beside the gap: every edge touching them goes (5-6 .. 8-9).
+    EXPECT_EQ(edge_starts(f), (std::vector<std::int32_t>{0, 1, 2, 3, 4}));
+    // Triangles over columns c..c+2 survive only when none of them is 6, 7 or 8.
+    ASSERT_EQ(f.triangles.size(), 4U);
+    EXPECT_EQ(f.triangles.back().point_index[2], 5);
+    // The points stay, so that the triangles' indices still mean the same points.
+    EXPECT_EQ(f.points_from.size(), 10U);
+    EXPECT_EQ(f.points_to.size(), 10U);
+  }
+}
+
+TEST(ContactStrain, NoMarginLeavesOutOnlyTheGapsOwnCell) {
+  const StrainMovie out = without_strain_near_gaps(movie_with_a_gap(0), 0);
+  EXPECT_EQ(edge_starts(out.frames.front()), (std::vector<std::int32_t>{0, 1, 2, 3, 4, 5, 8}));
+}
+
+TEST(ContactStrain, AMovieInFullContactOrWithoutAMapIsKeptWhole) {
+  StrainMovie full = movie_with_a_gap(0);
+  std::fill(full.contact.in_contact.begin(), full.contact.in_contact.end(), 1);
+  EXPECT_EQ(without_strain_near_gaps(full).frames.front().edges.size(), 9U);
+  StrainMovie unmeasured = movie_with_a_gap(0);
+  unmeasured.contact = {};
+  const StrainMovie kept = without_strain_near_gaps(unmeasured);
+  EXPECT_EQ(kept.frames.front().edges.size(), 9U);
+  EXPECT_EQ(kept.frames.front().triangles.size(), 8U);
+}
+
+TEST(ContactStrain, APointJustOutsideTheImageBelongsToTheBorderCell) {
+  StrainMovie m = movie_with_a_gap(0);
+  // The gap moved to the last column; track 9 placed half a pixel beyond the right edge.
+  m.contact.in_contact.assign(80, 1);
+  m.contact.in_contact[1 * 10 + 9] = 0;
+  m.frames.front().points_from[9].x_px = 100.5;
+  const StrainMovie out = without_strain_near_gaps(m, 0);
+  EXPECT_EQ(edge_starts(out.frames.front()), (std::vector<std::int32_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+}
+
+TEST(ContactStrain, StrainIsLeftOutOnlyWhereTheSkinSlides) {
+  StrainMovie still = movie_with_a_gap(0);
+  still.provenance.parameters_json = R"({"frames_in_view": 0})";
+  EXPECT_FALSE(skin_slides_through_view(still));
+  EXPECT_EQ(strain_in_contact(still).frames.front().edges.size(), 9U);
+  StrainMovie sliding = movie_with_a_gap(0);
+  sliding.provenance.parameters_json = R"({"frames_in_view": 12.5})";
+  EXPECT_TRUE(skin_slides_through_view(sliding));
+  EXPECT_EQ(edge_starts(strain_in_contact(sliding).frames.front()),
+            (std::vector<std::int32_t>{0, 1, 2, 3, 4}));
+}
+
+}  // namespace
+}  // namespace tactile::capture
