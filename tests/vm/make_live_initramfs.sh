@@ -12,7 +12,9 @@ mkdir -p "$root"/{bin,dev,proc,sys,lib/modules,tmp}
 cp "$busybox" "$root/bin/busybox"
 cp "$init" "$root/init"
 chmod 755 "$root/init"
-cp "$tactile" "$root/bin/tactile"
+# Without its debug information (a RelWithDebInfo build carries hundreds of MB of it), which the
+# guest would hold in memory twice while the initramfs is unpacked.
+strip --strip-debug -o "$root/bin/tactile" "$tactile"
 cp "$v4l2ctl" "$root/bin/v4l2-ctl"
 cp "$frames" "$root/frames.bgr"
 # modprobe's own resolution of vivid's dependencies, one "insmod PATH" line each, in load order.

@@ -333,6 +333,9 @@ LiveRun parse_live(const std::vector<Line>& lines, const std::string& prefix,
 constexpr double kFingerprintPoints = 100;
 
 void check_live(const std::vector<Line>& lines, double seconds) {
+  const auto errors = all(lines, "VM: error=");
+  for (const auto& e : errors) std::printf("guest: %s\n", e.text.c_str());
+  check(errors.empty(), "the guest set vivid up without an error (insmod, v4l2-ctl)");
   const auto nodes = first(lines, "VM: nodes ");
   const std::string camera = nodes ? field(nodes->text, "capture") : "";
   check(nodes && !camera.empty() && !field(nodes->text, "output").empty(),
