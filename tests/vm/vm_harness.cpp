@@ -327,10 +327,13 @@ LiveRun parse_live(const std::vector<Line>& lines, const std::string& prefix,
 }
 
 // What a fingerprint gives and a test pattern cannot: the points followed from frame to frame
-// are the pores and ridge landmarks of the print. vivid's colour bars give none (0 a frame);
-// the padded print gives 356 a frame on the host, 342 in the guest. The floor is far from
-// both, so that fewer tracks surviving between frames far apart under TCG still pass.
-constexpr double kFingerprintPoints = 100;
+// are the pores and ridge landmarks of the print. vivid's colour bars give none (0 a frame, in
+// every run). The padded print gives 356 a frame on the host; in the guest, where the frames
+// processed are seconds apart on the travelling wave, 340-358 when 2 frames were processed,
+// and 21-62 when 3-5 were (tracks lost between frames far apart). The floor sits between the
+// pattern's 0 and the least seen; that the frames are exactly the ones fed is the loop's
+// byte-for-byte check.
+constexpr double kFingerprintPoints = 10;
 
 void check_live(const std::vector<Line>& lines, double seconds) {
   const auto errors = all(lines, "VM: error=");
@@ -357,10 +360,12 @@ void check_live(const std::vector<Line>& lines, double seconds) {
         "the loop carries the frames unchanged: 3 frames read from the capture node by v4l2-ctl "
         "are byte for byte frames fed to the output");
   // The loop copies only between equal formats: had OpenCV asked the camera for another pixel
-  // format, the session would see vivid's test pattern.
+  // format, the session would see vivid's test pattern. The guest reads it once the session has
+  // said that it opened the node (the format OpenCV set), not the one its script set before;
+  // the host's clock cannot order the two lines, which reach the console by different pipes.
   check(is_bgr_640(cap_fmt),
-        "while the session streams, the capture node is at the output's format (640/480, BGR3, "
-        "progressive), as the loop needs");
+        "once the session has opened it, the capture node is at the output's format (640/480, "
+        "BGR3, progressive), as the loop needs");
   if (cap_fmt) std::printf("FIGURE %s\n", cap_fmt->text.c_str());
 
   const LiveRun live = parse_live(lines, "VM-LIVE: ", camera);
