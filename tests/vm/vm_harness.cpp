@@ -329,7 +329,7 @@ LiveRun parse_live(const std::vector<Line>& lines, const std::string& prefix,
 // What a fingerprint gives and a test pattern cannot: the points followed from frame to frame
 // are the pores and ridge landmarks of the print. vivid's colour bars give none (0 a frame, in
 // every run). The padded print gives 356 a frame on the host; in the guest, where the frames
-// processed are seconds apart on the travelling wave, 340-358 when 2 frames were processed,
+// processed are seconds apart on the travelling wave, 340-370 when 2 frames were processed,
 // and 21-62 when 3-5 were (tracks lost between frames far apart). The floor sits between the
 // pattern's 0 and the least seen; that the frames are exactly the ones fed is the loop's
 // byte-for-byte check.
