@@ -27,6 +27,8 @@ packages=(
   # the firmware as a USB device of a real Linux kernel: QEMU x86-64 guest (Debian kernel,
   # busybox initramfs built with cpio) and the usbredir protocol to its xHCI controller
   qemu-system-x86 linux-image-amd64 busybox-static cpio libusbredirparser-dev
+  # a live session on a real V4L2 camera in that guest: the kernel's vivid driver, fed by v4l2-ctl
+  v4l-utils
   # golden check of the classifiers against WEKA itself
   weka default-jre-headless
   # the Python module (`import tactile`) and its tests; matplotlib for the README's example
