@@ -1040,8 +1040,9 @@ if [[ signal-latero =~ $FILTER ]]; then
     kill -INT $ppid
     wait $ppid
     rc=$?
-    # Stopped while still reading the movie, it sent nothing, so it has no blades to bring back.
-    if [ $rc -eq 130 ] && grep -Eqi 'rest|nothing was sent' "$W/pl.txt"; then say signal-latero "play --latero <- SIGINT at ${d}s" OK
+    # Stopped while still reading the movie, it sent nothing, so it has no blades to bring back;
+    # stopped while it started (loaded, parsed its command line), it did nothing at all.
+    if [ $rc -eq 130 ] && grep -Eqi 'rest|nothing was sent|nothing was done' "$W/pl.txt"; then say signal-latero "play --latero <- SIGINT at ${d}s" OK
     else say signal-latero "play --latero <- SIGINT at ${d}s" BAD "exit $rc: $(tail -1 "$W/pl.txt")"; fi
   done
   kill -INT $epid 2>/dev/null
