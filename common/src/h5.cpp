@@ -6,6 +6,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <initializer_list>
 #include <system_error>
 
 #include <fcntl.h>
@@ -288,6 +289,28 @@ struct ReadRequest {
   }
 }
 
+// Forks a reading child joined to this process by `ends` (a pipe or a socket pair): the child
+// keeps ends[1], runs `work` on it and exits without atexit handlers or flushing the parent's
+// buffers; this process keeps ends[0]. Returns the child, or -1 with both ends closed when
+// fork fails.
+template <typename Work>
+pid_t fork_reading_child(const int (&ends)[2], Work work) {
+  const pid_t parent = ::getpid();
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(ends[0]);
+    ::close(ends[1]);
+    return -1;
+  }
+  if (child == 0) {
+    ::close(ends[0]);
+    if (become_reading_child(parent)) work(ends[1]);
+    ::_exit(0);
+  }
+  ::close(ends[1]);
+  return child;
+}
+
 }  // namespace
 
 void read_in_child_first(const std::filesystem::path& path, const std::string& what,
@@ -295,23 +318,13 @@ void read_in_child_first(const std::filesystem::path& path, const std::string& w
   const int limit_s = read_limit_s(path);
   int pipe_fds[2];
   if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return;  // no protection, but still a reader
-  const pid_t parent = ::getpid();
-  const pid_t child = ::fork();
-  if (child < 0) {
-    ::close(pipe_fds[0]);
-    ::close(pipe_fds[1]);
-    return;
-  }
-  if (child == 0) {
-    ::close(pipe_fds[0]);
-    if (!become_reading_child(parent)) ::_exit(0);
+  const pid_t child = fork_reading_child(pipe_fds, [&](int) {
     try {
       read();
     } catch (...) {
     }
-    ::_exit(0);  // no atexit handlers, no flushing of the parent's buffers
-  }
-  ::close(pipe_fds[1]);
+  });
+  if (child < 0) return;
   // The pipe's write end closes when the child ends, however it ends.
   const bool timed_out = !wait_readable(pipe_fds[0], limit_s);
   ::close(pipe_fds[0]);
@@ -344,19 +357,8 @@ ReadingProcess::~ReadingProcess() {
 void ReadingProcess::start() {
   int ends[2];
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) return;
-  const pid_t parent = ::getpid();
-  const pid_t child = ::fork();
-  if (child < 0) {
-    ::close(ends[0]);
-    ::close(ends[1]);
-    return;
-  }
-  if (child == 0) {
-    ::close(ends[0]);
-    if (!become_reading_child(parent)) ::_exit(0);
-    serve_reads(ends[1]);
-  }
-  ::close(ends[1]);
+  const pid_t child = fork_reading_child(ends, serve_reads);
+  if (child < 0) return;
   child_ = child;
   socket_ = ends[0];
   reads_ = 0;
@@ -476,49 +478,48 @@ void require_scalar(const H5::Attribute& a, const std::string& name, const std::
     throw FormatError(fmt::format("{}: attribute '{}' must be a single value", where, name));
   }
 }
+
+// The attribute `name` of `obj`, one value of a class in `classes` (else "must be `kind`"), as
+// `read` gives it; HDF5's own errors become FormatError naming the attribute, as every other
+// problem with it does.
+template <typename Read>
+auto read_scalar_attr(const H5::H5Object& obj, const std::string& name, const std::string& where,
+                      std::initializer_list<H5T_class_t> classes, const char* kind, Read read) {
+  try {
+    H5::Attribute a = open_attr(obj, name, where);
+    if (std::find(classes.begin(), classes.end(), a.getTypeClass()) == classes.end()) {
+      throw FormatError(fmt::format("{}: attribute '{}' must be {}", where, name, kind));
+    }
+    require_scalar(a, name, where);
+    return read(a);
+  } catch (const H5::Exception& e) {
+    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
+  }
+}
 }  // namespace
 
 double read_attr_double(const H5::H5Object& obj, const std::string& name,
                         const std::string& where) {
-  try {
-    H5::Attribute a = open_attr(obj, name, where);
-    const H5T_class_t cls = a.getTypeClass();
-    if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
-      throw FormatError(fmt::format("{}: attribute '{}' must be a number", where, name));
-    }
-    require_scalar(a, name, where);
-    double v = 0;
-    a.read(H5::PredType::NATIVE_DOUBLE, &v);
-    return v;
-  } catch (const H5::Exception& e) {
-    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
-  }
+  return read_scalar_attr(obj, name, where, {H5T_FLOAT, H5T_INTEGER}, "a number",
+                          [](H5::Attribute& a) {
+                            double v = 0;
+                            a.read(H5::PredType::NATIVE_DOUBLE, &v);
+                            return v;
+                          });
 }
 
 std::int64_t read_attr_int(const H5::H5Object& obj, const std::string& name,
                            const std::string& where) {
-  try {
-    H5::Attribute a = open_attr(obj, name, where);
-    if (a.getTypeClass() != H5T_INTEGER) {
-      throw FormatError(fmt::format("{}: attribute '{}' must be an integer", where, name));
-    }
-    require_scalar(a, name, where);
+  return read_scalar_attr(obj, name, where, {H5T_INTEGER}, "an integer", [](H5::Attribute& a) {
     std::int64_t v = 0;
     a.read(H5::PredType::NATIVE_INT64, &v);
     return v;
-  } catch (const H5::Exception& e) {
-    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
-  }
+  });
 }
 
 std::string read_attr_string(const H5::H5Object& obj, const std::string& name,
                              const std::string& where) {
-  try {
-    H5::Attribute a = open_attr(obj, name, where);
-    if (a.getTypeClass() != H5T_STRING) {
-      throw FormatError(fmt::format("{}: attribute '{}' must be a string", where, name));
-    }
-    require_scalar(a, name, where);
+  return read_scalar_attr(obj, name, where, {H5T_STRING}, "a string", [&](H5::Attribute& a) {
     // Through the C API: the C++ wrapper calls strlen on whatever a damaged file yields,
     // including a null pointer.
     const H5::StrType type = a.getStrType();
@@ -543,9 +544,7 @@ std::string read_attr_string(const H5::H5Object& obj, const std::string& name,
     }
     v.resize(std::min(v.size(), v.find('\0')));
     return v;
-  } catch (const H5::Exception& e) {
-    throw FormatError(fmt::format("{}: attribute '{}': {}", where, name, describe(e)));
-  }
+  });
 }
 
 void write_dataset(H5::Group& group, const std::string& name, const std::vector<double>& data,

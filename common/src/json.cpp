@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -71,6 +72,14 @@ nlohmann::json parse_strict(const JsonOrigin& at, const std::string& text) {
 
 nlohmann::json parse_json(const JsonOrigin& at, const std::string& text) {
   return parse_strict(at, text);
+}
+
+std::string read_json_text(const std::filesystem::path& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw FormatError(fmt::format("{}: cannot open {}", path.string(), what));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what) {

@@ -7,10 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "tactile/capture/strain_movie_io.hpp"
@@ -425,11 +423,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
 }
 
 Experiment read_experiment(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw FormatError(fmt::format("{}: cannot open experiment file", path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_experiment(text.str(), path.string(), path.parent_path());
+  return parse_experiment(read_json_text(path, "experiment file"), path.string(),
+                          path.parent_path());
 }
 
 }  // namespace tactile::experiments

@@ -6,9 +6,7 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "tactile/common/error.hpp"
 #include "tactile/common/json.hpp"
@@ -131,11 +129,7 @@ Layout parse_layout_json(const std::string& text, const std::string& where) {
 }
 
 Layout read_layout_json(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw FormatError(fmt::format("{}: cannot open layout file", path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_layout_json(text.str(), path.string());
+  return parse_layout_json(read_json_text(path, "layout file"), path.string());
 }
 
 std::string layout_to_json(const Layout& l) {

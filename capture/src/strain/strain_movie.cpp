@@ -1,27 +1,34 @@
 #include "tactile/capture/strain_movie.hpp"
 
+#include <array>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "tactile/common/names.hpp"
+
 namespace tactile::capture {
 
+namespace {
+
+// Each feature type's name in CSV files and tables, spelled once for writing and reading.
+constexpr std::array<Named<FeatureType>, 3> kFeatureTypeNames = {{
+    {FeatureType::pore, "pore"},
+    {FeatureType::ending, "ending"},
+    {FeatureType::bifurcation, "bifurcation"},
+}};
+
+}  // namespace
+
 const char* feature_type_name(FeatureType type) {
-  switch (type) {
-    case FeatureType::pore:
-      return "pore";
-    case FeatureType::ending:
-      return "ending";
-    case FeatureType::bifurcation:
-      return "bifurcation";
-  }
+  for (const auto& [value, name] : kFeatureTypeNames)
+    if (value == type) return name.data();  // a literal's view: null-terminated
   return "unknown";
 }
 
 FeatureType parse_feature_type(const std::string& name) {
-  if (name == "pore") return FeatureType::pore;
-  if (name == "ending") return FeatureType::ending;
-  if (name == "bifurcation") return FeatureType::bifurcation;
+  for (const auto& [value, known] : kFeatureTypeNames)
+    if (known == name) return value;
   throw std::invalid_argument(
       fmt::format("unknown feature type '{}' (expected pore, ending or bifurcation)", name));
 }

@@ -100,34 +100,41 @@ std::vector<RowSumsVersion> row_sums_versions_here() {
   return here;
 }
 
-void add_row_sums_by(RowSumsVersion version, const FloatRows& image, const RowSpan& row,
-                     RowSums& s) {
+namespace {
+
+// A computation built three times: with AVX-512, with AVX2 and FMA, and plain.
+template <typename Span, typename Sums>
+using SumsBuild = void (*)(const FloatRows&, const Span&, Sums&);
+
+template <typename Span, typename Sums>
+void add_sums_by(RowSumsVersion version, SumsBuild<Span, Sums> avx512_build,
+                 SumsBuild<Span, Sums> avx2_build, SumsBuild<Span, Sums> plain_build,
+                 const FloatRows& image, const Span& span, Sums& s) {
   switch (version) {
     case RowSumsVersion::avx512:
-      avx512::add_row_sums_simd(image, row, s);
+      avx512_build(image, span, s);
       return;
     case RowSumsVersion::avx2:
-      avx2::add_row_sums_simd(image, row, s);
+      avx2_build(image, span, s);
       return;
     case RowSumsVersion::plain:
       break;
   }
-  add_row_sums(image, row, s);
+  plain_build(image, span, s);
+}
+
+}  // namespace
+
+void add_row_sums_by(RowSumsVersion version, const FloatRows& image, const RowSpan& row,
+                     RowSums& s) {
+  add_sums_by(version, avx512::add_row_sums_simd, avx2::add_row_sums_simd, add_row_sums, image, row,
+              s);
 }
 
 void add_window_sums_by(RowSumsVersion version, const FloatRows& image, const WindowSpan& window,
                         WindowSampleSums& s) {
-  switch (version) {
-    case RowSumsVersion::avx512:
-      avx512::add_window_sums_simd(image, window, s);
-      return;
-    case RowSumsVersion::avx2:
-      avx2::add_window_sums_simd(image, window, s);
-      return;
-    case RowSumsVersion::plain:
-      break;
-  }
-  add_window_sums(image, window, s);
+  add_sums_by(version, avx512::add_window_sums_simd, avx2::add_window_sums_simd, add_window_sums,
+              image, window, s);
 }
 
 void add_window_sums_vector(const FloatRows& image, const WindowSpan& window, WindowSampleSums& s) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -72,9 +73,26 @@ std::size_t needed_bytes(std::uint8_t type, bool request) {
   }
 }
 
-// Checks what every datagram shares, then lets `body` read the type's own fields.
+// Writes what every datagram shares and, for `raw_type`, the RAW body; `body` writes the other
+// types' fields and returns false for a type that does not travel as a `direction`.
 template <class Packet, class Body>
-LateroDecoded<Packet> decode(std::span<const std::uint8_t> bytes, bool request, Body body) {
+std::vector<std::uint8_t> encode(const Packet& p, LateroPacketType raw_type, const char* direction,
+                                 Body body) {
+  std::vector<std::uint8_t> b = header(p.type, p.sequence);
+  if (p.type == raw_type) {
+    put_raw(b, p.raw_command, p.raw_address, p.raw_data);
+  } else if (!body(b)) {
+    throw std::invalid_argument(
+        fmt::format("0x{:02X} is not a Latero {} type", static_cast<int>(p.type), direction));
+  }
+  return b;
+}
+
+// Checks what every datagram shares and reads a RAW body, then lets `body` read the other
+// types' fields.
+template <class Packet, class Body>
+LateroDecoded<Packet> decode(std::span<const std::uint8_t> bytes, bool request,
+                             LateroPacketType raw_type, Body body) {
   auto fail = [](LateroPacketError e) { return LateroDecoded<Packet>{std::nullopt, e}; };
   if (bytes.size() > kLateroDatagramBytes) return fail(LateroPacketError::oversized);
   if (bytes.size() < kLateroHeaderBytes) return fail(LateroPacketError::too_short);
@@ -86,78 +104,75 @@ LateroDecoded<Packet> decode(std::span<const std::uint8_t> bytes, bool request, 
   Packet p;
   p.type = static_cast<LateroPacketType>(bytes[2]);
   p.sequence = get16(bytes, 3);
-  body(p);
+  if (p.type == raw_type) {
+    get_raw(bytes, p);
+  } else {
+    body(p);
+  }
   return {p, LateroPacketError::none};
+}
+
+// Each error's two spellings side by side, so that a new error cannot get one without the
+// other: its fixed name and the wrong part as a person says it.
+struct ErrorText {
+  LateroPacketError error;
+  const char* name;
+  const char* words;
+};
+constexpr std::array<ErrorText, kLateroPacketErrorCount> kErrorTexts = {{
+    {LateroPacketError::none, "none", "undecodable"},
+    {LateroPacketError::too_short, "too_short", "too short"},
+    {LateroPacketError::oversized, "oversized", "oversized"},
+    {LateroPacketError::bad_magic, "bad_magic", "wrong magic"},
+    {LateroPacketError::bad_version, "bad_version", "wrong protocol version"},
+    {LateroPacketError::bad_type, "bad_type", "unknown packet type"},
+}};
+
+ErrorText error_text(LateroPacketError error) {
+  for (const ErrorText& t : kErrorTexts)
+    if (t.error == error) return t;
+  return {error, "unknown", "undecodable"};
 }
 
 }  // namespace
 
 const char* latero_error_name(LateroPacketError error) {
-  switch (error) {
-    case LateroPacketError::none:
-      return "none";
-    case LateroPacketError::too_short:
-      return "too_short";
-    case LateroPacketError::oversized:
-      return "oversized";
-    case LateroPacketError::bad_magic:
-      return "bad_magic";
-    case LateroPacketError::bad_version:
-      return "bad_version";
-    case LateroPacketError::bad_type:
-      return "bad_type";
-  }
-  return "unknown";
+  return error_text(error).name;
+}
+
+const char* latero_error_words(LateroPacketError error) {
+  return error_text(error).words;
 }
 
 std::vector<std::uint8_t> encode_latero_request(const LateroRequest& r) {
-  std::vector<std::uint8_t> b = header(r.type, r.sequence);
-  switch (r.type) {
-    case LateroPacketType::full:
-    case LateroPacketType::io:
-      put16(b, 5, r.dio_out);
-      for (std::size_t i = 0; i < 4; ++i) put16(b, 7 + 2 * i, r.dac[i]);
-      if (r.type == LateroPacketType::full) {
-        std::copy(r.blade.begin(), r.blade.end(), b.begin() + 15);
-      }
-      break;
-    case LateroPacketType::raw:
-      put_raw(b, r.raw_command, r.raw_address, r.raw_data);
-      break;
-    default:
-      throw std::invalid_argument(
-          fmt::format("0x{:02X} is not a Latero request type", static_cast<int>(r.type)));
-  }
-  return b;
+  return encode(r, LateroPacketType::raw, "request", [&](std::vector<std::uint8_t>& b) {
+    if (r.type != LateroPacketType::full && r.type != LateroPacketType::io) return false;
+    put16(b, 5, r.dio_out);
+    for (std::size_t i = 0; i < 4; ++i) put16(b, 7 + 2 * i, r.dac[i]);
+    if (r.type == LateroPacketType::full) {
+      std::copy(r.blade.begin(), r.blade.end(), b.begin() + 15);
+    }
+    return true;
+  });
 }
 
 std::vector<std::uint8_t> encode_latero_reply(const LateroReply& r) {
-  std::vector<std::uint8_t> b = header(r.type, r.sequence);
-  switch (r.type) {
-    case LateroPacketType::full_reply_page0:
-    case LateroPacketType::full_reply_page1:
-      put16(b, 5, r.dio_in);
-      put16(b, 7, r.controller_status);
-      put16(b, 9, r.io_status);
-      for (std::size_t i = 0; i < 4; ++i) put32(b, 11 + 4 * i, r.encoder[i]);
-      for (std::size_t i = 0; i < 4; ++i) put16(b, 27 + 2 * i, r.adc[i]);
-      break;
-    case LateroPacketType::raw_reply:
-      put_raw(b, r.raw_command, r.raw_address, r.raw_data);
-      break;
-    default:
-      throw std::invalid_argument(
-          fmt::format("0x{:02X} is not a Latero reply type", static_cast<int>(r.type)));
-  }
-  return b;
+  return encode(r, LateroPacketType::raw_reply, "reply", [&](std::vector<std::uint8_t>& b) {
+    if (r.type != LateroPacketType::full_reply_page0 &&
+        r.type != LateroPacketType::full_reply_page1) {
+      return false;
+    }
+    put16(b, 5, r.dio_in);
+    put16(b, 7, r.controller_status);
+    put16(b, 9, r.io_status);
+    for (std::size_t i = 0; i < 4; ++i) put32(b, 11 + 4 * i, r.encoder[i]);
+    for (std::size_t i = 0; i < 4; ++i) put16(b, 27 + 2 * i, r.adc[i]);
+    return true;
+  });
 }
 
 LateroDecoded<LateroRequest> decode_latero_request(std::span<const std::uint8_t> bytes) {
-  return decode<LateroRequest>(bytes, true, [&](LateroRequest& r) {
-    if (r.type == LateroPacketType::raw) {
-      get_raw(bytes, r);
-      return;
-    }
+  return decode<LateroRequest>(bytes, true, LateroPacketType::raw, [&](LateroRequest& r) {
     r.dio_out = get16(bytes, 5);
     for (std::size_t i = 0; i < 4; ++i) r.dac[i] = get16(bytes, 7 + 2 * i);
     if (r.type == LateroPacketType::full) {
@@ -167,11 +182,7 @@ LateroDecoded<LateroRequest> decode_latero_request(std::span<const std::uint8_t>
 }
 
 LateroDecoded<LateroReply> decode_latero_reply(std::span<const std::uint8_t> bytes) {
-  return decode<LateroReply>(bytes, false, [&](LateroReply& r) {
-    if (r.type == LateroPacketType::raw_reply) {
-      get_raw(bytes, r);
-      return;
-    }
+  return decode<LateroReply>(bytes, false, LateroPacketType::raw_reply, [&](LateroReply& r) {
     r.dio_in = get16(bytes, 5);
     r.controller_status = get16(bytes, 7);
     r.io_status = get16(bytes, 9);

@@ -43,25 +43,6 @@ std::uint16_t parse_port(const std::string& text, const std::string& whole) {
 // machine, a fifth of a 750 Hz period.
 constexpr nanoseconds kSpin = microseconds(200);
 
-// The wrong part of a malformed reply, as a person says it.
-const char* malformed_words(LateroPacketError error) {
-  switch (error) {
-    case LateroPacketError::too_short:
-      return "too short";
-    case LateroPacketError::oversized:
-      return "oversized";
-    case LateroPacketError::bad_magic:
-      return "wrong magic";
-    case LateroPacketError::bad_version:
-      return "wrong protocol version";
-    case LateroPacketError::bad_type:
-      return "unknown packet type";
-    case LateroPacketError::none:
-      break;
-  }
-  return "undecodable";
-}
-
 }  // namespace
 
 std::string describe_malformed_replies(const LateroLinkStats& stats) {
@@ -72,7 +53,7 @@ std::string describe_malformed_replies(const LateroLinkStats& stats) {
   }
   for (int e = 1; e < kLateroPacketErrorCount; ++e) {
     const auto count = stats.malformed_by_error[static_cast<std::size_t>(e)];
-    if (count > 0) kinds.emplace_back(count, malformed_words(static_cast<LateroPacketError>(e)));
+    if (count > 0) kinds.emplace_back(count, latero_error_words(static_cast<LateroPacketError>(e)));
   }
   std::stable_sort(kinds.begin(), kinds.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });

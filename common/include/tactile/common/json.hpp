@@ -25,6 +25,9 @@ struct JsonOrigin {
 // `text` parsed; "not valid JSON (...)" also for a number beyond a double.
 nlohmann::json parse_json(const JsonOrigin& at, const std::string& text);
 
+// The text of a JSON file that its parser checks itself: "<path>: cannot open <what>".
+std::string read_json_text(const std::filesystem::path& path, const std::string& what);
+
 // The JSON object in `path`: "<path>: cannot open <what>", "not valid JSON (...)" or
 // "expected a JSON object".
 nlohmann::json read_json_object(const std::filesystem::path& path, const std::string& what);

@@ -301,6 +301,24 @@ struct field_type<std::optional<T>> {
 template <typename R, typename Field>
 using field_of = std::remove_cvref_t<std::invoke_result_t<Field, R&>>;
 
+// What every row begins with: its name, kind and help.
+template <typename R>
+OptionRow<R> new_row(std::string_view name, OptionKind kind, std::string help) {
+  OptionRow<R> row;
+  row.name = name;
+  row.kind = kind;
+  row.help = std::move(help);
+  return row;
+}
+
+// get and shown for a field whose stored value is what the row reads and shows (value_of and
+// shown_value know its type).
+template <typename R, typename Field>
+void read_as_stored(OptionRow<R>& row, Field field) {
+  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
+  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+}
+
 // A row for an int or double field (or an optional one, unset by default).
 template <typename R, typename Field>
 OptionRow<R> number(std::string_view name, Field field, double min, double max,
@@ -308,10 +326,8 @@ OptionRow<R> number(std::string_view name, Field field, double min, double max,
   using F = field_of<R, Field>;
   using T = typename field_type<F>::type;
   static_assert(std::is_same_v<T, int> || std::is_same_v<T, double>);
-  OptionRow<R> row;
-  row.name = name;
-  row.kind = std::is_same_v<T, int> ? OptionKind::integer : OptionKind::number;
-  row.help = std::move(help);
+  OptionRow<R> row = new_row<R>(
+      name, std::is_same_v<T, int> ? OptionKind::integer : OptionKind::number, std::move(help));
   row.unit = unit;
   row.min = min;
   row.max = max;
@@ -326,8 +342,7 @@ OptionRow<R> number(std::string_view name, Field field, double min, double max,
                          : static_cast<double>(std::get<std::int64_t>(v));
     std::invoke(field, r) = static_cast<T>(d);
   };
-  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
-  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  read_as_stored(row, field);
   return row;
 }
 
@@ -336,10 +351,7 @@ template <typename R, typename Field, typename E, std::size_t N>
 OptionRow<R> choice(std::string_view name, Field field, const std::array<Named<E>, N>& table,
                     std::string help) {
   using F = field_of<R, Field>;
-  OptionRow<R> row;
-  row.name = name;
-  row.kind = OptionKind::choice;
-  row.help = std::move(help);
+  OptionRow<R> row = new_row<R>(name, OptionKind::choice, std::move(help));
   for (const auto& entry : table) row.choices.emplace_back(entry.name);
   row.optional = !std::is_same_v<F, E>;
   row.set = [field, table, name](R& r, const OptionValue& v) {
@@ -373,10 +385,7 @@ template <typename R, typename Field>
 OptionRow<R> path(std::string_view name, Field field, std::string help) {
   using F = field_of<R, Field>;
   using T = typename field_type<F>::type;
-  OptionRow<R> row;
-  row.name = name;
-  row.kind = OptionKind::path;
-  row.help = std::move(help);
+  OptionRow<R> row = new_row<R>(name, OptionKind::path, std::move(help));
   row.optional = !std::is_same_v<F, T>;
   row.set = [field](R& r, const OptionValue& v) {
     if (std::holds_alternative<std::monostate>(v)) {
@@ -385,8 +394,7 @@ OptionRow<R> path(std::string_view name, Field field, std::string help) {
     }
     std::invoke(field, r) = T(std::get<std::string>(v));
   };
-  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
-  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  read_as_stored(row, field);
   return row;
 }
 
@@ -394,13 +402,9 @@ OptionRow<R> path(std::string_view name, Field field, std::string help) {
 template <typename R, typename Field>
 OptionRow<R> flag(std::string_view name, Field field, std::string help) {
   static_assert(std::is_same_v<field_of<R, Field>, bool>);
-  OptionRow<R> row;
-  row.name = name;
-  row.kind = OptionKind::flag;
-  row.help = std::move(help);
+  OptionRow<R> row = new_row<R>(name, OptionKind::flag, std::move(help));
   row.set = [field](R& r, const OptionValue& v) { std::invoke(field, r) = std::get<bool>(v); };
-  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
-  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  read_as_stored(row, field);
   return row;
 }
 
@@ -410,10 +414,7 @@ template <typename R, typename Field, typename E, std::size_t N>
 OptionRow<R> choice_list(std::string_view name, Field field, const std::array<Named<E>, N>& table,
                          std::string help) {
   static_assert(std::is_same_v<field_of<R, Field>, std::vector<E>>);
-  OptionRow<R> row;
-  row.name = name;
-  row.kind = OptionKind::choice_list;
-  row.help = std::move(help);
+  OptionRow<R> row = new_row<R>(name, OptionKind::choice_list, std::move(help));
   for (const auto& entry : table) row.choices.emplace_back(entry.name);
   row.optional = true;
   row.set = [field, table, name](R& r, const OptionValue& v) {
@@ -446,10 +447,7 @@ template <typename R, typename Field>
 OptionRow<R> seed(std::string_view name, Field field, std::string help) {
   using F = field_of<R, Field>;
   static_assert(std::is_same_v<typename field_type<F>::type, std::uint64_t>);
-  OptionRow<R> row;
-  row.name = name;
-  row.kind = OptionKind::seed;
-  row.help = std::move(help);
+  OptionRow<R> row = new_row<R>(name, OptionKind::seed, std::move(help));
   row.optional = !std::is_same_v<F, std::uint64_t>;
   row.set = [field](R& r, const OptionValue& v) {
     if (std::holds_alternative<std::monostate>(v)) {
@@ -462,8 +460,7 @@ OptionRow<R> seed(std::string_view name, Field field, std::string help) {
       std::invoke(field, r) = static_cast<std::uint64_t>(std::get<std::int64_t>(v));
     }
   };
-  row.get = [field](const R& r) { return value_of(std::invoke(field, r)); };
-  row.shown = [field](const R& r) { return shown_value(std::invoke(field, r)); };
+  read_as_stored(row, field);
   return row;
 }
 

@@ -88,6 +88,9 @@ inline constexpr int kLateroPacketErrorCount = 6;
 
 // Short fixed name, e.g. "bad_magic" (counters and messages).
 const char* latero_error_name(LateroPacketError error);
+// The wrong part of a malformed packet as a person says it, e.g. "wrong magic"; "undecodable"
+// for none (reports that count malformed packets by error).
+const char* latero_error_words(LateroPacketError error);
 
 template <class T>
 struct LateroDecoded {
