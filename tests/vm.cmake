@@ -55,7 +55,7 @@ add_custom_command(
           $<TARGET_FILE:vm_client> ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init ${TACTILE_VM_MODULES}
           ${TACTILE_BUSYBOX}
   DEPENDS vm_client ${CMAKE_CURRENT_SOURCE_DIR}/vm/make_initramfs.sh
-          ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init
+          ${CMAKE_CURRENT_SOURCE_DIR}/vm/initramfs.sh ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init
   COMMENT "Building the VM test initramfs (busybox, USB/HID modules, vm_client)"
   VERBATIM)
 add_custom_target(vm_initramfs ALL DEPENDS ${vm_initrd})
@@ -143,6 +143,7 @@ if(NOT TACTILE_SANITIZE)
             $<TARGET_FILE:tactile> ${TACTILE_V4L2_CTL} ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init-live
             ${TACTILE_VM_MODULES} ${TACTILE_BUSYBOX} ${vm_live_frames}
     DEPENDS tactile ${vm_live_frames} ${CMAKE_CURRENT_SOURCE_DIR}/vm/make_live_initramfs.sh
+            ${CMAKE_CURRENT_SOURCE_DIR}/vm/initramfs.sh
             ${CMAKE_CURRENT_SOURCE_DIR}/vm/guest/init-live
     COMMENT "Building the live-camera VM initramfs (busybox, vivid, v4l2-ctl, tactile, frames)"
     VERBATIM)
