@@ -174,6 +174,27 @@ TEST(Player, RealTimeClockPlaysAtTheDeviceRate) {
   EXPECT_EQ(r.underruns, 0);
 }
 
+// Where the contactors stand is read from the firmware's outputs: away from rest while a frame
+// holds them there, back at 0 once a stop's slew-limited ramp has run.
+TEST(EmulatedDevice, SaysHowFarFromRestItsContactorsStand) {
+  EmulatedDeviceOptions o = device_for(movie::stress_layout());
+  o.record_outputs = false;  // as a live session runs it
+  EmulatedDevice device(o);
+  EXPECT_EQ(device.farthest_from_rest_um(), 0.0f);
+  device.start(700);
+  std::vector<float> frame(100, 0);
+  frame[37] = -30;
+  for (std::uint32_t seq = 0; seq < 40; ++seq)
+    ASSERT_TRUE(device.send_frame(encode_frame(frame, seq)));
+  device.wait(std::chrono::milliseconds(50));
+  EXPECT_EQ(device.farthest_from_rest_um(), 30.0f);
+  device.stop();
+  device.wait(std::chrono::milliseconds(1));
+  EXPECT_GT(device.farthest_from_rest_um(), 0.0f);  // a ramp, not a jump
+  device.wait(std::chrono::seconds(1));
+  EXPECT_EQ(device.farthest_from_rest_um(), 0.0f);
+}
+
 TEST(EmulatedDevice, CountsMalformedFramesAndNeverPlaysThem) {
   EmulatedDevice device(device_for(movie::stress_layout()));
   device.start(700);

@@ -108,6 +108,7 @@ TEST_F(Live, EveryFrameIsAccountedForAndRecorded) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("60 in, 60 processed, 0 dropped"));
   EXPECT_THAT(r.output, HasSubstr("latency     p50"));
+  EXPECT_THAT(r.output, HasSubstr("the emulated device's outputs ended at most 0 um from rest"));
   const auto latency = csv_rows(record / "latency.csv");
   ASSERT_EQ(latency.size(), 61u);
   EXPECT_EQ(latency[0],

@@ -409,6 +409,41 @@ void check_live(const std::vector<Line>& lines, double seconds) {
             pattern.median_points >= 0 && pattern.median_points < kFingerprintPoints,
         "with the loop off (vivid's test pattern) the median points tracked a frame stay below "
         "the fingerprint's floor");
+
+  // The camera removed under a recording session: the guest unbinds vivid's device from its
+  // driver (its nodes unregistered, as when a USB camera is pulled out) while the session reads.
+  const auto unbound = first(lines, "VM: unbinding ");
+  if (unbound) std::printf("FIGURE %s\n", unbound->text.c_str());
+  check(unbound.has_value(), "the guest unbound vivid's device under the recording session");
+  const LiveRun unplug = parse_live(lines, "VM-UNPLUG: ", camera);
+  const auto named = [&](const std::string& words) {
+    for (const auto& l : all(lines, "VM-UNPLUG: ")) {
+      if (l.text.find(words) != std::string::npos) return std::optional<Line>(l);
+    }
+    return std::optional<Line>();
+  };
+  const auto error = named(camera + ": the camera gave no frame");
+  if (error) std::printf("FIGURE unplug: %s (exit=%d)\n", error->text.c_str(), unplug.exit_code);
+  check(unplug.exit_code == 1 && error.has_value(),
+        "the removal ends the session with exit 1 and an error naming the camera " + camera);
+  check(named("outputs ended at most 0 um from rest").has_value(),
+        "the session's emulated display ended at rest after the removal");
+  const auto recorded = first(lines, "VM: recorded ");
+  bool all_there = recorded.has_value();
+  for (const char* f :
+       {"frames.mkv", "latency.csv", "tracks.csv", "edges.csv", "strain.h5", "movie.h5"}) {
+    all_there = all_there && num(recorded->text, f) > 0;
+  }
+  if (recorded) std::printf("FIGURE %s\n", recorded->text.c_str());
+  check(all_there, "the recording's six files are on the disk, none empty");
+  const auto rows = first(lines, "VM: latency.csv ");
+  check(rows && num(rows->text, "rows") >= 2,
+        "latency.csv holds a row for the camera's frames before the removal");
+  for (const std::string f : {"strain.h5", "movie.h5"}) {
+    const auto info = first(lines, "VM-INFO-" + f + ": exit=");
+    check(info && info->text.substr(info->text.find('=') + 1) == "0",
+          "the recording's " + f + " opens with `tactile info` after the removal");
+  }
 }
 
 // What an earlier test of the run found: the verdict file is "kvm: REASON" or "tcg: REASON".

@@ -195,6 +195,18 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       }
       StopSignals signals;  // before any thread (libusb's too), so that they inherit the block
       std::unique_ptr<display::Transport> device;
+      const display::EmulatedDevice* emulated = nullptr;
+      // Where the emulated contactors ended, measured on the firmware's outputs once its ramp
+      // to rest has had time to run (a stop ramps at the slew limit: well under a second).
+      const auto say_where_it_rests = [&emulated] {
+        if (!emulated) return;
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+        while (emulated->farthest_from_rest_um() > 0 && std::chrono::steady_clock::now() < until) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        fmt::print("live: the emulated device's outputs ended at most {:g} um from rest\n",
+                   emulated->farthest_from_rest_um());
+      };
       bool in_window = *window;
       if (!*headless && !*window && latero->address.empty()) {
         // Where `play` would play: an attached display (its vendor interface, else its HID
@@ -219,8 +231,10 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
         device = std::make_unique<display::LateroTransport>(
             display::parse_latero_address(latero->address), options);
       } else if (!device) {
-        device = std::make_unique<display::EmulatedDevice>(
+        auto owned = std::make_unique<display::EmulatedDevice>(
             live::emulated_display_options(session.layout));
+        emulated = owned.get();
+        device = std::move(owned);
       }
       std::atomic<bool> stop{false};
       std::atomic<bool> over{false};
@@ -271,6 +285,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
         watcher.join();
         // What was recorded stays: the CSV files are flushed before the error is reported.
         recording.reset();
+        say_where_it_rests();
         throw;
       }
       over = true;
@@ -280,6 +295,7 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
         fmt::print("live: recorded into {}\n", session.record->string());
       }
       fmt::print("{}", live::format_summary(summary));
+      say_where_it_rests();
       if (const int signal = signals.received(); signal != 0) {
         fmt::print("live: stopped by {}; the display is at rest\n", stop_signal_name(signal));
         return exit_code_for_signal(signal);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
@@ -185,6 +186,16 @@ void EmulatedDevice::wait(std::chrono::nanoseconds duration) {
   }
   std::lock_guard lock(impl_->mutex);
   impl_->run_until(impl_->now_s + std::chrono::duration<double>(duration).count());
+}
+
+float EmulatedDevice::farthest_from_rest_um() const {
+  std::lock_guard lock(impl_->mutex);
+  const std::int16_t* out = tfw_device_outputs(&impl_->device);
+  float farthest_um = 0;
+  for (std::uint16_t i = 0; i < tfw_device_contactor_count(&impl_->device); ++i) {
+    farthest_um = std::max(farthest_um, std::abs(from_wire_units(out[i])));
+  }
+  return farthest_um;
 }
 
 double EmulatedDevice::now_s() const {

@@ -54,6 +54,9 @@ class EmulatedDevice final : public Transport {
 
   // Device time since construction (simulated or real).
   double now_s() const;
+  // Where the contactors stand now, measured on the firmware's outputs: the largest distance
+  // of any contactor from rest (um), 0 once a stop's ramp has ended.
+  float farthest_from_rest_um() const;
   // Outputs recorded since the last start(): one frame of rows x cols deflections (um) per
   // tick, row-major, at the rate given to start().
   movie::TactileMovie recording() const;
