@@ -108,5 +108,52 @@ TEST(ContactStrain, StrainIsLeftOutOnlyWhereTheSkinSlides) {
             (std::vector<std::int32_t>{0, 1, 2, 3, 4}));
 }
 
+// Eight camera frames, the points of row 1 in every one, and a strain frame between each two; the
+// cell at column 7 is out of contact in camera frame 2 alone.
+StrainMovie movie_with_a_moment_of_gap() {
+  const StrainMovie one = movie_with_a_gap(0);
+  StrainMovie m = one;
+  m.camera_frame_count = 8;
+  m.contact.in_contact.assign(8 * 40, 1);
+  m.contact.ridge_contrast.assign(8 * 40, 20);
+  m.contact.in_contact[2 * 40 + 17] = 0;
+  m.contact.ridge_contrast[2 * 40 + 17] = 1;
+  m.frames.clear();
+  for (std::int32_t k = 0; k + 1 < 8; ++k) {
+    StrainFrame f = one.frames.front();
+    f.frame_from = k;
+    f.frame_to = k + 1;
+    for (auto& p : f.points_from) p.frame = k;
+    for (auto& p : f.points_to) p.frame = k + 1;
+    m.frames.push_back(f);
+  }
+  return m;
+}
+
+// A track smoothed over the frames on either side carries into them what its point at the rim
+// measured: within the window, its strain is left out in the strain frames around that moment.
+TEST(ContactStrain, ATracksStrainIsLeftOutAsFarAsItsSmoothingReaches) {
+  const auto edges_per_frame = [](const StrainMovie& m) {
+    std::vector<std::size_t> n;
+    for (const auto& f : m.frames) n.push_back(f.edges.size());
+    return n;
+  };
+  // The moment alone: the two strain frames that have camera frame 2 as an end.
+  EXPECT_EQ(edges_per_frame(without_strain_near_gaps(movie_with_a_moment_of_gap(), 1, 0)),
+            (std::vector<std::size_t>{9, 5, 5, 9, 9, 9, 9}));
+  // Two frames either side: strain frames 0->1 to 4->5 reach camera frame 2.
+  EXPECT_EQ(edges_per_frame(without_strain_near_gaps(movie_with_a_moment_of_gap(), 1, 2)),
+            (std::vector<std::size_t>{5, 5, 5, 5, 5, 9, 9}));
+  // strain_in_contact takes the window from the smoothing the capture used.
+  StrainMovie sliding = movie_with_a_moment_of_gap();
+  sliding.provenance.parameters_json =
+      R"({"frames_in_view": 12.5, "smoothing_half_window_used": 2})";
+  EXPECT_EQ(edges_per_frame(strain_in_contact(sliding)),
+            (std::vector<std::size_t>{5, 5, 5, 5, 5, 9, 9}));
+  sliding.provenance.parameters_json = R"({"frames_in_view": 12.5})";
+  EXPECT_EQ(edges_per_frame(strain_in_contact(sliding)),
+            (std::vector<std::size_t>{9, 5, 5, 9, 9, 9, 9}));
+}
+
 }  // namespace
 }  // namespace tactile::capture

@@ -137,12 +137,15 @@ TEST(FullSlip, HeldOutPrintsSlidingAtTheSpeedsOfExploration) {
 }
 
 // Skin that lifts off while it slides: no strain reported where it has no contact or beside it
-// (the capture leaves out the strain within a cell of skin its images show out of contact), and
-// the rest measured to the targets of full slip. Lucas-Kanade on the same frames, in full
-// contact too, must stay behind. (At 10 mm/s print 15 stays under the correlation target.)
+// (the capture leaves out the strain of tracks within a cell of skin its images show out of
+// contact, in the frames the tracks' smoothing reaches), and the rest measured to the targets
+// of full slip at every speed of exploration. Lucas-Kanade on the same frames, in full contact
+// too, must stay behind. (The reach of the smoothing was looked at on these two prints at
+// 10 mm/s; prints 12 and 14 at 10 mm/s with lift-off reach 0.942 and 0.955 with it, 0.933 and
+// 0.893 without it.)
 TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
   for (const std::string nn : {"13", "15"}) {
-    for (const double speed : {25.0, 100.0}) {
+    for (const double speed : {10.0, 25.0, 50.0, 100.0}) {
       SCOPED_TRACE("print " + nn + " at " + std::to_string(speed) + " mm/s");
       const SlipScores s = scored(full_slip(nn, speed, 1.0));
       std::printf(
@@ -174,7 +177,7 @@ TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
       EXPECT_GE(s.ours.correlation_in_contact, 0.96);
       // Every edge reported, the rim of the gap included.
       EXPECT_LE(s.ours.rms_error, 0.0025);
-      EXPECT_GE(s.ours.correlation, 0.95);
+      EXPECT_GE(s.ours.correlation, 0.96);
       // Lucas-Kanade measuring nothing in full contact is its failure, not an error of 0.
       if (s.lk.edges_in_contact > 0) {
         EXPECT_LT(s.ours.rms_error_in_contact, s.lk.rms_error_in_contact);

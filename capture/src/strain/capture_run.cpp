@@ -169,10 +169,13 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
   const std::size_t measured = edge_count(movie);
   movie = strain_in_contact(std::move(movie));
   if (const std::size_t kept = edge_count(movie); kept < measured) {
+    const auto settings = nlohmann::json::parse(movie.provenance.parameters_json, nullptr, false);
     messages.note(fmt::format(
-        "contact: {} of {} strain edges left out, at or within {} cell ({} px) of skin the "
-        "images show out of contact, where the skin slides through the view",
-        measured - kept, measured, kGapMarginCells, grid.cell_px));
+        "contact: {} of {} strain edges left out, on tracks at or within {} cell ({} px) of skin "
+        "the images show out of contact, in their frames or within {} frames of them (the "
+        "tracks' smoothing), where the skin slides through the view",
+        measured - kept, measured, kGapMarginCells, grid.cell_px,
+        settings.value("smoothing_half_window_used", 0)));
   }
   return movie;
 }

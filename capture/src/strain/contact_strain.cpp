@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -61,23 +62,43 @@ bool skin_slides_through_view(const StrainMovie& movie) {
 
 StrainMovie strain_in_contact(StrainMovie movie) {
   if (!skin_slides_through_view(movie)) return movie;
-  return without_strain_near_gaps(std::move(movie), kGapMarginCells);
+  const auto settings = nlohmann::json::parse(movie.provenance.parameters_json, nullptr, false);
+  const std::int32_t smoothing = std::max(0, settings.value("smoothing_half_window_used", 0));
+  return without_strain_near_gaps(std::move(movie), kGapMarginCells, smoothing);
 }
 
-StrainMovie without_strain_near_gaps(StrainMovie movie, std::int32_t margin_cells) {
+StrainMovie without_strain_near_gaps(StrainMovie movie, std::int32_t margin_cells,
+                                     std::int32_t window_frames) {
   const ContactMap& map = movie.contact;
   if (!map.measured()) return movie;
   const std::vector<std::uint8_t> near = near_gap(map, margin_cells);
+  // The camera frames in which each track stood at or near a gap.
+  std::unordered_map<std::int32_t, std::vector<std::int32_t>> near_frames;
+  for (const StrainFrame& f : movie.frames) {
+    for (const auto* side : {&f.points_from, &f.points_to}) {
+      for (const TrackedPoint& p : *side) {
+        if (is_near_gap(near, map, p.frame, p.x_px, p.y_px))
+          near_frames[p.track_id].push_back(p.frame);
+      }
+    }
+  }
+  if (near_frames.empty()) return movie;
+  const auto near_in = [&](std::int32_t track, std::int32_t first, std::int32_t last) {
+    const auto it = near_frames.find(track);
+    return it != near_frames.end() &&
+           std::any_of(it->second.begin(), it->second.end(),
+                       [&](std::int32_t g) { return g >= first && g <= last; });
+  };
   for (StrainFrame& f : movie.frames) {
+    const std::int32_t first = std::min(f.frame_from, f.frame_to) - window_frames;
+    const std::int32_t last = std::max(f.frame_from, f.frame_to) + window_frames;
     std::vector<std::uint8_t> left_out(f.points_from.size(), 0);
     std::unordered_set<std::int32_t> left_out_tracks;
-    for (std::size_t i = 0; i < f.points_from.size() && i < f.points_to.size(); ++i) {
-      const TrackedPoint& a = f.points_from[i];
-      const TrackedPoint& b = f.points_to[i];
-      if (is_near_gap(near, map, f.frame_from, a.x_px, a.y_px) ||
-          is_near_gap(near, map, f.frame_to, b.x_px, b.y_px)) {
+    for (std::size_t i = 0; i < f.points_from.size(); ++i) {
+      const std::int32_t track = f.points_from[i].track_id;
+      if (near_in(track, first, last)) {
         left_out[i] = 1;
-        left_out_tracks.insert(a.track_id);
+        left_out_tracks.insert(track);
       }
     }
     if (left_out_tracks.empty()) continue;

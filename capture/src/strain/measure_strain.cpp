@@ -225,11 +225,10 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
   // A smoother over more frames than the motion stays smooth for would flatten it: smooth only
   // as far as the tracks allow.
   const SmoothingKernel kernel = params.refinement.smoothing_kernel;
-  smooth_tracks(
-      tracks,
+  stats.smoothing_half_window =
       smoothing_that_fits(tracks, params.smoothing_half_window,
-                          params.refinement.max_smoothing_residual_px, kernel, params.threads),
-      kernel, params.threads);
+                          params.refinement.max_smoothing_residual_px, kernel, params.threads);
+  smooth_tracks(tracks, stats.smoothing_half_window, kernel, params.threads);
   if (progress) progress("refine", 1, 1);
   return tracks;
 }
@@ -280,6 +279,7 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
     settings["view_motion_px_per_frame"] = stats.view_motion_px;
     settings["frames_in_view"] = stats.frames_in_view;
     settings["min_track_frames_used"] = stats.min_frames;
+    settings["smoothing_half_window_used"] = stats.smoothing_half_window;
     settings["min_track_reason"] = stats.frames_in_view > 0
                                        ? fmt::format(
                                              "the view slides {:.1f} px a frame, so skin stays in "

@@ -21,16 +21,19 @@ bool skin_slides_through_view(const StrainMovie& movie);
 
 // The strain a capture reports. Where the skin slides through the view, it crosses the rim of
 // any region out of contact, and tracks there follow skin that is leaving or landing: the movie
-// loses the strain at or within kGapMarginCells of skin out of contact. In a still contact the
-// rim holds the same skin, which tracks as well as any, and the movie is kept as measured (with
-// the margin, one synthetic bump scene lost 57 % of its edges and 0.002 of correlation).
+// loses the strain at or within kGapMarginCells of skin out of contact, and, because the
+// capture smooths each track over the frames on either side (its provenance's
+// `smoothing_half_window_used`), the strain of a track within that many frames of such a
+// moment too. In a still contact the rim holds the same skin, which tracks as well as any, and
+// the movie is kept as measured (with the margin, one synthetic bump scene lost 57 % of its
+// edges and 0.002 of correlation).
 StrainMovie strain_in_contact(StrainMovie movie);
 
-// The movie without the edges and triangles that have an end in a cell out of contact, or within
-// `margin_cells` of one, in the camera frame they are measured from or in the frame they are
-// measured to. The points stay (triangles index them). A movie without a contact map is
-// returned as it is.
-StrainMovie without_strain_near_gaps(StrainMovie movie,
-                                     std::int32_t margin_cells = kGapMarginCells);
+// The movie without the edges and triangles that have an end on a track that was in a cell out
+// of contact, or within `margin_cells` of one, in a camera frame from `window_frames` before the
+// strain frame's first camera frame to `window_frames` after its last. The points stay
+// (triangles index them). A movie without a contact map is returned as it is.
+StrainMovie without_strain_near_gaps(StrainMovie movie, std::int32_t margin_cells = kGapMarginCells,
+                                     std::int32_t window_frames = 0);
 
 }  // namespace tactile::capture

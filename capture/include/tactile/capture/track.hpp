@@ -153,6 +153,8 @@ struct RefineStats {
   double view_motion_px = 0;
   double frames_in_view = 0;
   int min_frames = 0;
+  // The half-window (frames) of the smoothing the tracks were given after alignment.
+  int smoothing_half_window = 0;
 };
 
 // Tracks are refined in parallel on `threads` workers (0 = one per core).
