@@ -40,6 +40,24 @@ auto with_inputs(std::initializer_list<std::filesystem::path> inputs, Work&& wor
   }
 }
 
+// A member of a result struct and the key it has in the dict Python gets.
+template <typename S, typename T>
+struct Field {
+  const char* key;
+  T S::*member;
+};
+
+template <typename S, typename T>
+Field<S, T> field(const char* key, T S::*member) {
+  return {key, member};
+}
+
+// Sets d[key] = s.member for each field, in the order given.
+template <typename S, typename... T>
+void put_fields(py::dict& d, const S& s, const Field<S, T>&... fields) {
+  ((d[fields.key] = s.*fields.member), ...);
+}
+
 // Defines NAME(path) reading a whole file with `read` (the GIL released meanwhile) into the
 // shared object the class binding of T holds.
 template <typename T, typename Read>
