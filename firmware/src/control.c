@@ -42,6 +42,15 @@ static void put_report_head(const tfw_device* dev, uint8_t* out, size_t bytes, t
   tfw_put_u16(out + 6, dev->config.rate_hz);
 }
 
+/* Reads the 8 bytes put_report_head writes, for the status reply and the fill report alike. */
+static void get_report_head(const uint8_t* bytes, uint8_t* state, uint16_t* fifo_fill,
+                            uint16_t* fifo_capacity, uint16_t* rate_hz) {
+  *state = bytes[0];
+  *fifo_fill = tfw_get_u16(bytes + 2);
+  *fifo_capacity = tfw_get_u16(bytes + 4);
+  *rate_hz = tfw_get_u16(bytes + 6);
+}
+
 size_t tfw_encode_status(const tfw_device* dev, uint8_t* out, size_t capacity) {
   if (capacity < TFW_STATUS_BYTES) return 0;
   tfw_status s;
@@ -88,10 +97,7 @@ tfw_result tfw_decode_status(const uint8_t* bytes, size_t len, tfw_status_report
   if (len != TFW_STATUS_BYTES) return TFW_ERR_BAD_LENGTH;
   memset(report, 0, sizeof *report);
   tfw_status* s = &report->status;
-  s->state = bytes[0];
-  s->fifo_fill = tfw_get_u16(bytes + 2);
-  s->fifo_capacity = tfw_get_u16(bytes + 4);
-  report->rate_hz = tfw_get_u16(bytes + 6);
+  get_report_head(bytes, &s->state, &s->fifo_fill, &s->fifo_capacity, &report->rate_hz);
   uint32_t* counters[] = {
       &s->frames_received, &s->frames_played, &s->malformed_total,     &s->overflows,
       &s->underruns,       &s->sequence_gaps, &s->clamped_samples,     &s->slew_limited_samples,
@@ -114,10 +120,8 @@ size_t tfw_encode_fill(const tfw_device* dev, uint8_t* out, size_t capacity) {
 
 tfw_result tfw_decode_fill(const uint8_t* bytes, size_t len, tfw_fill_report* report) {
   if (len != TFW_FILL_BYTES) return TFW_ERR_BAD_LENGTH;
-  report->state = bytes[0];
-  report->fifo_fill = tfw_get_u16(bytes + 2);
-  report->fifo_capacity = tfw_get_u16(bytes + 4);
-  report->rate_hz = tfw_get_u16(bytes + 6);
+  get_report_head(bytes, &report->state, &report->fifo_fill, &report->fifo_capacity,
+                  &report->rate_hz);
   report->frames_played = tfw_get_u32(bytes + 8);
   report->underruns = tfw_get_u32(bytes + 12);
   return TFW_OK;

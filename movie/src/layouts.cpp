@@ -21,52 +21,19 @@
 
 namespace tactile::movie {
 
+// Each in Layout's member order: name, rows, cols, pitch x and y, contactor width and height,
+// axis, deflection range, maximum rate.
+
 Layout stress_layout() {
-  Layout l;
-  l.name = "stress";
-  l.rows = 10;
-  l.cols = 10;
-  l.pitch_x_mm = 1.0;
-  l.pitch_y_mm = 1.0;
-  l.contactor_width_mm = 0.5;
-  l.contactor_height_mm = 0.5;
-  l.axis = DeflectionAxis::x;
-  l.deflection_min_um = -50;
-  l.deflection_max_um = 50;
-  l.max_rate_hz = 700;
-  return l;
+  return {"stress", 10, 10, 1.0, 1.0, 0.5, 0.5, DeflectionAxis::x, -50, 50, 700};
 }
 
 Layout stress2_layout() {
-  Layout l;
-  l.name = "stress2";
-  l.rows = 8;
-  l.cols = 8;
-  l.pitch_x_mm = 1.2;
-  l.pitch_y_mm = 1.4;
-  l.contactor_width_mm = 0.5;
-  l.contactor_height_mm = 1.0;
-  l.axis = DeflectionAxis::x;
-  l.deflection_min_um = -100;
-  l.deflection_max_um = 100;
-  l.max_rate_hz = 1000;
-  return l;
+  return {"stress2", 8, 8, 1.2, 1.4, 0.5, 1.0, DeflectionAxis::x, -100, 100, 1000};
 }
 
 Layout latero_layout() {
-  Layout l;
-  l.name = "latero";
-  l.rows = 8;
-  l.cols = 8;
-  l.pitch_x_mm = 1.2;
-  l.pitch_y_mm = 1.6125;
-  l.contactor_width_mm = 0.5;
-  l.contactor_height_mm = 1.4;
-  l.axis = DeflectionAxis::x;
-  l.deflection_min_um = -100;
-  l.deflection_max_um = 100;
-  l.max_rate_hz = 750;
-  return l;
+  return {"latero", 8, 8, 1.2, 1.6125, 0.5, 1.4, DeflectionAxis::x, -100, 100, 750};
 }
 
 Layout layout_by_name(const std::string& name) {

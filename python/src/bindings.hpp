@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -37,6 +38,49 @@ auto with_inputs(std::initializer_list<std::filesystem::path> inputs, Work&& wor
     }
     throw;
   }
+}
+
+// A member of a result struct and the key it has in the dict Python gets.
+template <typename S, typename T>
+struct Field {
+  const char* key;
+  T S::*member;
+};
+
+template <typename S, typename T>
+Field<S, T> field(const char* key, T S::*member) {
+  return {key, member};
+}
+
+// Sets d[key] = s.member for each field, in the order given.
+template <typename S, typename... T>
+void put_fields(py::dict& d, const S& s, const Field<S, T>&... fields) {
+  ((d[fields.key] = s.*fields.member), ...);
+}
+
+// Defines NAME(path) reading a whole file with `read` (the GIL released meanwhile) into the
+// shared object the class binding of T holds.
+template <typename T, typename Read>
+void def_reader(py::module_& m, const char* name, Read read, const char* doc) {
+  m.def(
+      name,
+      [read](const std::filesystem::path& path) {
+        py::gil_scoped_release unlocked;
+        return std::make_shared<T>(with_inputs({path}, [&] { return read(path); }));
+      },
+      py::arg("path"), doc);
+}
+
+// Defines NAME(path, movie) writing `movie` with `write`, the GIL released meanwhile.
+template <typename T, typename Write>
+void def_writer(py::module_& m, const char* name, Write write, const char* doc) {
+  m.def(
+      name,
+      [write](const std::filesystem::path& path, const T& movie) {
+        py::gil_scoped_release unlocked;
+        write(path, movie);
+      },
+      py::arg("path"), py::arg("movie"), doc);
 }
 
 void bind_errors(py::module_& m);

@@ -58,12 +58,12 @@ void bind_exchange(py::module_& m) {
           py::gil_scoped_release unlocked;
           s = movie::write_hjif(mv, path, options);
         }
+        using S = movie::HjifSummary;
         py::dict d;
-        d["channels"] = s.channels;
-        d["level"] = s.level;
-        d["timescale"] = s.timescale;
-        d["effects_per_channel"] = s.effects_per_channel;
-        d["full_scale_um"] = s.full_scale_um;
+        put_fields(d, s, field("channels", &S::channels), field("level", &S::level),
+                   field("timescale", &S::timescale),
+                   field("effects_per_channel", &S::effects_per_channel),
+                   field("full_scale_um", &S::full_scale_um));
         return d;
       },
       py::arg("path"), py::arg("movie"), py::arg("ticks_per_sample") = 1,

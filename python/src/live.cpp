@@ -23,21 +23,17 @@ namespace tactile::python {
 namespace {
 
 py::dict summary_dict(const live::LiveSummary& s) {
+  using S = live::LiveSummary;
   py::dict d;
-  d["source"] = s.source;
-  d["width_px"] = s.width_px;
-  d["height_px"] = s.height_px;
-  d["camera_rate_hz"] = s.camera_rate_hz;
-  d["device_rate_hz"] = s.device_rate_hz;
-  d["frames_in"] = s.frames_in;
-  d["frames_processed"] = s.frames_processed;
-  d["frames_dropped"] = s.frames_dropped;
-  d["device_frames_sent"] = s.device_frames_sent;
-  d["latency_p50_ms"] = s.latency_p50_ms;
-  d["latency_p99_ms"] = s.latency_p99_ms;
-  d["latency_max_ms"] = s.latency_max_ms;
-  d["stopped"] = s.stopped;
-  d["detector"] = s.detector;
+  put_fields(
+      d, s, field("source", &S::source), field("width_px", &S::width_px),
+      field("height_px", &S::height_px), field("camera_rate_hz", &S::camera_rate_hz),
+      field("device_rate_hz", &S::device_rate_hz), field("frames_in", &S::frames_in),
+      field("frames_processed", &S::frames_processed), field("frames_dropped", &S::frames_dropped),
+      field("device_frames_sent", &S::device_frames_sent),
+      field("latency_p50_ms", &S::latency_p50_ms), field("latency_p99_ms", &S::latency_p99_ms),
+      field("latency_max_ms", &S::latency_max_ms), field("stopped", &S::stopped),
+      field("detector", &S::detector));
   return d;
 }
 

@@ -172,28 +172,13 @@ void bind_movies(py::module_& m) {
                            mv.rate_hz, mv.duration_s());
       });
 
-  m.def(
-      "read_movie",
-      [](const std::filesystem::path& path) {
-        py::gil_scoped_release unlocked;
-        return std::make_shared<TactileMovie>(
-            with_inputs({path}, [&] { return movie::read_tactile_movie(path); }));
-      },
-      py::arg("path"), "Reads a tactile movie (HDF5, docs/formats.md).");
-  m.def(
-      "write_movie",
-      [](const std::filesystem::path& path, const TactileMovie& mv) {
-        py::gil_scoped_release unlocked;
-        movie::write_tactile_movie(path, mv);
-      },
-      py::arg("path"), py::arg("movie"), "Writes a tactile movie as HDF5, atomically.");
-  m.def(
-      "export_csv",
-      [](const std::filesystem::path& path, const TactileMovie& mv) {
-        py::gil_scoped_release unlocked;
-        movie::export_tactile_csv(path, mv);
-      },
-      py::arg("path"), py::arg("movie"), "One CSV row per frame: frame,t_s,r0c0_um,...");
+  def_reader<TactileMovie>(
+      m, "read_movie", [](const auto& path) { return movie::read_tactile_movie(path); },
+      "Reads a tactile movie (HDF5, docs/formats.md).");
+  def_writer<TactileMovie>(m, "write_movie", movie::write_tactile_movie,
+                           "Writes a tactile movie as HDF5, atomically.");
+  def_writer<TactileMovie>(m, "export_csv", movie::export_tactile_csv,
+                           "One CSV row per frame: frame,t_s,r0c0_um,...");
 }
 
 }  // namespace tactile::python

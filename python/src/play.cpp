@@ -100,28 +100,24 @@ py::dict play(const movie::TactileMovie& movie, const py::kwargs& kwargs) {
   out["preview"] = r.preview_png ? py::cast(*r.preview_png) : py::none();
   out["device"] = r.device ? py::cast(r.device->path) : py::none();
   if (r.report) {
-    const auto& p = *r.report;
-    out["movie_frames"] = p.movie_frames;
-    out["ramp_frames"] = p.ramp_frames;
-    out["frames_played"] = p.frames_played;
-    out["frames_sent"] = p.frames_sent;
-    out["rate_hz"] = p.rate_hz;
-    out["duration_s"] = p.duration_s;
-    out["underruns"] = p.underruns;
-    out["malformed"] = p.malformed;
-    out["clamped_samples"] = p.clamped_samples;
-    out["slew_limited_samples"] = p.slew_limited_samples;
+    using P = display::PlaybackReport;
+    put_fields(out, *r.report, field("movie_frames", &P::movie_frames),
+               field("ramp_frames", &P::ramp_frames), field("frames_played", &P::frames_played),
+               field("frames_sent", &P::frames_sent), field("rate_hz", &P::rate_hz),
+               field("duration_s", &P::duration_s), field("underruns", &P::underruns),
+               field("malformed", &P::malformed), field("clamped_samples", &P::clamped_samples),
+               field("slew_limited_samples", &P::slew_limited_samples));
   }
   if (r.target == display::PlaybackTarget::headless) out["final_max_um"] = r.final_max_um;
   if (r.latero_address) out["address"] = r.latero_address->text();
   if (r.latero_link) {
     const auto& l = *r.latero_link;
     const auto timing = display::summarize_timing(l, movie.rate_hz);
-    out["requests_sent"] = l.requests_sent;
-    out["replies_received"] = l.replies_received;
-    out["missed_replies"] = l.missed_replies;
-    out["late_replies"] = l.late_replies;
-    out["malformed_replies"] = l.malformed_replies;
+    using L = display::LateroLinkStats;
+    put_fields(out, l, field("requests_sent", &L::requests_sent),
+               field("replies_received", &L::replies_received),
+               field("missed_replies", &L::missed_replies), field("late_replies", &L::late_replies),
+               field("malformed_replies", &L::malformed_replies));
     out["achieved_rate_hz"] = timing.achieved_rate_hz;
     out["send_offset_p99_us"] = timing.offset_p99_us;
   }

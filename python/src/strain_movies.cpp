@@ -297,21 +297,11 @@ void bind_strain_movies(py::module_& m) {
                            s.camera_frame_count, s.frame_rate_hz, s.frames.size());
       });
 
-  m.def(
-      "read_strain_movie",
-      [](const std::filesystem::path& path) {
-        py::gil_scoped_release unlocked;
-        return std::make_shared<StrainMovie>(
-            with_inputs({path}, [&] { return capture::read_strain_movie(path); }));
-      },
-      py::arg("path"), "Reads a strain movie (HDF5, docs/formats.md).");
-  m.def(
-      "write_strain_movie",
-      [](const std::filesystem::path& path, const StrainMovie& s) {
-        py::gil_scoped_release unlocked;
-        capture::write_strain_movie(path, s);
-      },
-      py::arg("path"), py::arg("movie"), "Writes a strain movie as HDF5, atomically.");
+  def_reader<StrainMovie>(
+      m, "read_strain_movie", [](const auto& path) { return capture::read_strain_movie(path); },
+      "Reads a strain movie (HDF5, docs/formats.md).");
+  def_writer<StrainMovie>(m, "write_strain_movie", capture::write_strain_movie,
+                          "Writes a strain movie as HDF5, atomically.");
 }
 
 }  // namespace tactile::python

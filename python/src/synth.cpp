@@ -23,14 +23,12 @@ py::dict synth(const std::filesystem::path& out_dir, const py::kwargs& kwargs) {
     s = with_inputs({run.print, run.marks.value_or(std::filesystem::path{})},
                     [&] { return capture::run_synth(run, "python: tactile.synth"); });
   }
+  using S = capture::SynthSummary;
   py::dict d;
-  d["frames"] = s.frames;
-  d["width_px"] = s.width_px;
-  d["height_px"] = s.height_px;
-  d["landmark_positions"] = s.landmark_positions;
-  d["marked_pores"] = s.marked_pores;
-  d["seconds"] = s.seconds;
-  d["summary"] = s.text;
+  put_fields(d, s, field("frames", &S::frames), field("width_px", &S::width_px),
+             field("height_px", &S::height_px), field("landmark_positions", &S::landmark_positions),
+             field("marked_pores", &S::marked_pores), field("seconds", &S::seconds),
+             field("summary", &S::text));
   return d;
 }
 

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 
 #include "tactile/capture/evaluate.hpp"
@@ -16,6 +17,17 @@ namespace tactile::capture {
 
 namespace {
 
+// Runs `check`; the std::invalid_argument of a bad name or an inconsistent spec becomes a
+// FormatError naming the file and element `w`.
+template <typename Check>
+auto as_format_error(const std::string& w, Check&& check) {
+  try {
+    return check();
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(fmt::format("{}: {}", w, e.what()));
+  }
+}
+
 void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTruth& gt) {
   const auto s = json_field<nlohmann::json>(j, "warp", where);
   const std::string w = where + " warp";
@@ -24,11 +36,8 @@ void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTr
   spec.px_per_mm = json_field<double>(s, "px_per_mm", w);
   spec.width_px = json_field<int>(s, "width_px", w);
   spec.height_px = json_field<int>(s, "height_px", w);
-  try {
-    spec.pattern = parse_warp_pattern(json_field<std::string>(s, "pattern", w));
-  } catch (const std::invalid_argument& e) {
-    throw FormatError(fmt::format("{}: {}", w, e.what()));
-  }
+  spec.pattern = as_format_error(
+      w, [&] { return parse_warp_pattern(json_field<std::string>(s, "pattern", w)); });
   spec.strain = json_field<double>(s, "strain", w);
   spec.width_mm = json_field<double>(s, "width_mm", w);
   spec.slide_x_mm = json_field<double>(s, "slide_x_mm", w);
@@ -50,11 +59,7 @@ void read_print_warp(const nlohmann::json& j, const std::string& where, GroundTr
   optional_field("contact_loss", spec.contact_loss);
   optional_field("patch_speed_mm_per_s", spec.patch_speed_mm_per_s);
   optional_field("patch_breathing", spec.patch_breathing);
-  try {
-    validate_print_warp(spec);
-  } catch (const std::invalid_argument& e) {
-    throw FormatError(fmt::format("{}: {}", w, e.what()));
-  }
+  as_format_error(w, [&] { validate_print_warp(spec); });
   gt.calibration = uniform_calibration(spec.px_per_mm, spec.width_px, spec.height_px);
   gt.warp = spec;
 }
@@ -72,11 +77,8 @@ void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   const auto s = json_field<nlohmann::json>(j, "spec", where);
   const std::string w = where + " spec";
   SceneSpec& spec = gt.spec;
-  try {
-    spec.scene = parse_scene(json_field<std::string>(s, "scene", w));
-  } catch (const std::invalid_argument& e) {
-    throw FormatError(fmt::format("{}: {}", w, e.what()));
-  }
+  spec.scene =
+      as_format_error(w, [&] { return parse_scene(json_field<std::string>(s, "scene", w)); });
   spec.speed_mm_per_s = json_field<double>(s, "speed_mm_per_s", w);
   spec.feature_height_mm = json_field<double>(s, "feature_height_mm", w);
   spec.feature_width_mm = json_field<double>(s, "feature_width_mm", w);
@@ -106,11 +108,7 @@ void read_scene_json(const std::filesystem::path& path, GroundTruth& gt) {
   spec.rotation_deg = optional("rotation_deg", defaults.rotation_deg);
   spec.lateral_amplitude_mm = optional("lateral_amplitude_mm", defaults.lateral_amplitude_mm);
   spec.stick_ratio = optional("stick_ratio", defaults.stick_ratio);
-  try {
-    validate_scene(spec);
-  } catch (const std::invalid_argument& e) {
-    throw FormatError(fmt::format("{}: {}", w, e.what()));
-  }
+  as_format_error(w, [&] { validate_scene(spec); });
   // The true calibration follows from the spec; the stored one is for other tools.
   gt.calibration = true_calibration(spec);
 }

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "tactile/display/frame_codec.hpp"
 #include "tactile_fw/control.h"
 
@@ -82,6 +84,10 @@ DeviceStatus decode_device_status(std::span<const std::uint8_t> reply) {
   d.streaming = s.state == TFW_STATE_STREAMING;
   d.rate_hz = fw.rate_hz;
   return d;
+}
+
+std::uint16_t start_rate_value(double rate_hz) {
+  return static_cast<std::uint16_t>(std::clamp(rate_hz, 0.0, 65535.0) + 0.5);
 }
 
 }  // namespace tactile::display

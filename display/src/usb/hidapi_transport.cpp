@@ -59,8 +59,7 @@ class HidapiTransport final : public Transport {
   DeviceInfo info() override { return info_; }
 
   void start(double rate_hz) override {
-    command(TFW_USB_REQ_START, static_cast<std::uint16_t>(std::clamp(rate_hz, 0.0, 65535.0) + 0.5),
-            "start");
+    command(TFW_USB_REQ_START, start_rate_value(rate_hz), "start");
   }
 
   void stop() override { command(TFW_USB_REQ_STOP, 0, "stop"); }

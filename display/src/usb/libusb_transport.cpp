@@ -48,7 +48,7 @@ class LibusbTransport final : public Transport {
 
   void start(double rate_hz) override {
     check_failure();
-    const auto rate = static_cast<std::uint16_t>(std::clamp(rate_hz, 0.0, 65535.0) + 0.5);
+    const auto rate = start_rate_value(rate_hz);
     control_out(TFW_USB_REQ_START, rate, "start at " + std::to_string(rate) + " Hz");
   }
 
