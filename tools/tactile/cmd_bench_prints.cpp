@@ -49,8 +49,9 @@ void add_bench_prints(CLI::App& bench, Action& action, const std::string& /*comm
       "pipeline with its default\n"
       "settings, Lucas-Kanade and DIS; tuning and held-out prints reported apart. Writes\n"
       "OUT/bench_prints.csv and OUT/speed_accuracy_prints.png (and .svg); --sweeps pushes noise,\n"
-      "blur, strain, slide, exploration speed and camera rate on the first held-out print until\n"
-      "failure (OUT/prints_sweeps.csv, accuracy_speed_prints.png, fps_accuracy_prints.png).");
+      "blur, strain, slide, exploration speed and camera rate, and full slip's speed and camera\n"
+      "rate, on the first held-out print until failure (OUT/prints_sweeps.csv,\n"
+      "accuracy_speed_prints.png, fps_accuracy_prints.png).");
   add_input_folder(*sub, "PRINTS_DIR", opt->prints, "Folder of marked prints");
   add_bench_sweep_options(*sub, opt->common);
   sub->add_option("--held-out", opt->held_out,
@@ -134,7 +135,7 @@ void add_bench_prints(CLI::App& bench, Action& action, const std::string& /*comm
       const auto sweep_path = opt->common.out / "prints_sweeps.csv";
       auto sw = csv::open_with_header(sweep_path, capture::print_sweep_csv_header());
       fmt::print(
-          "\nstability sweeps ({} wave 4 %, {} frames; failure: rms error > {} or < {} "
+          "\nstability sweeps ({}, {} frames; failure: rms error > {} or < {} "
           "points)\n",
           print.name, opt->frames, opt->common.limits.max_rms, opt->common.limits.min_points);
       // Accuracy against exploration speed, and frames/s against accuracy, for every method.

@@ -100,6 +100,18 @@ void set_fast_scene(PrintWarpSpec& s, double travel_mm_per_s) {
   s.supersample = 2;
 }
 
+namespace {
+
+// Full slip as `--slip` runs it: the skin sliding through the view under the glass's static
+// 4 % field.
+void set_full_slip(PrintWarpSpec& s, double travel_mm_per_s) {
+  s.pattern = WarpPattern::full_slip;
+  s.strain = 0.04;
+  s.travel_speed_mm_per_s = travel_mm_per_s;
+}
+
+}  // namespace
+
 PrintWarpSpec print_bench_spec(const PoreTrainingPrint& print, double px_per_mm, int frame_count) {
   PrintWarpSpec s;
   s.source = print.name;
@@ -256,6 +268,20 @@ std::vector<PrintSweep> print_sweeps() {
          s.strain = 0.08;
          s.frame_rate_hz = v;
          set_fast_scene(s, 25);
+       },
+       true},
+      // Full slip (the skin sliding through the view under the glass's static 4 % field, as
+      // `--slip`), faster and faster at 60 Hz ...
+      {"full-slip speed at 60 Hz (mm/s)",
+       {10, 25, 50, 100, 150, 200, 300, 400},
+       [](PrintWarpSpec& s, double v) { set_full_slip(s, v); },
+       true},
+      // ... and at 50 mm/s with a slower and slower camera.
+      {"full-slip camera rate at 50 mm/s (Hz)",
+       {240, 120, 90, 60, 45, 30, 20, 15},
+       [](PrintWarpSpec& s, double v) {
+         s.frame_rate_hz = v;
+         set_full_slip(s, 50);
        },
        true},
   };

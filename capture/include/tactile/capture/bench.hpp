@@ -210,7 +210,8 @@ struct PrintSweep {
 };
 
 // Noise, blur, strain, slide (the pipeline alone), exploration speed at 60 Hz and camera rate at
-// 25 mm/s (every method; the fast 8 % wave).
+// 25 mm/s (every method; the fast 8 % wave), and full-slip speed at 60 Hz and camera rate at
+// 50 mm/s (every method; the 4 % field of `--slip`).
 std::vector<PrintSweep> print_sweeps();
 
 struct PrintSweepPoint {
