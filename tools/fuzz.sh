@@ -94,6 +94,11 @@ fuzz_one() {
     # still holds the frees of many inputs for use-after-free checks.
     asan+=:quarantine_size_mb=16
   fi
+  # A count of executions is for long runs beside other work, at a low priority: libFuzzer's
+  # bound on one input is wall time, and a process starved of the CPU for seconds by others
+  # then reports a slow input that is not (a pore-marks input reported at 14 s ran in 0.7 s
+  # alone). Six times the bound still stops a real hang.
+  [[ -n $runs ]] && timeout=$((timeout * 6))
   local start=$SECONDS
   ASAN_OPTIONS=detect_leaks=$leaks:$asan TACTILE_FUZZ_READER=$target "$fuzzer" \
     "${limit[@]}" -timeout="$timeout" -rss_limit_mb=2048 -detect_leaks=$leaks \
