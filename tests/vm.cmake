@@ -119,17 +119,21 @@ if(NOT TACTILE_SANITIZE)
   # large, and the USB tests' guest stays as small and quick to boot as it was.
   find_program(TACTILE_V4L2_CTL v4l2-ctl REQUIRED)  # v4l-utils
   find_program(TACTILE_FFMPEG ffmpeg REQUIRED)
-  # The frames fed: held-out print 12 under a travelling wave (as the live e2e tests use), 30
-  # frames of 320 x 240 at 47 px/mm, each centred on a 640 x 480 grey field (the smallest HDMI
-  # timings vivid offers) as raw BGR24, the capture node's format. Padded, not scaled, so that the
-  # print keeps its 47 px/mm.
+  # The frames fed: held-out print 12 under a travelling wave with no slide, turn or exposure
+  # drift, 30 frames of 320 x 240 at 47 px/mm, each centred on a 640 x 480 grey field (the
+  # smallest HDMI timings vivid offers) as raw BGR24, the capture node's format. Padded, not
+  # scaled, so that the print keeps its 47 px/mm. Still skin with a wave under it: the guest
+  # processes frames seconds apart, and any two frames of the loop (its wrap included) then differ
+  # by a fraction of a pixel, so the landmarks are followed however many frames were dropped
+  # between; with the default slide a wrap jumps 12 px and 1.5 degrees, and a guest that processed
+  # 35 frames lost every track (median 0 points).
   set(vm_live_frames ${vm_dir}/live-frames.bgr)
   add_custom_command(
     OUTPUT ${vm_live_frames}
     COMMAND ${CMAKE_COMMAND} -E rm -rf ${vm_dir}/live-synth
     COMMAND $<TARGET_FILE:tactile> synth ${vm_dir}/live-synth --from-print
             ${TACTILE_TEST_DATA_DIR}/polyu-hrf-pores/image_12.jpg --px-per-mm 47 --warp wave
-            --frames 30
+            --slide-x 0 --slide-y 0 --turn 0 --drift 0 --frames 30
     COMMAND ${TACTILE_FFMPEG} -nostdin -hide_banner -loglevel error -y -i
             ${vm_dir}/live-synth/frame_%03d.png -vf pad=640:480:160:120:gray -pix_fmt bgr24
             -f rawvideo ${vm_live_frames}
