@@ -16,6 +16,8 @@
 
 #include "live_source.hpp"
 #include "tactile/capture/capture.hpp"
+#include "tactile/capture/contact_map.hpp"
+#include "tactile/capture/contact_strain.hpp"
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/error.hpp"
@@ -354,6 +356,14 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   double px_per_mm = 0;
   mapping::Placement placement;
   std::vector<capture::PointMm> sample_points;
+  // Where the skin touches, frame by frame (contact_map.hpp): once the view has slid, strain at
+  // or beside skin out of contact is left out, as the batch capture does where skin slides
+  // through the view; the tracker measures each step from one frame to the next with nothing
+  // smoothed across frames, so only the step's two frames count.
+  capture::ContactGrid contact_cells;
+  capture::RunningContact contact;
+  std::vector<std::uint8_t> near_gap_before;
+  bool view_slid = false;
   std::vector<FrameTiming> timings;
   const auto report_dropped = [&] {
     std::vector<SourceFrame> now;
@@ -415,6 +425,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         frame_of_view.field_height_mm = f.image.height_px * calibration.mm_per_px;
         placement = session.params.placement.value_or(mapping::default_placement(frame_of_view));
         sample_points = mapping::sample_points_mm(layout, placement);
+        contact_cells = capture::contact_grid(f.image.width_px, f.image.height_px, px_per_mm);
         callbacks.note(fmt::format("{} x {} px at {:.2f} px/mm, pores: {}; {} at {:g} Hz",
                                    f.image.width_px, f.image.height_px, px_per_mm, summary.detector,
                                    layout.name, device_rate_hz));
@@ -457,6 +468,11 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
       motion.add(f.index, steps);
       const Clock::time_point tracked = Clock::now();
       t.track_ms = ms_between(popped, tracked);
+      view_slid = view_slid || tracker->sliding();
+      std::vector<std::uint8_t> near_gap = capture::cells_near_gap(
+          contact_cells,
+          capture::contact_of_frame(
+              contact, capture::cell_ridge_contrast(f.image, contact_cells, px_per_mm)));
 
       capture::StrainFrame sf;
       std::vector<float> deflection(
@@ -475,6 +491,11 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         }
         if (sf.points_from.size() >= 3) {
           capture::triangulate_strain(sf.points_from, sf.points_to, 3.0, sf.edges, sf.triangles);
+          summary.strain_edges += static_cast<std::int64_t>(sf.edges.size());
+          if (view_slid) {
+            summary.strain_edges_near_gaps +=
+                capture::leave_out_strain_near_gaps(sf, contact_cells, near_gap_before, near_gap);
+          }
         }
         t.points = static_cast<int>(sf.points_to.size());
         t.edges = static_cast<int>(sf.edges.size());
@@ -498,6 +519,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         t.map_ms = ms_between(strained, Clock::now());
       }
       previous = f.index;
+      near_gap_before = std::move(near_gap);
       const Clock::time_point mapped = Clock::now();
       callbacks.mapped(f.index, deflection);
       held.publish(f.index, std::move(deflection));
@@ -596,6 +618,12 @@ std::string format_summary(const LiveSummary& s) {
       "display     {} device frames sent at {:g} Hz (held between camera frames); "
       "median {:.0f} points tracked a frame\n",
       s.device_frames_sent, s.device_rate_hz, s.median_points);
+  if (s.strain_edges_near_gaps > 0) {
+    out += fmt::format(
+        "contact     {} of {} strain edges left out, at or within {} cell of skin the frames show "
+        "out of contact, where the view slid\n",
+        s.strain_edges_near_gaps, s.strain_edges, capture::kGapMarginCells);
+  }
   return out;
 }
 

@@ -32,7 +32,9 @@ py::dict summary_dict(const live::LiveSummary& s) {
       field("frames_processed", &S::frames_processed), field("frames_dropped", &S::frames_dropped),
       field("device_frames_sent", &S::device_frames_sent),
       field("latency_p50_ms", &S::latency_p50_ms), field("latency_p99_ms", &S::latency_p99_ms),
-      field("latency_max_ms", &S::latency_max_ms), field("stopped", &S::stopped),
+      field("latency_max_ms", &S::latency_max_ms), field("median_points", &S::median_points),
+      field("strain_edges", &S::strain_edges),
+      field("strain_edges_near_gaps", &S::strain_edges_near_gaps), field("stopped", &S::stopped),
       field("detector", &S::detector));
   return d;
 }

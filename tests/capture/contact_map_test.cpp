@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "tactile/capture/contact_map.hpp"
 
@@ -104,6 +107,36 @@ TEST(ContactMap, TheThresholdFollowsTheSequenceNotAFixedGreyLevel) {
   const ContactMap even = measure_contact({skin(160, 80, 12, none, 4)}, kPxPerMm);
   EXPECT_EQ(contact_fraction(even, 0), 0.0);
   EXPECT_GE(even.threshold, kContactFloorGrey);
+}
+
+// Frame by frame: the scale is the contact seen so far, so a faint print is in contact from its
+// first frame, and a frame lifting off half its skin afterwards is cut at the same threshold as
+// the whole sequence's map would cut it.
+TEST(ContactMap, FrameByFrameTheThresholdIsTheContactSeenSoFar) {
+  const auto all = [](int, int) { return true; };
+  const auto lower_half = [](int, int y) { return y >= 40; };
+  const ContactGrid g = contact_grid(160, 80, kPxPerMm);
+  const auto fraction = [](const std::vector<std::uint8_t>& c) {
+    return static_cast<double>(std::count(c.begin(), c.end(), std::uint8_t{1})) /
+           static_cast<double>(c.size());
+  };
+  RunningContact running;
+  EXPECT_EQ(fraction(contact_of_frame(running,
+                                      cell_ridge_contrast(skin(160, 80, 12, all, 2), g, kPxPerMm))),
+            1.0);
+  const double scale = running.contact_contrast_grey;
+  EXPECT_GT(scale, kContactFloorGrey);
+  EXPECT_NEAR(fraction(contact_of_frame(
+                  running, cell_ridge_contrast(skin(160, 80, 12, lower_half, 3), g, kPxPerMm))),
+              0.5, 1e-12);
+  // A frame mostly out of contact does not lower the scale.
+  EXPECT_EQ(running.contact_contrast_grey, scale);
+  // Before any skin in contact, the floor: an even frame is out of contact everywhere.
+  RunningContact fresh;
+  const auto none = [](int, int) { return false; };
+  EXPECT_EQ(fraction(contact_of_frame(
+                fresh, cell_ridge_contrast(skin(160, 80, 12, none, 4), g, kPxPerMm))),
+            0.0);
 }
 
 TEST(ContactMap, AFrameOfAnotherSizeOrContrastsOfNoWholeFrameAreRefused) {

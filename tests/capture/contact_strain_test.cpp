@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "tactile/capture/contact_strain.hpp"
@@ -153,6 +155,38 @@ TEST(ContactStrain, ATracksStrainIsLeftOutAsFarAsItsSmoothingReaches) {
   sliding.provenance.parameters_json = R"({"frames_in_view": 12.5})";
   EXPECT_EQ(edges_per_frame(strain_in_contact(sliding)),
             (std::vector<std::size_t>{9, 5, 5, 9, 9, 9, 9}));
+}
+
+// Frame by frame (a causal tracker's step from one camera frame to the next): the same cells as
+// the whole movie's rule with no smoothing window, from the two frames' maps alone.
+TEST(ContactStrain, AStepIsJudgedByTheCellsOfItsTwoFramesAsTheMoviesRuleWould) {
+  for (const std::int32_t gap_frame : {0, 1}) {
+    SCOPED_TRACE(gap_frame);
+    const StrainMovie whole = movie_with_a_gap(gap_frame);
+    const ContactGrid& g = whole.contact.grid;
+    const std::span<const std::uint8_t> all(whole.contact.in_contact);
+    const auto near0 = cells_near_gap(g, all.subspan(0, 40));
+    const auto near1 = cells_near_gap(g, all.subspan(40, 40));
+    StrainFrame step = whole.frames.front();
+    EXPECT_EQ(leave_out_strain_near_gaps(step, g, near0, near1), 4);
+    const StrainFrame by_movie = without_strain_near_gaps(whole, 1, 0).frames.front();
+    EXPECT_EQ(edge_starts(step), edge_starts(by_movie));
+    EXPECT_EQ(step.triangles.size(), by_movie.triangles.size());
+    EXPECT_EQ(step.points_from.size(), 10U);
+  }
+  // The cells marked: the gap's own and its eight neighbours, clipped by the grid.
+  const StrainMovie m = movie_with_a_gap(0);
+  const auto near = cells_near_gap(m.contact.grid, std::span(m.contact.in_contact).subspan(0, 40));
+  EXPECT_EQ(std::count(near.begin(), near.end(), 1), 9);
+  EXPECT_EQ(near[0 * 10 + 6], 1);
+  EXPECT_EQ(near[2 * 10 + 8], 1);
+  EXPECT_EQ(near[1 * 10 + 5], 0);
+  // Maps of another size than the grid's are refused, not read past their end.
+  StrainFrame step = m.frames.front();
+  EXPECT_THROW(cells_near_gap(m.contact.grid, std::vector<std::uint8_t>(39, 1)),
+               std::invalid_argument);
+  EXPECT_THROW(leave_out_strain_near_gaps(step, m.contact.grid, near, std::vector<std::uint8_t>(3)),
+               std::invalid_argument);
 }
 
 }  // namespace

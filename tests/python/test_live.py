@@ -23,6 +23,11 @@ def test_a_folder_played_at_its_rate_gives_every_frame(tmp_path):
     assert len(lines) == summary["frames_in"] + 1
     strain = tactile.read_strain_movie(tmp_path / "session" / "strain.h5")
     assert len(strain.frames) == summary["frames_processed"] - 1
+    # The demo's skin stays in view (no slide), so the contact rule leaves nothing out, and every
+    # edge measured is in the recording.
+    assert summary["median_points"] > 0
+    assert summary["strain_edges_near_gaps"] == 0
+    assert sum(len(f.edges) for f in strain.frames) == summary["strain_edges"] > 0
 
 
 def test_bad_keywords_are_the_command_lines_errors(tmp_path):

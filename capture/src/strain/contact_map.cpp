@@ -105,6 +105,20 @@ ContactMap measure_contact(const std::vector<GrayImage>& frames, double px_per_m
   return contact_map(grid, std::move(contrast));
 }
 
+std::vector<std::uint8_t> contact_of_frame(RunningContact& running,
+                                           const std::vector<double>& ridge_contrast) {
+  if (!ridge_contrast.empty()) {
+    running.contact_contrast_grey =
+        std::max(running.contact_contrast_grey, quantile(ridge_contrast, 0.9));
+  }
+  const double threshold =
+      std::max(kContactFloorGrey, kContactFraction * running.contact_contrast_grey);
+  std::vector<std::uint8_t> in_contact;
+  in_contact.reserve(ridge_contrast.size());
+  for (const double c : ridge_contrast) in_contact.push_back(c >= threshold ? 1 : 0);
+  return in_contact;
+}
+
 double contact_fraction(const ContactMap& map, std::int32_t frame) {
   if (!map.measured() || frame < 0 || frame >= map.frame_count()) return 0;
   const auto cells = static_cast<std::ptrdiff_t>(map.grid.cells());

@@ -67,6 +67,19 @@ ContactMap contact_map(const ContactGrid& grid, std::vector<double> ridge_contra
 // The map of a sequence held in memory (frames of one size; none gives an unmeasured map).
 ContactMap measure_contact(const std::vector<GrayImage>& frames, double px_per_mm);
 
+// The contact of frames as they come, for a session that cannot wait for the whole sequence: the
+// threshold is kContactFraction of the contrast of skin in contact seen so far (the highest 90th
+// percentile of one frame's cell contrasts), at least kContactFloorGrey. A frame mostly out of
+// contact lowers nothing; the first frame that shows skin in contact sets the scale.
+struct RunningContact {
+  double contact_contrast_grey = 0;
+};
+
+// One frame's cells (its cell_ridge_contrast): 1 in contact, 0 not, by the threshold of the
+// frames seen so far, this one included (`running` is updated).
+std::vector<std::uint8_t> contact_of_frame(RunningContact& running,
+                                           const std::vector<double>& ridge_contrast);
+
 // The fraction of cells in contact in camera frame `frame` (0 when the map has no such frame).
 double contact_fraction(const ContactMap& map, std::int32_t frame);
 

@@ -6,6 +6,8 @@
 // each camera frame; the strain measured at or beside a cell that did not is left out.
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
 
@@ -35,5 +37,19 @@ StrainMovie strain_in_contact(StrainMovie movie);
 // (triangles index them). A movie without a contact map is returned as it is.
 StrainMovie without_strain_near_gaps(StrainMovie movie, std::int32_t margin_cells = kGapMarginCells,
                                      std::int32_t window_frames = 0);
+
+// One camera frame's cells (grid.rows x grid.columns, row-major, 1 in contact): 1 where a cell is
+// out of contact or within `margin_cells` of one.
+std::vector<std::uint8_t> cells_near_gap(const ContactGrid& grid,
+                                         std::span<const std::uint8_t> in_contact,
+                                         std::int32_t margin_cells = kGapMarginCells);
+
+// A strain frame measured from one camera frame straight to the next, as a causal tracker does
+// (nothing smoothed across frames): its edges and triangles with an end on a point that stood in a
+// cell `near_from` marks (in the frame it is measured from) or `near_to` marks (in the frame it is
+// measured to) left out; the points stay. Returns how many edges were left out.
+std::int64_t leave_out_strain_near_gaps(StrainFrame& frame, const ContactGrid& grid,
+                                        std::span<const std::uint8_t> near_from,
+                                        std::span<const std::uint8_t> near_to);
 
 }  // namespace tactile::capture

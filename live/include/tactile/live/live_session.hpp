@@ -64,6 +64,9 @@ struct LiveSummary {
   // Medians of each stage over the processed frames.
   double wait_p50_ms = 0, track_p50_ms = 0, strain_p50_ms = 0, map_p50_ms = 0, send_p50_ms = 0;
   double median_points = 0;
+  // Strain edges measured, and of them those left out at or beside skin out of contact.
+  std::int64_t strain_edges = 0;
+  std::int64_t strain_edges_near_gaps = 0;
   bool stopped = false;  // by a stop request (not the end of the source or of --seconds)
   std::string detector;  // the pore detector chosen on the first frame
 };
