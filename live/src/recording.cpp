@@ -83,6 +83,11 @@ struct SessionRecording::Writer {
   // The movie as played: the last mapped frame, held until the next one's time.
   std::optional<Mapped> held;
   std::int64_t device_frames = 0;
+  // Strain frames handed over, and of them those strain.h5 left out (its frames are of one span:
+  // one measured across a dropped frame is in edges.csv only). Set by the writer's thread, read
+  // after it has been joined.
+  std::int64_t strain_frames = 0;
+  std::int64_t strain_frames_left_out = 0;
 
   std::mutex mutex;
   std::condition_variable wake;
@@ -141,6 +146,8 @@ struct SessionRecording::Writer {
       if (!strain) return;
       for (const auto& p : strain->append(*f)) csv[1].pending += capture::tracks_csv_row(p);
       csv[2].pending += capture::edges_csv_rows(*f);
+      ++strain_frames;
+      strain_frames_left_out = strain->frames_left_out();
     } else if (auto* m = std::get_if<Mapped>(&e)) {
       if (!movie) return;
       // The first mapped frame also stands for the device frames before it.
@@ -274,6 +281,13 @@ void SessionRecording::finish() {
   writer_->wake.notify_one();
   writer_->thread.join();
   if (writer_->failure) std::rethrow_exception(writer_->failure);
+}
+
+RecordedStrain SessionRecording::strain_frames() const {
+  if (writer_->thread.joinable()) {
+    throw std::logic_error("SessionRecording::strain_frames: asked before finish()");
+  }
+  return {writer_->strain_frames, writer_->strain_frames_left_out};
 }
 
 }  // namespace tactile::live

@@ -99,6 +99,29 @@ TEST(StrainMovieAppender, ClosedFileHoldsWhatTheBatchWriterWrites) {
   EXPECT_EQ(point_set(r.tracks), expected);
 }
 
+// A session that dropped camera frame 3 measured 2 -> 4: a strain frame of span 2 in a movie of
+// span 1, left out of the file and counted; the others are kept in order.
+TEST(StrainMovieAppender, AFrameOfAnotherSpanIsLeftOutAndCounted) {
+  TempDir dir;
+  const StrainMovie m = sample_movie();
+  StrainMovieAppender out(dir.path() / "gap.h5", m);
+  StrainFrame across = m.frames[2];
+  across.frame_to = 4;
+  for (auto& p : across.points_to) p.frame = 4;
+  out.append(m.frames[0]);
+  out.append(m.frames[1]);
+  EXPECT_EQ(out.frames_left_out(), 0);
+  out.append(across);
+  EXPECT_EQ(out.frames_left_out(), 1);
+  out.append(m.frames[4]);
+  out.close();
+  const StrainMovie r = read_strain_movie(dir.path() / "gap.h5");
+  ASSERT_EQ(r.frames.size(), 3u);
+  EXPECT_EQ(r.frames[0].frame_from, 0);
+  EXPECT_EQ(r.frames[1].frame_from, 1);
+  EXPECT_EQ(r.frames[2].frame_from, 4);
+}
+
 // The child appends three strain frames, flushes, appends two more and is killed.
 TEST(StrainMovieAppender, KilledWriterLeavesWhatWasFlushed) {
   TempDir dir;

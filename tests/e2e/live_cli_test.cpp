@@ -280,8 +280,10 @@ TEST_F(Live, WithNoOutputNamedItGoesWherePlayWould) {
 TEST_F(Live, FallingBehindDropsTheOldestFrameAndCountsIt) {
   // 60 frames handed over at 5000 Hz, one every 0.2 ms: faster than a 320 x 240 frame is
   // tracked (about 3 ms of CPU in the batch capture).
+  const fs::path record = dir_->path() / "behind";
   const auto r =
-      run_tactile("live " + frames().string() + " --px-per-mm 47 --rate-hz 5000 --headless");
+      run_tactile("live " + frames().string() +
+                  " --px-per-mm 47 --rate-hz 5000 --headless --record " + record.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::size_t at = r.output.find("frames      ");
   ASSERT_NE(at, std::string::npos) << r.output;
@@ -293,6 +295,20 @@ TEST_F(Live, FallingBehindDropsTheOldestFrameAndCountsIt) {
   EXPECT_EQ(in, 60);
   EXPECT_EQ(processed + dropped, in);
   EXPECT_GT(dropped, 0);
+  // Strain measured across a dropped frame has another span than strain.h5's frames: the
+  // recording says how many of them its strain.h5 holds, and the file agrees. Every processed
+  // frame after the first gives a strain frame.
+  const std::size_t said = r.output.find("; strain.h5 holds ");
+  ASSERT_NE(said, std::string::npos) << r.output;
+  int held = -1, measured = -1;
+  ASSERT_EQ(
+      std::sscanf(r.output.c_str() + said, "; strain.h5 holds %d of the %d", &held, &measured), 2)
+      << r.output;
+  EXPECT_EQ(measured, processed - 1);
+  EXPECT_LT(held, measured);
+  const auto info = run_tactile("info " + (record / "strain.h5").string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_THAT(info.output, HasSubstr(fmt::format("span 1, {} strain frames", held))) << info.output;
 }
 
 // A free UDP port on the loopback interface (bound, read, released).

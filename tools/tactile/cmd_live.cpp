@@ -292,7 +292,13 @@ void add_live(CLI::App& app, Action& action, const std::string& /*command_line*/
       watcher.join();
       if (recording) {
         recording->finish();
-        fmt::print("live: recorded into {}\n", session.record->string());
+        const live::RecordedStrain strain = recording->strain_frames();
+        fmt::print("live: recorded into {}{}\n", session.record->string(),
+                   strain.left_out_of_h5 == 0
+                       ? std::string()
+                       : fmt::format("; strain.h5 holds {} of the {} strain frames measured (those "
+                                     "across a dropped frame are in edges.csv only)",
+                                     strain.measured - strain.left_out_of_h5, strain.measured));
       }
       fmt::print("{}", live::format_summary(summary));
       say_where_it_rests();

@@ -253,7 +253,11 @@ std::vector<TrackedPoint> StrainMovieAppender::append(const StrainFrame& frame) 
   for (const auto& p : added) pending_->tracks.add(p);
   camera_frame_count_ = std::max<std::int64_t>(camera_frame_count_, frame.frame_to + 1);
   // The schema holds strain frames of one span; one measured across a missing frame is left out.
-  if (frame.frame_to - frame.frame_from == span_frames_) pending_->frames.add(frame);
+  if (frame.frame_to - frame.frame_from == span_frames_) {
+    pending_->frames.add(frame);
+  } else {
+    ++frames_left_out_;
+  }
   return added;
 }
 

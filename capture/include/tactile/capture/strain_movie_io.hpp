@@ -43,6 +43,8 @@ class StrainMovieAppender {
   void flush();
   // Flushes and closes: the file is then as any other strain movie.
   void close();
+  // The strain frames appended so far that were left out for their span.
+  std::int64_t frames_left_out() const { return frames_left_out_; }
 
  private:
   struct Columns;
@@ -52,6 +54,7 @@ class StrainMovieAppender {
   std::int64_t last_frame_ = -1;
   std::unordered_set<std::int32_t> last_to_tracks_;
   std::int64_t camera_frame_count_ = 0;
+  std::int64_t frames_left_out_ = 0;
 };
 
 // Throws tactile::FormatError naming the file, the object and the problem: missing file, not

@@ -18,12 +18,21 @@
 // The folder must be new or empty; its files are created new (never through a link planted
 // there).
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 
 #include "tactile/live/live_session.hpp"
 
 namespace tactile::live {
+
+// The strain frames a session measured, and of them those strain.h5 does not hold: its frames
+// are of one span (one camera frame), so one measured across a dropped frame is in edges.csv
+// only.
+struct RecordedStrain {
+  std::int64_t measured = 0;
+  std::int64_t left_out_of_h5 = 0;
+};
 
 class SessionRecording {
  public:
@@ -43,6 +52,8 @@ class SessionRecording {
   // naming the file when a write failed during the session or now (what was written before
   // the failure stays).
   void finish();
+  // After finish(): what became of the strain frames.
+  RecordedStrain strain_frames() const;
 
  private:
   struct Writer;
