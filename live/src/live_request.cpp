@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "tactile/capture/calibration_io.hpp"
 #include "tactile/capture/video.hpp"
 
@@ -37,7 +40,8 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
         "second"));
     t.push_back(rows::number<R>("queue_frames", &R::queue_frames, 1, 64, "frames",
                                 "Frames waiting between the camera and the processing; when "
-                                "full, the oldest\nis dropped (and counted)"));
+                                "full, the oldest\nis dropped (and counted) (default: 50 ms of "
+                                "the camera's frames, at least 4)"));
     t.push_back(rows::number<R>("detect_every", &R::detect_every, 1, 1000, "frames",
                                 "Frames between detections of new landmarks (between them, "
                                 "landmarks are\nfollowed by alignment alone; sooner when a "
@@ -110,6 +114,11 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
   r.queue_frames = request.queue_frames;
   r.detect_every = request.detect_every;
   return r;
+}
+
+int queue_frames_for(double camera_rate_hz) {
+  if (!(camera_rate_hz > 0) || !std::isfinite(camera_rate_hz)) return 4;
+  return static_cast<int>(std::clamp(std::ceil(camera_rate_hz * kQueueSeconds), 4.0, 64.0));
 }
 
 void require_latero_layout(const ResolvedLive& session, OptionSpelling spelling) {

@@ -306,7 +306,15 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   device.start(device_rate_hz);
 
   // Acquisition: never waits for processing.
-  DropOldestQueue<SourceFrame> queue(static_cast<std::size_t>(session.queue_frames));
+  const int queue_frames = session.queue_frames.value_or(queue_frames_for(summary.camera_rate_hz));
+  DropOldestQueue<SourceFrame> queue(static_cast<std::size_t>(queue_frames));
+  callbacks.note(fmt::format(
+      "queue of {} frames{}; when full the oldest is dropped", queue_frames,
+      summary.camera_rate_hz > 0
+          ? fmt::format(" ({:.0f} ms at {:g} Hz{})", 1000.0 * queue_frames / summary.camera_rate_hz,
+                        summary.camera_rate_hz,
+                        session.queue_frames ? "" : ": room for the first frame's extra work")
+          : std::string()));
   std::atomic<bool> acquisition_done{false};
   std::atomic<bool> halt{false};  // the processing ended (a stop, the end or a failure)
   std::exception_ptr acquisition_failure;

@@ -279,11 +279,14 @@ TEST_F(Live, WithNoOutputNamedItGoesWherePlayWould) {
 
 TEST_F(Live, FallingBehindDropsTheOldestFrameAndCountsIt) {
   // 60 frames handed over at 5000 Hz, one every 0.2 ms: faster than a 320 x 240 frame is
-  // tracked (about 3 ms of CPU in the batch capture).
+  // tracked (about 3 ms of CPU in the batch capture), into a queue of 4 (by default it would
+  // hold 50 ms of frames, at most 64: more than the 60 handed over).
   const fs::path record = dir_->path() / "behind";
-  const auto r =
-      run_tactile("live " + frames().string() +
-                  " --px-per-mm 47 --rate-hz 5000 --headless --record " + record.string());
+  const auto r = run_tactile(
+      "live " + frames().string() +
+      " --px-per-mm 47 --rate-hz 5000 --queue-frames 4 --headless --record " + record.string());
+  EXPECT_THAT(r.output, HasSubstr("queue of 4 frames (1 ms at 5000 Hz); when full the oldest is "
+                                  "dropped"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::size_t at = r.output.find("frames      ");
   ASSERT_NE(at, std::string::npos) << r.output;

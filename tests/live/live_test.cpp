@@ -89,6 +89,20 @@ TEST(LiveRequest, TakesCaptureAndMapRowsAsTheyAre) {
                 ->shown(tactile::mapping::MapRequest{}));
 }
 
+// Unless asked for, the queue holds 50 ms of the camera's frames: room for the first frame's
+// extra work (40-45 ms measured at 320 x 240) at any rate, at least 4, at most 64.
+TEST(LiveRequest, TheQueueHoldsFiftyMillisecondsOfFramesUnlessAskedFor) {
+  EXPECT_EQ(tactile::live::queue_frames_for(30), 4);
+  EXPECT_EQ(tactile::live::queue_frames_for(60), 4);  // 3 frames are 50 ms: the floor of 4
+  EXPECT_EQ(tactile::live::queue_frames_for(120), 6);
+  EXPECT_EQ(tactile::live::queue_frames_for(240), 12);
+  EXPECT_EQ(tactile::live::queue_frames_for(5000), 64);
+  // No rate known (a stream that states none): the floor.
+  EXPECT_EQ(tactile::live::queue_frames_for(0), 4);
+  EXPECT_EQ(tactile::live::queue_frames_for(std::nan("")), 4);
+  EXPECT_FALSE(tactile::live::LiveRequest{}.queue_frames.has_value());
+}
+
 TEST(LiveRequest, RefusesWhatASessionCannotDo) {
   const tactile::test::TempDir dir("live");
   auto r = request_for(dir.path());

@@ -24,15 +24,20 @@ struct LiveRequest {
   mapping::MapRequest map;          // layout, method, gain
   std::optional<double> seconds;    // unset: until the source ends or a stop
   std::optional<std::filesystem::path> record;
-  // Enough for the first frame's extra work (choosing the pore detector, detecting in line:
-  // about three camera frames at 60 Hz) without a drop; in steady state the queue is empty
-  // and adds no latency.
-  int queue_frames = 4;
+  // Unset: queue_frames_for(the camera's rate).
+  std::optional<int> queue_frames;
   // Frames between detections of new landmarks: the batch capture's own rhythm.
   int detect_every = capture::CaptureParams{}.redetect_every_frames;
 };
 
 const std::vector<OptionRow<LiveRequest>>& live_options();
+
+// The frames a queue holds when none is asked for: kQueueSeconds of the camera's frames, at
+// least 4, at most 64. Room for the first frame's extra work (choosing the pore detector and
+// detecting in line: 40-45 ms at 320 x 240 on the 2-core machine here, so 3 frames at 60 Hz
+// and 5 at 120 Hz) without a drop; in steady state the queue is empty and adds no latency.
+inline constexpr double kQueueSeconds = 0.05;
+int queue_frames_for(double camera_rate_hz);
 
 // Whether `source` names a file or folder (played at its rate) rather than a device or stream.
 bool is_rehearsal_source(const std::string& source);
@@ -49,7 +54,7 @@ struct ResolvedLive {
   mapping::MappingParams params;  // resolved: rate_hz is the device's
   std::optional<double> seconds;
   std::optional<std::filesystem::path> record;
-  int queue_frames = 0;
+  std::optional<int> queue_frames;  // unset: queue_frames_for(the camera's rate)
   int detect_every = 0;
 };
 
