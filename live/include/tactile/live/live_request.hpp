@@ -34,8 +34,9 @@ const std::vector<OptionRow<LiveRequest>>& live_options();
 
 // The frames a queue holds when none is asked for: kQueueSeconds of the camera's frames, at
 // least 4, at most 64. Room for the first frame's extra work (choosing the pore detector and
-// detecting in line: 40-45 ms at 320 x 240 on the 2-core machine here, so 3 frames at 60 Hz
-// and 5 at 120 Hz) without a drop; in steady state the queue is empty and adds no latency.
+// detecting in line: the largest latency of 320 x 240 sessions on the 2-core machine here was
+// 42-45 ms, 3 frames at 60 Hz and 5 at 120 Hz) without a drop; in steady state the queue is
+// empty and adds no latency.
 inline constexpr double kQueueSeconds = 0.05;
 int queue_frames_for(double camera_rate_hz);
 
