@@ -309,7 +309,8 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   const int queue_frames = session.queue_frames.value_or(queue_frames_for(summary.camera_rate_hz));
   DropOldestQueue<SourceFrame> queue(static_cast<std::size_t>(queue_frames));
   callbacks.note(fmt::format(
-      "queue of {} frames{}; when full the oldest is dropped", queue_frames,
+      "queue of {} frame{}{}; when full the oldest is dropped", queue_frames,
+      queue_frames == 1 ? "" : "s",
       summary.camera_rate_hz > 0
           ? fmt::format(" ({:.0f} ms at {:g} Hz{})", 1000.0 * queue_frames / summary.camera_rate_hz,
                         summary.camera_rate_hz,

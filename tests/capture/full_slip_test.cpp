@@ -187,6 +187,66 @@ TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
   }
 }
 
+// Where the scene's gap first shows (less than half contact somewhere in the view, nowhere the
+// frame before), an edge with an end there is counted apart: there a causal tracker cannot know
+// of the gap yet. Built by hand from the lift-off's geometry: a Gaussian region centred 0.2 of the
+// view right of and 0.15 above the centre, deepening as the square of a sine over the sequence.
+TEST(FullSlip, EdgesAcrossTheGapAreCountedApartInTheFrameWhereItOpens) {
+  PrintWarpSpec s;
+  s.width_px = 320;
+  s.height_px = 240;
+  s.pattern = WarpPattern::full_slip;
+  s.travel_speed_mm_per_s = 25;
+  s.contact_loss = 1;
+  int opens = -1;
+  for (int f = 1; f < s.frame_count && opens < 0; ++f) {
+    if (warp_least_contact(s, f, 2) < 0.5) opens = f;
+  }
+  ASSERT_GT(opens, 1);
+  ASSERT_LT(opens, s.frame_count / 2);  // the gap is deepest mid-sequence
+  EXPECT_GE(warp_least_contact(s, opens - 1, 2), 0.5);
+  EXPECT_THROW(warp_least_contact(s, opens, 0), std::invalid_argument);
+  const double w_mm = s.width_px / s.px_per_mm, h_mm = s.height_px / s.px_per_mm;
+  const double spot_x_px = (w_mm / 2 + 0.2 * w_mm) * s.px_per_mm;
+  const double spot_y_px = (h_mm / 2 - 0.15 * h_mm) * s.px_per_mm;
+  const auto contact_px = [&](double x_px, double y_px, int frame) {
+    return warp_contact(s, {x_px / s.px_per_mm, y_px / s.px_per_mm}, frame);
+  };
+  ASSERT_LT(contact_px(spot_x_px, spot_y_px, opens), 0.5);
+  ASSERT_EQ(contact_px(20, 20, opens + 6), 1.0);
+  ASSERT_EQ(contact_px(20, 220, opens + 6), 1.0);
+
+  GroundTruth truth;
+  truth.calibration = uniform_calibration(s.px_per_mm, s.width_px, s.height_px);
+  truth.warp = s;
+  // Three points, one on the gap's centre, the others far from it; the same step once into the
+  // frame where the gap opens and once five frames later, when it is deep.
+  const auto step = [&](int from) {
+    StrainFrame f;
+    f.frame_from = from;
+    f.frame_to = from + 1;
+    const double xy[3][2] = {{spot_x_px, spot_y_px}, {20, 20}, {20, 220}};
+    for (std::int32_t id = 0; id < 3; ++id) {
+      const PointMm mm = to_mm(truth.calibration, xy[id][0], xy[id][1]);
+      f.points_from.push_back(
+          {id, from, FeatureType::pore, xy[id][0], xy[id][1], mm.x_mm, mm.y_mm});
+      f.points_to.push_back(
+          {id, from + 1, FeatureType::pore, xy[id][0], xy[id][1], mm.x_mm, mm.y_mm});
+    }
+    f.edges = {{0, 1, 0, 0, 0}, {0, 2, 0, 0, 0}, {1, 2, 0, 0, 0}};
+    return f;
+  };
+  StrainMovie movie;
+  movie.frames = {step(opens - 1)};
+  Evaluation ev = evaluate_strain(movie, truth);
+  EXPECT_EQ(ev.edges_across_gap, 2);
+  EXPECT_EQ(ev.edges_across_gap_opening, 2);
+  movie.frames = {step(opens + 5)};
+  ev = evaluate_strain(movie, truth);
+  EXPECT_EQ(ev.edges_across_gap, 2);
+  EXPECT_EQ(ev.edges_across_gap_opening, 0);
+}
+
 // The contact patch as its spec says (the geometry alone, no image): an ellipse of semi-axes
 // 0.4 x the view, centred mid-sequence, moving at its speed and breathing by its fraction.
 TEST(FullSlip, AContactPatchMovesAndBreathesAsItsSpecSays) {

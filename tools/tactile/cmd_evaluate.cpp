@@ -76,9 +76,12 @@ void add_evaluate(CLI::App& app, Action& action, const std::string& /*command_li
       if (ev.has_gap) {
         fmt::print(
             "  in full contact            RMS error {:.5f}, correlation {:.4f}  ({} edges; {} "
-            "edges across the contact gap)\n",
+            "edges across the contact gap{})\n",
             ev.rms_error_in_contact, ev.correlation_in_contact, ev.edges_in_contact,
-            ev.edges_across_gap);
+            ev.edges_across_gap,
+            ev.edges_across_gap_opening > 0
+                ? fmt::format(", {} of them in a frame where it opens", ev.edges_across_gap_opening)
+                : std::string());
       }
       if (ev.contact_cells > 0) {
         fmt::print(

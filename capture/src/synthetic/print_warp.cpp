@@ -425,6 +425,18 @@ double warp_contact(const PrintWarpSpec& s, PointMm image, double frame) {
   return Warp(s).contact(image, frame);
 }
 
+double warp_least_contact(const PrintWarpSpec& s, double frame, int step_px) {
+  if (step_px < 1) throw std::invalid_argument("warp_least_contact: a step of at least 1 px");
+  const Warp warp(s);
+  double least = 1.0;
+  for (int y = 0; y < s.height_px; y += step_px) {
+    for (int x = 0; x < s.width_px; x += step_px) {
+      least = std::min(least, warp.contact({x / s.px_per_mm, y / s.px_per_mm}, frame));
+    }
+  }
+  return least;
+}
+
 double warp_rel_change(const PrintWarpSpec& s, PointMm a_from, PointMm b_from, int frame_from,
                        int frame_to) {
   const Warp warp(s);

@@ -76,6 +76,11 @@ struct Evaluation {
   double rms_error_in_contact = 0;
   double correlation_in_contact = 0;
   std::int64_t edges_across_gap = 0;
+  // Of edges_across_gap, those whose ends in less than half contact are all in a frame where a
+  // gap first shows (less than half contact somewhere in the view, nowhere in the frame before):
+  // there it is a spot smaller than a contact cell, which a causal tracker, seeing no later
+  // frame, cannot tell from skin in contact.
+  std::int64_t edges_across_gap_opening = 0;
   // The movie's contact map against the truth (has_gap, and a movie with a map): the cells at
   // least three quarters in or out of contact in the truth (sampled on a 4 x 4 grid), the
   // fraction of them the map got right, and the overlap of the cells out of contact (the truth's

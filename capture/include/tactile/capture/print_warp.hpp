@@ -117,6 +117,9 @@ bool has_contact_patch(const PrintWarpSpec& spec);
 // How much of the skin seen at image point `image` touches the glass at `frame`, 0..1.
 double warp_contact(const PrintWarpSpec& spec, PointMm image, double frame);
 
+// The least contact anywhere in the view at `frame` (sampled every `step_px` pixels, 0..1).
+double warp_least_contact(const PrintWarpSpec& spec, double frame, int step_px);
+
 // True relative length change of the segment seen at a_from, b_from (image millimetres) in
 // frame_from, when seen again in frame_to.
 double warp_rel_change(const PrintWarpSpec& spec, PointMm a_from, PointMm b_from, int frame_from,
