@@ -368,10 +368,13 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   // Where the skin touches, frame by frame (contact_map.hpp): once the view has slid, strain at
   // or beside skin out of contact is left out, as the batch capture does where skin slides
   // through the view; the tracker measures each step from one frame to the next with nothing
-  // smoothed across frames, so only the step's two frames count.
+  // smoothed across frames, so the step's two frames count, and the frame before them: where skin
+  // was out of contact a frame ago it may be landing still, at its last frame a spot smaller than
+  // a cell (the batch capture sees such a spot from the frames on either side).
   capture::ContactGrid contact_cells;
   capture::RunningContact contact;
-  std::vector<std::uint8_t> near_gap_before;
+  std::vector<std::uint8_t> near_gap_before;  // the step's first frame's cells, or the one before
+  std::vector<std::uint8_t> near_gap_last;    // the last frame's cells alone
   bool view_slid = false;
   std::vector<FrameTiming> timings;
   const auto report_dropped = [&] {
@@ -528,7 +531,11 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         t.map_ms = ms_between(strained, Clock::now());
       }
       previous = f.index;
-      near_gap_before = std::move(near_gap);
+      near_gap_before = near_gap;
+      for (std::size_t i = 0; i < near_gap_last.size() && i < near_gap_before.size(); ++i) {
+        near_gap_before[i] |= near_gap_last[i];
+      }
+      near_gap_last = std::move(near_gap);
       const Clock::time_point mapped = Clock::now();
       callbacks.mapped(f.index, deflection);
       held.publish(f.index, std::move(deflection));
