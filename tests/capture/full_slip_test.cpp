@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "../common/temp_dir.hpp"
 #include "real_prints.hpp"
 #include "tactile/capture/baselines.hpp"
 #include "tactile/capture/capture.hpp"
@@ -245,6 +248,16 @@ TEST(FullSlip, EdgesAcrossTheGapAreCountedApartInTheFrameWhereItOpens) {
   ev = evaluate_strain(movie, truth);
   EXPECT_EQ(ev.edges_across_gap, 2);
   EXPECT_EQ(ev.edges_across_gap_opening, 0);
+  // Both counts in the summary a script reads.
+  movie.frames = {step(opens - 1), step(opens + 5)};
+  const tactile::test::TempDir dir;
+  write_evaluation_csv(dir.path(), evaluate_strain(movie, truth));
+  std::ifstream in(dir.path() / "evaluation_summary.csv");
+  std::stringstream summary;
+  summary << in.rdbuf();
+  EXPECT_NE(summary.str().find("\nedges_across_gap,4\n"), std::string::npos) << summary.str();
+  EXPECT_NE(summary.str().find("\nedges_across_gap_opening,2\n"), std::string::npos)
+      << summary.str();
 }
 
 // The contact patch as its spec says (the geometry alone, no image): an ellipse of semi-axes

@@ -255,6 +255,13 @@ void write_evaluation_csv(const std::filesystem::path& dir, const Evaluation& ev
     << fmt::format("track_count,{}\n", ev.track_count)
     << fmt::format("median_track_frames,{:.6g}\n", ev.median_track_frames)
     << fmt::format("mean_track_frames,{:.6g}\n", ev.mean_track_frames);
+  if (ev.has_gap) {
+    s << fmt::format("edges_in_contact,{}\n", ev.edges_in_contact)
+      << fmt::format("rms_error_in_contact,{:.6g}\n", ev.rms_error_in_contact)
+      << fmt::format("correlation_in_contact,{:.6g}\n", ev.correlation_in_contact)
+      << fmt::format("edges_across_gap,{}\n", ev.edges_across_gap)
+      << fmt::format("edges_across_gap_opening,{}\n", ev.edges_across_gap_opening);
+  }
   if (ev.contact_cells > 0) {
     s << fmt::format("contact_cells,{}\n", ev.contact_cells)
       << fmt::format("gap_cells,{}\n", ev.gap_cells)
