@@ -373,8 +373,8 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   // a cell (the batch capture sees such a spot from the frames on either side).
   capture::ContactGrid contact_cells;
   capture::RunningContact contact;
-  std::vector<std::uint8_t> near_gap_before;  // the step's first frame's cells, or the one before
-  std::vector<std::uint8_t> near_gap_last;    // the last frame's cells alone
+  std::vector<std::uint8_t> near_gap_before;  // in the step's first frame or the frame before it
+  std::vector<std::uint8_t> near_gap_last;    // in the last frame alone
   bool view_slid = false;
   std::vector<FrameTiming> timings;
   const auto report_dropped = [&] {

@@ -92,16 +92,21 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
     return ev.has_gap ? warp_contact(*truth.warp, true_mm(p), frame) : 1.0;
   };
   // Frames where a gap first shows: less than half contact somewhere in the view, nowhere in
-  // the frame before (sampled every 2 px, finer than any gap the scenes open).
-  std::vector<std::uint8_t> gap_opens(static_cast<std::size_t>(std::max(frame_count, 0)), 0);
-  if (ev.has_gap) {
-    bool before = false;
-    for (int f = 0; f < frame_count; ++f) {
-      const bool now = warp_least_contact(*truth.warp, f, 2) < 0.5;
-      gap_opens[static_cast<std::size_t>(f)] = now && !before && f > 0 ? 1 : 0;
-      before = now;
+  // the frame before (sampled every 2 px, finer than any gap the scenes open); found at the
+  // first edge across a gap, as most movies have none.
+  std::vector<std::uint8_t> gap_opens;
+  const auto gap_opens_at = [&](int frame) {
+    if (gap_opens.empty()) {
+      gap_opens.assign(static_cast<std::size_t>(std::max(frame_count, 0)), 0);
+      bool before = false;
+      for (int f = 0; f < frame_count; ++f) {
+        const bool now = warp_least_contact(*truth.warp, f, 2) < 0.5;
+        gap_opens[static_cast<std::size_t>(f)] = now && !before && f > 0 ? 1 : 0;
+        before = now;
+      }
     }
-  }
+    return gap_opens[static_cast<std::size_t>(frame)] != 0;
+  };
   double se_contact = 0;
   std::vector<double> measured_contact, truth_contact;
 
@@ -140,7 +145,7 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
             ++ev.edges_across_gap;
             // Every end below half contact is in a frame where the gap opens.
             const auto opening = [&](const TrackedPoint& p, int frame) {
-              return contact(p, frame) >= 0.5 || gap_opens[static_cast<std::size_t>(frame)] != 0;
+              return contact(p, frame) >= 0.5 || gap_opens_at(frame);
             };
             if (opening(f.points_from[a->second], f.frame_from) &&
                 opening(f.points_from[b->second], f.frame_from) &&
