@@ -73,6 +73,30 @@ TEST(Json, FieldsAreCheckedForWhatAPersonMeant) {
   EXPECT_EQ(json_integer(at, j["x"], "x"), 1);
 }
 
+// A fuzzed pore model's format_version of 666666666666666666661 (beyond 64 bits, so parsed as a
+// double) reached an int with undefined behaviour; every integer field is checked for its type's
+// range and for being whole, and says so with the number as written.
+TEST(Json, AnIntegerFieldBeyondItsTypeOrWithAFractionIsRefused) {
+  const JsonOrigin at{"doc.json"};
+  const auto j = parse_json(at, R"({"huge": 666666666666666666661, "big": 3000000000,
+      "below": -3000000000, "half": 2.5, "max": 2147483647, "neg": -7, "u": 3000000000})");
+  EXPECT_THAT(error_of<FormatError>([&] { json_field<int>(j, "huge", "doc.json"); }),
+              HasSubstr("doc.json: field 'huge' must be a whole number from -2147483648 to "
+                        "2147483647, got 6.666666666666"));
+  EXPECT_THAT(error_of<FormatError>([&] { json_field<int>(j, "big", "doc.json"); }),
+              HasSubstr("field 'big' must be a whole number from -2147483648 to 2147483647, got "
+                        "3000000000"));
+  EXPECT_THAT(error_of<FormatError>([&] { json_field<int>(j, "below", "doc.json"); }),
+              HasSubstr("got -3000000000"));
+  EXPECT_THAT(error_of<FormatError>([&] { json_field<int>(j, "half", "doc.json"); }),
+              HasSubstr("field 'half' must be a whole number"));
+  EXPECT_EQ(json_field<int>(j, "max", "doc.json"), 2147483647);
+  EXPECT_EQ(json_field<int>(j, "neg", "doc.json"), -7);
+  EXPECT_EQ(json_field<std::int64_t>(j, "u", "doc.json"), 3000000000LL);
+  EXPECT_THAT(error_of<FormatError>([&] { json_field<std::uint32_t>(j, "neg", "doc.json"); }),
+              HasSubstr("from 0 to 4294967295, got -7"));
+}
+
 class Files : public ::testing::Test {
  protected:
   tactile::test::TempDir tmp_;

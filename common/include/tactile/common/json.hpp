@@ -7,9 +7,12 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "tactile/common/error.hpp"
 #include "tactile/common/provenance.hpp"
@@ -55,11 +58,25 @@ std::int64_t json_integer(const JsonOrigin& at, const nlohmann::json& v, const s
 std::string json_string(const JsonOrigin& at, const nlohmann::json& v, const std::string& what);
 
 // j[name] as T, for fields whose type says it all: "<where>: field '<name>' is missing / has
-// the wrong type".
+// the wrong type"; an integer field also "must be a whole number from MIN to MAX, got ..." (a
+// fraction, or a number beyond T, which nlohmann would convert with undefined behaviour).
 template <typename T>
 T json_field(const nlohmann::json& j, const char* name, const std::string& where) {
   if (!j.is_object() || !j.contains(name)) {
     throw FormatError(fmt::format("{}: field '{}' is missing", where, name));
+  }
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    const nlohmann::json& v = j.at(name);
+    if (v.is_number()) {
+      const bool fits = v.is_number_unsigned()  ? std::in_range<T>(v.get<std::uint64_t>())
+                        : v.is_number_integer() ? std::in_range<T>(v.get<std::int64_t>())
+                                                : false;
+      if (!fits) {
+        throw FormatError(fmt::format("{}: field '{}' must be a whole number from {} to {}, got {}",
+                                      where, name, std::numeric_limits<T>::min(),
+                                      std::numeric_limits<T>::max(), v.dump()));
+      }
+    }
   }
   try {
     return j.at(name).get<T>();
