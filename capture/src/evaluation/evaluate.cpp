@@ -137,20 +137,16 @@ Evaluation evaluate_strain(const StrainMovie& movie, const GroundTruth& truth) {
         st += t * t;
         ++fe.edges;
         if (ev.has_gap) {
-          const double least = std::min({contact(f.points_from[a->second], f.frame_from),
-                                         contact(f.points_from[b->second], f.frame_from),
-                                         contact(f.points_to[a->second], f.frame_to),
-                                         contact(f.points_to[b->second], f.frame_to)});
+          const double least_from = std::min(contact(f.points_from[a->second], f.frame_from),
+                                             contact(f.points_from[b->second], f.frame_from));
+          const double least_to = std::min(contact(f.points_to[a->second], f.frame_to),
+                                           contact(f.points_to[b->second], f.frame_to));
+          const double least = std::min(least_from, least_to);
           if (least < 0.5) {
             ++ev.edges_across_gap;
             // Every end below half contact is in a frame where the gap opens.
-            const auto opening = [&](const TrackedPoint& p, int frame) {
-              return contact(p, frame) >= 0.5 || gap_opens_at(frame);
-            };
-            if (opening(f.points_from[a->second], f.frame_from) &&
-                opening(f.points_from[b->second], f.frame_from) &&
-                opening(f.points_to[a->second], f.frame_to) &&
-                opening(f.points_to[b->second], f.frame_to)) {
+            if ((least_from >= 0.5 || gap_opens_at(f.frame_from)) &&
+                (least_to >= 0.5 || gap_opens_at(f.frame_to))) {
               ++ev.edges_across_gap_opening;
             }
           }
