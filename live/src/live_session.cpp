@@ -441,8 +441,8 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         callbacks.note(fmt::format("{} x {} px at {:.2f} px/mm, pores: {}; {} at {:g} Hz",
                                    f.image.width_px, f.image.height_px, px_per_mm, summary.detector,
                                    layout.name, device_rate_hz));
-        callbacks.started(
-            {session.source, calibration, summary.camera_rate_hz, layout, device_rate_hz});
+        callbacks.started({session.source, calibration, summary.camera_rate_hz, layout,
+                           device_rate_hz, contact_cells});
       }
       // Landmarks: detected every detect_every frames, or sooner when a fifth of the tracks
       // have ended since the last detection or the view slides (as the batch capture), followed by
@@ -481,10 +481,15 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
       const Clock::time_point tracked = Clock::now();
       t.track_ms = ms_between(popped, tracked);
       view_slid = view_slid || tracker->sliding();
-      std::vector<std::uint8_t> near_gap = capture::cells_near_gap(
-          contact_cells,
-          capture::contact_of_frame(
-              contact, capture::cell_ridge_contrast(f.image, contact_cells, px_per_mm)));
+      FrameContact frame_contact;
+      frame_contact.frame = f.index;
+      frame_contact.ridge_contrast =
+          capture::cell_ridge_contrast(f.image, contact_cells, px_per_mm);
+      frame_contact.in_contact = capture::contact_of_frame(contact, frame_contact.ridge_contrast);
+      frame_contact.threshold_grey = capture::running_threshold_grey(contact);
+      std::vector<std::uint8_t> near_gap =
+          capture::cells_near_gap(contact_cells, frame_contact.in_contact);
+      callbacks.contact(frame_contact);
 
       capture::StrainFrame sf;
       std::vector<float> deflection(

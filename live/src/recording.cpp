@@ -66,7 +66,8 @@ struct Received {
   capture::GrayImage image;
 };
 
-using Event = std::variant<SessionStart, FrameTiming, capture::StrainFrame, Mapped, Received>;
+using Event =
+    std::variant<SessionStart, FrameTiming, capture::StrainFrame, Mapped, Received, FrameContact>;
 
 }  // namespace
 
@@ -78,6 +79,8 @@ struct SessionRecording::Writer {
   std::optional<FramesVideo> video;
   // Frames received before the session started (its first frame's work): written then.
   std::vector<Received> early;
+  // Frames dropped before it started: unseen in strain.h5's contact map.
+  std::vector<std::int64_t> early_unseen;
   bool started = false;
   SessionStart start;
   // The movie as played: the last mapped frame, held until the next one's time.
@@ -123,7 +126,10 @@ struct SessionRecording::Writer {
       header.field_width_mm = s->calibration.image_width_px * s->calibration.mm_per_px;
       header.field_height_mm = s->calibration.image_height_px * s->calibration.mm_per_px;
       header.provenance = make_provenance(s->source, "live");
+      header.contact.grid = s->contact_grid;
       strain.emplace(dir / "strain.h5", header);
+      for (const std::int64_t f : early_unseen) strain->append_unseen(f);
+      early_unseen.clear();
       movie::TactileMovie movie_header;
       movie_header.layout = s->layout;
       movie_header.rate_hz = s->device_rate_hz;
@@ -139,6 +145,8 @@ struct SessionRecording::Writer {
         early.push_back(std::move(*r));
       }
     } else if (auto* t = std::get_if<FrameTiming>(&e)) {
+      if (t->dropped && strain) strain->append_unseen(t->frame);
+      if (t->dropped && !strain) early_unseen.push_back(t->frame);
       csv[0].pending += fmt::format(
           "{},{:.6f},{},{}\n", t->frame, t->source_time_s,
           t->dropped ? std::string() : fmt::format("{:.3f}", t->latency_ms), t->dropped ? 1 : 0);
@@ -148,6 +156,11 @@ struct SessionRecording::Writer {
       csv[2].pending += capture::edges_csv_rows(*f);
       ++strain_frames;
       strain_frames_left_out = strain->frames_left_out();
+    } else if (auto* c = std::get_if<FrameContact>(&e)) {
+      if (strain) {
+        strain->append_contact(c->frame, c->threshold_grey, std::move(c->ridge_contrast),
+                               std::move(c->in_contact));
+      }
     } else if (auto* m = std::get_if<Mapped>(&e)) {
       if (!movie) return;
       // The first mapped frame also stands for the device frames before it.
@@ -260,6 +273,10 @@ void SessionRecording::attach(LiveCallbacks& callbacks) {
   callbacks.frame_done = [w, before = callbacks.frame_done](const FrameTiming& t) {
     before(t);
     w->push(t);
+  };
+  callbacks.contact = [w, before = callbacks.contact](const FrameContact& c) {
+    before(c);
+    w->push(c);
   };
   callbacks.strain = [w, before = callbacks.strain](const capture::StrainFrame& f) {
     before(f);

@@ -283,15 +283,23 @@ void bind_strain_movies(py::module_& m) {
             const std::vector<py::ssize_t> shape{c.frame_count(), c.grid.rows, c.grid.columns};
             py::dict d;
             d["cell_px"] = c.grid.cell_px;
-            d["threshold"] = c.threshold;
             d["in_contact"] = py::array_t<std::uint8_t>(shape, c.in_contact.data(), self);
             d["ridge_contrast"] = py::array_t<double>(shape, c.ridge_contrast.data(), self);
+            const std::vector<py::ssize_t> frames{c.frame_count()};
+            if (c.per_frame()) {
+              d["threshold"] = py::array_t<double>(frames, c.frame_threshold.data(), self);
+              d["seen"] = py::array_t<std::uint8_t>(frames, c.frame_seen.data(), self);
+            } else {
+              d["threshold"] = c.threshold;
+            }
             return d;
           },
           "Where the skin touched in each camera frame, or None (a movie made in Python, or a "
           "file written without it): a dict of cell_px, threshold (grey levels), in_contact "
           "(uint8, camera frames x rows x columns, 1 = touching) and ridge_contrast (the same "
-          "shape, grey levels), viewing the movie's buffers.")
+          "shape, grey levels), viewing the movie's buffers. A live recording's map judged each "
+          "frame as it came: its threshold is then one per camera frame, and `seen` (uint8, one "
+          "per camera frame) is 0 for a frame the session dropped unseen (its cells say nothing).")
       .def("__repr__", [](const StrainMovie& s) {
         return fmt::format("<tactile.StrainMovie {} camera frames at {:g} Hz, {} strain frames>",
                            s.camera_frame_count, s.frame_rate_hz, s.frames.size());

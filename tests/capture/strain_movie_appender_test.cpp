@@ -122,28 +122,122 @@ TEST(StrainMovieAppender, AFrameOfAnotherSpanIsLeftOutAndCounted) {
   EXPECT_EQ(r.frames[2].frame_from, 4);
 }
 
+// Whether a child that writes `path` with `header` by `write` and is then killed by SIGKILL
+// died of it.
+template <typename Write>
+bool killed_while_writing(const std::filesystem::path& path, const StrainMovie& header,
+                          Write write) {
+  const pid_t child = ::fork();
+  if (child < 0) return false;
+  if (child == 0) {
+    StrainMovieAppender out(path, header);
+    write(out);
+    ::kill(::getpid(), SIGKILL);
+    ::_exit(1);
+  }
+  int status = 0;
+  return ::waitpid(child, &status, 0) == child && WIFSIGNALED(status) &&
+         WTERMSIG(status) == SIGKILL;
+}
+
 // The child appends three strain frames, flushes, appends two more and is killed.
 TEST(StrainMovieAppender, KilledWriterLeavesWhatWasFlushed) {
   TempDir dir;
   const StrainMovie m = sample_movie();
   const auto path = dir.path() / "killed.h5";
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    StrainMovieAppender out(path, m);
+  ASSERT_TRUE(killed_while_writing(path, m, [&](StrainMovieAppender& out) {
     for (std::size_t f = 0; f < m.frames.size(); ++f) {
       out.append(m.frames[f]);
       if (f == 2) out.flush();
     }
-    ::kill(::getpid(), SIGKILL);
-    ::_exit(1);
-  }
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFSIGNALED(status));
+  }));
   const StrainMovie r = read_strain_movie(path);
   expect_same_frames(r, m, 3);
   EXPECT_EQ(r.camera_frame_count, 4);
+}
+
+// Cells of 47 px over 320 x 240 px: 7 columns, 6 rows. Frame f's cell i has contrast f + i / 2,
+// judged by threshold 10 + f.
+constexpr int kCells = 42;
+std::vector<double> frame_contrast(int frame) {
+  std::vector<double> c;
+  for (int i = 0; i < kCells; ++i) c.push_back(frame + i / 2.0);
+  return c;
+}
+std::vector<std::uint8_t> judged(const std::vector<double>& contrast, double threshold) {
+  std::vector<std::uint8_t> in;
+  for (const double c : contrast) in.push_back(c >= threshold ? 1 : 0);
+  return in;
+}
+void append_frame_contact(StrainMovieAppender& out, int frame) {
+  out.append_contact(frame, 10 + frame, frame_contrast(frame),
+                     judged(frame_contrast(frame), 10 + frame));
+}
+
+// A live session reports a dropped frame when it next looks at its queue, so frame 3's "unseen"
+// comes before frame 2's contact; frame 5 is never reported (the session ended). The file holds
+// every camera frame in order: 3 and 5 unseen, with cells of 0.
+TEST(StrainMovieAppender, TheContactOfFramesAsTheyComeIsWrittenInOrderWithDroppedFramesUnseen) {
+  TempDir dir;
+  StrainMovie m = sample_movie();
+  m.contact.grid = contact_grid(320, 240, 47);
+  ASSERT_EQ(m.contact.grid.cells(), kCells);
+  StrainMovieAppender out(dir.path() / "contact.h5", m);
+  append_frame_contact(out, 0);
+  append_frame_contact(out, 1);
+  out.append_unseen(3);
+  out.flush();
+  append_frame_contact(out, 2);
+  append_frame_contact(out, 4);
+  for (const auto& f : m.frames) out.append(f);
+  out.close();
+  const StrainMovie r = read_strain_movie(dir.path() / "contact.h5");
+  ASSERT_TRUE(r.contact.per_frame());
+  EXPECT_EQ(r.camera_frame_count, 6);
+  ASSERT_EQ(r.contact.frame_count(), 6);
+  EXPECT_EQ(r.contact.frame_seen, (std::vector<std::uint8_t>{1, 1, 1, 0, 1, 0}));
+  for (int f = 0; f < 6; ++f) {
+    SCOPED_TRACE(f);
+    const auto at = r.contact.ridge_contrast.begin() + f * kCells;
+    const std::vector<double> contrast(at, at + kCells);
+    const auto marks_at = r.contact.in_contact.begin() + f * kCells;
+    const std::vector<std::uint8_t> marks(marks_at, marks_at + kCells);
+    if (f == 3 || f == 5) {
+      EXPECT_FALSE(r.contact.seen(f));
+      EXPECT_EQ(contrast, std::vector<double>(kCells, 0.0));
+      EXPECT_EQ(marks, std::vector<std::uint8_t>(kCells, 0));
+    } else {
+      EXPECT_TRUE(r.contact.seen(f));
+      EXPECT_EQ(r.contact.frame_threshold[static_cast<std::size_t>(f)], 10 + f);
+      EXPECT_EQ(contrast, frame_contrast(f));
+      EXPECT_EQ(marks, judged(frame_contrast(f), 10 + f));
+    }
+  }
+}
+
+// Killed after frames 0-2's contact was flushed and 3-4's was not: the file opens with frames
+// 0-2 seen as written and every later camera frame of the movie unseen.
+TEST(StrainMovieAppender, KilledWriterLeavesTheContactItFlushed) {
+  TempDir dir;
+  StrainMovie m = sample_movie();
+  m.contact.grid = contact_grid(320, 240, 47);
+  const auto path = dir.path() / "killed.h5";
+  ASSERT_TRUE(killed_while_writing(path, m, [&](StrainMovieAppender& out) {
+    for (int f = 0; f < 3; ++f) append_frame_contact(out, f);
+    for (std::size_t f = 0; f < 3; ++f) out.append(m.frames[f]);
+    out.flush();
+    for (int f = 3; f < 5; ++f) append_frame_contact(out, f);
+    out.append(m.frames[3]);
+  }));
+  const StrainMovie r = read_strain_movie(path);
+  EXPECT_EQ(r.camera_frame_count, 4);
+  ASSERT_EQ(r.contact.frame_count(), r.camera_frame_count);
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_TRUE(r.contact.seen(f)) << f;
+    const auto at = r.contact.ridge_contrast.begin() + f * kCells;
+    EXPECT_EQ(std::vector<double>(at, at + kCells), frame_contrast(f)) << f;
+  }
+  EXPECT_FALSE(r.contact.seen(3));
 }
 
 }  // namespace

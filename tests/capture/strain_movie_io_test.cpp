@@ -346,6 +346,59 @@ TEST_F(Tampered, ContactMapsThatDisagreeWithTheMovieOrThemselvesAreNamed) {
   }
 }
 
+// A map judged frame by frame (a live session's): thresholds and seen flags round-trip; a seen
+// flag other than 0 or 1, an unseen frame whose cells say something, a mark that disagrees with
+// its own frame's threshold, a threshold per frame beside the whole map's or one per frame too
+// few: each named.
+TEST_F(Tampered, AContactMapJudgedFrameByFrameRoundTripsAndItsFlagsAreChecked) {
+  StrainMovie m = sample_movie();
+  ContactMap& c = m.contact;
+  c.frame_threshold = {20, 20, 30, 0, 20};
+  c.frame_seen = {1, 1, 1, 0, 1};
+  for (std::size_t i = 0; i < c.in_contact.size(); ++i) {
+    const std::size_t frame = i / 88;
+    if (frame == 3) c.ridge_contrast[i] = 0;
+    c.in_contact[i] =
+        c.frame_seen[frame] && c.ridge_contrast[i] >= c.frame_threshold[frame] ? 1 : 0;
+  }
+  write_strain_movie(path(), m);
+  const StrainMovie r = read_strain_movie(path());
+  EXPECT_EQ(r.contact.frame_threshold, c.frame_threshold);
+  EXPECT_EQ(r.contact.frame_seen, c.frame_seen);
+  EXPECT_EQ(r.contact.in_contact, c.in_contact);
+  EXPECT_FALSE(r.contact.seen(3));
+
+  replace<std::int32_t>("/contact", "seen", {1, 1, 1, 2, 1}, {5});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("/contact/seen: camera frame 3: 2 is neither 0 (dropped unseen) nor 1"));
+  replace<std::int32_t>("/contact", "seen", {1, 1, 1, 0}, {4});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("/contact/seen: has 4 values, expected one per camera frame (5)"));
+  replace<std::int32_t>("/contact", "seen", {1, 1, 0, 0, 1}, {5});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("camera frame 2, cell row 0, column 0: the frame is marked unseen, but "
+                        "the cell has contrast 16"));
+  replace<std::int32_t>("/contact", "seen", {1, 1, 1, 0, 1}, {5});
+  // Frame 2 (cells 176 on, contrast i % 40) judged by 20 instead of its own 30: its cell 4 of
+  // contrast 20 is marked out of contact.
+  replace<double>("/contact", "frame_threshold", {20, 20, 20, 0, 20}, {5});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("camera frame 2, cell row 0, column 4: marked out of contact but its "
+                        "ridge contrast 20 is at or above the threshold 20"));
+  replace<double>("/contact", "frame_threshold", {20, 20, 30, 0, 256}, {5});
+  EXPECT_THAT(read_error(path()),
+              HasSubstr("camera frame 4: threshold 256 is out of range: must be from 0 to 255"));
+  replace<double>("/contact", "frame_threshold", c.frame_threshold, {5});
+  EXPECT_EQ(read_strain_movie(path()).contact.frame_count(), 5);
+  {
+    H5::H5File f(path().string(), H5F_ACC_RDWR);
+    H5::Group g = f.openGroup("/contact");
+    h5::write_attr(g, "threshold", 20.0);
+  }
+  EXPECT_THAT(read_error(path()), HasSubstr("has both a `threshold` attribute and a "
+                                            "`frame_threshold` dataset"));
+}
+
 // Every numeric attribute, every hostile value: refused, naming the file and the attribute.
 TEST_F(Tampered, HostileNumbersInEveryAttributeAreNamed) {
   const std::vector<std::pair<std::string, std::string>> doubles = {{"/", "frame_rate_hz"},

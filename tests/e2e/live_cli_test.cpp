@@ -28,6 +28,7 @@
 #include "../common/temp_dir.hpp"
 #include "run.hpp"
 #include "tactile/capture/capture_run.hpp"
+#include "tactile/capture/contact_map.hpp"
 #include "tactile/capture/strain_movie_io.hpp"
 #include "tactile/capture/video.hpp"
 #include "tactile/movie/movie_io.hpp"
@@ -144,6 +145,25 @@ TEST_F(Live, EveryFrameIsAccountedForAndRecorded) {
     ++compared;
   }
   EXPECT_EQ(compared, 60);
+  // The contact map holds every camera frame, each row measured on its own frame: the cells'
+  // contrast as the batch capture measures them, judged by a threshold that only grows (the
+  // contrast of skin in contact seen so far), never under the floor of camera noise.
+  const tactile::capture::ContactMap& contact = strain.contact;
+  ASSERT_TRUE(contact.per_frame());
+  ASSERT_EQ(contact.frame_count(), 60);
+  EXPECT_EQ(contact.frame_seen, std::vector<std::uint8_t>(60, 1));
+  tactile::capture::FrameRange again(frames(), 0, std::nullopt);
+  const auto cells = static_cast<std::size_t>(contact.grid.cells());
+  for (std::size_t f = 0; again.next(original); ++f) {
+    const std::vector<double> expected =
+        tactile::capture::cell_ridge_contrast(original, contact.grid, 47);
+    const auto at = contact.ridge_contrast.begin() + static_cast<std::ptrdiff_t>(f * cells);
+    EXPECT_TRUE(std::equal(expected.begin(), expected.end(), at)) << "frame " << f;
+    EXPECT_GE(contact.frame_threshold[f], tactile::capture::kContactFloorGrey) << f;
+    if (f > 0) {
+      EXPECT_GE(contact.frame_threshold[f], contact.frame_threshold[f - 1]) << f;
+    }
+  }
   // The edges.csv rows are the strain movie's edges.
   std::size_t edges = 0;
   for (const auto& f : strain.frames) edges += f.edges.size();
@@ -267,6 +287,10 @@ TEST_F(Live, SkinThatLiftsOffInFullSlipGivesNoStrainAcrossTheGap) {
             : std::stoi(
                   s.eval.substr(said + std::string(" edges across the contact gap, ").size()));
     EXPECT_EQ(across, where_it_opens) << s.eval;
+    // The recording's contact map, judged frame by frame, against where the skin truly touched
+    // (the batch capture's bar; the gap is 54 of 1608 cells, so a map saying "all in contact"
+    // would also pass: the count of edges left out above says the gap was seen).
+    EXPECT_GE(number_after(s.eval, "contact map                right on "), 90.0) << s.eval;
     std::cout << "live full slip with lift-off, print " << print << " at " << speed
               << " mm/s: RMS error " << s.rms << ", correlation " << s.r << ", " << across
               << " edges across the gap (" << where_it_opens << " where it opens)\n";
@@ -338,6 +362,11 @@ TEST_F(Live, FallingBehindDropsTheOldestFrameAndCountsIt) {
       << r.output;
   EXPECT_EQ(measured, processed - 1);
   EXPECT_LT(held, measured);
+  // Its contact map has a row for every camera frame: those processed seen, those dropped not.
+  const auto movie = tactile::capture::read_strain_movie(record / "strain.h5");
+  ASSERT_EQ(movie.contact.frame_count(), 60);
+  EXPECT_EQ(std::count(movie.contact.frame_seen.begin(), movie.contact.frame_seen.end(), 1),
+            processed);
   const auto info = run_tactile("info " + (record / "strain.h5").string());
   ASSERT_EQ(info.exit_code, 0) << info.output;
   EXPECT_THAT(info.output, HasSubstr(fmt::format("span 1, {} strain frames", held))) << info.output;
@@ -494,6 +523,10 @@ TEST_F(Live, KilledAtAnyMomentTheRecordingOpens) {
     tactile::capture::VideoReader video(record / "frames.mkv");
     EXPECT_GE(video.info().frame_count, expected);
     EXPECT_LE(video.info().frame_count, available);
+    // The contact map of the frames kept, seen up to a second before the kill too.
+    ASSERT_EQ(strain.contact.frame_count(), strain.camera_frame_count);
+    EXPECT_GE(std::count(strain.contact.frame_seen.begin(), strain.contact.frame_seen.end(), 1),
+              expected);
     for (const auto& row : csv_rows(record / "latency.csv")) EXPECT_EQ(row.size(), 4u);
     for (const auto& row : csv_rows(record / "edges.csv")) EXPECT_EQ(row.size(), 7u);
     for (const auto& row : csv_rows(record / "tracks.csv")) EXPECT_EQ(row.size(), 7u);

@@ -3,6 +3,7 @@
 import os
 import pathlib
 
+import numpy as np
 import pytest
 
 import tactile
@@ -28,6 +29,14 @@ def test_a_folder_played_at_its_rate_gives_every_frame(tmp_path):
     assert summary["median_points"] > 0
     assert summary["strain_edges_near_gaps"] == 0
     assert sum(len(f.edges) for f in strain.frames) == summary["strain_edges"] > 0
+    # Where the skin touched, judged frame by frame as the frames came: a threshold per camera
+    # frame, every frame seen (none dropped), each cell in contact exactly when its contrast
+    # reaches its own frame's threshold.
+    contact, frames = strain.contact, strain.camera_frame_count
+    assert contact["threshold"].shape == (frames,) and contact["seen"].shape == (frames,)
+    assert contact["seen"].all()
+    judged = contact["ridge_contrast"] >= contact["threshold"][:, None, None]
+    np.testing.assert_array_equal(contact["in_contact"], judged)
 
 
 def test_bad_keywords_are_the_command_lines_errors(tmp_path):

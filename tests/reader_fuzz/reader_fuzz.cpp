@@ -117,6 +117,15 @@ const std::map<std::string, Reader>& readers() {
         [](const fs::path& dir) {
           capture::write_strain_movie(dir / "one.h5", small_strain_movie(3));
           capture::write_strain_movie(dir / "some.h5", small_strain_movie(8));
+          // A live recording's map: a threshold per frame, the second frame dropped unseen.
+          capture::StrainMovie live = small_strain_movie(8);
+          live.contact.frame_threshold = {10, 0};
+          live.contact.frame_seen = {1, 0};
+          for (std::size_t i = 12; i < 24; ++i) {
+            live.contact.ridge_contrast[i] = 0;
+            live.contact.in_contact[i] = 0;
+          }
+          capture::write_strain_movie(dir / "live.h5", live);
         }}},
       {"tactile-movie",
        {".h5", [](const fs::path& p) { movie::read_tactile_movie(p, &reading_process()); },

@@ -41,6 +41,7 @@ void evaluate_contact(const ContactMap& map, const GroundTruth& truth, int frame
   std::int64_t right = 0, both_out = 0, either_out = 0;
   const int frames = std::min(frame_count, map.frame_count());
   for (int f = 0; f < frames; ++f) {
+    if (!map.seen(f)) continue;  // dropped by a live session: no claim either way
     for (int r = 0; r < g.rows; ++r) {
       for (int c = 0; c < g.columns; ++c) {
         const int x0 = c * g.cell_px, y0 = r * g.cell_px;

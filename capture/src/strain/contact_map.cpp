@@ -111,12 +111,15 @@ std::vector<std::uint8_t> contact_of_frame(RunningContact& running,
     running.contact_contrast_grey =
         std::max(running.contact_contrast_grey, quantile(ridge_contrast, 0.9));
   }
-  const double threshold =
-      std::max(kContactFloorGrey, kContactFraction * running.contact_contrast_grey);
+  const double threshold = running_threshold_grey(running);
   std::vector<std::uint8_t> in_contact;
   in_contact.reserve(ridge_contrast.size());
   for (const double c : ridge_contrast) in_contact.push_back(c >= threshold ? 1 : 0);
   return in_contact;
+}
+
+double running_threshold_grey(const RunningContact& running) {
+  return std::max(kContactFloorGrey, kContactFraction * running.contact_contrast_grey);
 }
 
 double contact_fraction(const ContactMap& map, std::int32_t frame) {

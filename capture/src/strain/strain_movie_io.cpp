@@ -159,15 +159,27 @@ void write_contact(H5::H5File& file, const ContactMap& c, const StrainMovie& mov
         c.grid.columns, c.grid.rows, c.grid.cell_px, c.in_contact.size(), movie.camera_frame_count,
         cal.image_width_px, cal.image_height_px));
   }
+  const auto frames = static_cast<std::size_t>(c.frame_count());
+  if (c.per_frame() && (c.frame_threshold.size() != frames || c.frame_seen.size() != frames)) {
+    throw std::invalid_argument(fmt::format(
+        "write_strain_movie: a contact map of {} frames has {} frame thresholds and {} seen flags",
+        frames, c.frame_threshold.size(), c.frame_seen.size()));
+  }
   H5::Group g = file.createGroup("/contact");
   h5::write_attr(g, "cell_px", std::int64_t{c.grid.cell_px});
-  h5::write_attr(g, "threshold", c.threshold);
-  const Dims dims{h(static_cast<std::size_t>(c.frame_count())),
-                  h(static_cast<std::size_t>(c.grid.rows)),
+  const Dims dims{h(frames), h(static_cast<std::size_t>(c.grid.rows)),
                   h(static_cast<std::size_t>(c.grid.columns))};
   h5::write_dataset(g, "ridge_contrast", c.ridge_contrast, dims);
   h5::write_dataset(g, "in_contact",
                     std::vector<std::int32_t>(c.in_contact.begin(), c.in_contact.end()), dims);
+  if (c.per_frame()) {
+    h5::write_dataset(g, "frame_threshold", c.frame_threshold, Dims{h(frames)});
+    h5::write_dataset(g, "seen",
+                      std::vector<std::int32_t>(c.frame_seen.begin(), c.frame_seen.end()),
+                      Dims{h(frames)});
+  } else {
+    h5::write_attr(g, "threshold", c.threshold);
+  }
 }
 
 }  // namespace
@@ -201,6 +213,9 @@ void write_strain_movie(const std::filesystem::path& path, const StrainMovie& mo
 struct StrainMovieAppender::Columns {
   PointColumns tracks;
   FrameColumns frames;
+  // Contact rows in camera frame order from the next one the file lacks.
+  std::vector<double> contrast, threshold;
+  std::vector<std::int32_t> in_contact, seen;
 };
 
 StrainMovieAppender::StrainMovieAppender(const std::filesystem::path& path,
@@ -231,6 +246,30 @@ StrainMovieAppender::StrainMovieAppender(const std::filesystem::path& path,
     throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), e.getDetailMsg()));
   }
   put_frame_columns(pending_->frames, make, make_offsets);
+  contact_grid_ = header.contact.grid;
+  if (header.contact.measured()) {
+    const Calibration& cal = header.calibration;
+    const ContactGrid fits =
+        contact_grid_of_cells(cal.image_width_px, cal.image_height_px, contact_grid_.cell_px);
+    if (fits.columns != contact_grid_.columns || fits.rows != contact_grid_.rows) {
+      throw std::invalid_argument(fmt::format(
+          "StrainMovieAppender: a contact grid of {} x {} cells of {} px does not fit {} x {} px",
+          contact_grid_.columns, contact_grid_.rows, contact_grid_.cell_px, cal.image_width_px,
+          cal.image_height_px));
+    }
+    try {
+      H5::Group g = file_.file().createGroup("/contact");
+      h5::write_attr(g, "cell_px", std::int64_t{contact_grid_.cell_px});
+    } catch (const H5::Exception& e) {
+      throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), e.getDetailMsg()));
+    }
+    const Dims cells{h(static_cast<std::size_t>(contact_grid_.rows)),
+                     h(static_cast<std::size_t>(contact_grid_.columns))};
+    file_.create_rows("/contact/ridge_contrast", cells, std::vector<double>{});
+    file_.create_rows("/contact/in_contact", cells, std::vector<std::int32_t>{});
+    file_.create_rows("/contact/frame_threshold", Dims{}, std::vector<double>{});
+    file_.create_rows("/contact/seen", Dims{}, std::vector<std::int32_t>{});
+  }
   file_.start();
 }
 
@@ -261,6 +300,46 @@ std::vector<TrackedPoint> StrainMovieAppender::append(const StrainFrame& frame) 
   return added;
 }
 
+void StrainMovieAppender::append_contact(std::int64_t frame, double threshold_grey,
+                                         std::vector<double> ridge_contrast,
+                                         std::vector<std::uint8_t> in_contact) {
+  if (!contact_grid_.cell_px || frame < contact_frames_) return;
+  const auto cells = static_cast<std::size_t>(contact_grid_.cells());
+  if (ridge_contrast.size() != cells || in_contact.size() != cells) {
+    throw std::invalid_argument(
+        fmt::format("StrainMovieAppender: camera frame {}'s contact has {} contrasts and {} cells "
+                    "for a grid of {}",
+                    frame, ridge_contrast.size(), in_contact.size(), cells));
+  }
+  held_contact_[frame] = {threshold_grey, true, std::move(ridge_contrast), std::move(in_contact)};
+  take_held_contact();
+}
+
+void StrainMovieAppender::append_unseen(std::int64_t frame) {
+  if (!contact_grid_.cell_px || frame < contact_frames_) return;
+  held_contact_.try_emplace(frame);
+  take_held_contact();
+}
+
+// Held rows move into the columns while they follow the file's last row without a frame missing.
+void StrainMovieAppender::take_held_contact() {
+  const auto cells = static_cast<std::size_t>(contact_grid_.cells());
+  for (auto it = held_contact_.begin(); it != held_contact_.end() && it->first == contact_frames_;
+       it = held_contact_.erase(it)) {
+    ContactRow& row = it->second;
+    if (!row.seen) {
+      row.ridge_contrast.assign(cells, 0.0);
+      row.in_contact.assign(cells, 0);
+    }
+    Columns& c = *pending_;
+    c.contrast.insert(c.contrast.end(), row.ridge_contrast.begin(), row.ridge_contrast.end());
+    c.in_contact.insert(c.in_contact.end(), row.in_contact.begin(), row.in_contact.end());
+    c.threshold.push_back(row.threshold_grey);
+    c.seen.push_back(row.seen ? 1 : 0);
+    ++contact_frames_;
+  }
+}
+
 void StrainMovieAppender::flush() {
   const auto append = [&](const std::string& name, const auto& values, const Dims&) {
     file_.append(name, values);
@@ -272,11 +351,30 @@ void StrainMovieAppender::flush() {
   put_frame_columns(pending_->frames, append, append_offsets);
   pending_->tracks = {};
   pending_->frames.clear();
+  if (contact_grid_.cell_px) {
+    file_.append("/contact/ridge_contrast", pending_->contrast);
+    file_.append("/contact/in_contact", pending_->in_contact);
+    file_.append("/contact/frame_threshold", pending_->threshold);
+    file_.append("/contact/seen", pending_->seen);
+    pending_->contrast.clear();
+    pending_->in_contact.clear();
+    pending_->threshold.clear();
+    pending_->seen.clear();
+    camera_frame_count_ = std::max(camera_frame_count_, contact_frames_);
+  }
   file_.set_attr("/", "camera_frame_count", camera_frame_count_);
   file_.flush();
 }
 
 void StrainMovieAppender::close() {
+  if (contact_grid_.cell_px) {
+    // Frames never reported (the session ended between them) count as unseen: the map then
+    // covers every camera frame of the movie.
+    std::int64_t end = camera_frame_count_;
+    if (!held_contact_.empty()) end = std::max(end, held_contact_.rbegin()->first + 1);
+    for (std::int64_t f = contact_frames_; f < end; ++f) held_contact_.try_emplace(f);
+    take_held_contact();
+  }
   flush();
   file_.close();
 }
@@ -453,9 +551,15 @@ void check_field(const StrainMovie& m, const Reader& r) {
 // A ridge contrast is the RMS of grey levels minus their local mean: it cannot exceed the
 // 8-bit range.
 constexpr double kMaxRidgeContrast = 255;
+// Cells an unfinished file's contact map may lack and be read as unseen (a recording flushes
+// every half second: a few hundred frames at most in a sound file).
+constexpr hsize_t kMaxUnseenContactValues = hsize_t{1} << 24;
 
-// /contact, checked against the movie's camera frames and calibrated image.
-ContactMap read_contact(const H5::Group& root, const StrainMovie& m, const Reader& r) {
+// /contact, checked against the movie's camera frames and calibrated image. A map of frame
+// thresholds in an unfinished file (a live recording cut off) may be shorter or longer than the
+// camera frames its counts say: the frames every dataset holds are taken (the camera frames are
+// at least those), and frames beyond them are unseen.
+ContactMap read_contact(const H5::Group& root, StrainMovie& m, const Reader& r, bool unfinished) {
   const std::string where = r.where("/contact");
   H5::Group g = h5::open_group(root, "contact", where);
   ContactMap c;
@@ -464,27 +568,97 @@ ContactMap read_contact(const H5::Group& root, const StrainMovie& m, const Reade
       cal.image_width_px, cal.image_height_px,
       static_cast<std::int32_t>(checks::int_in_range(h5::read_attr_int(g, "cell_px", where), 1,
                                                      kMaxImageSidePx, where, "cell_px")));
-  c.threshold = checks::in_range(h5::read_attr_double(g, "threshold", where), 0, kMaxRidgeContrast,
-                                 where, "threshold");
-  const Dims expected{static_cast<hsize_t>(m.camera_frame_count), static_cast<hsize_t>(c.grid.rows),
-                      static_cast<hsize_t>(c.grid.columns)};
+  const bool per_frame = h5::has_child(g, "frame_threshold");
+  if (per_frame == h5::has_attr(g, "threshold")) {
+    r.fail("/contact", per_frame ? "has both a `threshold` attribute and a `frame_threshold` "
+                                   "dataset: one or the other"
+                                 : "has no threshold: a `threshold` attribute or a "
+                                   "`frame_threshold` dataset is needed");
+  }
+  if (!per_frame) {
+    c.threshold = checks::in_range(h5::read_attr_double(g, "threshold", where), 0,
+                                   kMaxRidgeContrast, where, "threshold");
+  }
+  Dims contrast_dims, in_contact_dims, threshold_dims{0}, seen_dims{0};
+  c.ridge_contrast =
+      h5::read_doubles(g, "ridge_contrast", 3, contrast_dims, r.where("/contact/ridge_contrast"));
+  std::vector<std::int32_t> in_contact =
+      h5::read_ints(g, "in_contact", 3, in_contact_dims, r.where("/contact/in_contact"));
+  std::vector<std::int32_t> seen;
+  if (per_frame) {
+    c.frame_threshold = h5::read_doubles(g, "frame_threshold", 1, threshold_dims,
+                                         r.where("/contact/frame_threshold"));
+    seen = h5::read_ints(g, "seen", 1, seen_dims, r.where("/contact/seen"));
+  }
+  const auto rows = static_cast<hsize_t>(c.grid.rows),
+             columns = static_cast<hsize_t>(c.grid.columns);
+  const auto cells = static_cast<std::size_t>(c.grid.cells());
+  auto frames = static_cast<hsize_t>(m.camera_frame_count);
   const auto check_shape = [&](const std::string& name, const Dims& dims) {
-    if (dims != expected) {
+    if (dims.size() != 3 || dims[0] != frames || dims[1] != rows || dims[2] != columns) {
       r.fail("/contact/" + name,
              fmt::format("has shape {} x {} x {}, expected {} x {} x {} (camera frames x rows x "
                          "columns of {} px cells over the {} x {} px image)",
-                         dims[0], dims[1], dims[2], expected[0], expected[1], expected[2],
-                         c.grid.cell_px, cal.image_width_px, cal.image_height_px));
+                         dims.at(0), dims.at(1), dims.at(2), frames, rows, columns, c.grid.cell_px,
+                         cal.image_width_px, cal.image_height_px));
     }
   };
-  Dims dims;
-  c.ridge_contrast =
-      h5::read_doubles(g, "ridge_contrast", 3, dims, r.where("/contact/ridge_contrast"));
-  check_shape("ridge_contrast", dims);
-  const auto in_contact = h5::read_ints(g, "in_contact", 3, dims, r.where("/contact/in_contact"));
-  check_shape("in_contact", dims);
+  if (unfinished && per_frame) {
+    const Dims cut{frames, rows, columns};
+    const hsize_t whole =
+        std::min({contrast_dims.at(0), in_contact_dims.at(0), threshold_dims.at(0), seen_dims.at(0),
+                  static_cast<hsize_t>(kMaxCameraFrames)});
+    if (whole > frames) frames = whole;
+    m.camera_frame_count = static_cast<std::int32_t>(frames);
+    for (Dims* d : {&contrast_dims, &in_contact_dims}) {
+      if ((*d)[1] != rows || (*d)[2] != columns) break;  // refused below for its shape
+      (*d)[0] = frames;
+    }
+    // Unseen frames are added as zeros: no more than a damaged count could ask for in memory.
+    if ((frames - whole) * cells > kMaxUnseenContactValues) {
+      r.fail("/contact", fmt::format("holds {} camera frames, far fewer than the movie's {}: "
+                                     "not the contact map of an unfinished recording",
+                                     whole, frames));
+    }
+    const std::size_t kept = std::min(whole, frames);
+    c.ridge_contrast.resize(kept * cells);
+    c.ridge_contrast.resize(frames * cells, 0.0);
+    in_contact.resize(kept * cells);
+    in_contact.resize(frames * cells, 0);
+    c.frame_threshold.resize(kept);
+    c.frame_threshold.resize(frames, 0.0);
+    seen.resize(kept);
+    seen.resize(frames, 0);
+    threshold_dims = seen_dims = Dims{frames};
+  }
+  check_shape("ridge_contrast", contrast_dims);
+  check_shape("in_contact", in_contact_dims);
+  if (per_frame) {
+    for (const auto& [name, dims] :
+         {std::pair{"frame_threshold", threshold_dims}, std::pair{"seen", seen_dims}}) {
+      if (dims.at(0) != frames) {
+        r.fail(
+            std::string("/contact/") + name,
+            fmt::format("has {} values, expected one per camera frame ({})", dims.at(0), frames));
+      }
+    }
+    c.frame_seen.reserve(seen.size());
+    for (std::size_t f = 0; f < seen.size(); ++f) {
+      if (seen[f] != 0 && seen[f] != 1) {
+        r.fail("/contact/seen", fmt::format("camera frame {}: {} is neither 0 (dropped unseen) "
+                                            "nor 1 (seen)",
+                                            f, seen[f]));
+      }
+      if (!(c.frame_threshold[f] >= 0 && c.frame_threshold[f] <= kMaxRidgeContrast)) {
+        r.fail("/contact/frame_threshold",
+               fmt::format("camera frame {}: threshold {} is out of range: must be from 0 to {} "
+                           "grey levels",
+                           f, c.frame_threshold[f], kMaxRidgeContrast));
+      }
+      c.frame_seen.push_back(static_cast<std::uint8_t>(seen[f]));
+    }
+  }
   const auto cell_name = [&](std::size_t i) {
-    const auto cells = static_cast<std::size_t>(c.grid.cells());
     return fmt::format("camera frame {}, cell row {}, column {}", i / cells,
                        i % cells / static_cast<std::size_t>(c.grid.columns),
                        i % static_cast<std::size_t>(c.grid.columns));
@@ -501,11 +675,22 @@ ContactMap read_contact(const H5::Group& root, const StrainMovie& m, const Reade
       r.fail("/contact/in_contact", fmt::format("{}: {} is neither 0 (no contact) nor 1 (contact)",
                                                 cell_name(i), in_contact[i]));
     }
-    if ((in_contact[i] == 1) != (contrast >= c.threshold)) {
-      r.fail("/contact/in_contact",
-             fmt::format("{}: marked {} but its ridge contrast {} is {} the threshold {}",
-                         cell_name(i), in_contact[i] == 1 ? "in contact" : "out of contact",
-                         contrast, contrast >= c.threshold ? "at or above" : "below", c.threshold));
+    const std::size_t frame = i / cells;
+    if (per_frame && seen[frame] == 0) {
+      if (contrast != 0 || in_contact[i] != 0) {
+        r.fail("/contact/in_contact",
+               fmt::format("{}: the frame is marked unseen, but the cell has contrast {} and is "
+                           "marked {} (an unseen frame's cells are 0, out of contact)",
+                           cell_name(i), contrast, in_contact[i] == 1 ? "in contact" : "out"));
+      }
+    } else {
+      const double threshold = per_frame ? c.frame_threshold[frame] : c.threshold;
+      if ((in_contact[i] == 1) != (contrast >= threshold)) {
+        r.fail("/contact/in_contact",
+               fmt::format("{}: marked {} but its ridge contrast {} is {} the threshold {}",
+                           cell_name(i), in_contact[i] == 1 ? "in contact" : "out of contact",
+                           contrast, contrast >= threshold ? "at or above" : "below", threshold));
+      }
     }
     c.in_contact.push_back(static_cast<std::uint8_t>(in_contact[i]));
   }
@@ -728,9 +913,13 @@ StrainMovie read_strain_movie_checked(const std::filesystem::path& path) {
     }
     m.frames.push_back(std::move(sf));
   }
-  // Written by capture; absent from files written before it was measured and from live
-  // recordings, whose frames are not all kept.
-  if (h5::has_child(root, "contact") && !unfinished) m.contact = read_contact(root, m, r);
+  // Written by capture and live recordings; absent from files written before it was measured.
+  // An unfinished file's map is taken only when it is one written as the frames came.
+  if (h5::has_child(root, "contact") &&
+      (!unfinished ||
+       h5::has_child(h5::open_group(root, "contact", r.where("/contact")), "frame_threshold"))) {
+    m.contact = read_contact(root, m, r, unfinished);
+  }
   return m;
 }
 

@@ -32,8 +32,21 @@ struct ContactMap {
   // levels) and whether it is in contact (1) or not (0).
   std::vector<double> ridge_contrast;
   std::vector<std::uint8_t> in_contact;
+  // A map measured as the frames came (a live session), else both empty. Each frame was judged
+  // by the threshold of the frames seen up to it (frame_threshold, grey levels; `threshold` is
+  // then unused), and a frame the session dropped unseen has frame_seen 0 and cells of contrast
+  // 0, out of contact: they say nothing of the skin.
+  std::vector<double> frame_threshold;
+  std::vector<std::uint8_t> frame_seen;
 
   bool measured() const { return grid.cell_px > 0; }
+  bool per_frame() const { return !frame_threshold.empty(); }
+  // Whether camera frame `frame` was measured (every frame of a map measured in one piece).
+  bool seen(std::int32_t frame) const {
+    return frame_seen.empty() ||
+           (frame >= 0 && static_cast<std::size_t>(frame) < frame_seen.size() &&
+            frame_seen[static_cast<std::size_t>(frame)] != 0);
+  }
   std::int32_t frame_count() const {
     return grid.cells() > 0 ? static_cast<std::int32_t>(in_contact.size()) / grid.cells() : 0;
   }
@@ -75,12 +88,16 @@ struct RunningContact {
   double contact_contrast_grey = 0;
 };
 
+// The threshold of the frames seen so far, grey levels.
+double running_threshold_grey(const RunningContact& running);
+
 // One frame's cells (its cell_ridge_contrast): 1 in contact, 0 not, by the threshold of the
 // frames seen so far, this one included (`running` is updated).
 std::vector<std::uint8_t> contact_of_frame(RunningContact& running,
                                            const std::vector<double>& ridge_contrast);
 
-// The fraction of cells in contact in camera frame `frame` (0 when the map has no such frame).
+// The fraction of cells in contact in camera frame `frame` (0 when the map has no such frame or
+// did not see it).
 double contact_fraction(const ContactMap& map, std::int32_t frame);
 
 }  // namespace tactile::capture

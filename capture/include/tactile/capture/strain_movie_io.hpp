@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -30,6 +31,10 @@ void write_strain_movie(const std::filesystem::path& path, const StrainMovie& mo
 // ignored. Strain frames of another span than the header's are left out. /tracks is in the
 // order points were first seen (by frame), not by track as write_strain_movie orders it; the
 // reader takes either. Creates `path` new (never over a file or through a link).
+// With a contact grid in the header (`header.contact.grid`), the file holds a contact map of
+// frame thresholds (ContactMap::frame_threshold): each camera frame's cells given to
+// append_contact, or marked unseen, in any order; a frame is written once every frame before it
+// is known, and close() marks the frames never given as unseen.
 class StrainMovieAppender {
  public:
   StrainMovieAppender(const std::filesystem::path& path, const StrainMovie& header);
@@ -39,6 +44,12 @@ class StrainMovieAppender {
 
   // Keeps `frame` for the next flush; returns the points that became new rows of /tracks.
   std::vector<TrackedPoint> append(const StrainFrame& frame);
+  // Camera frame `frame`'s cells (rows x columns of the header's contact grid), judged by
+  // `threshold_grey`; or the frame was dropped unseen. Ignored without a contact grid, or for a
+  // frame already written.
+  void append_contact(std::int64_t frame, double threshold_grey, std::vector<double> ridge_contrast,
+                      std::vector<std::uint8_t> in_contact);
+  void append_unseen(std::int64_t frame);
   // Writes what was appended since the last flush and syncs it to the disk.
   void flush();
   // Flushes and closes: the file is then as any other strain movie.
@@ -48,6 +59,14 @@ class StrainMovieAppender {
 
  private:
   struct Columns;
+  // A camera frame's contact, held until every frame before it is known.
+  struct ContactRow {
+    double threshold_grey = 0;
+    bool seen = false;
+    std::vector<double> ridge_contrast;
+    std::vector<std::uint8_t> in_contact;
+  };
+  void take_held_contact();
   h5::GrowingFile file_;
   std::unique_ptr<Columns> pending_;
   std::int32_t span_frames_ = 1;
@@ -55,6 +74,9 @@ class StrainMovieAppender {
   std::unordered_set<std::int32_t> last_to_tracks_;
   std::int64_t camera_frame_count_ = 0;
   std::int64_t frames_left_out_ = 0;
+  ContactGrid contact_grid_;
+  std::int64_t contact_frames_ = 0;  // camera frames of the contact map in the columns or file
+  std::map<std::int64_t, ContactRow> held_contact_;
 };
 
 // Throws tactile::FormatError naming the file, the object and the problem: missing file, not

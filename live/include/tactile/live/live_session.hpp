@@ -24,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "tactile/capture/contact_map.hpp"
 #include "tactile/capture/strain_movie.hpp"
 #include "tactile/display/emulated_device.hpp"
 #include "tactile/display/transport.hpp"
@@ -78,6 +79,16 @@ struct SessionStart {
   double camera_rate_hz = 0;
   movie::Layout layout;
   double device_rate_hz = 0;
+  capture::ContactGrid contact_grid;  // the cells each frame's contact is judged in
+};
+
+// One camera frame's contact as the session judged it when the frame came (contact_map.hpp):
+// by the threshold of the frames seen so far.
+struct FrameContact {
+  std::int64_t frame = 0;
+  double threshold_grey = 0;
+  std::vector<double> ridge_contrast;  // per cell of SessionStart::contact_grid, row-major
+  std::vector<std::uint8_t> in_contact;
 };
 
 // What the session hands out as it goes (each called from the processing thread).
@@ -91,6 +102,8 @@ struct LiveCallbacks {
   std::function<void(const SessionStart&)> started = [](const SessionStart&) {};
   // Every camera frame, processed or dropped, once its latency is known.
   std::function<void(const FrameTiming&)> frame_done = [](const FrameTiming&) {};
+  // Every processed camera frame's contact, before its strain frame.
+  std::function<void(const FrameContact&)> contact = [](const FrameContact&) {};
   // Every strain frame measured, with the tracked points of its two frames.
   std::function<void(const capture::StrainFrame&)> strain = [](const capture::StrainFrame&) {};
   // Every mapped frame (deflections, um, row-major).

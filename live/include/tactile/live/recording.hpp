@@ -3,7 +3,8 @@
 //   latency.csv   frame,source_time_s,latency_ms,dropped (one row per camera frame)
 //   tracks.csv    as `tactile capture --csv` writes it (each point once, when first seen)
 //   edges.csv     as `tactile capture --csv` writes it
-//   strain.h5     the strain movie (tactile capture's schema), growing frame by frame
+//   strain.h5     the strain movie (tactile capture's schema), growing frame by frame, with
+//                 each camera frame's contact as judged when it came (frames dropped: unseen)
 //   movie.h5      the frames sent to the display, at its rate (each camera frame held)
 //   frames.mkv    every camera frame as received, dropped ones too (FFV1 in Matroska:
 //                 lossless), stamped with its arrival time
