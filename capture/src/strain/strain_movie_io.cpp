@@ -604,16 +604,17 @@ ContactMap read_contact(const H5::Group& root, StrainMovie& m, const Reader& r, 
     }
   };
   if (unfinished && per_frame) {
-    const Dims cut{frames, rows, columns};
+    // Cells of another grid are refused as they are; whole frames of this one are cut below.
+    for (const auto& [name, dims] :
+         {std::pair{"ridge_contrast", contrast_dims}, std::pair{"in_contact", in_contact_dims}}) {
+      if (dims.at(1) != rows || dims.at(2) != columns) check_shape(name, dims);
+    }
     const hsize_t whole =
         std::min({contrast_dims.at(0), in_contact_dims.at(0), threshold_dims.at(0), seen_dims.at(0),
                   static_cast<hsize_t>(kMaxCameraFrames)});
     if (whole > frames) frames = whole;
     m.camera_frame_count = static_cast<std::int32_t>(frames);
-    for (Dims* d : {&contrast_dims, &in_contact_dims}) {
-      if ((*d)[1] != rows || (*d)[2] != columns) break;  // refused below for its shape
-      (*d)[0] = frames;
-    }
+    contrast_dims[0] = in_contact_dims[0] = frames;
     // Unseen frames are added as zeros: no more than a damaged count could ask for in memory.
     if ((frames - whole) * cells > kMaxUnseenContactValues) {
       r.fail("/contact", fmt::format("holds {} camera frames, far fewer than the movie's {}: "
