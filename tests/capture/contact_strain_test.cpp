@@ -88,6 +88,17 @@ TEST(ContactStrain, AMovieInFullContactOrWithoutAMapIsKeptWhole) {
   EXPECT_EQ(kept.frames.front().triangles.size(), 8U);
 }
 
+// A live recording's map marks a frame it dropped as unseen, its cells 0: no claim of a gap.
+TEST(ContactStrain, AFrameTheMapDidNotSeeLeavesNothingOut) {
+  StrainMovie m = movie_with_a_gap(0);
+  m.contact.frame_threshold = {5, 0};
+  m.contact.frame_seen = {1, 0};
+  std::fill(m.contact.in_contact.begin() + 40, m.contact.in_contact.end(), 0);
+  std::fill(m.contact.ridge_contrast.begin() + 40, m.contact.ridge_contrast.end(), 0);
+  EXPECT_EQ(edge_starts(without_strain_near_gaps(m, 0).frames.front()),
+            (std::vector<std::int32_t>{0, 1, 2, 3, 4, 5, 8}));
+}
+
 TEST(ContactStrain, APointJustOutsideTheImageBelongsToTheBorderCell) {
   StrainMovie m = movie_with_a_gap(0);
   // The gap moved to the last column; track 9 placed half a pixel beyond the right edge.

@@ -18,12 +18,16 @@ namespace tactile::capture {
 namespace {
 
 // Per camera frame, grid.rows x grid.columns: 1 where a cell is out of contact or within
-// `margin` cells of one.
+// `margin` cells of one. A frame the map did not see (a live session dropped it) makes no claim.
 std::vector<std::uint8_t> near_gap(const ContactMap& map, std::int32_t margin) {
   const std::size_t cells = static_cast<std::size_t>(map.grid.cells());
   std::vector<std::uint8_t> near;
   near.reserve(map.in_contact.size());
   for (std::int32_t f = 0; f < map.frame_count(); ++f) {
+    if (!map.seen(f)) {
+      near.insert(near.end(), cells, 0);
+      continue;
+    }
     const auto frame =
         std::span(map.in_contact).subspan(static_cast<std::size_t>(f) * cells, cells);
     const std::vector<std::uint8_t> one = cells_near_gap(map.grid, frame, margin);
