@@ -621,14 +621,14 @@ ContactMap read_contact(const H5::Group& root, StrainMovie& m, const Reader& r, 
                                      "not the contact map of an unfinished recording",
                                      whole, frames));
     }
-    const std::size_t kept = std::min(whole, frames);
-    c.ridge_contrast.resize(kept * cells);
+    // The whole frames (frames >= whole), then the unseen ones after them as zeros.
+    c.ridge_contrast.resize(whole * cells);
     c.ridge_contrast.resize(frames * cells, 0.0);
-    in_contact.resize(kept * cells);
+    in_contact.resize(whole * cells);
     in_contact.resize(frames * cells, 0);
-    c.frame_threshold.resize(kept);
+    c.frame_threshold.resize(whole);
     c.frame_threshold.resize(frames, 0.0);
-    seen.resize(kept);
+    seen.resize(whole);
     seen.resize(frames, 0);
     threshold_dims = seen_dims = Dims{frames};
   }
