@@ -2,7 +2,7 @@
 # Installs what is needed, builds, and runs every test:
 #   1. release build, all CTest labels (unit, e2e, ...);
 #   2. RelWithDebInfo build with address + undefined-behaviour sanitizers, all labels again
-#      (vm.live_vivid, release only, excepted: tests/vm.cmake says why).
+#      (of the vm label only vm.play_libusb: tests/vm.cmake says why).
 # Set TACTILE_SKIP_ASAN=1 to run only the first (quicker while developing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
