@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "tactile/capture/contact_strain.hpp"
@@ -70,6 +71,38 @@ TEST(ContactStrain, EdgesAndTrianglesWithAnEndAtOrBesideTheGapAreLeftOut) {
     EXPECT_EQ(f.points_from.size(), 10U);
     EXPECT_EQ(f.points_to.size(), 10U);
   }
+}
+
+Track track_at(std::int32_t id, std::int32_t first_frame, std::vector<double> x_px,
+               std::vector<double> y_px) {
+  Track t;
+  t.id = id;
+  t.first_frame = first_frame;
+  t.x_px = std::move(x_px);
+  t.y_px = std::move(y_px);
+  return t;
+}
+
+std::vector<std::int32_t> ids_of(const std::vector<Track>& tracks) {
+  std::vector<std::int32_t> ids;
+  for (const Track& t : tracks) ids.push_back(t.id);
+  return ids;
+}
+
+// The gap is cell (row 1, column 7) in camera frame 1: x 70-80, y 10-20.
+TEST(ContactStrain, TracksThatStoodAtOrBesideTheGapInAnyFrameAreNotClear) {
+  const ContactMap map = movie_with_a_gap(1).contact;
+  const std::vector<Track> tracks = {
+      track_at(0, 0, {75, 75}, {15, 15}),  // in the gap's cell in frame 1
+      track_at(1, 0, {65, 65}, {25, 25}),  // in the cell diagonally beside it
+      track_at(2, 0, {25, 25}, {15, 15}),  // far from it
+      track_at(3, 0, {75}, {15}),          // there only in frame 0, in contact then
+      track_at(4, 1, {5, 25}, {5, 35}),    // frame 1 far from it; frame 2 the map has not
+  };
+  EXPECT_EQ(ids_of(tracks_clear_of_gaps(tracks, map)), (std::vector<std::int32_t>{2, 3, 4}));
+  EXPECT_EQ(ids_of(tracks_clear_of_gaps(tracks, map, 0)), (std::vector<std::int32_t>{1, 2, 3, 4}));
+  // No map: nothing known to be out of contact.
+  EXPECT_EQ(tracks_clear_of_gaps(tracks, ContactMap{}).size(), tracks.size());
 }
 
 TEST(ContactStrain, NoMarginLeavesOutOnlyTheGapsOwnCell) {

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -47,11 +49,11 @@ struct SlipScores {
 // pyramid, the forward-backward check, new corners every frame where points have left, and the
 // same shortest track as the capture chose for the sequence.
 SlipScores scored(const PrintSequence& seq) {
-  const CaptureParams params =
+  CaptureParams params =
       with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
-  StrainMovie movie = measure_strain(seq.frames, seq.calibration, 60, params);
-  movie.contact = measure_contact(seq.frames, seq.spec.px_per_mm);
-  movie = strain_in_contact(std::move(movie));
+  params.measure_contact = true;
+  const StrainMovie movie =
+      strain_in_contact(measure_strain(seq.frames, seq.calibration, 60, params));
   const auto settings = nlohmann::json::parse(movie.provenance.parameters_json);
   LucasKanadeParams lk;
   lk.pyramid_levels = 3;  // levels 0..3
@@ -143,49 +145,51 @@ TEST(FullSlip, HeldOutPrintsSlidingAtTheSpeedsOfExploration) {
 // (the capture leaves out the strain of tracks within a cell of skin its images show out of
 // contact, in the frames the tracks' smoothing reaches), and the rest measured to the targets
 // of full slip at every speed of exploration. Lucas-Kanade on the same frames, in full contact
-// too, must stay behind. (The reach of the smoothing was looked at on these two prints at
-// 10 mm/s; prints 12 and 14 at 10 mm/s with lift-off reach 0.942 and 0.955 with it, 0.933 and
-// 0.893 without it.)
+// too, must stay behind. Prints 13 and 15 at 10 mm/s were looked at while the smoothing's reach
+// was set, and all four at 10 mm/s before the tracks beside the gap were kept out of the
+// smoothing's choice (prints 12 and 14 reached 0.942 and 0.955; that rule was then chosen on
+// prints 01-06): none of these is held out of the capture's settings.
 TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
-  for (const std::string nn : {"13", "15"}) {
-    for (const double speed : {10.0, 25.0, 50.0, 100.0}) {
-      SCOPED_TRACE("print " + nn + " at " + std::to_string(speed) + " mm/s");
-      const SlipScores s = scored(full_slip(nn, speed, 1.0));
-      std::printf(
-          "full slip with lift-off, print %s at %.0f mm/s: ours tracked %.0f rms %.5f corr %.4f; "
-          "in full contact rms %.5f corr %.4f (%lld edges, %lld across the gap); Lucas-Kanade "
-          "tracked %.0f, in full contact rms %.5f corr %.4f (%lld edges)\n",
-          nn.c_str(), speed, s.ours.median_tracked_points, s.ours.rms_error, s.ours.correlation,
-          s.ours.rms_error_in_contact, s.ours.correlation_in_contact,
-          static_cast<long long>(s.ours.edges_in_contact),
-          static_cast<long long>(s.ours.edges_across_gap), s.lk.median_tracked_points,
-          s.lk.rms_error_in_contact, s.lk.correlation_in_contact,
-          static_cast<long long>(s.lk.edges_in_contact));
-      ASSERT_TRUE(s.ours.has_gap);
-      EXPECT_EQ(s.ours.edges_across_gap, 0);
-      // The contact map from the images alone, against the warp's contact: right on at least 9
-      // cells of 10, and the cells it finds out of contact mostly the truth's.
-      std::printf(
-          "  contact map right on %.3f of %lld cells (%lld out of contact), out-of-contact "
-          "overlap %.3f\n",
-          s.ours.contact_agreement, static_cast<long long>(s.ours.contact_cells),
-          static_cast<long long>(s.ours.gap_cells), s.ours.gap_overlap);
-      // A gap of a few cells over several frames, so that the overlap means something.
-      EXPECT_GE(s.ours.gap_cells, 20);
-      EXPECT_GE(s.ours.contact_agreement, 0.9);
-      EXPECT_GE(s.ours.gap_overlap, 0.8);
-      EXPECT_GE(s.ours.median_tracked_points, 150);
-      EXPECT_GT(s.ours.edges_in_contact, s.ours.edges / 2);
-      EXPECT_LE(s.ours.rms_error_in_contact, 0.0025);
-      EXPECT_GE(s.ours.correlation_in_contact, 0.96);
-      // Every edge reported, the rim of the gap included.
-      EXPECT_LE(s.ours.rms_error, 0.0025);
-      EXPECT_GE(s.ours.correlation, 0.96);
-      // Lucas-Kanade measuring nothing in full contact is its failure, not an error of 0.
-      if (s.lk.edges_in_contact > 0) {
-        EXPECT_LT(s.ours.rms_error_in_contact, s.lk.rms_error_in_contact);
-        EXPECT_GT(s.ours.correlation_in_contact, s.lk.correlation_in_contact);
-      }
+  const std::vector<std::pair<std::string, double>> cases = {
+      {"13", 10.0}, {"13", 25.0}, {"13", 50.0},  {"13", 100.0}, {"15", 10.0},
+      {"15", 25.0}, {"15", 50.0}, {"15", 100.0}, {"12", 10.0},  {"14", 10.0}};
+  for (const auto& [nn, speed] : cases) {
+    SCOPED_TRACE("print " + nn + " at " + std::to_string(speed) + " mm/s");
+    const SlipScores s = scored(full_slip(nn, speed, 1.0));
+    std::printf(
+        "full slip with lift-off, print %s at %.0f mm/s: ours tracked %.0f rms %.5f corr %.4f; "
+        "in full contact rms %.5f corr %.4f (%lld edges, %lld across the gap); Lucas-Kanade "
+        "tracked %.0f, in full contact rms %.5f corr %.4f (%lld edges)\n",
+        nn.c_str(), speed, s.ours.median_tracked_points, s.ours.rms_error, s.ours.correlation,
+        s.ours.rms_error_in_contact, s.ours.correlation_in_contact,
+        static_cast<long long>(s.ours.edges_in_contact),
+        static_cast<long long>(s.ours.edges_across_gap), s.lk.median_tracked_points,
+        s.lk.rms_error_in_contact, s.lk.correlation_in_contact,
+        static_cast<long long>(s.lk.edges_in_contact));
+    ASSERT_TRUE(s.ours.has_gap);
+    EXPECT_EQ(s.ours.edges_across_gap, 0);
+    // The contact map from the images alone, against the warp's contact: right on at least 9
+    // cells of 10, and the cells it finds out of contact mostly the truth's.
+    std::printf(
+        "  contact map right on %.3f of %lld cells (%lld out of contact), out-of-contact "
+        "overlap %.3f\n",
+        s.ours.contact_agreement, static_cast<long long>(s.ours.contact_cells),
+        static_cast<long long>(s.ours.gap_cells), s.ours.gap_overlap);
+    // A gap of a few cells over several frames, so that the overlap means something.
+    EXPECT_GE(s.ours.gap_cells, 20);
+    EXPECT_GE(s.ours.contact_agreement, 0.9);
+    EXPECT_GE(s.ours.gap_overlap, 0.8);
+    EXPECT_GE(s.ours.median_tracked_points, 150);
+    EXPECT_GT(s.ours.edges_in_contact, s.ours.edges / 2);
+    EXPECT_LE(s.ours.rms_error_in_contact, 0.0025);
+    EXPECT_GE(s.ours.correlation_in_contact, 0.96);
+    // Every edge reported, the rim of the gap included.
+    EXPECT_LE(s.ours.rms_error, 0.0025);
+    EXPECT_GE(s.ours.correlation, 0.96);
+    // Lucas-Kanade measuring nothing in full contact is its failure, not an error of 0.
+    if (s.lk.edges_in_contact > 0) {
+      EXPECT_LT(s.ours.rms_error_in_contact, s.lk.rms_error_in_contact);
+      EXPECT_GT(s.ours.correlation_in_contact, s.lk.correlation_in_contact);
     }
   }
 }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -129,6 +130,22 @@ TEST(Track, SmoothingIsAsLongAsTheNoiseAllowsAndNoLongerThanTheStrainAllows) {
   // Noise beyond that bound: no window may move the tracks so far.
   EXPECT_EQ(smoothing_that_fits(grid_tracks(0.2, 0, 0), 12, kMaxResidualPx), 0);
   EXPECT_EQ(smoothing_that_fits(grid_tracks(0.01, 0, 0), 0, kMaxResidualPx), 0);
+}
+
+// Noise taken as larger than the tracks show it (as where their errors change slowly from frame
+// to frame) chooses a longer window on the same tracks; a scale that is no scale is refused.
+TEST(Track, ALargerNoiseScaleChoosesALongerSmoothing) {
+  constexpr double kMaxResidualPx = 0.06;
+  const std::vector<Track> tracks = grid_tracks(0.01, 0.02, 30);
+  const int as_seen = smoothing_that_fits(tracks, 12, kMaxResidualPx);
+  const int scaled =
+      smoothing_that_fits(tracks, 12, kMaxResidualPx, SmoothingKernel::uniform, 1, 4.0);
+  EXPECT_GT(scaled, as_seen);
+  EXPECT_LE(scaled, 12);
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    EXPECT_THROW(smoothing_that_fits(tracks, 12, kMaxResidualPx, SmoothingKernel::uniform, 1, bad),
+                 std::invalid_argument);
+  }
 }
 
 // A local quadratic fit reproduces a quadratic whatever its weights, inside the track and where

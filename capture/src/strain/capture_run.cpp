@@ -138,29 +138,17 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
     messages.warning(warning);
   }
   params.assignment = settings.assignment;
-  // Where the skin touches, from every frame as it is read (the tracker reads them one at a
-  // time, in order).
-  const double image_px_per_mm = 1.0 / c.mm_per_px;
-  const ContactGrid grid = contact_grid(first.width_px, first.height_px, image_px_per_mm);
-  std::vector<double> contrast;  // grows with the frames read (a video's count is an estimate)
-  const auto measure_contact = [&](const GrayImage& frame) {
-    const auto cells = cell_ridge_contrast(frame, grid, image_px_per_mm);
-    contrast.insert(contrast.end(), cells.begin(), cells.end());
-  };
+  // Where the skin touches, from every frame as it is read.
+  params.measure_contact = true;
   bool first_given = false;
   StrainMovie movie = measure_strain(
       [&](GrayImage& frame) {
-        if (first_given) {
-          if (!frames.next(frame)) return false;
-        } else {
-          frame = std::move(first);
-          first_given = true;
-        }
-        measure_contact(frame);
+        if (first_given) return frames.next(frame);
+        frame = std::move(first);
+        first_given = true;
         return true;
       },
       c, frame_rate_hz, params, progress, frames.count());
-  movie.contact = contact_map(grid, std::move(contrast));
   const auto edge_count = [](const StrainMovie& m) {
     std::size_t n = 0;
     for (const StrainFrame& f : m.frames) n += f.edges.size();
@@ -174,7 +162,7 @@ StrainMovie capture_strain(FrameRange& frames, const std::optional<Calibration>&
         "contact: {} of {} strain edges left out, on tracks at or within {} cell ({} px) of skin "
         "the images show out of contact, in their frames or within {} frames of them (the "
         "tracks' smoothing), where the skin slides through the view",
-        measured - kept, measured, kGapMarginCells, grid.cell_px,
+        measured - kept, measured, kGapMarginCells, movie.contact.grid.cell_px,
         settings.value("smoothing_half_window_used", 0)));
   }
   return movie;

@@ -123,6 +123,22 @@ StrainMovie without_strain_near_gaps(StrainMovie movie, std::int32_t margin_cell
   return movie;
 }
 
+std::vector<Track> tracks_clear_of_gaps(const std::vector<Track>& tracks, const ContactMap& map,
+                                        std::int32_t margin_cells) {
+  if (!map.measured()) return tracks;
+  const std::vector<std::uint8_t> near = near_gap(map, margin_cells);
+  std::vector<Track> clear;
+  for (const Track& t : tracks) {
+    bool near_any = false;
+    for (std::size_t k = 0; k < t.x_px.size() && !near_any; ++k) {
+      near_any = is_near_gap(near, map, t.first_frame + static_cast<std::int32_t>(k), t.x_px[k],
+                             t.y_px[k]);
+    }
+    if (!near_any) clear.push_back(t);
+  }
+  return clear;
+}
+
 std::vector<std::uint8_t> cells_near_gap(const ContactGrid& g,
                                          std::span<const std::uint8_t> in_contact,
                                          std::int32_t margin) {

@@ -2,12 +2,15 @@
 #include <future>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
 #include "tactile/capture/capture.hpp"
+#include "tactile/capture/contact_map.hpp"
+#include "tactile/capture/contact_strain.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/common/provenance.hpp"
 
@@ -221,16 +224,25 @@ std::vector<Track> tracks_by_alignment(const FrameSource& next_frame, GrayImage&
     check_frame_size(frame, f + 1, size_of_first, cal);
   }
   frame_count = tracker.frames();
-  std::vector<Track> tracks = tracker.finish(&stats);
-  // A smoother over more frames than the motion stays smooth for would flatten it: smooth only
-  // as far as the tracks allow.
+  return tracker.finish(&stats);
+}
+
+// A smoother over more frames than the motion stays smooth for would flatten it: smooth only as
+// far as the tracks allow. Where the skin slides through the view, the tracks clear of skin out
+// of contact choose (when the map has them: a quarter of the tracks at least), with the noise
+// taken sliding_noise_scale times over (RefineParams says why).
+void smooth_aligned_tracks(std::vector<Track>& tracks, const ContactMap& contact,
+                           const CaptureParams& params, RefineStats& stats) {
+  const bool sliding = stats.frames_in_view > 0;
+  std::vector<Track> clear;
+  if (sliding && contact.measured()) clear = tracks_clear_of_gaps(tracks, contact);
+  const bool clear_choose = 4 * clear.size() >= tracks.size() && !clear.empty();
   const SmoothingKernel kernel = params.refinement.smoothing_kernel;
   stats.smoothing_half_window =
-      smoothing_that_fits(tracks, params.smoothing_half_window,
-                          params.refinement.max_smoothing_residual_px, kernel, params.threads);
+      smoothing_that_fits(clear_choose ? clear : tracks, params.smoothing_half_window,
+                          params.refinement.max_smoothing_residual_px, kernel, params.threads,
+                          sliding ? params.refinement.sliding_noise_scale : 1.0);
   smooth_tracks(tracks, stats.smoothing_half_window, kernel, params.threads);
-  if (progress) progress("refine", 1, 1);
-  return tracks;
 }
 
 }  // namespace
@@ -251,15 +263,44 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
   if (cal.image_width_px == 0) cal.image_width_px = first.width_px;
   if (cal.image_height_px == 0) cal.image_height_px = first.height_px;
 
+  // Each frame's contact as it is read (the trackers read the frames once, in order).
+  const double px_per_mm = 1.0 / cal.mm_per_px;
+  const GrayImage size_of_first{first.width_px, first.height_px, {}};
+  std::optional<ContactGrid> grid;
+  std::vector<double> contrast;
+  int read = 0;
+  const auto measure_contact_of = [&](const GrayImage& frame) {
+    check_frame_size(frame, read++, size_of_first, cal);
+    const std::vector<double> cells = cell_ridge_contrast(frame, *grid, px_per_mm);
+    contrast.insert(contrast.end(), cells.begin(), cells.end());
+  };
+  FrameSource with_contact;
+  if (params.measure_contact) {
+    grid = contact_grid(first.width_px, first.height_px, px_per_mm);
+    measure_contact_of(first);
+    with_contact = [&](GrayImage& frame) {
+      if (!next_frame(frame)) return false;
+      measure_contact_of(frame);
+      return true;
+    };
+  }
+  const FrameSource& source = params.measure_contact ? with_contact : next_frame;
+
   int n = 0;
   RefineStats stats;
-  const std::vector<Track> tracks =
+  std::vector<Track> tracks =
       params.refine
-          ? tracks_by_alignment(next_frame, first, cal, params, progress, expected_frames, n, stats)
-          : tracks_from_detections(next_frame, first, cal, params, progress, expected_frames, n);
+          ? tracks_by_alignment(source, first, cal, params, progress, expected_frames, n, stats)
+          : tracks_from_detections(source, first, cal, params, progress, expected_frames, n);
+  ContactMap contact = grid ? contact_map(*grid, std::move(contrast)) : ContactMap{};
+  if (params.refine) {
+    smooth_aligned_tracks(tracks, contact, params, stats);
+    if (progress) progress("refine", 1, 1);
+  }
   StrainMovie movie =
       strain_from_tracks(tracks, n, cal, frame_rate_hz, params.span_frames, params.max_edge_ratio,
                          params.threads, params.window_gradient_share);
+  movie.contact = std::move(contact);
   // The settings that decide what is measured; the frames' file is the caller's to name.
   nlohmann::json settings = {
       {"frame_rate_hz", frame_rate_hz},

@@ -305,7 +305,8 @@ Removed removed_by(const NeighbourSeries& s, QuadraticSmoother& smooth) {
 }  // namespace
 
 int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
-                        SmoothingKernel kernel, int threads) {
+                        SmoothingKernel kernel, int threads, double noise_scale) {
+  if (!(noise_scale > 0)) throw std::invalid_argument("noise_scale must be > 0");
   if (half_window <= 0) return half_window;
   std::vector<int> candidates;
   for (int h : {half_window, 14, 12, 10, 8, 7, 6, 5, 4, 3}) {
@@ -340,7 +341,8 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
     auto it = noise_norms.find(n);
     if (it == noise_norms.end())
       it = noise_norms.emplace(n, smoother_noise(noise_smoother, n)).first;
-    noise_variance.push_back(removed_by(s, noise_smoother).sum_sq / (2 * it->second.removed));
+    noise_variance.push_back(noise_scale * removed_by(s, noise_smoother).sum_sq /
+                             (2 * it->second.removed));
   }
   // No smoothing: every change carries the noise of two frames.
   std::vector<double> error;

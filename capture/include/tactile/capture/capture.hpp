@@ -63,6 +63,11 @@ struct CaptureParams {
   // Landmarks already found on the first frame with `features` (choose_capture_settings finds
   // them while choosing): used instead of detecting that frame again. Empty: detect it.
   std::vector<Feature> first_frame_features;
+  // Measure where the skin touches in every frame as it is read (contact_map.hpp): the movie
+  // gets its contact map, and where the skin slides through the view the tracks that stood at
+  // or beside skin out of contact take no part in choosing the smoothing (their motion there is
+  // the rim's, not the strain's). Off: no map, as a bench that times the tracking wants.
+  bool measure_contact = false;
 };
 
 // Triangulates `from` (millimetre positions) and measures each edge at `to` (same order and

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tactile/capture/strain_movie.hpp"
+#include "tactile/capture/track.hpp"
 
 namespace tactile::capture {
 
@@ -37,6 +38,11 @@ StrainMovie strain_in_contact(StrainMovie movie);
 // (triangles index them). A movie without a contact map is returned as it is.
 StrainMovie without_strain_near_gaps(StrainMovie movie, std::int32_t margin_cells = kGapMarginCells,
                                      std::int32_t window_frames = 0);
+
+// The tracks that never stood in a cell out of contact, or within `margin_cells` of one, in any
+// camera frame the map saw. A map that was not measured keeps every track.
+std::vector<Track> tracks_clear_of_gaps(const std::vector<Track>& tracks, const ContactMap& map,
+                                        std::int32_t margin_cells = kGapMarginCells);
 
 // One camera frame's cells (grid.rows x grid.columns, row-major, 1 in contact): 1 where a cell is
 // out of contact or within `margin_cells` of one.

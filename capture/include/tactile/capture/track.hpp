@@ -81,9 +81,11 @@ void smooth_tracks(std::vector<Track>& tracks, int half_window,
 // half_window, or 0 for none) whose frame-to-frame changes between neighbouring tracks have the
 // least error, as estimated from the tracks themselves: a longer window averages more of the
 // trackers' noise, but flattens strain that changes within it. A window that moves the median
-// track by more than max_residual_px (RMS) is not taken. On `threads` workers (0: every core).
+// track by more than max_residual_px (RMS) is not taken. The noise estimated from the tracks is
+// taken noise_scale times over. On `threads` workers (0: every core).
 int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
-                        SmoothingKernel kernel = SmoothingKernel::uniform, int threads = 1);
+                        SmoothingKernel kernel = SmoothingKernel::uniform, int threads = 1,
+                        double noise_scale = 1.0);
 
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
@@ -126,6 +128,13 @@ struct RefineParams {
   double max_smoothing_residual_px = 0.06;
   // The weights of that smoothing's local fits.
   SmoothingKernel smoothing_kernel = SmoothingKernel::epanechnikov;
+  // Where the skin slides through the view, the trackers' noise as the smoothing's choice
+  // estimates it (smoothing_that_fits) is taken this many times over. Sliding tracks are aligned
+  // to a reference the skin moves away from as it crosses the strain, so their errors change
+  // slowly from frame to frame, and the choice's estimate, made by a smoother that removes only
+  // the fastest changes, reads short: against the exact warp on tuning prints 01-06 at 10 mm/s
+  // it chose half-window 3 where 6 was best (docs/capture-models.md). Still contact keeps 1.
+  double sliding_noise_scale = 2.0;
   // Streaming tracker (AlignmentTracker): where a track's own prediction fails, retry from its
   // confirmed neighbours' motion in the same frame (within neighbour_radius_mm), in up to
   // neighbour_rounds rounds (0 = never), when that start is neighbour_retry_px or more from the
