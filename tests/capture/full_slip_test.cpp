@@ -168,6 +168,11 @@ TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
         static_cast<long long>(s.lk.edges_in_contact));
     ASSERT_TRUE(s.ours.has_gap);
     EXPECT_EQ(s.ours.edges_across_gap, 0);
+    // The smoothing was chosen by the tracks clear of the gap, and the capture says so.
+    EXPECT_NE(
+        s.settings.value("smoothing_reason", std::string()).find("clear of skin out of contact"),
+        std::string::npos)
+        << s.settings.dump();
     // The contact map from the images alone, against the warp's contact: right on at least 9
     // cells of 10, and the cells it finds out of contact mostly the truth's.
     std::printf(

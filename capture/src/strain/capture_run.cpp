@@ -176,9 +176,11 @@ bool measured_no_strain(const StrainMovie& movie) {
 std::string sliding_note(const StrainMovie& movie) {
   if (!skin_slides_through_view(movie)) return {};
   const auto settings = nlohmann::json::parse(movie.provenance.parameters_json, nullptr, false);
-  return fmt::format("capture: shortest track {} frames: {}",
+  return fmt::format("capture: shortest track {} frames: {}; smoothing half-window {}: {}",
                      settings.value("min_track_frames_used", 0),
-                     settings.value("min_track_reason", std::string()));
+                     settings.value("min_track_reason", std::string()),
+                     settings.value("smoothing_half_window_used", 0),
+                     settings.value("smoothing_reason", std::string()));
 }
 
 std::string no_strain_reason(const StrainMovie& movie, const CaptureSettings& settings,

@@ -243,6 +243,14 @@ void smooth_aligned_tracks(std::vector<Track>& tracks, const ContactMap& contact
                           params.refinement.max_smoothing_residual_px, kernel, params.threads,
                           sliding ? params.refinement.sliding_noise_scale : 1.0);
   smooth_tracks(tracks, stats.smoothing_half_window, kernel, params.threads);
+  stats.smoothing_reason =
+      !sliding ? std::string("chosen by the tracks' own noise")
+               : fmt::format(
+                     "chosen by {} of {} tracks ({}) from their own noise, taken {:g} "
+                     "times over where the skin slides",
+                     clear_choose ? clear.size() : tracks.size(), tracks.size(),
+                     clear_choose ? "those clear of skin out of contact" : "all of them",
+                     params.refinement.sliding_noise_scale);
 }
 
 }  // namespace
@@ -321,6 +329,7 @@ StrainMovie measure_strain(const FrameSource& next_frame, const Calibration& cal
     settings["frames_in_view"] = stats.frames_in_view;
     settings["min_track_frames_used"] = stats.min_frames;
     settings["smoothing_half_window_used"] = stats.smoothing_half_window;
+    settings["smoothing_reason"] = stats.smoothing_reason;
     settings["min_track_reason"] = stats.frames_in_view > 0
                                        ? fmt::format(
                                              "the view slides {:.1f} px a frame, so skin stays in "

@@ -162,8 +162,10 @@ struct RefineStats {
   double view_motion_px = 0;
   double frames_in_view = 0;
   int min_frames = 0;
-  // The half-window (frames) of the smoothing the tracks were given after alignment.
+  // The half-window (frames) of the smoothing the tracks were given after alignment, and what
+  // chose it (said in the capture's provenance).
   int smoothing_half_window = 0;
+  std::string smoothing_reason;
 };
 
 // Tracks are refined in parallel on `threads` workers (0 = one per core).
