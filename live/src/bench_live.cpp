@@ -47,6 +47,10 @@ void check(const LiveBenchOptions& o) {
         fmt::format("strain: {} is out of range: must be from 0.001 to 0.2", o.strain));
   }
   if (o.cases.empty()) throw std::invalid_argument("no cases to measure");
+  if (o.delivery_rate_hz && !in(*o.delivery_rate_hz, 1, 1000)) {
+    throw std::invalid_argument(fmt::format(
+        "delivery rate: {} Hz is out of range: must be from 1 to 1000", *o.delivery_rate_hz));
+  }
   for (const auto& c : o.cases) {
     if (c.width_px < 64 || c.width_px > 4096 || c.height_px < 64 || c.height_px > 4096 ||
         !in(c.camera_rate_hz, 1, 1000)) {
@@ -84,7 +88,8 @@ std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
     LiveRequest request;
     request.source = fmt::format("memory://{}", print.name);
     request.capture.px_per_mm = options.px_per_mm;
-    request.capture.rate_hz = scene.camera_rate_hz;
+    const double delivery_hz = options.delivery_rate_hz.value_or(scene.camera_rate_hz);
+    request.capture.rate_hz = delivery_hz;
     const ResolvedLive session = resolve(request, OptionSpelling::cli);
     display::EmulatedDevice device(emulated_display_options(session.layout));
 
@@ -106,7 +111,7 @@ std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
     };
     std::atomic<bool> stop{false};
     const Clock::time_point start = Clock::now();
-    const auto source = open_in_memory(sequence.frames, scene.camera_rate_hz, start);
+    const auto source = open_in_memory(sequence.frames, delivery_hz, start);
     LiveBenchRow row;
     row.scene = scene;
     row.summary = run_live_from(*source, start, session, device, stop, callbacks, {});

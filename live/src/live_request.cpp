@@ -46,6 +46,11 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
                                 "Frames between detections of new landmarks (between them, "
                                 "landmarks are\nfollowed by alignment alone; sooner when a "
                                 "fifth of the tracks ended)"));
+    t.push_back(rows::number<R>(
+        "smooth_frames", &R::smooth_frames, 0, 30, "frames",
+        "Positions of each track fitted (a quadratic, looking back only) to smooth its step\n"
+        "into each frame: 0 for none, else 4 to 30 (default: chosen by the tracks' own noise\n"
+        "every 30 frames, as the batch capture chooses its smoothing)"));
     return t;
   }();
   return table;
@@ -113,6 +118,15 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
   r.record = request.record;
   r.queue_frames = request.queue_frames;
   r.detect_every = request.detect_every;
+  if (request.smooth_frames) {
+    if (*request.smooth_frames > 0 && *request.smooth_frames < 4) {
+      throw RequestError(fmt::format(
+          "{}: {} frames is too few for a quadratic fit with a frame to spare: give 0 (none) or "
+          "4 to 30",
+          label("smooth_frames"), *request.smooth_frames));
+    }
+    r.smoothing.window_frames = *request.smooth_frames;
+  }
   return r;
 }
 

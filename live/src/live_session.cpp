@@ -8,6 +8,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <future>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -16,6 +17,7 @@
 
 #include "live_source.hpp"
 #include "tactile/capture/capture.hpp"
+#include "tactile/capture/causal_smoothing.hpp"
 #include "tactile/capture/contact_map.hpp"
 #include "tactile/capture/contact_strain.hpp"
 #include "tactile/capture/features.hpp"
@@ -160,16 +162,42 @@ class AsyncDetector {
   std::thread thread_;  // last: started once the members it uses exist
 };
 
+// The causal smoothing's window chosen off the processing thread: the choice reads every track's
+// last second of positions (milliseconds on a large frame), which in line would delay the frame
+// it falls on. A choice due while the last one still runs is skipped.
+class AsyncWindowChoice {
+ public:
+  void start(std::vector<capture::Track> tracks, int degree, double max_residual_px,
+             double noise_scale) {
+    if (pending_.valid()) return;
+    pending_ = std::async(std::launch::async, [tracks = std::move(tracks), degree, max_residual_px,
+                                               noise_scale] {
+      return capture::causal_smoothing_that_fits(tracks, degree, max_residual_px, 1, noise_scale);
+    });
+  }
+  // A finished choice, once; rethrows the choice's failure.
+  std::optional<int> take() {
+    if (!pending_.valid() ||
+        pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      return std::nullopt;
+    }
+    return pending_.get();
+  }
+
+ private:
+  std::future<int> pending_;
+};
+
 // The median motion of the tracks from frame to frame (pixels), to carry landmarks detected on
 // an earlier frame to the current one.
 class SkinMotion {
  public:
-  void add(std::int64_t frame, const std::vector<capture::AlignmentTracker::Step>& steps) {
+  void add(std::int64_t frame, const std::vector<capture::Track>& steps) {
     if (steps.empty()) return;
     std::vector<double> dx, dy;
     for (const auto& s : steps) {
-      dx.push_back(s.x1_px - s.x0_px);
-      dy.push_back(s.y1_px - s.y0_px);
+      dx.push_back(s.x_px[1] - s.x_px[0]);
+      dy.push_back(s.y_px[1] - s.y_px[0]);
     }
     steps_.push_back({frame, median(dx), median(dy)});
     if (steps_.size() > 1000) steps_.erase(steps_.begin());
@@ -360,6 +388,9 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   std::unique_ptr<capture::AlignmentTracker> tracker;
   std::unique_ptr<AsyncDetector> detector;
   SkinMotion motion;
+  capture::RefineParams refine;
+  capture::CausalTrackSmoother smoother(session.smoothing);
+  AsyncWindowChoice window_choice;
   capture::FeatureParams features = capture::pores_only();
   capture::Calibration calibration;
   double px_per_mm = 0;
@@ -428,7 +459,6 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         }
         features.pore_detector = choice.detector;
         summary.detector = capture::to_string(choice.detector);
-        capture::RefineParams refine;
         refine.window_mm = session.refine_window_mm;
         tracker = std::make_unique<capture::AlignmentTracker>(px_per_mm, refine, options.threads);
         capture::StrainMovie frame_of_view;
@@ -476,8 +506,24 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
       }
       tracker->add_frame(f.image, seeds);
       if (seeded) tracks_after_detection = tracker->live_tracks();
-      const std::vector<capture::AlignmentTracker::Step> steps = tracker->last_step();
+      std::vector<capture::Track> steps = tracker->last_step();
       motion.add(f.index, steps);
+      if (previous) {
+        if (auto window = window_choice.take()) {
+          smoother.set_window(*window);
+          summary.smoothing_min_frames = summary.smoothing_choices == 0
+                                             ? *window
+                                             : std::min(summary.smoothing_min_frames, *window);
+          summary.smoothing_max_frames = std::max(summary.smoothing_max_frames, *window);
+          ++summary.smoothing_choices;
+        }
+        smoother.smooth(*previous, f.index, steps);
+        if (smoother.choice_due()) {
+          window_choice.start(smoother.tracks_to_choose_by(), session.smoothing.degree,
+                              refine.max_smoothing_residual_px,
+                              tracker->sliding() ? refine.sliding_noise_scale : 1.0);
+        }
+      }
       const Clock::time_point tracked = Clock::now();
       t.track_ms = ms_between(popped, tracked);
       view_slid = view_slid || tracker->sliding();
@@ -498,16 +544,26 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         sf.frame_from = static_cast<std::int32_t>(*previous);
         sf.frame_to = static_cast<std::int32_t>(f.index);
         sf.t_s = t.source_time_s;
+        capture::TracksById by_id;
         for (const auto& s : steps) {
-          const capture::PointMm a = capture::to_mm(calibration, s.x0_px, s.y0_px);
-          const capture::PointMm b = capture::to_mm(calibration, s.x1_px, s.y1_px);
-          sf.points_from.push_back(
-              {s.id, sf.frame_from, capture::FeatureType::pore, s.x0_px, s.y0_px, a.x_mm, a.y_mm});
-          sf.points_to.push_back(
-              {s.id, sf.frame_to, capture::FeatureType::pore, s.x1_px, s.y1_px, b.x_mm, b.y_mm});
+          by_id.emplace(s.id, &s);
+          const capture::PointMm a = capture::to_mm(calibration, s.x_px[0], s.y_px[0]);
+          const capture::PointMm b = capture::to_mm(calibration, s.x_px[1], s.y_px[1]);
+          sf.points_from.push_back({s.id, sf.frame_from, capture::FeatureType::pore, s.x_px[0],
+                                    s.y_px[0], a.x_mm, a.y_mm});
+          sf.points_to.push_back({s.id, sf.frame_to, capture::FeatureType::pore, s.x_px[1],
+                                  s.y_px[1], b.x_mm, b.y_mm});
         }
         if (sf.points_from.size() >= 3) {
           capture::triangulate_strain(sf.points_from, sf.points_to, 3.0, sf.edges, sf.triangles);
+          // The blend reads each step's two frames by the tracker's count, which skips the
+          // camera frames the session dropped.
+          const std::int32_t camera_from = sf.frame_from;
+          sf.frame_from = steps.front().first_frame;
+          sf.frame_to = sf.frame_from + 1;
+          capture::blend_window_gradients(sf, by_id, calibration, capture::kWindowGradientShare);
+          sf.frame_from = camera_from;
+          sf.frame_to = static_cast<std::int32_t>(f.index);
           summary.strain_edges += static_cast<std::int64_t>(sf.edges.size());
           if (view_slid) {
             summary.strain_edges_near_gaps +=
@@ -580,6 +636,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   if (failure) std::rethrow_exception(failure);
   if (acquisition_failure) std::rethrow_exception(acquisition_failure);
 
+  summary.smoothing_frames = smoother.window_frames();
   summary.frames_in = frames_in;
   summary.frames_driver_stamped = frames_driver_stamped;
   summary.frames_dropped = queue.dropped() + left_waiting;
@@ -639,6 +696,21 @@ std::string format_summary(const LiveSummary& s) {
       "display     {} device frames sent at {:g} Hz (held between camera frames); "
       "median {:.0f} points tracked a frame\n",
       s.device_frames_sent, s.device_rate_hz, s.median_points);
+  if (s.smoothing_choices > 0) {
+    out += fmt::format(
+        "smoothing   each track's step fitted over its last {} positions at the end (a "
+        "quadratic looking back; {}; chosen {} time{} by the tracks' own noise, {} to {})\n",
+        s.smoothing_frames, s.smoothing_frames == 0 ? "none" : "no latency added",
+        s.smoothing_choices, s.smoothing_choices == 1 ? "" : "s", s.smoothing_min_frames,
+        s.smoothing_max_frames);
+  } else {
+    out += fmt::format("smoothing   {}\n",
+                       s.smoothing_frames == 0
+                           ? std::string("none")
+                           : fmt::format("each track's step fitted over its last {} positions "
+                                         "(a quadratic looking back; no latency added)",
+                                         s.smoothing_frames));
+  }
   if (s.strain_edges_near_gaps > 0) {
     out += fmt::format(
         "contact     {} of {} strain edges left out, at or within {} cell of skin the frames show "

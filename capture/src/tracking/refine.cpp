@@ -756,19 +756,6 @@ int AlignmentTracker::frames() const {
   return state_->frames;
 }
 
-std::vector<AlignmentTracker::Step> AlignmentTracker::last_step() const {
-  const State& s = *state_;
-  std::vector<Step> steps;
-  steps.reserve(s.live.size());
-  for (const auto& l : s.live) {
-    const Track& t = l->track;
-    const std::size_t k = t.x_px.size();
-    if (k < 2 || t.last_frame() != s.frames - 1) continue;
-    steps.push_back({t.id, t.x_px[k - 2], t.y_px[k - 2], t.x_px[k - 1], t.y_px[k - 1]});
-  }
-  return steps;
-}
-
 int AlignmentTracker::live_tracks() const {
   return static_cast<int>(state_->live.size());
 }
@@ -1349,6 +1336,30 @@ int shortest_track_for(const std::vector<Eigen::Vector2d>& view_motion, double s
 }
 
 }  // namespace
+
+std::vector<Track> AlignmentTracker::last_step() const {
+  const State& s = *state_;
+  std::vector<Track> steps;
+  steps.reserve(s.live.size());
+  for (const auto& l : s.live) {
+    const Track& t = l->track;
+    const std::size_t k = t.x_px.size();
+    if (k < 2 || t.last_frame() != s.frames - 1) continue;
+    Track step;
+    step.id = t.id;
+    step.type = t.type;
+    step.first_frame = s.frames - 2;
+    step.x_px = {t.x_px[k - 2], t.x_px[k - 1]};
+    step.y_px = {t.y_px[k - 2], t.y_px[k - 1]};
+    if (has_gradients(t)) step.gradient = {t.gradient[k - 2], t.gradient[k - 1]};
+    steps.push_back(std::move(step));
+  }
+  if (s.params.curvature_correction) {
+    correct_window_curvature(steps, window_moment_px2(s.half_side),
+                             s.params.neighbour_radius_mm * s.px_per_mm, 0.5, s.threads);
+  }
+  return steps;
+}
 
 std::vector<Track> AlignmentTracker::finish(RefineStats* stats) {
   State& s = *state_;

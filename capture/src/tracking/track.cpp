@@ -1,4 +1,5 @@
 #include "tactile/capture/track.hpp"
+#include "tactile/capture/causal_smoothing.hpp"
 #include "tactile/common/parallel_for.hpp"
 #include "tactile/common/stats.hpp"
 
@@ -383,6 +384,95 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
     if (estimate[c] < best_error) {
       best_error = estimate[c];
       best = candidates[c];
+    }
+  }
+  return best;
+}
+
+namespace {
+
+// The weights that give the step into the last of `window` equally spaced positions, f(0) -
+// f(-1) (or with `step` false the last position, f(0)), of the least-squares polynomial of
+// `degree` through them (oldest first).
+std::vector<double> causal_weights(int window, int degree, bool step) {
+  std::vector<double> times;
+  for (int i = 0; i < window; ++i) times.push_back(i - (window - 1));
+  std::vector<double> w = polynomial_fit_weights(times, degree, 0);
+  if (step) {
+    const std::vector<double> before = polynomial_fit_weights(times, degree, -1);
+    for (std::size_t i = 0; i < w.size(); ++i) w[i] -= before[i];
+  }
+  return w;
+}
+
+}  // namespace
+
+int causal_smoothing_that_fits(const std::vector<Track>& tracks, int degree, double max_residual_px,
+                               int threads, double noise_scale) {
+  if (degree < 1 || degree > 2) throw std::invalid_argument("degree must be 1 or 2");
+  if (!(noise_scale > 0)) throw std::invalid_argument("noise_scale must be > 0");
+  // As smoothing_that_fits: pairs of neighbouring tracks, the noise of each pair's relative
+  // position measured by the centred half-window 2 smoother. For a causal window with step
+  // weights w (w0 on the last position, w1 on the one before), Stein's estimate of the squared
+  // error of a smoothed change, per coordinate, is the mean square of what the smoothing changes
+  // in the raw change plus 2 sigma^2 (w0 - w1 - 1); the raw change's is 2 sigma^2.
+  constexpr int kNoiseWindow = 2;
+  constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;
+  const auto series = neighbour_series(tracks, kCausalChoiceFrames, kMaxSeries, threads);
+  if (series.size() < kMinSeries) return 0;
+  QuadraticSmoother noise_smoother(kNoiseWindow, RefineParams{}.smoothing_kernel);
+  std::vector<double> noise_variance;
+  for (const auto& s : series) {
+    const SmootherNoise norms = smoother_noise(noise_smoother, static_cast<int>(s.dx.size()));
+    noise_variance.push_back(noise_scale * removed_by(s, noise_smoother).sum_sq /
+                             (2 * norms.removed));
+  }
+  std::vector<double> raw;
+  for (const double v : noise_variance) raw.push_back(2 * 2 * v);  // both coordinates
+  int best = 0;
+  double best_error = trimmed_mean(raw);
+  const std::vector<std::size_t> sample = spread_sample(tracks.size(), kMaxSeries);
+  for (const int window : kCausalWindows) {
+    const std::vector<double> w = causal_weights(window, degree, true);
+    const double w0 = w.back(), w1 = w[w.size() - 2];
+    const auto n_w = static_cast<std::size_t>(window);
+    const std::vector<double> last = causal_weights(window, degree, false);
+    std::vector<double> residuals;
+    for (const std::size_t i : sample) {
+      const Track& t = tracks[i];
+      if (t.x_px.size() < n_w) continue;
+      double sum = 0;
+      for (const auto* v : {&t.x_px, &t.y_px}) {
+        for (std::size_t e = n_w - 1; e < v->size(); ++e) {
+          double fitted = 0;
+          for (std::size_t j = 0; j < n_w; ++j) fitted += last[j] * (*v)[e + 1 - n_w + j];
+          sum += (fitted - (*v)[e]) * (fitted - (*v)[e]);
+        }
+      }
+      residuals.push_back(std::sqrt(sum / static_cast<double>(t.x_px.size() + 1 - n_w)));
+    }
+    if (residuals.empty() || median(residuals) > max_residual_px) continue;
+    std::vector<double> error;
+    for (std::size_t k = 0; k < series.size(); ++k) {
+      double sum = 0;
+      std::size_t count = 0;
+      for (const auto* v : {&series[k].dx, &series[k].dy}) {
+        for (std::size_t t = n_w - 1; t < v->size(); ++t) {
+          double smoothed = 0;
+          for (std::size_t i = 0; i < n_w; ++i) smoothed += w[i] * (*v)[t + 1 - n_w + i];
+          const double change = (*v)[t] - (*v)[t - 1];
+          sum += (smoothed - change) * (smoothed - change);
+          ++count;
+        }
+      }
+      // count covers both coordinates: per change, twice the mean of one.
+      error.push_back(2 * sum / static_cast<double>(count) +
+                      2 * 2 * noise_variance[k] * (w0 - w1 - 1));
+    }
+    const double estimate = trimmed_mean(std::move(error));
+    if (estimate < best_error) {
+      best_error = estimate;
+      best = window;
     }
   }
   return best;

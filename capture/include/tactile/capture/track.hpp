@@ -87,6 +87,20 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
                         SmoothingKernel kernel = SmoothingKernel::uniform, int threads = 1,
                         double noise_scale = 1.0);
 
+// The same choice for a smoothing that may only look back (causal_smoothing.hpp): a polynomial
+// of `degree` (1 or 2) fitted to a track's last W positions and read at the last two, W one of
+// kCausalWindows (or 0 for none), chosen by the same estimate of the error of the frame-to-frame
+// changes between neighbouring tracks. Looking back, the fit lags a strain that changes within
+// it, which the estimate sees as it sees the centred window's flattening. As there, a window
+// that moves the median track's last position by more than max_residual_px (RMS) is not
+// taken: the noise is measured by a centred smoother, and where the motion changes within a few
+// frames that smoother takes some of it for noise. Tracks of fewer than kCausalChoiceFrames
+// frames take no part; with fewer than 20 neighbour pairs the answer is 0.
+inline constexpr std::array<int, 9> kCausalWindows = {4, 5, 6, 8, 10, 12, 16, 20, 24};
+inline constexpr int kCausalChoiceFrames = 25;
+int causal_smoothing_that_fits(const std::vector<Track>& tracks, int degree, double max_residual_px,
+                               int threads = 1, double noise_scale = 1.0);
+
 // Sub-pixel refinement against the images. A detected landmark gives identity and no drift but
 // a noisy centre (a pore's grey-level centre moves with noise, blur and the ridge beside it);
 // the image around it gives a precise displacement. Each track's neighbourhood in its first
@@ -195,16 +209,14 @@ class AlignmentTracker {
   // Whether the whole view moved into the last frame by more than an alignment may move from
   // its start (max_offset_mm): the skin slides through it and new skin enters every frame.
   bool sliding() const;
-  // The live tracks followed into the last frame from the one before it, with their positions
-  // in both (pixels, as aligned: no smoothing, no curvature correction, which need later
-  // frames): what a causal consumer measures strain from, frame by frame. Ids are the tracker's
-  // own (stable while a track lives), not finish()'s renumbering.
-  struct Step {
-    std::int32_t id = 0;
-    double x0_px = 0, y0_px = 0;  // in the frame before the last
-    double x1_px = 0, y1_px = 0;  // in the last frame
-  };
-  std::vector<Step> last_step() const;
+  // The live tracks followed into the last frame from the one before it, as tracks of those two
+  // frames (positions in pixels and window gradients; first_frame is the tracker's count of
+  // frames, less 2): what a causal consumer measures strain from, frame by frame. Each position
+  // is corrected for the window's curvature bias as finish() corrects whole tracks, from the
+  // neighbours' motion between the two frames (the bias of a step is the change of the bias, so
+  // the first frame's correction is 0); no smoothing, which needs later frames. Ids are the
+  // tracker's own (stable while a track lives), not finish()'s renumbering.
+  std::vector<Track> last_step() const;
   // The tracks of at least min_frames frames (where the view slid, fewer: half the frames a
   // point stays in view, at least 3; see RefineStats), numbered 0.. in order of first frame (then
   // of seed); the tracker is empty afterwards.

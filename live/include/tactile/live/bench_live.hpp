@@ -7,6 +7,7 @@
 // camera would (no file decoding), played into the emulated display on the real clock.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct LiveBenchOptions {
   double strain = 0.08;         // the wave's peak strain
   double px_per_mm = 47;        // the prints' scale
   std::vector<LiveBenchCase> cases = live_bench_cases(false);
+  // The rate the frames are handed to the session at; unset: the case's camera rate. The scene
+  // is filmed at the case's rate either way: a slower hand-over (a test under sanitizers) drops
+  // no frame where the processing is slower than the camera, and measures accuracy only.
+  std::optional<double> delivery_rate_hz;
 };
 
 struct LiveBenchRow {

@@ -11,6 +11,7 @@
 
 #include "tactile/capture/capture.hpp"
 #include "tactile/capture/capture_request.hpp"
+#include "tactile/capture/causal_smoothing.hpp"
 #include "tactile/common/option_table.hpp"
 #include "tactile/mapping/map_request.hpp"
 
@@ -28,6 +29,8 @@ struct LiveRequest {
   std::optional<int> queue_frames;
   // Frames between detections of new landmarks: the batch capture's own rhythm.
   int detect_every = capture::CaptureParams{}.redetect_every_frames;
+  // Positions of each track fitted by the causal smoothing (0: none); unset: chosen by the tracks.
+  std::optional<int> smooth_frames;
 };
 
 const std::vector<OptionRow<LiveRequest>>& live_options();
@@ -57,6 +60,7 @@ struct ResolvedLive {
   std::optional<std::filesystem::path> record;
   std::optional<int> queue_frames;  // unset: queue_frames_for(the camera's rate)
   int detect_every = 0;
+  capture::CausalSmoothing smoothing;
 };
 
 // Checks every value and the rules between them (RequestError in the front end's spelling): one

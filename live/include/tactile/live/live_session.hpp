@@ -70,6 +70,11 @@ struct LiveSummary {
   std::int64_t strain_edges_near_gaps = 0;
   bool stopped = false;  // by a stop request (not the end of the source or of --seconds)
   std::string detector;  // the pore detector chosen on the first frame
+  // The causal smoothing of tracks: the window in use at the end (positions fitted, 0: none),
+  // the windows chosen along the way (empty when one was given) and the smallest and largest.
+  int smoothing_frames = 0;
+  int smoothing_choices = 0;
+  int smoothing_min_frames = 0, smoothing_max_frames = 0;
 };
 
 // What is known once the first frame has arrived.
