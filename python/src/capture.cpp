@@ -49,13 +49,12 @@ std::shared_ptr<capture::StrainMovie> capture_movie(const fs::path& source,
 }  // namespace
 
 void bind_capture(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
-      ("A strain movie from a folder of frames (image files in name order) or a video (.mp4\n"
-       ".avi .mkv .mov), as `tactile capture`; give calib (a file from `tactile calibrate`) or\n"
-       "px_per_mm. Keywords (the command line's options, with underscores):" +
-       kwargs_doc(capture::capture_options()));
-  m.def("capture", &capture_movie, py::arg("source"), doc.c_str());
+  def_with_kwargs(
+      m, "capture", &capture_movie, capture::capture_options(),
+      "A strain movie from a folder of frames (image files in name order) or a video (.mp4\n"
+      ".avi .mkv .mov), as `tactile capture`; give calib (a file from `tactile calibrate`) or\n"
+      "px_per_mm. Keywords (the command line's options, with underscores):",
+      py::arg("source"));
 }
 
 }  // namespace tactile::python

@@ -127,8 +127,8 @@ py::dict play(const movie::TactileMovie& movie, const py::kwargs& kwargs) {
 }  // namespace
 
 void bind_play(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
+  def_with_kwargs(
+      m, "play", &play, display::play_options(),
       "Plays a movie as `tactile play` does, without its emulator window: on an attached display\n"
       "(its vendor interface first), else headless into the emulated device; headless=True: the\n"
       "emulated device only; latero='HOST[:PORT]': that Latero (UDP; a movie of the `latero`\n"
@@ -138,9 +138,8 @@ void bind_play(py::module_& m) {
       "(0 = at rest), for a Latero its address and the link's figures (requests_sent,\n"
       "replies_received, missed_replies, achieved_rate_hz, ...). Ctrl-C stops between two\n"
       "frames, every contactor ramped to rest, then raises KeyboardInterrupt. Keywords (the\n"
-      "command line's options, with underscores):" +
-      kwargs_doc(display::play_options());
-  m.def("play", &play, py::arg("movie"), doc.c_str());
+      "command line's options, with underscores):",
+      py::arg("movie"));
 }
 
 }  // namespace tactile::python
