@@ -25,12 +25,7 @@ std::shared_ptr<capture::StrainMovie> capture_movie(const fs::path& source,
       {source, request.calib.value_or(fs::path{}), request.pore_model.value_or(fs::path{})}, [&] {
         capture::ResolvedCapture run = capture::resolve(request, OptionSpelling::python);
         const capture::CaptureMessages messages{
-            .note =
-                [](const std::string& text) {
-                  py::gil_scoped_acquire locked;
-                  py::module_::import("sys").attr("stdout").attr("write")("capture: " + text +
-                                                                          "\n");
-                },
+            .note = [](const std::string& text) { write_python_stdout("capture: " + text + "\n"); },
             .warning =
                 [](const std::string& text) {
                   py::gil_scoped_acquire locked;

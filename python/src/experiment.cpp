@@ -25,13 +25,10 @@ py::dict run(const std::filesystem::path& file, const py::kwargs& kwargs) {
         with_inputs({file}, [&] { return experiments::resolve(request, OptionSpelling::python); });
     out = resolved.out;
     for (const auto& r : resolved.experiment.runs) run_ids.push_back(r.id);
-    report = experiments::run_experiment(
-        std::move(resolved.experiment), out, request.threads,
-        [quiet = request.quiet](const std::string& message) {
-          if (quiet) return;
-          py::gil_scoped_acquire locked;
-          py::module_::import("sys").attr("stdout").attr("write")("  " + message + "\n");
-        });
+    report = experiments::run_experiment(std::move(resolved.experiment), out, request.threads,
+                                         [quiet = request.quiet](const std::string& message) {
+                                           if (!quiet) write_python_stdout("  " + message + "\n");
+                                         });
   }
   py::list runs;
   for (std::size_t i = 0; i < report.results.size(); ++i) {

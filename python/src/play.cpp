@@ -84,13 +84,7 @@ py::dict play(const movie::TactileMovie& movie, const py::kwargs& kwargs) {
     py::gil_scoped_release unlocked;
     // Displays on USB but no emulator window: the module links no GUI library (a window that
     // blocks the interpreter until closed is `tactile play`'s and `tactile view`'s).
-    r = display::play_anywhere(
-        movie, choice,
-        [](const std::string& text) {
-          py::gil_scoped_acquire locked;
-          py::module_::import("sys").attr("stdout").attr("write")(text);
-        },
-        display::usb_play_backends());
+    r = display::play_anywhere(movie, choice, write_python_stdout, display::usb_play_backends());
   }
   // A Ctrl-C that stopped the player is Python's KeyboardInterrupt now.
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
