@@ -233,8 +233,7 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
   provenance.command_line = command_line;
   j["provenance"] = provenance_json(provenance);
   j["calibration"] = calibration_json(sequence.calibration);
-  j["frames"] = fmt::format("frame_000.png .. frame_{:03d}.png",
-                            sequence.frames.empty() ? 0 : sequence.frames.size() - 1);
+  j["frames"] = frame_files_text(sequence.frames.size());
   j["dot_grid"] = "calibration/dot_grid.png";
   const auto json_path = dir / "scene.json";
   write_text_atomically(json_path, j.dump(2) + "\n");
