@@ -40,6 +40,13 @@ auto with_inputs(std::initializer_list<std::filesystem::path> inputs, Work&& wor
   }
 }
 
+// Writes `text` to Python's sys.stdout, which a notebook shows where print() would, rather than
+// to the process's own; callable from a thread that does not hold the GIL.
+inline void write_python_stdout(const std::string& text) {
+  py::gil_scoped_acquire locked;
+  py::module_::import("sys").attr("stdout").attr("write")(text);
+}
+
 // A member of a result struct and the key it has in the dict Python gets.
 template <typename S, typename T>
 struct Field {

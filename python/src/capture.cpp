@@ -25,12 +25,7 @@ std::shared_ptr<capture::StrainMovie> capture_movie(const fs::path& source,
       {source, request.calib.value_or(fs::path{}), request.pore_model.value_or(fs::path{})}, [&] {
         capture::ResolvedCapture run = capture::resolve(request, OptionSpelling::python);
         const capture::CaptureMessages messages{
-            .note =
-                [](const std::string& text) {
-                  py::gil_scoped_acquire locked;
-                  py::module_::import("sys").attr("stdout").attr("write")("capture: " + text +
-                                                                          "\n");
-                },
+            .note = [](const std::string& text) { write_python_stdout("capture: " + text + "\n"); },
             .warning =
                 [](const std::string& text) {
                   py::gil_scoped_acquire locked;
@@ -49,13 +44,12 @@ std::shared_ptr<capture::StrainMovie> capture_movie(const fs::path& source,
 }  // namespace
 
 void bind_capture(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
-      ("A strain movie from a folder of frames (image files in name order) or a video (.mp4\n"
-       ".avi .mkv .mov), as `tactile capture`; give calib (a file from `tactile calibrate`) or\n"
-       "px_per_mm. Keywords (the command line's options, with underscores):" +
-       kwargs_doc(capture::capture_options()));
-  m.def("capture", &capture_movie, py::arg("source"), doc.c_str());
+  def_with_kwargs(
+      m, "capture", &capture_movie, capture::capture_options(),
+      "A strain movie from a folder of frames (image files in name order) or a video (.mp4\n"
+      ".avi .mkv .mov), as `tactile capture`; give calib (a file from `tactile calibrate`) or\n"
+      "px_per_mm. Keywords (the command line's options, with underscores):",
+      py::arg("source"));
 }
 
 }  // namespace tactile::python

@@ -229,30 +229,28 @@ void bind_classifier(py::module_& m) {
   m.def(
       "read_classifier_model", [](const fs::path& path) { return model_argument(path); },
       py::arg("path"));
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string train_doc =
-      ("Trains a classifier of the labelled recordings (labels CSV file,class[,value]) as\n"
-       "`tactile classify train`: options left unset are the procedure's defaults (stroke,\n"
-       "static, dp, ru, roll), or with select=True chosen by 5-fold cross-validation on these\n"
-       "recordings (`--select`; the comparison recorded in the model); cv=K also scores it by\n"
-       "stratified K-fold cross-validation (`--cv K`; nested with select, the choice made again\n"
-       "inside each fold). Writes the model file when `out` is given. The model's `report` is\n"
-       "what the command prints: recordings, class_names, the options used (inputs,\n"
-       "baseline_at, electrodes, trim, kernel_degree, c), training_correct/_tested, `cv` (folds,\n"
-       "fold_accuracy, mean, spread, correct, tested, nested; with select also inner_folds,\n"
-       "candidates and the candidate each fold chose) and `selection` (folds, candidates with\n"
-       "their accuracy, chosen index), each None when not asked for. Keywords (the command\n"
-       "line's options, with underscores; inputs also as a list):" +
-       kwargs_doc(perception::train_options()));
-  m.def("train", &train, py::arg("recordings"), py::arg("labels"), train_doc.c_str());
-  static const std::string test_doc =
-      ("Accuracy of a model (a ClassifierModel or its file) on labelled recordings: accuracy,\n"
-       "correct, tested, class_names, confusion [true][predicted], files, predicted; with csv,\n"
-       "also the files `classify test --csv` writes. Keywords (the command line's options, with\n"
-       "underscores):" +
-       kwargs_doc(perception::test_options()));
-  m.def("test", &test, py::arg("model"), py::arg("recordings"), py::arg("labels"),
-        test_doc.c_str());
+  def_with_kwargs(
+      m, "train", &train, perception::train_options(),
+      "Trains a classifier of the labelled recordings (labels CSV file,class[,value]) as\n"
+      "`tactile classify train`: options left unset are the procedure's defaults (stroke,\n"
+      "static, dp, ru, roll), or with select=True chosen by 5-fold cross-validation on these\n"
+      "recordings (`--select`; the comparison recorded in the model); cv=K also scores it by\n"
+      "stratified K-fold cross-validation (`--cv K`; nested with select, the choice made again\n"
+      "inside each fold). Writes the model file when `out` is given. The model's `report` is\n"
+      "what the command prints: recordings, class_names, the options used (inputs,\n"
+      "baseline_at, electrodes, trim, kernel_degree, c), training_correct/_tested, `cv` (folds,\n"
+      "fold_accuracy, mean, spread, correct, tested, nested; with select also inner_folds,\n"
+      "candidates and the candidate each fold chose) and `selection` (folds, candidates with\n"
+      "their accuracy, chosen index), each None when not asked for. Keywords (the command\n"
+      "line's options, with underscores; inputs also as a list):",
+      py::arg("recordings"), py::arg("labels"));
+  def_with_kwargs(
+      m, "test", &test, perception::test_options(),
+      "Accuracy of a model (a ClassifierModel or its file) on labelled recordings: accuracy,\n"
+      "correct, tested, class_names, confusion [true][predicted], files, predicted; with csv,\n"
+      "also the files `classify test --csv` writes. Keywords (the command line's options, with\n"
+      "underscores):",
+      py::arg("model"), py::arg("recordings"), py::arg("labels"));
   m.def("predict", &predict, py::arg("model"), py::arg("files"),
         "(class, value or None) of each recording (BioTac-style CSV).");
 }

@@ -40,14 +40,13 @@ py::dict export_movie(const movie::TactileMovie& mv, const py::kwargs& kwargs) {
 
 void bind_exchange(py::module_& m) {
   using movie::TactileMovie;
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string export_doc =
-      ("Writes the movie in formats other tools read, as `tactile export`: every file given or\n"
-       "none, atomically. Returns what was written (HJIF channels, timescale and the deflection\n"
-       "written as amplitude 1; the WAV's full scale) and the summary lines. Keywords (the\n"
-       "command line's options, with underscores):" +
-       kwargs_doc(movie::export_options()));
-  m.def("export", &export_movie, py::arg("movie"), export_doc.c_str());
+  def_with_kwargs(
+      m, "export", &export_movie, movie::export_options(),
+      "Writes the movie in formats other tools read, as `tactile export`: every file given or\n"
+      "none, atomically. Returns what was written (HJIF channels, timescale and the deflection\n"
+      "written as amplitude 1; the WAV's full scale) and the summary lines. Keywords (the\n"
+      "command line's options, with underscores):",
+      py::arg("movie"));
   m.def(
       "export_hjif",
       [](const std::filesystem::path& path, const TactileMovie& mv, int ticks_per_sample) {

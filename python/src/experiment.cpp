@@ -25,13 +25,10 @@ py::dict run(const std::filesystem::path& file, const py::kwargs& kwargs) {
         with_inputs({file}, [&] { return experiments::resolve(request, OptionSpelling::python); });
     out = resolved.out;
     for (const auto& r : resolved.experiment.runs) run_ids.push_back(r.id);
-    report = experiments::run_experiment(
-        std::move(resolved.experiment), out, request.threads,
-        [quiet = request.quiet](const std::string& message) {
-          if (quiet) return;
-          py::gil_scoped_acquire locked;
-          py::module_::import("sys").attr("stdout").attr("write")("  " + message + "\n");
-        });
+    report = experiments::run_experiment(std::move(resolved.experiment), out, request.threads,
+                                         [quiet = request.quiet](const std::string& message) {
+                                           if (!quiet) write_python_stdout("  " + message + "\n");
+                                         });
   }
   py::list runs;
   for (std::size_t i = 0; i < report.results.size(); ++i) {
@@ -56,15 +53,14 @@ py::dict run(const std::filesystem::path& file, const py::kwargs& kwargs) {
 }  // namespace
 
 void bind_experiment(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
-      ("Runs an experiment file (every source x layout x method x parameter combination, in\n"
-       "parallel) into its folder, as `tactile experiment` does without its cluster modes:\n"
-       "movies, metrics.csv, plots, resolved.json. Returns out, runs (id, frames,\n"
-       "strain_correlation, strain_rms_error, saturated_fraction, map_ms), files and threads.\n"
-       "Keywords (the command line's options, with underscores):" +
-       kwargs_doc(experiments::experiment_options()));
-  m.def("experiment", &run, py::arg("file"), doc.c_str());
+  def_with_kwargs(
+      m, "experiment", &run, experiments::experiment_options(),
+      "Runs an experiment file (every source x layout x method x parameter combination, in\n"
+      "parallel) into its folder, as `tactile experiment` does without its cluster modes:\n"
+      "movies, metrics.csv, plots, resolved.json. Returns out, runs (id, frames,\n"
+      "strain_correlation, strain_rms_error, saturated_fraction, map_ms), files and threads.\n"
+      "Keywords (the command line's options, with underscores):",
+      py::arg("file"));
 }
 
 }  // namespace tactile::python

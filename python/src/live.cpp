@@ -113,16 +113,15 @@ py::dict run_session(const std::string& source, const py::kwargs& kwargs) {
 }  // namespace
 
 void bind_live(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
+  def_with_kwargs(
+      m, "live", &run_session, live::live_options(),
       "A live session as `tactile live SOURCE` runs it, without its window: on an attached\n"
       "display (its vendor interface first), else into the emulated device; headless=True: the\n"
       "emulated device only; latero='HOST[:PORT]' (with layout='latero'): that Latero, with\n"
       "the blade mapping blade_* as play() takes them. Returns its summary (target, frames in,\n"
       "processed, dropped, latency p50/p99/max in ms). Ctrl-C (or a notebook's stop) ends it\n"
-      "with the device at rest. Keywords (the command line's options, with underscores):" +
-      kwargs_doc(live::live_options());
-  m.def("live", &run_session, py::arg("source"), doc.c_str());
+      "with the device at rest. Keywords (the command line's options, with underscores):",
+      py::arg("source"));
 }
 
 }  // namespace tactile::python

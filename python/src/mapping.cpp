@@ -35,12 +35,11 @@ std::shared_ptr<movie::TactileMovie> map_strain(const capture::StrainMovie& stra
 }  // namespace
 
 void bind_mapping(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
+  def_with_kwargs(
+      m, "map", &map_strain, mapping::map_options(),
       "A tactile movie from a strain movie, as `tactile map`: layout a Layout, a built-in name\n"
-      "or a FILE.json. Keywords (the command line's options, with underscores):" +
-      kwargs_doc(mapping::map_options());
-  m.def("map", &map_strain, py::arg("strain"), py::arg("layout") = "stress", doc.c_str());
+      "or a FILE.json. Keywords (the command line's options, with underscores):",
+      py::arg("strain"), py::arg("layout") = "stress");
 }
 
 }  // namespace tactile::python

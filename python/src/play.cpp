@@ -84,13 +84,7 @@ py::dict play(const movie::TactileMovie& movie, const py::kwargs& kwargs) {
     py::gil_scoped_release unlocked;
     // Displays on USB but no emulator window: the module links no GUI library (a window that
     // blocks the interpreter until closed is `tactile play`'s and `tactile view`'s).
-    r = display::play_anywhere(
-        movie, choice,
-        [](const std::string& text) {
-          py::gil_scoped_acquire locked;
-          py::module_::import("sys").attr("stdout").attr("write")(text);
-        },
-        display::usb_play_backends());
+    r = display::play_anywhere(movie, choice, write_python_stdout, display::usb_play_backends());
   }
   // A Ctrl-C that stopped the player is Python's KeyboardInterrupt now.
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -127,8 +121,8 @@ py::dict play(const movie::TactileMovie& movie, const py::kwargs& kwargs) {
 }  // namespace
 
 void bind_play(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
+  def_with_kwargs(
+      m, "play", &play, display::play_options(),
       "Plays a movie as `tactile play` does, without its emulator window: on an attached display\n"
       "(its vendor interface first), else headless into the emulated device; headless=True: the\n"
       "emulated device only; latero='HOST[:PORT]': that Latero (UDP; a movie of the `latero`\n"
@@ -138,9 +132,8 @@ void bind_play(py::module_& m) {
       "(0 = at rest), for a Latero its address and the link's figures (requests_sent,\n"
       "replies_received, missed_replies, achieved_rate_hz, ...). Ctrl-C stops between two\n"
       "frames, every contactor ramped to rest, then raises KeyboardInterrupt. Keywords (the\n"
-      "command line's options, with underscores):" +
-      kwargs_doc(display::play_options());
-  m.def("play", &play, py::arg("movie"), doc.c_str());
+      "command line's options, with underscores):",
+      py::arg("movie"));
 }
 
 }  // namespace tactile::python

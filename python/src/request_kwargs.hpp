@@ -97,4 +97,14 @@ std::string kwargs_doc(const std::vector<OptionRow<R>>& table) {
   return doc;
 }
 
+// Defines NAME(args..., **kwargs) as `run`, its docstring `about` followed by the keywords of
+// `table`. pybind11 copies the docstring while defining, so it need not outlive this call.
+template <typename R, typename Run, typename... Args>
+void def_with_kwargs(py::module_& m, const char* name, Run run,
+                     const std::vector<OptionRow<R>>& table, const std::string& about,
+                     const Args&... args) {
+  const std::string doc = about + kwargs_doc(table);
+  m.def(name, run, args..., doc.c_str());
+}
+
 }  // namespace tactile::python

@@ -35,15 +35,14 @@ py::dict synth(const std::filesystem::path& out_dir, const py::kwargs& kwargs) {
 }  // namespace
 
 void bind_synth(py::module_& m) {
-  // pybind11 keeps the pointer to the docstring: it must outlive the module.
-  static const std::string doc =
-      ("Writes a synthetic fingerprint sequence with exact ground truth into out_dir, as `tactile\n"
-       "synth`: frame_NNN.png, landmarks.csv and scene.json (and calibration/dot_grid.png for a\n"
-       "scene); with from_print, a real print moved by an exact warp. Returns frames, width_px,\n"
-       "height_px, landmark_positions, marked_pores, seconds and the summary line. Keywords\n"
-       "(the command line's options, with underscores):" +
-       kwargs_doc(capture::synth_options()));
-  m.def("synth", &synth, py::arg("out_dir"), doc.c_str());
+  def_with_kwargs(
+      m, "synth", &synth, capture::synth_options(),
+      "Writes a synthetic fingerprint sequence with exact ground truth into out_dir, as `tactile\n"
+      "synth`: frame_NNN.png, landmarks.csv and scene.json (and calibration/dot_grid.png for a\n"
+      "scene); with from_print, a real print moved by an exact warp. Returns frames, width_px,\n"
+      "height_px, landmark_positions, marked_pores, seconds and the summary line. Keywords\n"
+      "(the command line's options, with underscores):",
+      py::arg("out_dir"));
 }
 
 }  // namespace tactile::python

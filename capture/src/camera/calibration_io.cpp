@@ -40,15 +40,18 @@ void check_scale_agrees(const Calibration& c, const std::string& where) {
 }
 }  // namespace
 
+nlohmann::json calibration_json(const Calibration& calibration) {
+  return {{"px_to_mm", calibration.px_to_mm},
+          {"mm_per_px", calibration.mm_per_px},
+          {"image_width_px", calibration.image_width_px},
+          {"image_height_px", calibration.image_height_px},
+          {"method", calibration.method}};
+}
+
 void write_calibration_json(const std::filesystem::path& path, const Calibration& calibration) {
-  nlohmann::json j;
+  nlohmann::json j = calibration_json(calibration);
   j["format"] = "tactile-calibration";
   j["format_version"] = kCalibrationFormatVersion;
-  j["px_to_mm"] = calibration.px_to_mm;
-  j["mm_per_px"] = calibration.mm_per_px;
-  j["image_width_px"] = calibration.image_width_px;
-  j["image_height_px"] = calibration.image_height_px;
-  j["method"] = calibration.method;
   write_text_atomically(path, j.dump(2) + "\n");
 }
 

@@ -342,6 +342,10 @@ std::string frame_file_name(std::size_t i) {
   return fmt::format("frame_{:03d}.png", i);
 }
 
+std::string frame_files_text(std::size_t count) {
+  return frame_file_name(0) + " .. " + frame_file_name(count == 0 ? 0 : count - 1);
+}
+
 void write_frames(const std::filesystem::path& dir, const std::vector<GrayImage>& frames) {
   std::filesystem::create_directories(dir);
   for (std::size_t i = 0; i < frames.size(); ++i) write_png(dir / frame_file_name(i), frames[i]);

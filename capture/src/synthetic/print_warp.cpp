@@ -574,8 +574,7 @@ void write_print_sequence(const std::filesystem::path& dir, const PrintSequence&
   provenance.command_line = command_line;
   j["provenance"] = provenance_json(provenance);
   j["marks"] = seq.marks_px.size();
-  j["frames"] = fmt::format("frame_000.png .. frame_{:03d}.png",
-                            seq.frames.empty() ? 0 : seq.frames.size() - 1);
+  j["frames"] = frame_files_text(seq.frames.size());
   write_text_atomically(dir / "scene.json", j.dump(2) + "\n");
 }
 

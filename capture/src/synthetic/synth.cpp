@@ -13,6 +13,7 @@
 #include "camera/cv_image.hpp"
 #include "landmarks/fingerprint.hpp"
 #include "synthetic/scene_model.hpp"
+#include "tactile/capture/calibration_io.hpp"
 #include "tactile/common/atomic_write.hpp"
 #include "tactile/common/csv.hpp"
 #include "tactile/common/json.hpp"
@@ -200,7 +201,6 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
   write_landmarks_csv(dir / "landmarks.csv", sequence.landmarks);
 
   const SceneSpec& s = sequence.spec;
-  const Calibration& c = sequence.calibration;
   nlohmann::json j;
   j["format"] = "tactile-synthetic-scene";
   j["format_version"] = 1;
@@ -232,13 +232,8 @@ void write_sequence(const std::filesystem::path& dir, const SyntheticSequence& s
   Provenance provenance = make_provenance({}, "synthetic scene", j["spec"].dump());
   provenance.command_line = command_line;
   j["provenance"] = provenance_json(provenance);
-  j["calibration"] = {{"px_to_mm", c.px_to_mm},
-                      {"mm_per_px", c.mm_per_px},
-                      {"image_width_px", c.image_width_px},
-                      {"image_height_px", c.image_height_px},
-                      {"method", c.method}};
-  j["frames"] = fmt::format("frame_000.png .. frame_{:03d}.png",
-                            sequence.frames.empty() ? 0 : sequence.frames.size() - 1);
+  j["calibration"] = calibration_json(sequence.calibration);
+  j["frames"] = frame_files_text(sequence.frames.size());
   j["dot_grid"] = "calibration/dot_grid.png";
   const auto json_path = dir / "scene.json";
   write_text_atomically(json_path, j.dump(2) + "\n");

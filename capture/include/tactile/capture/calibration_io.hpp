@@ -3,11 +3,16 @@
 // `tactile capture --calib` (schema in docs/formats.md).
 
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "tactile/capture/strain_movie.hpp"
 
 namespace tactile::capture {
+
+// The calibration's fields as a calibration file spells them, without the file's format and
+// version: a synthetic scene's scene.json carries its calibration in the same words.
+nlohmann::json calibration_json(const Calibration& calibration);
 
 void write_calibration_json(const std::filesystem::path& path, const Calibration& calibration);
 // Throws tactile::FormatError naming the file and the problem (bad JSON, missing or mistyped

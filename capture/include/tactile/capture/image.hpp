@@ -39,6 +39,9 @@ std::vector<GrayImage> read_frames(const std::filesystem::path& dir);
 
 // The file name of frame i as write_frames writes it: frame_000.png, frame_001.png, ...
 std::string frame_file_name(std::size_t i);
+// The files write_frames writes for `count` frames, first to last, as a folder's description
+// names them: "frame_000.png .. frame_179.png".
+std::string frame_files_text(std::size_t count);
 
 // Writes frames under frame_file_name in `dir` (created if missing), the layout read_frames
 // reads back in order.
