@@ -696,21 +696,20 @@ std::string format_summary(const LiveSummary& s) {
       "display     {} device frames sent at {:g} Hz (held between camera frames); "
       "median {:.0f} points tracked a frame\n",
       s.device_frames_sent, s.device_rate_hz, s.median_points);
-  if (s.smoothing_choices > 0) {
-    out += fmt::format(
-        "smoothing   each track's step fitted over its last {} positions at the end (a "
-        "quadratic looking back; {}; chosen {} time{} by the tracks' own noise, {} to {})\n",
-        s.smoothing_frames, s.smoothing_frames == 0 ? "none" : "no latency added",
-        s.smoothing_choices, s.smoothing_choices == 1 ? "" : "s", s.smoothing_min_frames,
-        s.smoothing_max_frames);
-  } else {
-    out += fmt::format("smoothing   {}\n",
-                       s.smoothing_frames == 0
-                           ? std::string("none")
-                           : fmt::format("each track's step fitted over its last {} positions "
-                                         "(a quadratic looking back; no latency added)",
-                                         s.smoothing_frames));
-  }
+  const std::string window =
+      s.smoothing_frames == 0
+          ? std::string("none")
+          : fmt::format(
+                "each track's step fitted over its last {} positions (a quadratic "
+                "looking back; no latency added)",
+                s.smoothing_frames);
+  out += fmt::format("smoothing   {}{}\n", window,
+                     s.smoothing_choices == 0
+                         ? std::string()
+                         : fmt::format(" at the end; chosen {} time{} by the tracks' own noise, "
+                                       "{} to {} positions",
+                                       s.smoothing_choices, s.smoothing_choices == 1 ? "" : "s",
+                                       s.smoothing_min_frames, s.smoothing_max_frames));
   if (s.strain_edges_near_gaps > 0) {
     out += fmt::format(
         "contact     {} of {} strain edges left out, at or within {} cell of skin the frames show "
