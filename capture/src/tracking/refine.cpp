@@ -5,8 +5,10 @@
 #include <map>
 #include <memory>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -736,6 +738,9 @@ struct AlignmentTracker::State {
   cv::Mat smooth, half, half_before, hanning;
   // The whole view's motion into each frame from the one before (pixels; frame 0: none).
   std::vector<Eigen::Vector2d> view_motion;
+  // last_step()'s curvature fits by track id, kept while the track lives.
+  struct StepFit;
+  std::unordered_map<std::int32_t, std::unique_ptr<StepFit>> step_fits;
 };
 
 AlignmentTracker::AlignmentTracker(double px_per_mm, const RefineParams& params, int threads)
@@ -1172,18 +1177,124 @@ double window_moment_px2(int half_side) {
 // wave (tuning prints 01 / 07, 0.7 mm windows) that took the strain error, with the gradients'
 // share blended in, from 0.00050 / 0.00052 to 0.00045 / 0.00048, and at 25 mm/s from 0.00163 /
 // 0.00180 to 0.00150 / 0.00169.
-void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, double radius_px,
-                              double max_px, int threads) {
+// A track's position in frame f, where it has one.
+bool position_in_frame(const Track& t, int f, Eigen::Vector2d& p) {
+  const int k = f - t.first_frame;
+  if (k < 0 || k >= static_cast<int>(t.x_px.size())) return false;
+  p = {t.x_px[static_cast<std::size_t>(k)], t.y_px[static_cast<std::size_t>(k)]};
+  return true;
+}
+
+// One track's fit of its neighbours' motion from its reference frame: the neighbours (at most
+// kNearest within the radius, nearest first), their rows of the weighted quadratic fit and
+// their weights, and the laplacian's weights on their positions, made again only when the set
+// of neighbours alive changes.
+class CurvatureFit {
+ public:
   // 16 / 24 / 32 nearest on tuning print 02: fast scene 0.00146 / 0.00142 / 0.00142, 4 % bump
   // correlation 0.981 / 0.983 / 0.983 (0.984 uncorrected).
-  constexpr std::size_t kNearest = 32;
-  constexpr std::size_t kFewest = 8;
-  const auto at = [](const Track& t, int f, Eigen::Vector2d& p) {
-    const int k = f - t.first_frame;
-    if (k < 0 || k >= static_cast<int>(t.x_px.size())) return false;
-    p = {t.x_px[static_cast<std::size_t>(k)], t.y_px[static_cast<std::size_t>(k)]};
-    return true;
-  };
+  static constexpr std::size_t kNearest = 32;
+  static constexpr std::size_t kFewest = 8;
+  using Near = std::tuple<double, std::size_t, Eigen::Vector2d>;  // distance^2, index, position
+
+  CurvatureFit() = default;
+  // `near`: the tracks within radius_px of `centre` in the reference frame, in any order.
+  CurvatureFit(const Eigen::Vector2d& centre, std::vector<Near> near, double radius_px)
+      : scale_(radius_px / 2) {
+    const auto by_distance = [](const auto& a, const auto& b) {
+      return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
+    };
+    std::sort(near.begin(), near.end(), by_distance);
+    if (near.size() > kNearest) near.resize(kNearest);
+    for (const auto& n : near) {
+      neighbours_.push_back(std::get<1>(n));
+      const Eigen::Vector2d o = (std::get<2>(n) - centre) / scale_;
+      weights_.push_back(std::exp(-0.5 * o.squaredNorm()));
+      Vector6 row;
+      row << 1, o.x(), o.y(), o.x() * o.x(), o.x() * o.y(), o.y() * o.y();
+      rows_.push_back(row);
+    }
+    alpha_.assign(near.size(), 0.0);
+  }
+
+  // The neighbours' indices as given, nearest first.
+  const std::vector<std::size_t>& neighbours() const { return neighbours_; }
+  bool usable() const { return neighbours_.size() >= kFewest; }
+
+  // The laplacian's weights for the neighbours `alive` in a frame (the fit is linear in the
+  // positions: the laplacian is sum_j alpha_j x position_j); false where too few are alive or
+  // the fit fails.
+  bool weigh(const std::vector<char>& alive) {
+    std::size_t used = 0;
+    for (const char a : alive) used += a ? 1 : 0;
+    if (used < kFewest) return false;
+    if (alive != alive_before_) {
+      alive_before_ = alive;
+      Matrix6 a = Matrix6::Zero();
+      for (std::size_t n = 0; n < rows_.size(); ++n) {
+        if (alive[n]) a += weights_[n] * rows_[n] * rows_[n].transpose();
+      }
+      Vector6 laplacian_of_coefficients = Vector6::Zero();
+      laplacian_of_coefficients(3) = laplacian_of_coefficients(5) = 2 / (scale_ * scale_);
+      const Eigen::LDLT<Matrix6> ldlt(a);
+      const Vector6 g = ldlt.solve(laplacian_of_coefficients);
+      fits_ = ldlt.info() == Eigen::Success && g.allFinite();
+      for (std::size_t n = 0; n < rows_.size(); ++n) {
+        alpha_[n] = alive[n] ? weights_[n] * g.dot(rows_[n]) : 0.0;
+      }
+    }
+    return fits_;
+  }
+  const std::vector<double>& alpha() const { return alpha_; }
+
+ private:
+  double scale_ = 1;
+  std::vector<std::size_t> neighbours_;
+  std::vector<Vector6> rows_;
+  std::vector<double> weights_;
+  std::vector<char> alive_before_;
+  std::vector<double> alpha_;
+  bool fits_ = false;
+};
+
+// The correction of a position, -(M / 2) (laplacian of the neighbours' positions `to` by the
+// fit's weights), limited to max_px; zero where it is not finite.
+Eigen::Vector2d position_correction(const CurvatureFit& fit, const std::vector<char>& alive,
+                                    const std::vector<Eigen::Vector2d>& to, double moment_px2,
+                                    double max_px, bool& finite) {
+  Eigen::Vector2d laplacian = Eigen::Vector2d::Zero();
+  for (std::size_t n = 0; n < to.size(); ++n) {
+    if (alive[n]) laplacian += fit.alpha()[n] * to[n];
+  }
+  Eigen::Vector2d dc = -0.5 * moment_px2 * laplacian;
+  finite = dc.allFinite();
+  if (!finite) return Eigen::Vector2d::Zero();
+  if (dc.norm() > max_px) dc *= max_px / dc.norm();
+  return dc;
+}
+
+// The same for the window's gradient: the neighbours' gradients (`gradient(n)`, from the
+// reference frame on through `from_reference`), each entry limited to max_px over the weights'
+// radius of gyration.
+template <class GradientOf>
+std::optional<Eigen::Matrix2d> gradient_correction_of(
+    const CurvatureFit& fit, const std::vector<char>& alive,
+    const std::vector<Eigen::Matrix2d>& from_reference, GradientOf&& gradient, double moment_px2,
+    double max_px) {
+  Eigen::Matrix2d lg = Eigen::Matrix2d::Zero();
+  for (std::size_t n = 0; n < from_reference.size(); ++n) {
+    if (alive[n]) lg += fit.alpha()[n] * gradient(n) * from_reference[n];
+  }
+  Eigen::Matrix2d dg = -0.5 * moment_px2 * lg;
+  const double most = max_px / std::sqrt(moment_px2);
+  if (!dg.allFinite()) return std::nullopt;
+  if (dg.cwiseAbs().maxCoeff() > most) dg *= most / dg.cwiseAbs().maxCoeff();
+  return dg;
+}
+
+void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, double radius_px,
+                              double max_px, int threads) {
+  const auto at = position_in_frame;
   // The tracks alive in each frame a track starts in, binned by where they are there: a
   // track's neighbours come from the cells around it, not a pass over every track.
   struct AliveIn {
@@ -1206,88 +1317,45 @@ void correct_window_curvature(std::vector<Track>& tracks, double moment_px2, dou
     const Track& t = tracks[i];
     const int first = t.first_frame;
     const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
-    std::vector<std::tuple<double, std::size_t, Eigen::Vector2d>> near;
+    std::vector<CurvatureFit::Near> near;
     const AliveIn& in_first = alive_in.at(first);
     in_first.near.for_each_near(centre, radius_px, [&](std::size_t j) {
       const Eigen::Vector2d& p = in_first.at[j];
       const double d2 = (p - centre).squaredNorm();
       if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, p);
     });
-    const auto by_distance = [](const auto& a, const auto& b) {
-      return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
-    };
-    std::sort(near.begin(), near.end(), by_distance);
-    if (near.size() > kNearest) near.resize(kNearest);
+    CurvatureFit fit(centre, std::move(near), radius_px);
+    const std::vector<std::size_t>& neighbours = fit.neighbours();
     auto& out = correction[i];
     out.assign(t.x_px.size(), Eigen::Vector2d::Zero());
-    if (near.size() < kFewest) return;
+    if (!fit.usable()) return;
     // Each neighbour's gradients from the track's reference frame on, where all carry them.
     bool gradients = has_gradients(t);
-    std::vector<Eigen::Matrix2d> from_reference(near.size());
-    for (std::size_t n = 0; n < near.size() && gradients; ++n) {
-      const Track& b = tracks[std::get<1>(near[n])];
+    std::vector<Eigen::Matrix2d> from_reference(neighbours.size());
+    for (std::size_t n = 0; n < neighbours.size() && gradients; ++n) {
+      const Track& b = tracks[neighbours[n]];
       gradients = has_gradients(b) && std::abs(gradient_at(b, first).determinant()) > 1e-6;
       if (gradients) from_reference[n] = gradient_at(b, first).inverse();
     }
     auto& gout = gradient_correction[i];
     if (gradients) gout.assign(t.x_px.size(), Eigen::Matrix2d::Zero());
-    const double scale = radius_px / 2;
-    // The fit is linear in the positions: the laplacian is sum_j alpha_j x position_j, with
-    // weights that change only when the set of neighbours alive in the frame does.
-    std::vector<Vector6> rows(near.size());
-    std::vector<double> weights(near.size());
-    for (std::size_t n = 0; n < near.size(); ++n) {
-      const Eigen::Vector2d o = (std::get<2>(near[n]) - centre) / scale;
-      weights[n] = std::exp(-0.5 * o.squaredNorm());
-      rows[n] << 1, o.x(), o.y(), o.x() * o.x(), o.x() * o.y(), o.y() * o.y();
-    }
-    Vector6 laplacian_of_coefficients = Vector6::Zero();
-    laplacian_of_coefficients(3) = laplacian_of_coefficients(5) = 2 / (scale * scale);
-    std::vector<char> alive(near.size(), 0), alive_before;
-    std::vector<double> alpha(near.size(), 0.0);
-    bool fits = false;
-    std::vector<Eigen::Vector2d> to(near.size());
+    std::vector<char> alive(neighbours.size(), 0);
+    std::vector<Eigen::Vector2d> to(neighbours.size());
     for (std::size_t k = 1; k < t.x_px.size(); ++k) {
       const int f = first + static_cast<int>(k);
-      std::size_t used = 0;
-      for (std::size_t n = 0; n < near.size(); ++n) {
-        alive[n] = at(tracks[std::get<1>(near[n])], f, to[n]);
-        used += alive[n] ? 1 : 0;
+      for (std::size_t n = 0; n < neighbours.size(); ++n) {
+        alive[n] = at(tracks[neighbours[n]], f, to[n]);
       }
-      if (used < kFewest) continue;
-      if (alive != alive_before) {
-        alive_before = alive;
-        Matrix6 a = Matrix6::Zero();
-        for (std::size_t n = 0; n < near.size(); ++n) {
-          if (alive[n]) a += weights[n] * rows[n] * rows[n].transpose();
-        }
-        const Eigen::LDLT<Matrix6> ldlt(a);
-        const Vector6 g = ldlt.solve(laplacian_of_coefficients);
-        fits = ldlt.info() == Eigen::Success && g.allFinite();
-        for (std::size_t n = 0; n < near.size(); ++n) {
-          alpha[n] = alive[n] ? weights[n] * g.dot(rows[n]) : 0.0;
-        }
-      }
-      if (!fits) continue;
-      Eigen::Vector2d laplacian = Eigen::Vector2d::Zero();
-      for (std::size_t n = 0; n < near.size(); ++n) {
-        if (alive[n]) laplacian += alpha[n] * to[n];
-      }
-      Eigen::Vector2d dc = -0.5 * moment_px2 * laplacian;
-      if (!dc.allFinite()) continue;
-      if (dc.norm() > max_px) dc *= max_px / dc.norm();
+      if (!fit.weigh(alive)) continue;
+      bool finite = false;
+      const Eigen::Vector2d dc = position_correction(fit, alive, to, moment_px2, max_px, finite);
+      if (!finite) continue;
       out[k] = dc;
       if (!gradients) continue;
-      Eigen::Matrix2d lg = Eigen::Matrix2d::Zero();
-      for (std::size_t n = 0; n < near.size(); ++n) {
-        if (alive[n])
-          lg += alpha[n] * gradient_at(tracks[std::get<1>(near[n])], f) * from_reference[n];
-      }
-      Eigen::Matrix2d dg = -0.5 * moment_px2 * lg;
-      const double most = max_px / std::sqrt(moment_px2);
-      if (!dg.allFinite()) continue;
-      if (dg.cwiseAbs().maxCoeff() > most) dg *= most / dg.cwiseAbs().maxCoeff();
-      gout[k] = dg;
+      const auto dg = gradient_correction_of(
+          fit, alive, from_reference,
+          [&](std::size_t n) { return gradient_at(tracks[neighbours[n]], f); }, moment_px2, max_px);
+      if (dg) gout[k] = *dg;
     }
   });
   for (std::size_t i = 0; i < tracks.size(); ++i) {
@@ -1337,27 +1405,113 @@ int shortest_track_for(const std::vector<Eigen::Vector2d>& view_motion, double s
 
 }  // namespace
 
-std::vector<Track> AlignmentTracker::last_step() const {
-  const State& s = *state_;
+// A live track's curvature fit for last_step(), made on the first step it is seen in (that
+// step's first frame its reference): the neighbours by id, and their gradients there inverted.
+struct AlignmentTracker::State::StepFit {
+  CurvatureFit fit;
+  std::vector<std::int32_t> ids;
+  std::vector<Eigen::Matrix2d> from_reference;  // empty: no gradient correction
+};
+
+std::vector<Track> AlignmentTracker::last_step() {
+  State& s = *state_;
+  const int before = s.frames - 2, last = s.frames - 1;
   std::vector<Track> steps;
   steps.reserve(s.live.size());
   for (const auto& l : s.live) {
     const Track& t = l->track;
     const std::size_t k = t.x_px.size();
-    if (k < 2 || t.last_frame() != s.frames - 1) continue;
+    if (k < 2 || t.last_frame() != last) continue;
     Track step;
     step.id = t.id;
     step.type = t.type;
-    step.first_frame = s.frames - 2;
+    step.first_frame = before;
     step.x_px = {t.x_px[k - 2], t.x_px[k - 1]};
     step.y_px = {t.y_px[k - 2], t.y_px[k - 1]};
     if (has_gradients(t)) step.gradient = {t.gradient[k - 2], t.gradient[k - 1]};
     steps.push_back(std::move(step));
   }
-  if (s.params.curvature_correction) {
-    correct_window_curvature(steps, window_moment_px2(s.half_side),
-                             s.params.neighbour_radius_mm * s.px_per_mm, 0.5, s.threads);
+  if (!s.params.curvature_correction) return steps;
+
+  // As correct_window_curvature corrects whole tracks, each from its reference frame, with one
+  // fit per track kept from frame to frame (a fit is most of the work, and a frame's budget at
+  // 240 Hz is 4 ms).
+  const double radius_px = s.params.neighbour_radius_mm * s.px_per_mm;
+  const double moment_px2 = window_moment_px2(s.half_side);
+  constexpr double kMaxPx = 0.5;
+  const auto at = position_in_frame;
+  std::unordered_map<std::int32_t, const Track*> by_id;
+  for (const auto& l : s.live) by_id.emplace(l->track.id, &l->track);
+  // Fits of the tracks seen for the first time, from the live tracks in this step's first frame.
+  std::vector<std::size_t> unfitted;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    if (!s.step_fits.count(steps[i].id)) unfitted.push_back(i);
   }
+  if (!unfitted.empty()) {
+    std::vector<Eigen::Vector2d> positions(s.live.size());
+    std::vector<char> alive(s.live.size(), 0);
+    for (std::size_t j = 0; j < s.live.size(); ++j) {
+      alive[j] = at(s.live[j]->track, before, positions[j]);
+    }
+    const NearIndex index(positions, alive, radius_px);
+    for (const std::size_t i : unfitted) {
+      const Track& t = steps[i];
+      const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
+      std::vector<CurvatureFit::Near> near;
+      index.for_each_near(centre, radius_px, [&](std::size_t j) {
+        const double d2 = (positions[j] - centre).squaredNorm();
+        if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, positions[j]);
+      });
+      auto fit = std::make_unique<State::StepFit>();
+      fit->fit = CurvatureFit(centre, std::move(near), radius_px);
+      bool gradients = has_gradients(t);
+      for (const std::size_t j : fit->fit.neighbours()) {
+        const Track& b = s.live[j]->track;
+        fit->ids.push_back(b.id);
+        gradients =
+            gradients && has_gradients(b) && std::abs(gradient_at(b, before).determinant()) > 1e-6;
+        if (gradients) fit->from_reference.push_back(gradient_at(b, before).inverse());
+      }
+      if (!gradients) fit->from_reference.clear();
+      s.step_fits.emplace(t.id, std::move(fit));
+    }
+  }
+  std::unordered_map<std::int32_t, std::unique_ptr<State::StepFit>> kept;
+  for (auto& step : steps) {
+    auto& fit = s.step_fits.at(step.id);
+    const std::size_t n_near = fit->ids.size();
+    std::vector<char> alive(n_near, 0);
+    std::vector<const Track*> near(n_near, nullptr);
+    std::array<std::vector<Eigen::Vector2d>, 2> to{std::vector<Eigen::Vector2d>(n_near),
+                                                   std::vector<Eigen::Vector2d>(n_near)};
+    for (std::size_t n = 0; n < n_near; ++n) {
+      const auto it = by_id.find(fit->ids[n]);
+      if (it == by_id.end()) continue;
+      near[n] = it->second;
+      alive[n] = at(*near[n], before, to[0][n]) && at(*near[n], last, to[1][n]);
+    }
+    if (fit->fit.usable() && fit->fit.weigh(alive)) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        const int f = k == 0 ? before : last;
+        bool finite = false;
+        const Eigen::Vector2d dc =
+            position_correction(fit->fit, alive, to[k], moment_px2, kMaxPx, finite);
+        if (!finite) continue;
+        step.x_px[k] += dc.x();
+        step.y_px[k] += dc.y();
+        if (fit->from_reference.empty() || step.gradient.size() != 2) continue;
+        const auto dg = gradient_correction_of(
+            fit->fit, alive, fit->from_reference,
+            [&](std::size_t n) { return gradient_at(*near[n], f); }, moment_px2, kMaxPx);
+        if (!dg) continue;
+        auto& g = step.gradient[k];
+        g = {g[0] + (*dg)(0, 0), g[1] + (*dg)(0, 1), g[2] + (*dg)(1, 0), g[3] + (*dg)(1, 1)};
+      }
+    }
+    kept.emplace(step.id, std::move(fit));
+  }
+  // Tracks that ended take their fits with them.
+  s.step_fits = std::move(kept);
   return steps;
 }
 

@@ -213,10 +213,10 @@ class AlignmentTracker {
   // frames (positions in pixels and window gradients; first_frame is the tracker's count of
   // frames, less 2): what a causal consumer measures strain from, frame by frame. Each position
   // is corrected for the window's curvature bias as finish() corrects whole tracks, from the
-  // neighbours' motion between the two frames (the bias of a step is the change of the bias, so
-  // the first frame's correction is 0); no smoothing, which needs later frames. Ids are the
-  // tracker's own (stable while a track lives), not finish()'s renumbering.
-  std::vector<Track> last_step() const;
+  // neighbours' motion since the track's first step (its fit kept while it lives); no
+  // smoothing, which needs later frames. Ids are the tracker's own (stable while a track lives),
+  // not finish()'s renumbering.
+  std::vector<Track> last_step();
   // The tracks of at least min_frames frames (where the view slid, fewer: half the frames a
   // point stays in view, at least 3; see RefineStats), numbered 0.. in order of first frame (then
   // of seed); the tracker is empty afterwards.
