@@ -122,6 +122,28 @@ TEST(LiveRequest, RefusesWhatASessionCannotDo) {
   EXPECT_THAT(error_of(r), HasSubstr("no such file or folder"));
 }
 
+TEST(LiveRequest, SmoothingIsNoneFourToThirtyPositionsOrChosen) {
+  const tactile::test::TempDir dir("live");
+  auto r = request_for(dir.path());
+  EXPECT_EQ(tactile::live::resolve(r, OptionSpelling::cli).smoothing.window_frames,
+            tactile::capture::CausalSmoothing::kChosenWindow);
+  for (const int frames : {0, 4, 30}) {
+    r.smooth_frames = frames;
+    EXPECT_EQ(tactile::live::resolve(r, OptionSpelling::cli).smoothing.window_frames, frames);
+  }
+  // A quadratic through three positions or fewer passes through them: no smoothing, said so.
+  for (const int frames : {1, 3}) {
+    r.smooth_frames = frames;
+    EXPECT_THAT(error_of(r),
+                HasSubstr(fmt::format("--smooth-frames: {} frames is too few", frames)));
+  }
+  r.smooth_frames = 31;
+  EXPECT_THAT(error_of(r), HasSubstr("--smooth-frames"));
+  EXPECT_THAT(error_of(r), HasSubstr("30"));
+  r.smooth_frames = -1;
+  EXPECT_THAT(error_of(r), HasSubstr("--smooth-frames"));
+}
+
 TEST(LiveRequest, RecordsOnlyIntoANewOrEmptyFolder) {
   const tactile::test::TempDir dir("live");
   auto r = request_for(dir.path());
