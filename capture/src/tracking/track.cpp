@@ -303,6 +303,27 @@ Removed removed_by(const NeighbourSeries& s, QuadraticSmoother& smooth) {
   return r;
 }
 
+// The noise variance of each neighbour pair's relative position (per coordinate and frame),
+// taken noise_scale times over: what the half-window 2 smoother, which bends only the fastest
+// motions, removes from the pair, against what it removes from white noise of unit variance.
+constexpr int kNoiseWindow = 2;
+constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;  // pairs needed, pairs used at most
+std::vector<double> pair_noise_variance(const std::vector<NeighbourSeries>& series,
+                                        SmoothingKernel kernel, double noise_scale) {
+  QuadraticSmoother noise_smoother(kNoiseWindow, kernel);
+  std::map<int, SmootherNoise> noise_norms;
+  std::vector<double> noise_variance;
+  for (const auto& s : series) {
+    const int n = static_cast<int>(s.dx.size());
+    auto it = noise_norms.find(n);
+    if (it == noise_norms.end())
+      it = noise_norms.emplace(n, smoother_noise(noise_smoother, n)).first;
+    noise_variance.push_back(noise_scale * removed_by(s, noise_smoother).sum_sq /
+                             (2 * it->second.removed));
+  }
+  return noise_variance;
+}
+
 }  // namespace
 
 int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, double max_residual_px,
@@ -322,9 +343,7 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
   // with the least estimated error is taken, 0 (no smoothing) included. The estimate is of the
   // mean error over all pairs, so pairs are averaged (a tenth at each end left out, for the few
   // whose tracks slipped), not their median taken: each pair's estimate is skewed.
-  constexpr int kNoiseWindow = 2;
   constexpr std::size_t kMaxFrames = 256;  // enough frames of each series to choose by
-  constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;
   auto series = neighbour_series(tracks, static_cast<std::size_t>(2 * (kNoiseWindow + 1) + 1),
                                  kMaxSeries, threads);
   if (series.size() < kMinSeries) return 0;
@@ -334,17 +353,7 @@ int smoothing_that_fits(const std::vector<Track>& tracks, int half_window, doubl
       s.dy.resize(kMaxFrames);
     }
   }
-  QuadraticSmoother noise_smoother(kNoiseWindow, kernel);
-  std::map<int, SmootherNoise> noise_norms;
-  std::vector<double> noise_variance;
-  for (const auto& s : series) {
-    const int n = static_cast<int>(s.dx.size());
-    auto it = noise_norms.find(n);
-    if (it == noise_norms.end())
-      it = noise_norms.emplace(n, smoother_noise(noise_smoother, n)).first;
-    noise_variance.push_back(noise_scale * removed_by(s, noise_smoother).sum_sq /
-                             (2 * it->second.removed));
-  }
+  const std::vector<double> noise_variance = pair_noise_variance(series, kernel, noise_scale);
   // No smoothing: every change carries the noise of two frames.
   std::vector<double> error;
   for (std::size_t k = 0; k < series.size(); ++k) {
@@ -416,17 +425,10 @@ int causal_smoothing_that_fits(const std::vector<Track>& tracks, int degree, dou
   // weights w (w0 on the last position, w1 on the one before), Stein's estimate of the squared
   // error of a smoothed change, per coordinate, is the mean square of what the smoothing changes
   // in the raw change plus 2 sigma^2 (w0 - w1 - 1); the raw change's is 2 sigma^2.
-  constexpr int kNoiseWindow = 2;
-  constexpr std::size_t kMinSeries = 20, kMaxSeries = 400;
   const auto series = neighbour_series(tracks, kCausalChoiceFrames, kMaxSeries, threads);
   if (series.size() < kMinSeries) return 0;
-  QuadraticSmoother noise_smoother(kNoiseWindow, RefineParams{}.smoothing_kernel);
-  std::vector<double> noise_variance;
-  for (const auto& s : series) {
-    const SmootherNoise norms = smoother_noise(noise_smoother, static_cast<int>(s.dx.size()));
-    noise_variance.push_back(noise_scale * removed_by(s, noise_smoother).sum_sq /
-                             (2 * norms.removed));
-  }
+  const std::vector<double> noise_variance =
+      pair_noise_variance(series, RefineParams{}.smoothing_kernel, noise_scale);
   std::vector<double> raw;
   for (const double v : noise_variance) raw.push_back(2 * 2 * v);  // both coordinates
   int best = 0;
