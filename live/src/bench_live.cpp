@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <cmath>
-#include <map>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "live_source.hpp"
 #include "tactile/capture/bench.hpp"
@@ -26,6 +28,40 @@ std::vector<LiveBenchCase> live_bench_cases(bool quick) {
     for (const double rate : {30.0, 60.0, 120.0, 240.0}) cases.push_back({w, h, rate});
   }
   return cases;
+}
+
+namespace {
+
+bool case_in_range(const LiveBenchCase& c) {
+  return c.width_px >= 64 && c.width_px <= 4096 && c.height_px >= 64 && c.height_px <= 4096 &&
+         std::isfinite(c.camera_rate_hz) && c.camera_rate_hz >= 1 && c.camera_rate_hz <= 1000;
+}
+
+std::string case_range_error(const LiveBenchCase& c) {
+  return fmt::format(
+      "case {} x {} px at {:g} Hz: sizes must be from 64 to 4096 px, rates from 1 to 1000 Hz",
+      c.width_px, c.height_px, c.camera_rate_hz);
+}
+
+}  // namespace
+
+LiveBenchCase parse_live_bench_case(const std::string& text) {
+  const std::size_t x = text.find('x');
+  const std::size_t at = text.find('@');
+  LiveBenchCase c;
+  // from_chars: no locale, no overflow into a wrapped number, and the whole field must be read.
+  const auto whole = [&](std::size_t from, std::size_t to, auto& value) {
+    const char* end = text.data() + to;
+    const auto [ptr, ec] = std::from_chars(text.data() + from, end, value);
+    return from < to && ec == std::errc() && ptr == end;
+  };
+  if (x == std::string::npos || at == std::string::npos || at < x || !whole(0, x, c.width_px) ||
+      !whole(x + 1, at, c.height_px) || !whole(at + 1, text.size(), c.camera_rate_hz)) {
+    throw std::invalid_argument(
+        fmt::format("case '{}': expected WIDTHxHEIGHT@RATE, e.g. 640x484@60 (pixels, Hz)", text));
+  }
+  if (!case_in_range(c)) throw std::invalid_argument(case_range_error(c));
+  return c;
 }
 
 namespace {
@@ -52,12 +88,7 @@ void check(const LiveBenchOptions& o) {
         "delivery rate: {} Hz is out of range: must be from 1 to 1000", *o.delivery_rate_hz));
   }
   for (const auto& c : o.cases) {
-    if (c.width_px < 64 || c.width_px > 4096 || c.height_px < 64 || c.height_px > 4096 ||
-        !in(c.camera_rate_hz, 1, 1000)) {
-      throw std::invalid_argument(fmt::format(
-          "case {} x {} px at {} Hz: sizes must be from 64 to 4096 px, rates from 1 to 1000 Hz",
-          c.width_px, c.height_px, c.camera_rate_hz));
-    }
+    if (!case_in_range(c)) throw std::invalid_argument(case_range_error(c));
   }
 }
 
@@ -101,12 +132,13 @@ std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
     movie.calibration = sequence.calibration;
     movie.field_width_mm = scene.width_px / options.px_per_mm;
     movie.field_height_mm = scene.height_px / options.px_per_mm;
-    std::map<std::pair<std::int32_t, std::int32_t>, capture::TrackedPoint> points;
+    // Every point as handed out, sorted once at the end: the callback runs on the session's
+    // processing thread, in its latency, so it only appends.
+    std::vector<capture::TrackedPoint> points;
     LiveCallbacks callbacks;
     callbacks.strain = [&](const capture::StrainFrame& f) {
-      for (const auto* side : {&f.points_from, &f.points_to}) {
-        for (const auto& p : *side) points[{p.track_id, p.frame}] = p;
-      }
+      points.insert(points.end(), f.points_from.begin(), f.points_from.end());
+      points.insert(points.end(), f.points_to.begin(), f.points_to.end());
       if (f.frame_to - f.frame_from == 1) movie.frames.push_back(f);
     };
     std::atomic<bool> stop{false};
@@ -115,7 +147,14 @@ std::vector<LiveBenchRow> bench_live(const capture::PoreTrainingPrint& print,
     LiveBenchRow row;
     row.scene = scene;
     row.summary = run_live_from(*source, start, session, device, stop, callbacks, {});
-    for (const auto& [key, p] : points) movie.tracks.push_back(p);
+    // A point handed out twice (the step into its frame and the step out of it) keeps the last.
+    const auto key = [](const capture::TrackedPoint& p) { return std::pair(p.track_id, p.frame); };
+    std::stable_sort(points.begin(), points.end(),
+                     [&](const auto& a, const auto& b) { return key(a) < key(b); });
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (i + 1 < points.size() && key(points[i + 1]) == key(points[i])) continue;
+      movie.tracks.push_back(points[i]);
+    }
     const capture::GroundTruth truth = capture::ground_truth_of(sequence);
     row.live = capture::evaluate_strain(movie, truth);
     row.batch = capture::run_print_bench(capture::print_bench_methods().front(), sequence).eval;
@@ -145,18 +184,21 @@ std::string live_bench_table_row(const LiveBenchRow& r) {
 
 std::string live_bench_csv_header() {
   return "width_px,height_px,camera_rate_hz,frames_in,frames_processed,frames_dropped,"
-         "latency_p50_ms,latency_p99_ms,latency_max_ms,track_p50_ms,live_rms_error,"
+         "latency_p50_ms,latency_p99_ms,latency_max_ms,wait_p50_ms,track_p50_ms,strain_p50_ms,"
+         "map_p50_ms,send_p50_ms,live_rms_error,"
          "live_correlation,live_median_points,batch_rms_error,batch_correlation";
 }
 
 std::string live_bench_csv_row(const LiveBenchRow& r) {
   const auto& s = r.summary;
   return fmt::format(
-      "{},{},{:g},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.5f},{:.0f},{:.6g},{:.5f}\n",
+      "{},{},{:g},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.5f},{:"
+      ".0f},"
+      "{:.6g},{:.5f}\n",
       r.scene.width_px, r.scene.height_px, r.scene.camera_rate_hz, s.frames_in, s.frames_processed,
-      s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms, s.track_p50_ms,
-      r.live.rms_error, r.live.correlation, r.live.median_tracked_points, r.batch.rms_error,
-      r.batch.correlation);
+      s.frames_dropped, s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms, s.wait_p50_ms,
+      s.track_p50_ms, s.strain_p50_ms, s.map_p50_ms, s.send_p50_ms, r.live.rms_error,
+      r.live.correlation, r.live.median_tracked_points, r.batch.rms_error, r.batch.correlation);
 }
 
 XYChart live_bench_chart(const std::vector<LiveBenchRow>& rows) {

@@ -87,9 +87,9 @@ class HeldFrame {
 
 // Detection of new landmarks off the processing thread. The ridge-blob detector takes tens of
 // milliseconds on a 320 x 240 frame, several camera frames at 120 Hz: in line it would delay
-// those frames and drop the next ones. Its landmarks arrive a few frames later and are moved by
-// the skin's median motion since then (the tracks' own steps), which is close enough for a new
-// track: a track follows whatever skin its first window holds, pore-centred or not.
+// those frames and drop the next ones. Its landmarks arrive a few frames later, found on the
+// tracker's frame given with the job, and the tracker carries them to the frame of the day by
+// the motion of the tracks around each.
 class AsyncDetector {
  public:
   AsyncDetector(double px_per_mm, const capture::FeatureParams& params)
@@ -186,44 +186,6 @@ class AsyncWindowChoice {
 
  private:
   std::future<int> pending_;
-};
-
-// The median motion of the tracks from frame to frame (pixels), to carry landmarks detected on
-// an earlier frame to the current one.
-class SkinMotion {
- public:
-  void add(std::int64_t frame, const std::vector<capture::Track>& steps) {
-    if (steps.empty()) return;
-    std::vector<double> dx, dy;
-    for (const auto& s : steps) {
-      dx.push_back(s.x_px[1] - s.x_px[0]);
-      dy.push_back(s.y_px[1] - s.y_px[0]);
-    }
-    steps_.push_back({frame, median(dx), median(dy)});
-    if (steps_.size() > 1000) steps_.erase(steps_.begin());
-  }
-  // The motion from `from` to `to`, the step into `to` taken as the last one measured.
-  std::pair<double, double> between(std::int64_t from, std::int64_t to) const {
-    double x = 0, y = 0;
-    for (const auto& s : steps_) {
-      if (s.frame > from && s.frame < to) {
-        x += s.dx;
-        y += s.dy;
-      }
-    }
-    if (!steps_.empty() && to > from) {
-      x += steps_.back().dx;
-      y += steps_.back().dy;
-    }
-    return {x, y};
-  }
-
- private:
-  struct Step {
-    std::int64_t frame;
-    double dx, dy;
-  };
-  std::vector<Step> steps_;
 };
 
 // Sends the held frame at the device's rate, keeping its FIFO `target` frames deep.
@@ -387,7 +349,6 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
 
   std::unique_ptr<capture::AlignmentTracker> tracker;
   std::unique_ptr<AsyncDetector> detector;
-  SkinMotion motion;
   capture::RefineParams refine;
   capture::CausalTrackSmoother smoother(session.smoothing);
   AsyncWindowChoice window_choice;
@@ -479,6 +440,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
       // alignment in between; detected in line on the first frame only, then on the detector's
       // thread.
       std::vector<capture::Feature> seeds;
+      int seeds_frame = tracker->frames();
       bool seeded = false;
       if (tracker->frames() == 0) {
         seeds = capture::extract_features(f.image, px_per_mm, features);
@@ -491,23 +453,18 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
                          tracker->live_tracks() < 0.8 * tracks_after_detection ||
                          tracker->sliding();
         if (due && !detector->busy()) {
-          detector->submit(f.index, f.image);
+          detector->submit(tracker->frames(), f.image);
           last_detection = f.index;
         }
         if (auto found = detector->take()) {
-          const auto [dx, dy] = motion.between(found->first, f.index);
-          for (auto& seed : found->second) {
-            seed.x_px += dx;
-            seed.y_px += dy;
-          }
+          seeds_frame = static_cast<int>(found->first);
           seeds = std::move(found->second);
           seeded = true;
         }
       }
-      tracker->add_frame(f.image, seeds);
+      tracker->add_frame(f.image, seeds, seeds_frame);
       if (seeded) tracks_after_detection = tracker->live_tracks();
       std::vector<capture::Track> steps = tracker->last_step();
-      motion.add(f.index, steps);
       if (previous) {
         if (auto window = window_choice.take()) {
           smoother.set_window(*window);

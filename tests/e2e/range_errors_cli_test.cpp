@@ -70,6 +70,23 @@ TEST(RangeErrors, BenchLiveNamesAPrintItDoesNotHave) {
   EXPECT_THAT(r.output, HasSubstr("--print 99: " + prints + " holds no print image_99"));
 }
 
+TEST(RangeErrors, BenchLiveSaysHowACaseIsWritten) {
+  const std::string prints = tactile::test::test_data("polyu-hrf-pores").string();
+  const auto form = run_tactile("bench live " + prints + " --case 640x484 --out bench-live-none");
+  EXPECT_EQ(form.exit_code, 2) << form.output;
+  EXPECT_THAT(form.output, HasSubstr("--case: case '640x484': expected WIDTHxHEIGHT@RATE, e.g. "
+                                     "640x484@60 (pixels, Hz)"));
+  const auto range =
+      run_tactile("bench live " + prints + " --case 640x484@5000 --out bench-live-none");
+  EXPECT_EQ(range.exit_code, 2) << range.output;
+  EXPECT_THAT(range.output, HasSubstr("case 640 x 484 px at 5000 Hz: sizes must be from 64 to "
+                                      "4096 px, rates from 1 to 1000 Hz"));
+  const auto both =
+      run_tactile("bench live " + prints + " --quick --case 320x240@60 --out bench-live-none");
+  EXPECT_NE(both.exit_code, 0) << both.output;
+  EXPECT_THAT(both.output, HasSubstr("--quick excludes --case"));
+}
+
 // A held-out print the folder does not hold is a wrong value given, as --print is for bench live.
 TEST(RangeErrors, BenchPrintsNamesAHeldOutPrintItDoesNotHave) {
   const std::string prints = tactile::test::test_data("polyu-hrf-pores").string();

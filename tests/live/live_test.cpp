@@ -251,7 +251,11 @@ tactile::live::LiveBenchRow bench_row(int width, int height, double rate_hz, dou
   r.summary.latency_p50_ms = 7.5;
   r.summary.latency_p99_ms = p99_ms;
   r.summary.latency_max_ms = 60.125;
+  r.summary.wait_p50_ms = 0.5;
   r.summary.track_p50_ms = 3.25;
+  r.summary.strain_p50_ms = 1.125;
+  r.summary.map_p50_ms = 0.25;
+  r.summary.send_p50_ms = 0.75;
   r.live.rms_error = live_rms;
   r.live.correlation = 0.99;
   r.live.median_tracked_points = 201;
@@ -272,15 +276,44 @@ std::vector<std::string> split(const std::string& line, char by) {
   return out;
 }
 
+TEST(LiveBenchCase, ReadsSizeAndRateAndRefusesAnythingElse) {
+  const auto c = tactile::live::parse_live_bench_case("640x484@60");
+  EXPECT_EQ(c.width_px, 640);
+  EXPECT_EQ(c.height_px, 484);
+  EXPECT_EQ(c.camera_rate_hz, 60);
+  EXPECT_EQ(tactile::live::parse_live_bench_case("320x240@119.88").camera_rate_hz, 119.88);
+  for (const std::string bad : {"", "640x484", "640@60", "640x484@", "x484@60", "640x484@60Hz",
+                                "640 x 484@60", "99999999999x484@60", "640x@60", "60@640x484"}) {
+    try {
+      tactile::live::parse_live_bench_case(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("WIDTHxHEIGHT@RATE"), std::string::npos) << e.what();
+    }
+  }
+  for (const std::string out :
+       {"32x240@60", "640x5000@60", "640x484@0", "640x484@2000", "640x484@nan", "640x484@inf"}) {
+    try {
+      tactile::live::parse_live_bench_case(out);
+      ADD_FAILURE() << "accepted '" << out << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("from 64 to 4096 px, rates from 1 to 1000 Hz"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(LiveBenchReport, CsvRowOfKnownFigures) {
   const auto header = split(tactile::live::live_bench_csv_header(), ',');
-  ASSERT_EQ(header.size(), 15u);
+  ASSERT_EQ(header.size(), 19u);
   EXPECT_EQ(header[2], "camera_rate_hz");
   EXPECT_EQ(header[7], "latency_p99_ms");
-  EXPECT_EQ(header[10], "live_rms_error");
-  const std::vector<std::string> expected = {"320",   "240",     "120",    "600",    "590",
-                                             "10",    "7.500",   "45.000", "60.125", "3.250",
-                                             "0.002", "0.99000", "201",    "0.001",  "0.99800"};
+  EXPECT_EQ(header[10], "track_p50_ms");
+  EXPECT_EQ(header[14], "live_rms_error");
+  const std::vector<std::string> expected = {
+      "320",   "240",   "120",   "600",   "590",   "10",      "7.500", "45.000", "60.125", "0.500",
+      "3.250", "1.125", "0.250", "0.750", "0.002", "0.99000", "201",   "0.001",  "0.99800"};
   EXPECT_EQ(split(tactile::live::live_bench_csv_row(bench_row(320, 240, 120, 45, 0.002)), ','),
             expected);
 }

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bench_files.hpp"
 #include "command.hpp"
@@ -29,6 +31,7 @@ void add_bench_live(CLI::App& bench, Action& action, const std::string& /*comman
     fs::path prints;
     std::string print = "12";
     bool quick = false;
+    std::vector<std::string> cases;
     fs::path out = "bench-live";
     live::LiveBenchOptions bench;
   };
@@ -46,7 +49,11 @@ void add_bench_live(CLI::App& bench, Action& action, const std::string& /*comman
   add_ranged(*sub, "--seconds", opt->bench.seconds, "Seconds of skin per case", 0.5, 600.0);
   add_ranged(*sub, "--travel", opt->bench.travel_mm_per_s,
              "Speed of the wave across the contact (mm/s)", 1.0, 500.0);
-  sub->add_flag("--quick", opt->quick, "Only 320 x 240 at 60 and 120 Hz and 640 x 484 at 60 Hz");
+  auto* quick = sub->add_flag("--quick", opt->quick,
+                              "Only 320 x 240 at 60 and 120 Hz and 640 x 484 at 60 Hz");
+  sub->add_option("--case", opt->cases,
+                  "Only this case, WIDTHxHEIGHT@RATE (e.g. 640x484@60; repeat for more)")
+      ->excludes(quick);
   sub->add_option("--out", opt->out, "Folder for the CSV and the chart")->capture_default_str();
   sub->callback([opt, &action] {
     action = [opt] {
@@ -62,7 +69,18 @@ void add_bench_live(CLI::App& bench, Action& action, const std::string& /*comman
         throw RequestError(fmt::format("--print {}: {} holds no print image_{}.*", opt->print,
                                        opt->prints.string(), opt->print));
       }
-      opt->bench.cases = live::live_bench_cases(opt->quick);
+      if (opt->cases.empty()) {
+        opt->bench.cases = live::live_bench_cases(opt->quick);
+      } else {
+        opt->bench.cases.clear();
+        for (const auto& c : opt->cases) {
+          try {
+            opt->bench.cases.push_back(live::parse_live_bench_case(c));
+          } catch (const std::invalid_argument& e) {
+            throw RequestError(fmt::format("--case: {}", e.what()));
+          }
+        }
+      }
       fs::create_directories(opt->out);
       fmt::print(
           "{} ({:g} s of skin a case, 8 % wave at {:g} mm/s; latency: frame available -> "

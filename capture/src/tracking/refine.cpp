@@ -919,7 +919,17 @@ constexpr std::size_t kMotionsForTwo = 64;
 }  // namespace
 
 void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Feature>& seeds) {
+  add_frame(image, seeds, state_->frames);
+}
+
+void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Feature>& found,
+                                 int seeds_frame) {
   State& s = *state_;
+  if (seeds_frame < 0 || seeds_frame > s.frames) {
+    throw std::invalid_argument(fmt::format(
+        "AlignmentTracker: seeds found on frame {}, not one of frames 0 to {} (this one)",
+        seeds_frame, s.frames));
+  }
   if (s.frames == 0) {
     s.width_px = image.width_px;
     s.height_px = image.height_px;
@@ -1110,6 +1120,37 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     ++still;
   }
   s.live.resize(still);
+  // Seeds found on an earlier frame (a detector slower than the camera) where the skin is now:
+  // each moved by the motion of the live tracks around it since that frame (neighbours_motion),
+  // or by the whole view's where too few tracks are near. A seed on a landmark already tracked
+  // then lands on that track, within the separation below, where the view's median motion alone
+  // left it pixels off on a strain wave and started a second track on the same skin.
+  std::vector<Feature> seeds = found;
+  if (seeds_frame != frame && !seeds.empty()) {
+    const std::size_t live = s.live.size();
+    std::vector<Eigen::Vector2d> then(live), at(live);
+    std::vector<char> known(live, 0);
+    for (std::size_t i = 0; i < live; ++i) {
+      const Track& t = s.live[i]->track;
+      const int k = seeds_frame - t.first_frame;
+      if (k < 0) continue;
+      then[i] = {t.x_px[static_cast<std::size_t>(k)], t.y_px[static_cast<std::size_t>(k)]};
+      at[i] = {t.x_px.back(), t.y_px.back()};
+      known[i] = 1;
+    }
+    Eigen::Vector2d view = Eigen::Vector2d::Zero();
+    for (int f = seeds_frame + 1; f <= frame; ++f) {
+      view += s.view_motion[static_cast<std::size_t>(f)];
+    }
+    const NearIndex index(then, known, radius_px);
+    for (auto& seed : seeds) {
+      const Eigen::Vector2d from(seed.x_px, seed.y_px);
+      Eigen::Vector2d to;
+      if (!neighbours_motion(then, at, index, live, from, radius_px, to)) to = from + view;
+      seed.x_px = to.x();
+      seed.y_px = to.y();
+    }
+  }
   // New tracks only where no live track is: one landmark, one track.
   const double min_separation_px = 0.5 * s.max_offset_px;
   const std::size_t tracked = s.live.size();
@@ -1454,62 +1495,73 @@ std::vector<Track> AlignmentTracker::last_step() {
       alive[j] = at(s.live[j]->track, before, positions[j]);
     }
     const NearIndex index(positions, alive, radius_px);
-    for (const std::size_t i : unfitted) {
-      const Track& t = steps[i];
-      const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
-      std::vector<CurvatureFit::Near> near;
-      index.for_each_near(centre, radius_px, [&](std::size_t j) {
-        const double d2 = (positions[j] - centre).squaredNorm();
-        if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, positions[j]);
+    std::vector<std::unique_ptr<State::StepFit>> made(unfitted.size());
+    // Each fit reads the live tracks only: in parallel, stored in order after.
+    parallel_for(unfitted.size(), workers_for(unfitted.size(), kMotionsForTwo, s.threads),
+                 [&](std::size_t u) {
+                   const Track& t = steps[unfitted[u]];
+                   const Eigen::Vector2d centre(t.x_px[0], t.y_px[0]);
+                   std::vector<CurvatureFit::Near> near;
+                   index.for_each_near(centre, radius_px, [&](std::size_t j) {
+                     const double d2 = (positions[j] - centre).squaredNorm();
+                     if (d2 <= radius_px * radius_px) near.emplace_back(d2, j, positions[j]);
+                   });
+                   auto fit = std::make_unique<State::StepFit>();
+                   fit->fit = CurvatureFit(centre, std::move(near), radius_px);
+                   bool gradients = has_gradients(t);
+                   for (const std::size_t j : fit->fit.neighbours()) {
+                     const Track& b = s.live[j]->track;
+                     fit->ids.push_back(b.id);
+                     gradients = gradients && has_gradients(b) &&
+                                 std::abs(gradient_at(b, before).determinant()) > 1e-6;
+                     if (gradients) fit->from_reference.push_back(gradient_at(b, before).inverse());
+                   }
+                   if (!gradients) fit->from_reference.clear();
+                   made[u] = std::move(fit);
+                 });
+    for (std::size_t u = 0; u < unfitted.size(); ++u) {
+      s.step_fits.emplace(steps[unfitted[u]].id, std::move(made[u]));
+    }
+  }
+  std::vector<State::StepFit*> fits(steps.size());
+  for (std::size_t i = 0; i < steps.size(); ++i) fits[i] = s.step_fits.at(steps[i].id).get();
+  // Each step's correction changes its own step and fit alone.
+  parallel_for(
+      steps.size(), workers_for(steps.size(), kMotionsForTwo, s.threads), [&](std::size_t i) {
+        Track& step = steps[i];
+        State::StepFit* fit = fits[i];
+        const std::size_t n_near = fit->ids.size();
+        std::vector<char> alive(n_near, 0);
+        std::vector<const Track*> near(n_near, nullptr);
+        std::array<std::vector<Eigen::Vector2d>, 2> to{std::vector<Eigen::Vector2d>(n_near),
+                                                       std::vector<Eigen::Vector2d>(n_near)};
+        for (std::size_t n = 0; n < n_near; ++n) {
+          const auto it = by_id.find(fit->ids[n]);
+          if (it == by_id.end()) continue;
+          near[n] = it->second;
+          alive[n] = at(*near[n], before, to[0][n]) && at(*near[n], last, to[1][n]);
+        }
+        if (fit->fit.usable() && fit->fit.weigh(alive)) {
+          for (std::size_t k = 0; k < 2; ++k) {
+            const int f = k == 0 ? before : last;
+            bool finite = false;
+            const Eigen::Vector2d dc =
+                position_correction(fit->fit, alive, to[k], moment_px2, kMaxPx, finite);
+            if (!finite) continue;
+            step.x_px[k] += dc.x();
+            step.y_px[k] += dc.y();
+            if (fit->from_reference.empty() || step.gradient.size() != 2) continue;
+            const auto dg = gradient_correction_of(
+                fit->fit, alive, fit->from_reference,
+                [&](std::size_t n) { return gradient_at(*near[n], f); }, moment_px2, kMaxPx);
+            if (!dg) continue;
+            auto& g = step.gradient[k];
+            g = {g[0] + (*dg)(0, 0), g[1] + (*dg)(0, 1), g[2] + (*dg)(1, 0), g[3] + (*dg)(1, 1)};
+          }
+        }
       });
-      auto fit = std::make_unique<State::StepFit>();
-      fit->fit = CurvatureFit(centre, std::move(near), radius_px);
-      bool gradients = has_gradients(t);
-      for (const std::size_t j : fit->fit.neighbours()) {
-        const Track& b = s.live[j]->track;
-        fit->ids.push_back(b.id);
-        gradients =
-            gradients && has_gradients(b) && std::abs(gradient_at(b, before).determinant()) > 1e-6;
-        if (gradients) fit->from_reference.push_back(gradient_at(b, before).inverse());
-      }
-      if (!gradients) fit->from_reference.clear();
-      s.step_fits.emplace(t.id, std::move(fit));
-    }
-  }
   std::unordered_map<std::int32_t, std::unique_ptr<State::StepFit>> kept;
-  for (auto& step : steps) {
-    auto& fit = s.step_fits.at(step.id);
-    const std::size_t n_near = fit->ids.size();
-    std::vector<char> alive(n_near, 0);
-    std::vector<const Track*> near(n_near, nullptr);
-    std::array<std::vector<Eigen::Vector2d>, 2> to{std::vector<Eigen::Vector2d>(n_near),
-                                                   std::vector<Eigen::Vector2d>(n_near)};
-    for (std::size_t n = 0; n < n_near; ++n) {
-      const auto it = by_id.find(fit->ids[n]);
-      if (it == by_id.end()) continue;
-      near[n] = it->second;
-      alive[n] = at(*near[n], before, to[0][n]) && at(*near[n], last, to[1][n]);
-    }
-    if (fit->fit.usable() && fit->fit.weigh(alive)) {
-      for (std::size_t k = 0; k < 2; ++k) {
-        const int f = k == 0 ? before : last;
-        bool finite = false;
-        const Eigen::Vector2d dc =
-            position_correction(fit->fit, alive, to[k], moment_px2, kMaxPx, finite);
-        if (!finite) continue;
-        step.x_px[k] += dc.x();
-        step.y_px[k] += dc.y();
-        if (fit->from_reference.empty() || step.gradient.size() != 2) continue;
-        const auto dg = gradient_correction_of(
-            fit->fit, alive, fit->from_reference,
-            [&](std::size_t n) { return gradient_at(*near[n], f); }, moment_px2, kMaxPx);
-        if (!dg) continue;
-        auto& g = step.gradient[k];
-        g = {g[0] + (*dg)(0, 0), g[1] + (*dg)(0, 1), g[2] + (*dg)(1, 0), g[3] + (*dg)(1, 1)};
-      }
-    }
-    kept.emplace(step.id, std::move(fit));
-  }
+  for (const auto& step : steps) kept.emplace(step.id, std::move(s.step_fits.at(step.id)));
   // Tracks that ended take their fits with them.
   s.step_fits = std::move(kept);
   return steps;

@@ -204,6 +204,11 @@ class AlignmentTracker {
   // Aligns the live tracks to `image` (the next frame), then starts a track at every seed (pixel
   // positions in this frame) further than half of max_offset_mm from every live track.
   void add_frame(const GrayImage& image, const std::vector<Feature>& seeds);
+  // The same with seeds found on an earlier frame, `seeds_frame` (0 to frames(), the count
+  // this frame will have): each is first carried to this frame by the motion of the live tracks
+  // around it since then (by the whole view's where fewer than three are within
+  // neighbour_radius_mm). A detector slower than the camera runs beside the tracker this way.
+  void add_frame(const GrayImage& image, const std::vector<Feature>& seeds, int seeds_frame);
   int frames() const;
   int live_tracks() const;
   // Whether the whole view moved into the last frame by more than an alignment may move from

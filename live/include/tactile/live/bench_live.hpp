@@ -28,6 +28,10 @@ struct LiveBenchCase {
 // 320 x 240 at 120 Hz).
 std::vector<LiveBenchCase> live_bench_cases(bool quick);
 
+// A case written as WIDTHxHEIGHT@RATE (e.g. "640x484@60"); throws std::invalid_argument naming
+// what is wrong (the form, or a size out of 64-4096 px or a rate out of 1-1000 Hz).
+LiveBenchCase parse_live_bench_case(const std::string& text);
+
 struct LiveBenchOptions {
   double seconds = 10;          // of skin per case
   double travel_mm_per_s = 25;  // the wave's speed across the contact

@@ -1,0 +1,163 @@
+// The streaming tracker (AlignmentTracker) given seeds found on an earlier frame, as the live
+// session's detector, slower than the camera, hands them over: on a real print crossed by a fast
+// strain wave, where the skin under each seed has moved pixels away from where the view's median
+// motion puts it.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "real_prints.hpp"
+#include "tactile/capture/bench.hpp"
+#include "tactile/capture/pore_training_io.hpp"
+#include "tactile/capture/track.hpp"
+#include "tactile/common/stats.hpp"
+
+namespace tactile::capture {
+namespace {
+
+struct Scene {
+  PrintSequence seq;
+  // Each mark in view in every frame, by id: its exact position frame by frame.
+  std::map<std::int32_t, std::vector<TruthLandmark>> marks;
+};
+
+Scene fast_wave(int frames) {
+  const GrayImage print = read_image(test::print_path("12", "image_"));
+  const auto marks =
+      read_pore_marks(test::print_path("12", "pores_"), print.width_px, print.height_px);
+  PrintWarpSpec spec = test::spec_for(print, WarpPattern::wave, 0.08);
+  spec.frame_count = frames;
+  set_fast_scene(spec, 25);
+  Scene s;
+  s.seq = render_print_sequence(spec, print, marks);
+  for (const auto& lm : s.seq.landmarks) s.marks[lm.id].push_back(lm);
+  std::erase_if(s.marks, [&](const auto& m) { return static_cast<int>(m.second.size()) < frames; });
+  return s;
+}
+
+// The marks with ids in [first, end) of `by`, where they are in `frame`, as pore seeds.
+std::vector<Feature> seeds_at(const Scene& s, int frame, std::size_t first, std::size_t end) {
+  std::vector<Feature> out;
+  std::size_t k = 0;
+  for (const auto& [id, path] : s.marks) {
+    if (k >= first && k < end) {
+      Feature f;
+      f.type = FeatureType::pore;
+      f.x_px = path[static_cast<std::size_t>(frame)].x_px;
+      f.y_px = path[static_cast<std::size_t>(frame)].y_px;
+      out.push_back(f);
+    }
+    ++k;
+  }
+  return out;
+}
+
+// Skin around the marks: a grid every 16 px (a window tracks whatever texture it holds), clear of
+// the marks by 6 px, as a detector's dense landmarks surround the ones it finds late.
+std::vector<Feature> grid_clear_of_marks(const Scene& s) {
+  std::vector<Feature> out;
+  const GrayImage& f0 = s.seq.frames[0];
+  for (int y = 16; y < f0.height_px - 16; y += 16) {
+    for (int x = 16; x < f0.width_px - 16; x += 16) {
+      bool clear = true;
+      for (const auto& [id, path] : s.marks) {
+        clear = clear && std::hypot(path[0].x_px - x, path[0].y_px - y) > 6;
+      }
+      if (!clear) continue;
+      Feature f;
+      f.x_px = x;
+      f.y_px = y;
+      out.push_back(f);
+    }
+  }
+  return out;
+}
+
+TEST(AlignmentTracker, SeedsFromAnEarlierFrameLandOnTheSkinTheyWereFoundOn) {
+  constexpr int kFrames = 14, kFoundOn = 6, kHandedOver = 11;
+  const Scene s = fast_wave(kFrames);
+  ASSERT_GE(s.marks.size(), 40u);
+  const std::size_t half = s.marks.size() / 2;
+  RefineParams params;
+  params.min_frames = 2;
+  const double separation_px = 0.5 * params.max_offset_mm / s.seq.calibration.mm_per_px;
+
+  // The scene is one where the view's median motion since the seeds' frame misplaces seeds:
+  // a seed moved by it lands further from its own skin than the tracker's separation of one
+  // landmark from another.
+  std::vector<double> dx, dy;
+  for (const auto& [id, path] : s.marks) {
+    dx.push_back(path[kHandedOver].x_px - path[kFoundOn].x_px);
+    dy.push_back(path[kHandedOver].y_px - path[kFoundOn].y_px);
+  }
+  const double mx = median(dx), my = median(dy);
+  int misplaced = 0;
+  for (std::size_t i = 0; i < dx.size(); ++i) {
+    misplaced += std::hypot(dx[i] - mx, dy[i] - my) > separation_px;
+  }
+  ASSERT_GT(misplaced, static_cast<int>(dx.size()) / 10)
+      << "the wave does not move the skin away from the median motion";
+
+  AlignmentTracker tracker(1.0 / s.seq.calibration.mm_per_px, params, 2);
+  for (int f = 0; f < kFrames; ++f) {
+    if (f == 0) {
+      std::vector<Feature> seeds = grid_clear_of_marks(s);
+      const auto marked = seeds_at(s, 0, 0, half);
+      seeds.insert(seeds.end(), marked.begin(), marked.end());
+      tracker.add_frame(s.seq.frames[0], seeds);
+    } else if (f == kHandedOver) {
+      // Every mark, as found on frame kFoundOn: the first half are tracked already.
+      const int before = tracker.live_tracks();
+      tracker.add_frame(s.seq.frames[f], seeds_at(s, kFoundOn, 0, s.marks.size()), kFoundOn);
+      const int started = tracker.live_tracks() - before;
+      EXPECT_LE(started, static_cast<int>(s.marks.size() - half))
+          << "a seed on skin already tracked started a second track";
+      EXPECT_GE(started, static_cast<int>(9 * (s.marks.size() - half) / 10))
+          << "the untracked marks did not start tracks";
+    } else {
+      tracker.add_frame(s.seq.frames[f], {});
+    }
+  }
+  const std::vector<Track> tracks = tracker.finish();
+  // Each track begun on the hand-over frame starts where its mark is on that frame.
+  std::vector<double> start_error_px;
+  for (const auto& t : tracks) {
+    if (t.first_frame != kHandedOver) continue;
+    double nearest = INFINITY;
+    for (const auto& [id, path] : s.marks) {
+      nearest = std::min(nearest, std::hypot(t.x_px[0] - path[kHandedOver].x_px,
+                                             t.y_px[0] - path[kHandedOver].y_px));
+    }
+    start_error_px.push_back(nearest);
+  }
+  ASSERT_FALSE(start_error_px.empty());
+  EXPECT_LT(median(start_error_px), 0.5);
+  EXPECT_LT(quantile(start_error_px, 0.9), separation_px);
+}
+
+TEST(AlignmentTracker, SeedsFromAFrameNotYetSeenOrBeforeTheFirstAreRefused) {
+  const Scene s = fast_wave(3);
+  AlignmentTracker tracker(1.0 / s.seq.calibration.mm_per_px);
+  tracker.add_frame(s.seq.frames[0], seeds_at(s, 0, 0, 10));
+  for (const int bad : {-1, 2, 100}) {
+    try {
+      tracker.add_frame(s.seq.frames[1], seeds_at(s, 0, 0, 10), bad);
+      ADD_FAILURE() << "seeds of frame " << bad << " taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("frame " + std::to_string(bad)), std::string::npos)
+          << e.what();
+    }
+  }
+  // Refused before anything changed: the next frame is still frame 1.
+  EXPECT_EQ(tracker.frames(), 1);
+  EXPECT_NO_THROW(tracker.add_frame(s.seq.frames[1], seeds_at(s, 0, 0, 10), 0));
+  EXPECT_EQ(tracker.frames(), 2);
+}
+
+}  // namespace
+}  // namespace tactile::capture
