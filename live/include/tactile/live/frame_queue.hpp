@@ -1,7 +1,10 @@
 #pragma once
-// The queue between acquisition and processing in a live session: bounded, and a push never
-// waits. When processing falls behind and the queue is full, the oldest waiting item is dropped
-// (and counted): a late frame costs a gap in the measurement, never a growing delay.
+// The queues between a live session's stages. Between acquisition and processing
+// (DropOldestQueue): bounded, and a push never waits. When processing falls behind and the queue
+// is full, the oldest waiting item is dropped (and counted): a late frame costs a gap in the
+// measurement, never a growing delay. Between two processing stages (WaitingQueue): bounded, and
+// a push waits for room, so the stage before runs at most `capacity` items ahead; the drops
+// happen before the first stage, where the frames come in.
 
 #include <chrono>
 #include <condition_variable>
@@ -69,6 +72,58 @@ class DropOldestQueue {
   std::condition_variable ready_;
   std::deque<T> items_;
   std::int64_t dropped_ = 0;
+  bool closed_ = false;
+};
+
+template <typename T>
+class WaitingQueue {
+ public:
+  explicit WaitingQueue(std::size_t capacity) : capacity_(capacity < 1 ? 1 : capacity) {}
+
+  // Adds `item` once there is room; false (the item not taken) when the queue is closed.
+  bool push(T item) {
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [this] { return items_.size() < capacity_ || closed_; });
+      if (closed_) return false;
+      items_.push_back(std::move(item));
+    }
+    changed_.notify_all();
+    return true;
+  }
+
+  // As DropOldestQueue::pop.
+  std::optional<T> pop(std::chrono::milliseconds timeout) {
+    std::optional<T> item;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait_for(lock, timeout, [this] { return !items_.empty() || closed_; });
+      if (items_.empty()) return std::nullopt;
+      item = std::move(items_.front());
+      items_.pop_front();
+    }
+    changed_.notify_all();
+    return item;
+  }
+
+  // No more pushes are taken (a waiting one returns false); pop still hands out what is left.
+  void close() {
+    {
+      std::lock_guard lock(mutex_);
+      closed_ = true;
+    }
+    changed_.notify_all();
+  }
+  bool closed_and_empty() const {
+    std::lock_guard lock(mutex_);
+    return closed_ && items_.empty();
+  }
+
+ private:
+  std::size_t capacity_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<T> items_;
   bool closed_ = false;
 };
 

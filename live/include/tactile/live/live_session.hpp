@@ -96,7 +96,10 @@ struct FrameContact {
   std::vector<std::uint8_t> in_contact;
 };
 
-// What the session hands out as it goes (each called from the processing thread).
+// What the session hands out as it goes. `note` and `started` are called from the tracking
+// thread; `frame_done`, `contact`, `strain` and `mapped` from the strain and mapping thread, which
+// takes each tracked frame after `started` (so no two of these run at once, and none before
+// `started`); `received` from the acquisition thread.
 struct LiveCallbacks {
   std::function<void(const std::string&)> note = [](const std::string&) {};
   // Every camera frame as it arrives, processed or dropped later, at its time from the
