@@ -23,6 +23,7 @@
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/error.hpp"
+#include "tactile/common/idle_priority.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/player.hpp"
@@ -125,6 +126,7 @@ class AsyncDetector {
 
  private:
   void loop() {
+    lower_to_idle_priority();
     std::unique_lock lock(mutex_);
     while (true) {
       changed_.wait(lock, [this] { return quit_ || job_.has_value(); });
@@ -172,6 +174,7 @@ class AsyncWindowChoice {
     if (pending_.valid()) return;
     pending_ = std::async(std::launch::async, [tracks = std::move(tracks), degree, max_residual_px,
                                                noise_scale] {
+      lower_to_idle_priority();
       return capture::causal_smoothing_that_fits(tracks, degree, max_residual_px, 1, noise_scale);
     });
   }
@@ -358,6 +361,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   });
 
   std::unique_ptr<capture::AlignmentTracker> tracker;
+  capture::CaptureChoice choice;  // on the first frame
   std::unique_ptr<AsyncDetector> detector;
   capture::RefineParams refine;
   capture::CausalTrackSmoother smoother(session.smoothing);
@@ -530,10 +534,10 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         summary.height_px = f.image.height_px;
         calibration = session_calibration(session, f.image.width_px, f.image.height_px);
         px_per_mm = 1.0 / calibration.mm_per_px;
-        // The detector the batch capture would choose on this frame.
-        capture::CaptureChoice choice;
+        // The detector the batch capture would choose on this frame (its landmarks there are
+        // the first seeds: the choice has found them).
         if (session.pores == capture::PoreSetting::automatic) {
-          choice = capture::choose_capture_settings(f.image, px_per_mm);
+          choice = capture::choose_capture_settings(f.image, px_per_mm, features);
         } else {
           choice.detector = session.pores == capture::PoreSetting::ridge_blob
                                 ? capture::PoreDetector::ridge_blob
@@ -564,7 +568,9 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
       int seeds_frame = tracker->frames();
       bool seeded = false;
       if (tracker->frames() == 0) {
-        seeds = capture::extract_features(f.image, px_per_mm, features);
+        seeds = session.pores == capture::PoreSetting::automatic
+                    ? std::move(choice.first_frame_features)
+                    : capture::extract_features(f.image, px_per_mm, features);
         detector = std::make_unique<AsyncDetector>(px_per_mm, features);
         seeded = true;
       } else {

@@ -59,6 +59,39 @@ TEST(DropOldestQueue, PopWaitsForAPushAndEndsOnClose) {
   producer.join();
 }
 
+TEST(WaitingQueue, APushWaitsForRoomAndNothingIsDropped) {
+  tactile::live::WaitingQueue<int> q(1);
+  std::atomic<int> pushed{0};
+  std::thread producer([&] {
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(q.push(i));
+      ++pushed;
+    }
+  });
+  // The first push finds room; the second waits until the first is taken.
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(pushed.load(), 1);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(q.pop(std::chrono::seconds(5)), i);
+  producer.join();
+  EXPECT_EQ(pushed.load(), 3);
+}
+
+TEST(WaitingQueue, CloseRefusesPushesAndWakesAWaitingOneButKeepsWhatIsLeft) {
+  tactile::live::WaitingQueue<int> q(1);
+  ASSERT_TRUE(q.push(1));
+  std::atomic<int> second{-1};
+  std::thread producer([&] { second = q.push(2) ? 1 : 0; });
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  q.close();
+  producer.join();
+  EXPECT_EQ(second.load(), 0);
+  EXPECT_FALSE(q.closed_and_empty());
+  EXPECT_EQ(q.pop(std::chrono::seconds(5)), 1);
+  EXPECT_FALSE(q.pop(std::chrono::milliseconds(1)).has_value());
+  EXPECT_TRUE(q.closed_and_empty());
+  EXPECT_FALSE(q.push(3));
+}
+
 tactile::live::LiveRequest request_for(const std::filesystem::path& source) {
   tactile::live::LiveRequest r;
   r.source = source.string();
