@@ -89,7 +89,7 @@ class HeldFrame {
 // Detection of new landmarks off the processing thread. The ridge-blob detector takes tens of
 // milliseconds on a 320 x 240 frame, several camera frames at 120 Hz: in line it would delay
 // those frames and drop the next ones. Its landmarks arrive a few frames later, found on the
-// tracker's frame given with the job, and the tracker carries them to the frame of the day by
+// tracker's frame given with the job, and the tracker carries them to the current frame by
 // the motion of the tracks around each.
 class AsyncDetector {
  public:
