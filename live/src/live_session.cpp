@@ -23,7 +23,6 @@
 #include "tactile/capture/features.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/error.hpp"
-#include "tactile/common/idle_priority.hpp"
 #include "tactile/common/stats.hpp"
 #include "tactile/display/frame_codec.hpp"
 #include "tactile/display/player.hpp"
@@ -126,7 +125,6 @@ class AsyncDetector {
 
  private:
   void loop() {
-    lower_to_idle_priority();
     std::unique_lock lock(mutex_);
     while (true) {
       changed_.wait(lock, [this] { return quit_ || job_.has_value(); });
@@ -174,7 +172,6 @@ class AsyncWindowChoice {
     if (pending_.valid()) return;
     pending_ = std::async(std::launch::async, [tracks = std::move(tracks), degree, max_residual_px,
                                                noise_scale] {
-      lower_to_idle_priority();
       return capture::causal_smoothing_that_fits(tracks, degree, max_residual_px, 1, noise_scale);
     });
   }
