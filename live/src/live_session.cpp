@@ -405,9 +405,12 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   std::exception_ptr strain_failure;
   std::thread strain_and_mapping([&] {
     try {
+      bool began = false;
       while (true) {
         std::optional<TrackedFrame> got = tracked_frames.pop(std::chrono::milliseconds(20));
-        report_dropped();
+        // Dropped frames are told from the first frame handed over on, after `started`.
+        began = began || got.has_value();
+        if (began) report_dropped();
         if (!got) {
           if (tracked_frames.closed_and_empty()) break;
           continue;
