@@ -1125,8 +1125,10 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
   // or by the whole view's where too few tracks are near. A seed on a landmark already tracked
   // then lands on that track, within the separation below, where the view's median motion alone
   // left it pixels off on a strain wave and started a second track on the same skin.
-  std::vector<Feature> seeds = found;
-  if (seeds_frame != frame && !seeds.empty()) {
+  // Copied only when they move: most frames bring none, or bring this frame's own.
+  std::vector<Feature> carried;
+  if (seeds_frame != frame && !found.empty()) {
+    carried = found;
     const std::size_t live = s.live.size();
     std::vector<Eigen::Vector2d> then(live), at(live);
     std::vector<char> known(live, 0);
@@ -1143,7 +1145,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
       view += s.view_motion[static_cast<std::size_t>(f)];
     }
     const NearIndex index(then, known, radius_px);
-    for (auto& seed : seeds) {
+    for (auto& seed : carried) {
       const Eigen::Vector2d from(seed.x_px, seed.y_px);
       Eigen::Vector2d to;
       if (!neighbours_motion(then, at, index, live, from, radius_px, to)) to = from + view;
@@ -1151,6 +1153,7 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
       seed.y_px = to.y();
     }
   }
+  const std::vector<Feature>& seeds = carried.empty() ? found : carried;
   // New tracks only where no live track is: one landmark, one track.
   const double min_separation_px = 0.5 * s.max_offset_px;
   const std::size_t tracked = s.live.size();

@@ -4,7 +4,7 @@
 // is full, the oldest waiting item is dropped (and counted): a late frame costs a gap in the
 // measurement, never a growing delay. Between two processing stages (WaitingQueue): bounded, and
 // a push waits for room, so the stage before runs at most `capacity` items ahead; the drops
-// happen before the first stage, where the frames come in.
+// happen before the first stage, where the frames come in. The two differ only in their push.
 
 #include <chrono>
 #include <condition_variable>
@@ -18,81 +18,10 @@
 namespace tactile::live {
 
 template <typename T>
-class DropOldestQueue {
+class BoundedQueue {
  public:
-  explicit DropOldestQueue(std::size_t capacity) : capacity_(capacity < 1 ? 1 : capacity) {}
-
-  // Adds `item`; returns the item it dropped to make room, if any.
-  std::optional<T> push(T item) {
-    std::optional<T> dropped;
-    {
-      std::lock_guard lock(mutex_);
-      if (items_.size() >= capacity_) {
-        dropped = std::move(items_.front());
-        items_.pop_front();
-        ++dropped_;
-      }
-      items_.push_back(std::move(item));
-    }
-    ready_.notify_one();
-    return dropped;
-  }
-
   // The oldest item, waiting at most `timeout` for one; nothing when none came or the queue was
   // closed and is empty.
-  std::optional<T> pop(std::chrono::milliseconds timeout) {
-    std::unique_lock lock(mutex_);
-    ready_.wait_for(lock, timeout, [this] { return !items_.empty() || closed_; });
-    if (items_.empty()) return std::nullopt;
-    T item = std::move(items_.front());
-    items_.pop_front();
-    return item;
-  }
-
-  // No more pushes will come: pop returns at once when empty.
-  void close() {
-    {
-      std::lock_guard lock(mutex_);
-      closed_ = true;
-    }
-    ready_.notify_all();
-  }
-  bool closed_and_empty() const {
-    std::lock_guard lock(mutex_);
-    return closed_ && items_.empty();
-  }
-  std::int64_t dropped() const {
-    std::lock_guard lock(mutex_);
-    return dropped_;
-  }
-
- private:
-  std::size_t capacity_;
-  mutable std::mutex mutex_;
-  std::condition_variable ready_;
-  std::deque<T> items_;
-  std::int64_t dropped_ = 0;
-  bool closed_ = false;
-};
-
-template <typename T>
-class WaitingQueue {
- public:
-  explicit WaitingQueue(std::size_t capacity) : capacity_(capacity < 1 ? 1 : capacity) {}
-
-  // Adds `item` once there is room; false (the item not taken) when the queue is closed.
-  bool push(T item) {
-    {
-      std::unique_lock lock(mutex_);
-      changed_.wait(lock, [this] { return items_.size() < capacity_ || closed_; });
-      if (closed_) return false;
-      items_.push_back(std::move(item));
-    }
-    changed_.notify_all();
-    return true;
-  }
-
-  // As DropOldestQueue::pop.
   std::optional<T> pop(std::chrono::milliseconds timeout) {
     std::optional<T> item;
     {
@@ -102,11 +31,12 @@ class WaitingQueue {
       item = std::move(items_.front());
       items_.pop_front();
     }
-    changed_.notify_all();
+    changed_.notify_all();  // room for a push that waits
     return item;
   }
 
-  // No more pushes are taken (a waiting one returns false); pop still hands out what is left.
+  // No more pushes will come (a WaitingQueue refuses them, and wakes a push that waits); pop
+  // still hands out what is left, then returns at once.
   void close() {
     {
       std::lock_guard lock(mutex_);
@@ -119,12 +49,63 @@ class WaitingQueue {
     return closed_ && items_.empty();
   }
 
- private:
+ protected:
+  explicit BoundedQueue(std::size_t capacity) : capacity_(capacity < 1 ? 1 : capacity) {}
+
   std::size_t capacity_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<T> items_;
   bool closed_ = false;
+};
+
+template <typename T>
+class DropOldestQueue : public BoundedQueue<T> {
+ public:
+  explicit DropOldestQueue(std::size_t capacity) : BoundedQueue<T>(capacity) {}
+
+  // Adds `item`; returns the item it dropped to make room, if any.
+  std::optional<T> push(T item) {
+    std::optional<T> dropped;
+    {
+      std::lock_guard lock(this->mutex_);
+      if (this->items_.size() >= this->capacity_) {
+        dropped = std::move(this->items_.front());
+        this->items_.pop_front();
+        ++dropped_;
+      }
+      this->items_.push_back(std::move(item));
+    }
+    this->changed_.notify_all();
+    return dropped;
+  }
+
+  std::int64_t dropped() const {
+    std::lock_guard lock(this->mutex_);
+    return dropped_;
+  }
+
+ private:
+  std::int64_t dropped_ = 0;
+};
+
+template <typename T>
+class WaitingQueue : public BoundedQueue<T> {
+ public:
+  explicit WaitingQueue(std::size_t capacity) : BoundedQueue<T>(capacity) {}
+
+  // Adds `item` once there is room; false (the item not taken) when the queue is closed.
+  bool push(T item) {
+    {
+      std::unique_lock lock(this->mutex_);
+      this->changed_.wait(
+          lock, [this] { return this->items_.size() < this->capacity_ || this->closed_; });
+      if (this->closed_) return false;
+      this->items_.push_back(std::move(item));
+    }
+    this->changed_.notify_all();
+    return true;
+  }
 };
 
 }  // namespace tactile::live
