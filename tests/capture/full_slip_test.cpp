@@ -99,19 +99,27 @@ TEST(FullSlip, MirroredPrintFillsTheViewWhereverTheSkinHasSlid) {
   s.blur_sigma_px = 0;
   s.brightness_drift = 0;
   const PrintSequence seq = render_print_sequence(s, print);
-  // The last frame shows skin from beyond the print's left border: ridges (dark and bright
-  // pixels) everywhere, no flat background band.
-  const GrayImage& last = seq.frames.back();
-  for (int x0 : {0, 100, 200}) {
-    int darkest = 255, brightest = 0;
-    for (int y = 100; y < 140; ++y) {
-      for (int x = x0; x < x0 + 40; ++x) {
-        const int g = last.pixels[static_cast<std::size_t>(y * last.width_px + x)];
-        darkest = std::min(darkest, g);
-        brightest = std::max(brightest, g);
+  // Every frame shows skin with ridges in every band of columns: neither skin from beyond the
+  // print's border nor the print's own untouched border (print 12's right edge is flat grey for
+  // about 30 px, which mirrored would be a 60 px band of skin out of contact in the middle of a
+  // contact the truth says is whole).
+  for (std::size_t f = 0; f < seq.frames.size(); ++f) {
+    const GrayImage& frame = seq.frames[f];
+    for (int x0 = 0; x0 + 40 <= frame.width_px; x0 += 20) {
+      double sum = 0, sum_sq = 0;
+      for (int y = 100; y < 140; ++y) {
+        for (int x = x0; x < x0 + 40; ++x) {
+          const double g = frame.pixels[static_cast<std::size_t>(y * frame.width_px + x)];
+          sum += g;
+          sum_sq += g * g;
+        }
       }
+      const double mean = sum / 1600;
+      const double sd = std::sqrt(sum_sq / 1600 - mean * mean);
+      // Ridges here vary by 18 to 24 grey levels (standard deviation); print 12's flat border
+      // by under 10.
+      EXPECT_GT(sd, 13) << "frame " << f << ", columns from " << x0;
     }
-    EXPECT_GT(brightest - darkest, 40) << "columns from " << x0;
   }
 }
 
@@ -148,11 +156,15 @@ TEST(FullSlip, HeldOutPrintsSlidingAtTheSpeedsOfExploration) {
 // too, must stay behind. Prints 13 and 15 at 10 mm/s were looked at while the smoothing's reach
 // was set, and all four at 10 mm/s before the tracks beside the gap were kept out of the
 // smoothing's choice (prints 12 and 14 reached 0.942 and 0.955; that rule was then chosen on
-// prints 01-06): none of these is held out of the capture's settings.
+// prints 01-06): none of these is held out of the capture's settings. Prints 12 and 14 at 25 to
+// 100 mm/s came later and nothing of the capture was set on them; but print 12's contact map
+// there was looked at (it showed the print's own untouched border, mirrored into the view, as a
+// gap) while the scene's rule for that border was set.
 TEST(FullSlip, SkinThatLiftsOffReportsNoStrainAcrossTheGap) {
   const std::vector<std::pair<std::string, double>> cases = {
-      {"13", 10.0}, {"13", 25.0}, {"13", 50.0},  {"13", 100.0}, {"15", 10.0},
-      {"15", 25.0}, {"15", 50.0}, {"15", 100.0}, {"12", 10.0},  {"14", 10.0}};
+      {"13", 10.0},  {"13", 25.0},  {"13", 50.0}, {"13", 100.0}, {"15", 10.0}, {"15", 25.0},
+      {"15", 50.0},  {"15", 100.0}, {"12", 10.0}, {"14", 10.0},  {"12", 25.0}, {"12", 50.0},
+      {"12", 100.0}, {"14", 25.0},  {"14", 50.0}, {"14", 100.0}};
   for (const auto& [nn, speed] : cases) {
     SCOPED_TRACE("print " + nn + " at " + std::to_string(speed) + " mm/s");
     const SlipScores s = scored(full_slip(nn, speed, 1.0));

@@ -316,9 +316,51 @@ int mirrored(int i, int n) {
   return r < n ? r : period - r;
 }
 
+// The span [begin, end) of `contrast` left once the runs at both ends that fall below 0.7 of its
+// median are cut, each at most a third of the whole: a print's border where the finger did not
+// touch the glass, flat grey, and the band before it where the ridges fade out over part of the
+// height (PolyU print 12's right edge: 18-24 grey levels across the print, 13-15 in the fading
+// band, 2-10 in the flat border). Mirrored into a sliding view, either shows as skin out of
+// contact where the scene's truth says it touches.
+std::pair<int, int> touched_span(const std::vector<double>& contrast) {
+  const int n = static_cast<int>(contrast.size());
+  std::vector<double> sorted = contrast;
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  const double low = 0.7 * sorted[static_cast<std::size_t>(n / 2)];
+  const auto flat = [&](int i) { return contrast[static_cast<std::size_t>(i)] < low; };
+  int begin = 0, end = n;
+  while (begin < n / 3 && flat(begin)) ++begin;
+  while (end > n - n / 3 && flat(end - 1)) --end;
+  return {begin, end};
+}
+
+// The part of a print (CV_32F) between the untouched borders of touched_span.
+cv::Rect touched_area(const cv::Mat& print) {
+  // Contrast of the ridges: the standard deviation of each column and each row of the print
+  // less its shading (a blur wider than a ridge period), so that a lamp's gradient across a
+  // flat border does not count as texture.
+  cv::Mat texture, shading;
+  texture = print.clone();
+  cv::GaussianBlur(texture, shading, {0, 0}, 8);
+  texture -= shading;
+  cv::Mat squared = texture.mul(texture);
+  cv::Mat col_power, row_power;
+  cv::reduce(squared, col_power, 0, cv::REDUCE_AVG, CV_64F);
+  cv::reduce(squared, row_power, 1, cv::REDUCE_AVG, CV_64F);
+  std::vector<double> cols(col_power.begin<double>(), col_power.end<double>());
+  std::vector<double> rows(row_power.begin<double>(), row_power.end<double>());
+  for (auto* v : {&cols, &rows}) {
+    for (double& p : *v) p = std::sqrt(p);
+  }
+  const auto [x0, x1] = touched_span(cols);
+  const auto [y0, y1] = touched_span(rows);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
 // `source` (CV_32F) at (x, y); `outside` beyond its border (skin out of contact), or with
-// `mirror` the source mirrored without end.
-float sample_lanczos(const cv::Mat& source, double x, double y, float outside, bool mirror) {
+// `mirror` the source's `area` mirrored without end.
+float sample_lanczos(const cv::Mat& source, double x, double y, float outside, bool mirror,
+                     const cv::Rect& area) {
   const double fx = std::floor(x), fy = std::floor(y);
   const auto wx = lanczos_weights(x - fx), wy = lanczos_weights(y - fy);
   const int x0 = static_cast<int>(fx) - 3, y0 = static_cast<int>(fy) - 3;
@@ -329,10 +371,10 @@ float sample_lanczos(const cv::Mat& source, double x, double y, float outside, b
     for (int i = 0; i < 8; ++i) {
       const int xx = x0 + i;
       const bool inside = xx >= 0 && yy >= 0 && xx < source.cols && yy < source.rows;
-      const float grey =
-          mirror   ? source.at<float>(mirrored(yy, source.rows), mirrored(xx, source.cols))
-          : inside ? source.at<float>(yy, xx)
-                   : outside;
+      const float grey = mirror   ? source.at<float>(area.y + mirrored(yy - area.y, area.height),
+                                                   area.x + mirrored(xx - area.x, area.width))
+                         : inside ? source.at<float>(yy, xx)
+                                  : outside;
       row += wx[static_cast<std::size_t>(i)] * grey;
     }
     sum += wy[static_cast<std::size_t>(j)] * row;
@@ -469,6 +511,10 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
 
   const int w = spec.width_px, h = spec.height_px;
   const Warp warp(spec);
+  // Full slip brings skin from far beyond the print into view: mirrored from the print's
+  // touched area only, so a border the finger did not touch is not shown as skin in contact.
+  const bool mirror = spec.pattern == WarpPattern::full_slip;
+  const cv::Rect area = mirror ? touched_area(source) : cv::Rect(0, 0, source.cols, source.rows);
   // Each pixel averages the moving image over its area and the shutter time: n x n points on
   // the pixel, each at its own instant of the exposure (stratified, so that n^2 samples cover
   // both), which is what a sensor integrates.
@@ -497,9 +543,8 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
             const PointMm at{(x + o.dx_px) / spec.px_per_mm, (y + o.dy_px) / spec.px_per_mm};
             const double instant = f + o.dframe;
             const PointMm m = warp.to_material(at, instant);
-            const double grey =
-                sample_lanczos(source, m.x_mm * spec.px_per_mm, m.y_mm * spec.px_per_mm, background,
-                               spec.pattern == WarpPattern::full_slip);
+            const double grey = sample_lanczos(source, m.x_mm * spec.px_per_mm,
+                                               m.y_mm * spec.px_per_mm, background, mirror, area);
             const double touch = warp.contact(at, instant);
             sum += touch * grey + (1 - touch) * background;
           }
