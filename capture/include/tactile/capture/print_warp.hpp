@@ -15,7 +15,8 @@
 // Full slip is the exception: the skin slides along x at the travel speed, x = c + p + w(p) with
 // p = X - c + v t ex, and w a static smooth displacement field of the glass's frame (Gaussian
 // kernels), so each skin element is strained as it crosses the contact, as skin is in steady
-// sliding. Rotation and the sequence's slide are not used. The source print is mirrored at its
+// sliding. Rotation and the sequence's slide are not used. The source print's touched area (its
+// edges cut where the ridges fade out: a border the finger did not touch) is mirrored at its
 // borders without end, so the skin may travel many view widths.
 
 #include <array>
