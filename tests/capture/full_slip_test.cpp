@@ -22,6 +22,7 @@
 #include "tactile/capture/contact_strain.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
+#include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
 
 namespace tactile::capture {
@@ -121,6 +122,26 @@ TEST(FullSlip, MirroredPrintFillsTheViewWhereverTheSkinHasSlid) {
       EXPECT_GT(sd, 13) << "frame " << f << ", columns from " << x0;
     }
   }
+}
+
+// The marks in the border left out of the mirrored area are left out too: the frames show the
+// mirror image of the touched area there, not the pores marked on the border.
+TEST(FullSlip, MarksOnTheUntouchedBorderAreNotCarried) {
+  const GrayImage print = read_image(print_path("12", "image_"));
+  const auto marks = read_pore_marks(print_path("12", "pores_"), print.width_px, print.height_px);
+  PrintWarpSpec s = spec_for(print, WarpPattern::full_slip, 0.0);
+  s.travel_speed_mm_per_s = 25;
+  s.frame_count = 2;
+  const PrintSequence slid = render_print_sequence(s, print, marks);
+  // Print 12's ridges fade from about x = 280 px and end in flat grey from about x = 297 px
+  // (its columns' ridge contrast).
+  ASSERT_LT(slid.marks_px.size(), marks.size());
+  EXPECT_GT(slid.marks_px.size(), marks.size() * 8 / 10);
+  for (const auto& m : slid.marks_px) EXPECT_LT(m[0], 290) << "mark at x " << m[0];
+  // Every other warp keeps every mark: it shows the print's own border as it is.
+  s.pattern = WarpPattern::wave;
+  s.travel_speed_mm_per_s = 0;
+  EXPECT_EQ(render_print_sequence(s, print, marks).marks_px.size(), marks.size());
 }
 
 // Prints 11-15 are held out of every choice of the capture's settings. 10-100 mm/s at 60 Hz

@@ -339,10 +339,9 @@ cv::Rect touched_area(const cv::Mat& print) {
   // Contrast of the ridges: the standard deviation of each column and each row of the print
   // less its shading (a blur wider than a ridge period), so that a lamp's gradient across a
   // flat border does not count as texture.
-  cv::Mat texture, shading;
-  texture = print.clone();
-  cv::GaussianBlur(texture, shading, {0, 0}, 8);
-  texture -= shading;
+  cv::Mat shading;
+  cv::GaussianBlur(print, shading, {0, 0}, 8);
+  const cv::Mat texture = print - shading;
   cv::Mat squared = texture.mul(texture);
   cv::Mat col_power, row_power;
   cv::reduce(squared, col_power, 0, cv::REDUCE_AVG, CV_64F);
@@ -500,10 +499,20 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   seq.spec = spec;
   seq.calibration = uniform_calibration(spec.px_per_mm, spec.width_px, spec.height_px);
   seq.calibration.method = fmt::format("px-per-mm {}", spec.px_per_mm);
-  seq.marks_px = marks_px;
-
   cv::Mat source;
   as_mat(print).convertTo(source, CV_32F);
+  // Full slip brings skin from far beyond the print into view: mirrored from the print's
+  // touched area only, so a border the finger did not touch is not shown as skin in contact.
+  const bool mirror = spec.pattern == WarpPattern::full_slip;
+  const cv::Rect area = mirror ? touched_area(source) : cv::Rect(0, 0, source.cols, source.rows);
+  // A mark in a border left out is not where the frames show its pore (they show the mirror
+  // image of the touched area there).
+  for (const auto& m : marks_px) {
+    if (!mirror || (m[0] >= area.x && m[0] < area.x + area.width && m[1] >= area.y &&
+                    m[1] < area.y + area.height)) {
+      seq.marks_px.push_back(m);
+    }
+  }
   // Skin that slides in from outside the print is shown as the print's valleys: bright, no
   // ridges, as skin out of contact is in a prism.
   const auto background = static_cast<float>(
@@ -511,10 +520,6 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
 
   const int w = spec.width_px, h = spec.height_px;
   const Warp warp(spec);
-  // Full slip brings skin from far beyond the print into view: mirrored from the print's
-  // touched area only, so a border the finger did not touch is not shown as skin in contact.
-  const bool mirror = spec.pattern == WarpPattern::full_slip;
-  const cv::Rect area = mirror ? touched_area(source) : cv::Rect(0, 0, source.cols, source.rows);
   // Each pixel averages the moving image over its area and the shutter time: n x n points on
   // the pixel, each at its own instant of the exposure (stratified, so that n^2 samples cover
   // both), which is what a sensor integrates.
@@ -572,9 +577,9 @@ PrintSequence render_print_sequence(const PrintWarpSpec& spec, const GrayImage& 
   });
 
   for (int f = 0; f < spec.frame_count; ++f) {
-    for (std::size_t i = 0; i < marks_px.size(); ++i) {
-      const PointMm x =
-          warp.to_image({marks_px[i][0] / spec.px_per_mm, marks_px[i][1] / spec.px_per_mm}, f);
+    for (std::size_t i = 0; i < seq.marks_px.size(); ++i) {
+      const auto& m = seq.marks_px[i];
+      const PointMm x = warp.to_image({m[0] / spec.px_per_mm, m[1] / spec.px_per_mm}, f);
       const double x_px = x.x_mm * spec.px_per_mm, y_px = x.y_mm * spec.px_per_mm;
       if (x_px < 0 || y_px < 0 || x_px > w - 1 || y_px > h - 1) continue;
       if (warp.contact(x, f) < 0.5) continue;
