@@ -23,12 +23,12 @@
 #include "tactile/capture/contact_strain.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
-#include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
 
 namespace tactile::capture {
 namespace {
 
+using test::marks_of;
 using test::print_path;
 using test::spec_for;
 
@@ -129,7 +129,7 @@ TEST(FullSlip, MirroredPrintFillsTheViewWhereverTheSkinHasSlid) {
 // mirror image of the touched area there, not the pores marked on the border.
 TEST(FullSlip, MarksOnTheUntouchedBorderAreNotCarried) {
   const GrayImage print = read_image(print_path("12", "image_"));
-  const auto marks = read_pore_marks(print_path("12", "pores_"), print.width_px, print.height_px);
+  const auto marks = marks_of("12", print);
   PrintWarpSpec s = spec_for(print, WarpPattern::full_slip, 0.0);
   s.travel_speed_mm_per_s = 25;
   s.frame_count = 2;

@@ -20,7 +20,6 @@
 #include "tactile/capture/capture.hpp"
 #include "tactile/capture/evaluate.hpp"
 #include "tactile/capture/image.hpp"
-#include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
 #include "tactile/common/error.hpp"
 
@@ -29,6 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using test::marks_of;
 using test::print_path;
 using test::spec_for;
 
@@ -148,7 +148,7 @@ TEST(PrintWarp, TravellingPatternsCrossAtTheirSpeed) {
 
 TEST(PrintWarp, ContactLossHidesPoresAndBrightensTheirSkin) {
   const GrayImage print = read_image(print_path("12", "image_"));
-  const auto marks = read_pore_marks(print_path("12", "pores_"), print.width_px, print.height_px);
+  const auto marks = marks_of("12", print);
   PrintWarpSpec s = spec_for(print, WarpPattern::rigid, 0.0);
   s.frame_count = 9;
   s.contact_loss = 1;
@@ -218,7 +218,7 @@ TEST(PrintWarp, ExposureBlursAlongTheMotion) {
 
 TEST(PrintWarp, MarksFollowTheWarp) {
   const GrayImage print = read_image(print_path("12", "image_"));
-  const auto marks = read_pore_marks(print_path("12", "pores_"), print.width_px, print.height_px);
+  const auto marks = marks_of("12", print);
   const PrintWarpSpec s = spec_for(print, WarpPattern::bump, 0.06);
   const PrintSequence seq = render_print_sequence(s, print, marks);
   int at_frame_0 = 0;
@@ -253,7 +253,7 @@ TEST(PrintWarp, SequenceFolderIsAGroundTruthAndBrokenOnesAreNamed) {
   const GrayImage print = read_image(print_path("12", "image_"));
   PrintWarpSpec s = spec_for(print, WarpPattern::stretch, 0.03);
   s.frame_count = 3;
-  const auto marks = read_pore_marks(print_path("12", "pores_"), print.width_px, print.height_px);
+  const auto marks = marks_of("12", print);
   write_print_sequence(dir.path(), render_print_sequence(s, print, marks));
   const GroundTruth truth = read_ground_truth(dir.path());
   ASSERT_TRUE(truth.warp.has_value());
@@ -330,7 +330,7 @@ TEST(RealPrintStrain, HeldOutPrintsMeetTheTargetsAndBeatLucasKanade) {
         std::tuple{"12", WarpPattern::bump, 0.04}, std::tuple{"14", WarpPattern::bump, 0.04}}) {
     SCOPED_TRACE(fmt::format("print {}, {} at {} %", nn, to_string(pattern), 100 * strain));
     const GrayImage print = read_image(print_path(nn, "image_"));
-    const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
+    const auto marks = marks_of(nn, print);
     const PrintSequence seq = render_print_sequence(spec_for(print, pattern, strain), print, marks);
     const GroundTruth truth = ground_truth_of(seq);
 
@@ -399,7 +399,7 @@ TEST(RealPrintStrain, HeldOutPrintsKeepTheQuasiStaticFigures) {
         std::pair{"12", WarpPattern::compress}, std::pair{"14", WarpPattern::compress}}) {
     SCOPED_TRACE(fmt::format("print {}, {}", nn, to_string(pattern)));
     const GrayImage print = read_image(print_path(nn, "image_"));
-    const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
+    const auto marks = marks_of(nn, print);
     const PrintSequence seq = render_print_sequence(spec_for(print, pattern, 0.04), print, marks);
     const CaptureParams params =
         with_choice({}, choose_capture_settings(seq.frames[0], seq.spec.px_per_mm));
@@ -423,7 +423,7 @@ TEST(RealPrintStrain, HeldOutPrintsSlowWaveFollowsTheTruthBetterWithTheWindowsDe
   for (const char* nn : {"12", "14"}) {
     SCOPED_TRACE(fmt::format("print {}", nn));
     const GrayImage print = read_image(print_path(nn, "image_"));
-    const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
+    const auto marks = marks_of(nn, print);
     const PrintSequence seq =
         render_print_sequence(spec_for(print, WarpPattern::wave, 0.01), print, marks);
     const CaptureParams params =
@@ -444,7 +444,7 @@ TEST(RealPrintStrain, HeldOutPrintsSlowWaveFollowsTheTruthBetterWithTheWindowsDe
 // at 2.5 mm/s and turns by 3 degrees.
 PrintSequence fast_scene(const std::string& nn, double travel_mm_per_s, int frame_count) {
   const GrayImage print = read_image(print_path(nn, "image_"));
-  const auto marks = read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
+  const auto marks = marks_of(nn, print);
   PrintWarpSpec spec = spec_for(print, WarpPattern::wave, 0.08);
   spec.frame_count = frame_count;
   spec.frame_rate_hz = 60;

@@ -1,10 +1,13 @@
 #pragma once
 // The vendored real prints (tests/data/polyu-hrf-pores) and the warps the tests put them through.
 
+#include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "tactile/capture/image.hpp"
+#include "tactile/capture/pore_training_io.hpp"
 #include "tactile/capture/print_warp.hpp"
 
 namespace tactile::capture::test {
@@ -13,6 +16,11 @@ namespace tactile::capture::test {
 inline std::filesystem::path print_path(const std::string& nn, const std::string& kind) {
   return std::filesystem::path(TACTILE_TEST_DATA_DIR) / "polyu-hrf-pores" /
          (kind + nn + (kind == "image_" ? ".jpg" : ".txt"));
+}
+
+// The hand-marked pores of print NN (pores_NN.txt), checked against its image's size.
+inline std::vector<std::array<double, 2>> marks_of(const std::string& nn, const GrayImage& print) {
+  return read_pore_marks(print_path(nn, "pores_"), print.width_px, print.height_px);
 }
 
 // 30 frames of `pattern` at `strain` over the whole print, other settings the defaults (slide,

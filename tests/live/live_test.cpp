@@ -68,7 +68,12 @@ TEST(WaitingQueue, APushWaitsForRoomAndNothingIsDropped) {
       ++pushed;
     }
   });
-  // The first push finds room; the second waits until the first is taken.
+  // The first push finds room; the second waits until the first is taken. (Waited for first:
+  // on a loaded machine the producer may not have run within a fixed sleep.)
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (pushed.load() < 1 && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   EXPECT_EQ(pushed.load(), 1);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(q.pop(std::chrono::seconds(5)), i);
