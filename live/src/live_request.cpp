@@ -51,6 +51,11 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
         "Positions of each track fitted (a quadratic, looking back only) to smooth its step\n"
         "into each frame: 0 for none, else 4 to 30 (default: chosen by the tracks' own noise\n"
         "every 30 frames, as the batch capture chooses its smoothing)"));
+    t.push_back(rows::number<R>(
+        "neighbour_sigma", &R::neighbour_sigma_mm, 0, 5, "mm",
+        "Reach (Gaussian sigma) of the smoothing of each frame's steps across neighbouring\n"
+        "tracks, a local quadratic read at each track (no latency added): 0 for none, else 0.1\n"
+        "to 5 (default: chosen by the steps, the reach whose fits best predict tracks left out)"));
     return t;
   }();
   return table;
@@ -126,6 +131,15 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
           label("smooth_frames"), *request.smooth_frames));
     }
     r.smoothing.window_frames = *request.smooth_frames;
+  }
+  if (request.neighbour_sigma_mm) {
+    if (*request.neighbour_sigma_mm > 0 && *request.neighbour_sigma_mm < 0.1) {
+      throw RequestError(fmt::format(
+          "{}: {:g} mm reaches fewer tracks than a quadratic fit needs: give 0 (none) or 0.1 to "
+          "5 mm",
+          label("neighbour_sigma"), *request.neighbour_sigma_mm));
+    }
+    r.neighbour_smoothing.sigma_mm = *request.neighbour_sigma_mm;
   }
   return r;
 }

@@ -21,6 +21,7 @@
 #include "tactile/capture/contact_map.hpp"
 #include "tactile/capture/contact_strain.hpp"
 #include "tactile/capture/features.hpp"
+#include "tactile/capture/neighbour_smoothing.hpp"
 #include "tactile/capture/track.hpp"
 #include "tactile/common/error.hpp"
 #include "tactile/common/stats.hpp"
@@ -362,6 +363,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   std::unique_ptr<AsyncDetector> detector;
   capture::RefineParams refine;
   capture::CausalTrackSmoother smoother(session.smoothing);
+  std::optional<capture::NeighbourStepSmoother> neighbours;
   AsyncWindowChoice window_choice;
   capture::FeatureParams features = capture::pores_only();
   capture::Calibration calibration;
@@ -547,6 +549,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         summary.detector = capture::to_string(choice.detector);
         refine.window_mm = session.refine_window_mm;
         tracker = std::make_unique<capture::AlignmentTracker>(px_per_mm, refine, options.threads);
+        neighbours.emplace(session.neighbour_smoothing, px_per_mm);
         capture::StrainMovie frame_of_view;
         frame_of_view.calibration = calibration;
         frame_of_view.field_width_mm = f.image.width_px * calibration.mm_per_px;
@@ -602,6 +605,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
           ++summary.smoothing_choices;
         }
         smoother.smooth(*previous, f.index, steps);
+        neighbours->smooth(steps);
         if (smoother.choice_due()) {
           window_choice.start(smoother.tracks_to_choose_by(), session.smoothing.degree,
                               refine.max_smoothing_residual_px,
@@ -644,6 +648,12 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   if (acquisition_failure) std::rethrow_exception(acquisition_failure);
 
   summary.smoothing_frames = smoother.window_frames();
+  if (neighbours) {
+    summary.neighbour_sigma_mm = neighbours->sigma_mm();
+    summary.neighbour_choices = neighbours->choices();
+    summary.neighbour_min_sigma_mm = neighbours->min_chosen_mm();
+    summary.neighbour_max_sigma_mm = neighbours->max_chosen_mm();
+  }
   summary.frames_in = frames_in;
   summary.frames_driver_stamped = frames_driver_stamped;
   summary.frames_dropped = queue.dropped() + left_waiting;
@@ -717,6 +727,18 @@ std::string format_summary(const LiveSummary& s) {
                                        "{} to {} positions",
                                        s.smoothing_choices, s.smoothing_choices == 1 ? "" : "s",
                                        s.smoothing_min_frames, s.smoothing_max_frames));
+  out += fmt::format(
+      "across      {}{}\n",
+      s.neighbour_sigma_mm == 0
+          ? std::string("none")
+          : fmt::format("each step smoothed by its neighbours' (a quadratic, sigma {:g} mm; no "
+                        "latency added)",
+                        s.neighbour_sigma_mm),
+      s.neighbour_choices == 0
+          ? std::string()
+          : fmt::format(" at the end; chosen {} time{} by the steps, {:g} to {:g} mm",
+                        s.neighbour_choices, s.neighbour_choices == 1 ? "" : "s",
+                        s.neighbour_min_sigma_mm, s.neighbour_max_sigma_mm));
   if (s.strain_edges_near_gaps > 0) {
     out += fmt::format(
         "contact     {} of {} strain edges left out, at or within {} cell of skin the frames show "

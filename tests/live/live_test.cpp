@@ -182,6 +182,24 @@ TEST(LiveRequest, SmoothingIsNoneFourToThirtyPositionsOrChosen) {
   EXPECT_THAT(error_of(r), HasSubstr("--smooth-frames"));
 }
 
+TEST(LiveRequest, NeighbourSmoothingIsNoneATenthToFiveMillimetresOrChosen) {
+  const tactile::test::TempDir dir("live");
+  auto r = request_for(dir.path());
+  EXPECT_EQ(tactile::live::resolve(r, OptionSpelling::cli).neighbour_smoothing.sigma_mm,
+            tactile::capture::NeighbourSmoothing::kChosenSigma);
+  for (const double sigma : {0.0, 0.1, 0.35, 5.0}) {
+    r.neighbour_sigma_mm = sigma;
+    EXPECT_EQ(tactile::live::resolve(r, OptionSpelling::cli).neighbour_smoothing.sigma_mm, sigma);
+  }
+  r.neighbour_sigma_mm = 0.05;
+  EXPECT_THAT(error_of(r), HasSubstr("--neighbour-sigma: 0.05 mm reaches fewer tracks"));
+  r.neighbour_sigma_mm = 5.5;
+  EXPECT_THAT(error_of(r), HasSubstr("--neighbour-sigma"));
+  EXPECT_THAT(error_of(r), HasSubstr("5"));
+  r.neighbour_sigma_mm = -1;
+  EXPECT_THAT(error_of(r), HasSubstr("--neighbour-sigma"));
+}
+
 TEST(LiveRequest, RecordsOnlyIntoANewOrEmptyFolder) {
   const tactile::test::TempDir dir("live");
   auto r = request_for(dir.path());

@@ -12,6 +12,7 @@
 #include "tactile/capture/capture.hpp"
 #include "tactile/capture/capture_request.hpp"
 #include "tactile/capture/causal_smoothing.hpp"
+#include "tactile/capture/neighbour_smoothing.hpp"
 #include "tactile/common/option_table.hpp"
 #include "tactile/mapping/map_request.hpp"
 
@@ -31,6 +32,9 @@ struct LiveRequest {
   int detect_every = capture::CaptureParams{}.redetect_every_frames;
   // Positions of each track fitted by the causal smoothing (0: none); unset: chosen by the tracks.
   std::optional<int> smooth_frames;
+  // Gaussian reach of the smoothing of each frame's steps across neighbouring tracks (mm; 0:
+  // none); unset: chosen by the steps.
+  std::optional<double> neighbour_sigma_mm;
 };
 
 const std::vector<OptionRow<LiveRequest>>& live_options();
@@ -61,6 +65,7 @@ struct ResolvedLive {
   std::optional<int> queue_frames;  // unset: queue_frames_for(the camera's rate)
   int detect_every = 0;
   capture::CausalSmoothing smoothing;
+  capture::NeighbourSmoothing neighbour_smoothing;
 };
 
 // Checks every value and the rules between them (RequestError in the front end's spelling): one

@@ -75,6 +75,11 @@ struct LiveSummary {
   int smoothing_frames = 0;
   int smoothing_choices = 0;
   int smoothing_min_frames = 0, smoothing_max_frames = 0;
+  // The smoothing of steps across neighbouring tracks: the sigma in use at the end (mm, 0:
+  // none), the choices along the way (none when one was given) and the smallest and largest.
+  double neighbour_sigma_mm = 0;
+  int neighbour_choices = 0;
+  double neighbour_min_sigma_mm = 0, neighbour_max_sigma_mm = 0;
 };
 
 // What is known once the first frame has arrived.
