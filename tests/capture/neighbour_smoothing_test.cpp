@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -144,6 +145,28 @@ TEST(NeighbourSmoothing, AStepOfOtherThanTwoPositionsIsRefusedNamingTheTrack) {
     FAIL() << "a track of three positions was taken";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("track 3 has 3 positions"), std::string::npos) << e.what();
+  }
+}
+
+TEST(NeighbourSmoothing, PositionsNoViewCouldHoldAreRefusedNamingThem) {
+  auto steps = steps_of(quadratic, 15, 0, 7);
+  steps[5].x_px[0] = std::numeric_limits<double>::quiet_NaN();
+  try {
+    smooth_steps_across_neighbours(steps, kPxPerMm, 0.4, 12);
+    FAIL() << "a track at no position was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("track 5 is at no finite position"), std::string::npos)
+        << e.what();
+  }
+  // A grid of cells over a span this wide would take gigabytes: refused before it is made.
+  steps = steps_of(quadratic, 15, 0, 7);
+  steps[5].x_px[0] = 1e12;
+  try {
+    smooth_steps_across_neighbours(steps, kPxPerMm, 0.4, 12);
+    FAIL() << "a track a billion pixels away was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("far beyond a camera's view"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -10,7 +10,6 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace tactile::capture {
 
@@ -27,71 +26,166 @@ void check_steps(const std::vector<Track>& steps) {
   }
 }
 
-// The steps by square cells of a side, so that those within that distance of a point are in
-// its cell and the eight around it.
-class StepGrid {
- public:
-  StepGrid(const std::vector<Track>& steps, double cell_px) : steps_(steps), cell_px_(cell_px) {
-    for (std::size_t i = 0; i < steps.size(); ++i) {
-      cells_[key(cell(steps[i].x_px[0]), cell(steps[i].y_px[0]))].push_back(i);
-    }
-  }
-
-  template <typename Visit>
-  void near(double x_px, double y_px, Visit&& visit) const {
-    const long long cx = cell(x_px), cy = cell(y_px);
-    for (long long gx = cx - 1; gx <= cx + 1; ++gx) {
-      for (long long gy = cy - 1; gy <= cy + 1; ++gy) {
-        const auto found = cells_.find(key(gx, gy));
-        if (found == cells_.end()) continue;
-        for (const std::size_t j : found->second) visit(j);
-      }
-    }
-  }
-
- private:
-  long long cell(double v) const { return static_cast<long long>(std::floor(v / cell_px_)); }
-  static long long key(long long cx, long long cy) { return (cx << 32) ^ (cy & 0xffffffffLL); }
-
-  const std::vector<Track>& steps_;
-  double cell_px_;
-  std::unordered_map<long long, std::vector<std::size_t>> cells_;
-};
-
 Eigen::Vector2d displacement(const Track& s) {
   return {s.x_px[1] - s.x_px[0], s.y_px[1] - s.y_px[0]};
 }
 
-// The quadratic of the displacements of the steps near step i, read at i's first position;
-// none where too few or along a line. `without_own`: without i itself and the steps within
-// exclude_px of it.
-std::optional<Eigen::Vector2d> fit_at(const std::vector<Track>& steps, const StepGrid& grid,
-                                      std::size_t i, double sigma_px, int min_neighbours,
-                                      bool without_own, double exclude_px = 0) {
-  using Vector6 = Eigen::Matrix<double, 6, 1>;
-  using Matrix6 = Eigen::Matrix<double, 6, 6>;
-  const double x0 = steps[i].x_px[0], y0 = steps[i].y_px[0];
-  Matrix6 normal = Matrix6::Zero();
-  Eigen::Matrix<double, 6, 2> rhs = Eigen::Matrix<double, 6, 2>::Zero();
-  int count = 0;
+// The steps' first positions and displacements side by side, and the steps by square cells of
+// a side, so that those within that distance of a point are in its cell and the eight around
+// it (a dense grid over the positions' extent, its cells' members held one after another).
+class StepGrid {
+ public:
+  StepGrid(const std::vector<Track>& steps, double cell_px) : cell_px_(cell_px) {
+    const std::size_t n = steps.size();
+    x_.resize(n);
+    y_.resize(n);
+    d_.resize(n);
+    double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      x_[i] = steps[i].x_px[0];
+      y_[i] = steps[i].y_px[0];
+      d_[i] = displacement(steps[i]);
+      if (!std::isfinite(x_[i]) || !std::isfinite(y_[i])) {
+        throw std::invalid_argument(
+            fmt::format("neighbour smoothing: track {} is at no finite position", steps[i].id));
+      }
+      min_x = i == 0 ? x_[i] : std::min(min_x, x_[i]);
+      min_y = i == 0 ? y_[i] : std::min(min_y, y_[i]);
+      max_x = i == 0 ? x_[i] : std::max(max_x, x_[i]);
+      max_y = i == 0 ? y_[i] : std::max(max_y, y_[i]);
+    }
+    x0_ = min_x;
+    y0_ = min_y;
+    cols_ = static_cast<long>((max_x - min_x) / cell_px) + 1;
+    rows_ = static_cast<long>((max_y - min_y) / cell_px) + 1;
+    // A view is at most a few thousand pixels a side and a cell a few pixels: a grid larger
+    // than the steps many times over would say the positions are far outside any view.
+    if (cols_ * rows_ > static_cast<long>(64 * n + 1024)) {
+      throw std::invalid_argument(fmt::format(
+          "neighbour smoothing: the steps span {:.0f} x {:.0f} px, far beyond a camera's view",
+          max_x - min_x, max_y - min_y));
+    }
+    std::vector<long> cell_of(n);
+    first_.assign(static_cast<std::size_t>(cols_ * rows_ + 1), 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      cell_of[i] = cell(x_[i], y_[i]);
+      ++first_[static_cast<std::size_t>(cell_of[i]) + 1];
+    }
+    for (std::size_t c = 1; c < first_.size(); ++c) first_[c] += first_[c - 1];
+    members_.resize(n);
+    std::vector<std::size_t> filled(first_.begin(), first_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      members_[filled[static_cast<std::size_t>(cell_of[i])]++] = i;
+  }
+
+  template <typename Visit>
+  void near(double x_px, double y_px, Visit&& visit) const {
+    const long cx = static_cast<long>(std::floor((x_px - x0_) / cell_px_));
+    const long cy = static_cast<long>(std::floor((y_px - y0_) / cell_px_));
+    for (long gy = std::max(0L, cy - 1); gy <= std::min(rows_ - 1, cy + 1); ++gy) {
+      for (long gx = std::max(0L, cx - 1); gx <= std::min(cols_ - 1, cx + 1); ++gx) {
+        const auto c = static_cast<std::size_t>(gy * cols_ + gx);
+        for (std::size_t k = first_[c]; k < first_[c + 1]; ++k) visit(members_[k]);
+      }
+    }
+  }
+
+  double x(std::size_t i) const { return x_[i]; }
+  double y(std::size_t i) const { return y_[i]; }
+  const Eigen::Vector2d& d(std::size_t i) const { return d_[i]; }
+
+ private:
+  long cell(double x_px, double y_px) const {
+    return static_cast<long>((y_px - y0_) / cell_px_) * cols_ +
+           static_cast<long>((x_px - x0_) / cell_px_);
+  }
+
+  double cell_px_, x0_ = 0, y0_ = 0;
+  long cols_ = 0, rows_ = 0;
+  std::vector<double> x_, y_;
+  std::vector<Eigen::Vector2d> d_;
+  std::vector<std::size_t> first_, members_;
+};
+
+// A step near the one fitted: its first position's offset from that one's and its displacement.
+struct Near {
+  double dx_px, dy_px;
+  Eigen::Vector2d displacement;
+};
+
+// The steps within reach_px of step i's first position, without i itself and those within
+// exclude_px of it where `without_own`; nearest first where `nearest_first`.
+void near_steps(const StepGrid& grid, std::size_t i, double reach_px, bool without_own,
+                double exclude_px, bool nearest_first, std::vector<Near>& out) {
+  out.clear();
+  const double x0 = grid.x(i), y0 = grid.y(i);
   grid.near(x0, y0, [&](std::size_t j) {
     if (without_own && j == i) return;
-    // Offsets in sigmas keep the normal equations' entries of one size.
-    const double u = (steps[j].x_px[0] - x0) / sigma_px, v = (steps[j].y_px[0] - y0) / sigma_px;
-    const double r2 = u * u + v * v;
-    if (without_own && r2 * sigma_px * sigma_px < exclude_px * exclude_px) return;
-    if (r2 > kReachSigmas * kReachSigmas) return;
-    const double w = std::exp(-0.5 * r2);
-    Vector6 row;
-    row << 1, u, v, u * u, u * v, v * v;
-    normal.noalias() += w * row * row.transpose();
-    rhs.noalias() += w * row * displacement(steps[j]).transpose();
-    ++count;
+    const double dx = grid.x(j) - x0, dy = grid.y(j) - y0;
+    const double r2 = dx * dx + dy * dy;
+    if (r2 > reach_px * reach_px || (without_own && r2 < exclude_px * exclude_px)) return;
+    out.push_back({dx, dy, grid.d(j)});
   });
+  // A fit of a shorter reach then stops at the first beyond it.
+  if (nearest_first) {
+    std::sort(out.begin(), out.end(), [](const Near& a, const Near& b) {
+      return a.dx_px * a.dx_px + a.dy_px * a.dy_px < b.dx_px * b.dx_px + b.dy_px * b.dy_px;
+    });
+  }
+}
+
+// The Gaussian-weighted quadratic of the near steps' displacements, read at the centre; none
+// where fewer than min_neighbours are within 2.5 sigma or they lie along a line.
+std::optional<Eigen::Vector2d> fit_of(const std::vector<Near>& near, bool nearest_first,
+                                      double sigma_px, int min_neighbours) {
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  // The normal equations of the terms 1, u, v, u^2, uv, v^2 hold the weighted moments of u and v
+  // up to the fourth order, fifteen in all (m[a][b] = sum of w u^a v^b), and the right-hand
+  // side the weighted moments of the displacements up to the second: summed as such, each
+  // neighbour costs a few dozen multiply-adds.
+  double m[5][5] = {};
+  double dx[3][3] = {}, dy[3][3] = {};
+  int count = 0;
+  for (const Near& n : near) {
+    // Offsets in sigmas keep the moments of one size.
+    const double u = n.dx_px / sigma_px, v = n.dy_px / sigma_px;
+    const double r2 = u * u + v * v;
+    if (r2 > kReachSigmas * kReachSigmas) {
+      if (nearest_first) break;  // the rest are further
+      continue;
+    }
+    const double w = std::exp(-0.5 * r2);
+    double wu[5];
+    wu[0] = w;
+    for (int a = 1; a < 5; ++a) wu[a] = wu[a - 1] * u;
+    for (int a = 0; a < 5; ++a) {
+      double term = wu[a];
+      for (int b = 0; a + b < 5; ++b, term *= v) m[a][b] += term;
+    }
+    for (int a = 0; a < 3; ++a) {
+      double term = wu[a];
+      for (int b = 0; a + b < 3; ++b, term *= v) {
+        dx[a][b] += term * n.displacement.x();
+        dy[a][b] += term * n.displacement.y();
+      }
+    }
+    ++count;
+  }
   if (count < min_neighbours) return std::nullopt;
+  // Term k as powers (a, b) of (u, v).
+  constexpr int kPowers[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
+  Matrix6 normal;
+  Eigen::Matrix<double, 6, 2> rhs;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      normal(r, c) = m[kPowers[r][0] + kPowers[c][0]][kPowers[r][1] + kPowers[c][1]];
+    }
+    rhs(r, 0) = dx[kPowers[r][0]][kPowers[r][1]];
+    rhs(r, 1) = dy[kPowers[r][0]][kPowers[r][1]];
+  }
   const Eigen::LDLT<Matrix6> ldlt(normal);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return std::nullopt;
-  const Eigen::VectorXd d = ldlt.vectorD();
+  const Eigen::Matrix<double, 6, 1> d = ldlt.vectorD();
   if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return std::nullopt;
   const Eigen::Matrix<double, 6, 2> coefficients = ldlt.solve(rhs);
   if (!coefficients.allFinite()) return std::nullopt;
@@ -130,9 +224,10 @@ void smooth_steps_across_neighbours(std::vector<Track>& steps, double px_per_mm,
   const double sigma_px = sigma_mm * px_per_mm;
   const StepGrid grid(steps, kReachSigmas * sigma_px);
   std::vector<Eigen::Vector2d> smoothed(steps.size());
+  std::vector<Near> near;
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    smoothed[i] =
-        fit_at(steps, grid, i, sigma_px, min_neighbours, false).value_or(displacement(steps[i]));
+    near_steps(grid, i, kReachSigmas * sigma_px, false, 0, false, near);
+    smoothed[i] = fit_of(near, false, sigma_px, min_neighbours).value_or(grid.d(i));
   }
   for (std::size_t i = 0; i < steps.size(); ++i) {
     steps[i].x_px[1] = steps[i].x_px[0] + smoothed[i].x();
@@ -152,19 +247,21 @@ void NeighbourStepSmoother::smooth(std::vector<Track>& steps) {
   if (smoothing_.sigma_mm == NeighbourSmoothing::kChosenSigma && !steps.empty()) {
     // Each sampled track's measured step against every candidate's fit without it, counted only
     // where every candidate has a fit, so that the candidates are scored on the same tracks.
-    const double widest_px = kNeighbourSigmaCandidatesMm.back() * px_per_mm_;
-    const StepGrid grid(steps, kReachSigmas * widest_px);
+    const double widest_px = kReachSigmas * kNeighbourSigmaCandidatesMm.back() * px_per_mm_;
+    const StepGrid grid(steps, widest_px);
     const std::size_t every =
         std::max<std::size_t>(1, steps.size() / NeighbourSmoothing::kChoiceSampleTracks);
-    for (std::size_t i = 0; i < steps.size(); i += every) {
+    std::vector<Near> near;
+    for (std::size_t i = every / 2; i < steps.size(); i += every) {
+      near_steps(grid, i, widest_px, true, NeighbourSmoothing::kChoiceExcludeMm * px_per_mm_, true,
+                 near);
       std::array<double, kNeighbourSigmaCandidatesMm.size()> squared{};
       bool all = true;
       for (std::size_t c = 0; c < kNeighbourSigmaCandidatesMm.size() && all; ++c) {
-        const auto fit = fit_at(steps, grid, i, kNeighbourSigmaCandidatesMm[c] * px_per_mm_,
-                                smoothing_.min_neighbours, true,
-                                NeighbourSmoothing::kChoiceExcludeMm * px_per_mm_);
+        const auto fit = fit_of(near, true, kNeighbourSigmaCandidatesMm[c] * px_per_mm_,
+                                smoothing_.min_neighbours);
         all = fit.has_value();
-        if (all) squared[c] = (displacement(steps[i]) - *fit).squaredNorm();
+        if (all) squared[c] = (grid.d(i) - *fit).squaredNorm();
       }
       if (!all) continue;
       for (std::size_t c = 0; c < squared.size(); ++c) squared_residuals_[c] += squared[c];

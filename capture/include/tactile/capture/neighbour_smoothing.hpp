@@ -35,7 +35,7 @@ struct NeighbourSmoothing {
   static constexpr double kChosenSigma = -1;
   static constexpr int kFirstChoiceFrames = 5;
   // Tracks a frame whose leave-one-out fits go into the choice (spread over the frame).
-  static constexpr int kChoiceSampleTracks = 150;
+  static constexpr int kChoiceSampleTracks = 25;
   // The choice's fits leave out the tracks this close to the one predicted (and it), and are
   // made from min_neighbours or more of the rest.
   static constexpr double kChoiceExcludeMm = 0.3;
