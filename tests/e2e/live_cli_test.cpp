@@ -190,10 +190,11 @@ TEST_F(Live, StrainAgainstTheTruthBesideTheBatchCapture) {
   std::cout << "live: RMS error " << live_rms << ", correlation " << live_r
             << "; batch capture: RMS error " << batch_rms << "\n";
   EXPECT_TRUE(std::isfinite(live_rms) && std::isfinite(batch_rms));
-  // Causal and unsmoothed, the live strain is noisier than the batch capture's, which smooths
-  // each track over up to 33 frames around each one (measured here: RMS error 0.00091 against
-  // 0.00014, correlation 0.815 against 0.995, the frames being the same every run). The bounds
-  // keep that margin and fail a tracker that lost the skin (correlation near 0).
+  // Causal, the live strain is noisier than the batch capture's, which smooths each track over
+  // up to 33 frames around each one (measured here: RMS error 0.00091 against 0.00014,
+  // correlation 0.815 against 0.995, the frames being the same every run; 0.00059 and 0.922
+  // once each frame's steps were smoothed across the skin). The bounds keep that margin and
+  // fail a tracker that lost the skin (correlation near 0).
   EXPECT_GT(live_r, 0.75);
   EXPECT_LT(live_rms, 10 * batch_rms);
 }
@@ -301,6 +302,26 @@ TEST_F(Live, SkinThatLiftsOffInFullSlipGivesNoStrainAcrossTheGap) {
     EXPECT_LE(s.rms, 0.0025);
     EXPECT_GE(s.r, 0.85);
   }
+}
+
+// The smoothing across the skin: chosen by the steps unless fixed, and said which.
+TEST_F(Live, TheSmoothingAcrossTheSkinIsChosenOrFixedAndSaid) {
+  const std::string run =
+      "live " + frames().string() + " --px-per-mm 47 --rate-hz 10 --queue-frames 30 --headless";
+  const auto chosen = run_tactile(run);
+  ASSERT_EQ(chosen.exit_code, 0) << chosen.output;
+  EXPECT_THAT(chosen.output, HasSubstr("by the steps, 0."));
+  const auto fixed = run_tactile(run + " --neighbour-sigma 0.5");
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.output;
+  EXPECT_THAT(fixed.output, HasSubstr("sigma 0.5 mm; no look-ahead)\n"));
+  const auto none = run_tactile(run + " --neighbour-sigma 0");
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  EXPECT_THAT(none.output, HasSubstr("across      none\n"));
+  const auto too_short = run_tactile(run + " --neighbour-sigma 0.05");
+  EXPECT_NE(too_short.exit_code, 0);
+  EXPECT_THAT(too_short.output,
+              HasSubstr("--neighbour-sigma: 0.05 mm reaches fewer tracks than a quadratic fit "
+                        "needs: give 0 (none) or 0.1 to 5 mm"));
 }
 
 TEST_F(Live, ARecordingFolderThatHoldsFilesIsRefused) {

@@ -56,6 +56,9 @@ TEST(RangeErrors, ReadLikeAPersonWroteThem) {
   expect_readable_range_error("bench stream --seconds 0.01",
                               "--seconds: 0.01 is out of range: must be from 0.1 to 600");
   expect_readable_range_error("synth x --frames 2.5", "--frames: 2.5 is not a whole number");
+  expect_readable_range_error(
+      "live " + demo_dir().string() + " --px-per-mm 62 --headless --neighbour-sigma 7",
+      "--neighbour-sigma: 7 is out of range: must be from 0 to 5");
   const std::string prints = tactile::test::test_data("polyu-hrf-pores").string();
   expect_readable_range_error("bench live " + prints + " --seconds 0.1",
                               "--seconds: 0.1 is out of range: must be from 0.5 to 600");
