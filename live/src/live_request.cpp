@@ -56,6 +56,12 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
         "Reach (Gaussian sigma) of the smoothing of each frame's steps across neighbouring\n"
         "tracks, a local quadratic read at each track (no latency added): 0 for none, else 0.1\n"
         "to 5 (default: chosen by the steps, the reach whose fits best predict tracks left out)"));
+    t.push_back(rows::number<R>(
+        "min_spacing", &R::min_spacing_mm, 0, 5, "mm",
+        "Least distance between tracked landmarks: 0 for every landmark found (default: every\n"
+        "one while the session keeps up with the camera; spaced further apart when a frame's\n"
+        "tracking, strain and mapping take over 60 % of the camera's period, e.g. 640 x 484 at\n"
+        "60 Hz on two cores)"));
     return t;
   }();
   return table;
@@ -141,6 +147,7 @@ ResolvedLive resolve(const LiveRequest& request, OptionSpelling spelling) {
     }
     r.neighbour_smoothing.sigma_mm = *request.neighbour_sigma_mm;
   }
+  r.min_spacing_mm = request.min_spacing_mm;
   return r;
 }
 

@@ -13,6 +13,9 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#if defined(__linux__)
+#include <sched.h>
+#endif
 #include <utility>
 
 #include "live_source.hpp"
@@ -86,6 +89,22 @@ class HeldFrame {
   Clock::time_point last_sent_at_{};
 };
 
+// The calling thread into the scheduler's idle class or back to the normal one; false where
+// refused. For the session's side work (detection, the smoothing's choice) while the session is
+// short of time for the camera: there it would take a core from the tracker's two workers for
+// the frames it runs on. A session with time to spare keeps it at normal priority, where other
+// load cannot starve it (a full-slip session needs a detection every frame).
+bool to_idle_class(bool idle) {
+#if defined(__linux__)
+  sched_param none{};
+  none.sched_priority = 0;
+  return sched_setscheduler(0, idle ? SCHED_IDLE : SCHED_OTHER, &none) == 0;
+#else
+  (void)idle;
+  return false;
+#endif
+}
+
 // Detection of new landmarks off the processing thread. The ridge-blob detector takes tens of
 // milliseconds on a 320 x 240 frame, several camera frames at 120 Hz: in line it would delay
 // those frames and drop the next ones. Its landmarks arrive a few frames later, found on the
@@ -117,6 +136,11 @@ class AsyncDetector {
     }
     changed_.notify_all();
   }
+  // Whether detections run in the scheduler's idle class (from the next one on; to_idle_class).
+  void set_idle(bool idle) {
+    std::lock_guard lock(mutex_);
+    idle_ = idle;
+  }
   // A finished detection (its frame and landmarks), once; rethrows the detector's failure.
   std::optional<std::pair<std::int64_t, std::vector<capture::Feature>>> take() {
     std::lock_guard lock(mutex_);
@@ -126,6 +150,7 @@ class AsyncDetector {
 
  private:
   void loop() {
+    bool in_idle_class = false;
     std::unique_lock lock(mutex_);
     while (true) {
       changed_.wait(lock, [this] { return quit_ || job_.has_value(); });
@@ -133,7 +158,9 @@ class AsyncDetector {
       auto [frame, image] = std::move(*job_);
       job_.reset();
       working_ = true;
+      const bool idle = idle_;
       lock.unlock();
+      if (idle != in_idle_class) in_idle_class = to_idle_class(idle) ? idle : in_idle_class;
       std::vector<capture::Feature> found;
       std::exception_ptr failure;
       try {
@@ -160,6 +187,7 @@ class AsyncDetector {
   std::exception_ptr failure_;
   bool working_ = false;
   bool quit_ = false;
+  bool idle_ = false;
   std::thread thread_;  // last: started once the members it uses exist
 };
 
@@ -168,11 +196,13 @@ class AsyncDetector {
 // it falls on. A choice due while the last one still runs is skipped.
 class AsyncWindowChoice {
  public:
+  // In the scheduler's idle class where `idle` (to_idle_class).
   void start(std::vector<capture::Track> tracks, int degree, double max_residual_px,
-             double noise_scale) {
+             double noise_scale, bool idle) {
     if (pending_.valid()) return;
     pending_ = std::async(std::launch::async, [tracks = std::move(tracks), degree, max_residual_px,
-                                               noise_scale] {
+                                               noise_scale, idle] {
+      if (idle) to_idle_class(true);
       return capture::causal_smoothing_that_fits(tracks, degree, max_residual_px, 1, noise_scale);
     });
   }
@@ -364,6 +394,8 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   capture::RefineParams refine;
   capture::CausalTrackSmoother smoother(session.smoothing);
   std::optional<capture::NeighbourStepSmoother> neighbours;
+  // The strain and mapping thread's last frame's time, for the tracks' density.
+  std::atomic<double> strain_map_ms{0.0};
   AsyncWindowChoice window_choice;
   capture::FeatureParams features = capture::pores_only();
   capture::Calibration calibration;
@@ -489,6 +521,7 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
             }
           }
           t.map_ms = ms_between(strained, Clock::now());
+          strain_map_ms = t.strain_ms + t.map_ms;
         }
         near_gap_before = near_gap;
         for (std::size_t i = 0; i < near_gap_last.size() && i < near_gap_before.size(); ++i) {
@@ -520,6 +553,10 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
   try {
     std::optional<std::int64_t> previous;
     std::int64_t last_detection = 0;
+    // The tracks' density: fixed, or kept to what the camera's period allows.
+    double spacing_mm = session.min_spacing_mm.value_or(0.0);
+    std::vector<double> recent_track_ms;
+    bool judged_once = false;
     int tracks_after_detection = 0;
     while (!stop.load()) {
       std::optional<SourceFrame> got = queue.pop(std::chrono::milliseconds(20));
@@ -553,6 +590,8 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         refine.window_mm = session.refine_window_mm;
         tracker = std::make_unique<capture::AlignmentTracker>(px_per_mm, refine, options.threads);
         neighbours.emplace(session.neighbour_smoothing, px_per_mm);
+        tracker->set_min_spacing_px(spacing_mm * px_per_mm);
+        summary.min_spacing_mm = spacing_mm;
         capture::StrainMovie frame_of_view;
         frame_of_view.calibration = calibration;
         frame_of_view.field_width_mm = f.image.width_px * calibration.mm_per_px;
@@ -611,11 +650,46 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
         if (smoother.choice_due()) {
           window_choice.start(smoother.tracks_to_choose_by(), session.smoothing.degree,
                               refine.max_smoothing_residual_px,
-                              tracker->sliding() ? refine.sliding_noise_scale : 1.0);
+                              tracker->sliding() ? refine.sliding_noise_scale : 1.0,
+                              spacing_mm > 0 && !session.min_spacing_mm);
         }
       }
       const Clock::time_point tracked = Clock::now();
       t.track_ms = ms_between(popped, tracked);
+      if (!session.min_spacing_mm && previous && tracker->frames() > kWarmUpFrames) {
+        recent_track_ms.push_back(t.track_ms);
+        // The first judgement soon: a session that cannot keep up drops frames until it is made.
+        const int due = judged_once ? kDensityFrames : kFirstDensityFrames;
+        if (static_cast<int>(recent_track_ms.size()) == due) {
+          judged_once = true;
+          // A frame's work (its tracking here, its strain and mapping on the other thread)
+          // against the camera's period. Over budget: landmarks spaced apart, first to nine
+          // tenths of their mean distance now (which ends the crowded ones), then a seventh
+          // further at a time, up to kMaxSpacingMm (the time that does not depend on the tracks
+          // is not saved by fewer); well under it, closer again, to every landmark.
+          const double load_ms = median(recent_track_ms) + strain_map_ms.load();
+          const double period_ms = 1000.0 / summary.camera_rate_hz;
+          const double before = spacing_mm;
+          if (load_ms > kBusyShare * period_ms && tracker->live_tracks() > 0) {
+            const double area_mm2 =
+                static_cast<double>(f.image.width_px) * f.image.height_px / (px_per_mm * px_per_mm);
+            spacing_mm = std::min(
+                kMaxSpacingMm, spacing_mm == 0 ? 0.9 * std::sqrt(area_mm2 / tracker->live_tracks())
+                                               : spacing_mm * 1.15);
+          } else if (spacing_mm > 0 && load_ms < kIdleShare * period_ms) {
+            spacing_mm /= 1.15;
+            if (spacing_mm < 0.15) spacing_mm = 0;
+          }
+          if (spacing_mm != before) {
+            tracker->set_min_spacing_px(spacing_mm * px_per_mm);
+            summary.min_spacing_mm = spacing_mm;
+            ++summary.spacing_changes;
+            summary.max_spacing_mm = std::max(summary.max_spacing_mm, spacing_mm);
+            detector->set_idle(spacing_mm > 0);  // only where the session spaced them
+          }
+          recent_track_ms.clear();
+        }
+      }
       view_slid = view_slid || tracker->sliding();
       TrackedFrame handed{std::move(f), t, previous, std::move(steps), view_slid, tracked};
       previous = handed.frame.index;
@@ -741,6 +815,15 @@ std::string format_summary(const LiveSummary& s) {
           : fmt::format(" at the end; chosen {} time{} by the steps, {:g} to {:g} mm",
                         s.neighbour_choices, s.neighbour_choices == 1 ? "" : "s",
                         s.neighbour_min_sigma_mm, s.neighbour_max_sigma_mm));
+  out += fmt::format(
+      "density     {}{}\n",
+      s.min_spacing_mm == 0 ? std::string("every landmark found")
+                            : fmt::format("landmarks at least {:.2f} mm apart", s.min_spacing_mm),
+      s.spacing_changes == 0
+          ? std::string()
+          : fmt::format(" at the end; spaced {} time{} to keep up with the camera (at most {:.2f} "
+                        "mm)",
+                        s.spacing_changes, s.spacing_changes == 1 ? "" : "s", s.max_spacing_mm));
   if (s.strain_edges_near_gaps > 0) {
     out += fmt::format(
         "contact     {} of {} strain edges left out, at or within {} cell of skin the frames show "

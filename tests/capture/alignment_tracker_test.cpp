@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -157,6 +158,67 @@ TEST(AlignmentTracker, SeedsFromAFrameNotYetSeenOrBeforeTheFirstAreRefused) {
   EXPECT_EQ(tracker.frames(), 1);
   EXPECT_NO_THROW(tracker.add_frame(s.seq.frames[1], seeds_at(s, 0, 0, 10), 0));
   EXPECT_EQ(tracker.frames(), 2);
+}
+
+// The least distance between the live tracks' last positions (px).
+double least_distance(const std::vector<Track>& steps) {
+  double least = 1e300;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    for (std::size_t j = i + 1; j < steps.size(); ++j) {
+      least = std::min(least, std::hypot(steps[i].x_px[1] - steps[j].x_px[1],
+                                         steps[i].y_px[1] - steps[j].y_px[1]));
+    }
+  }
+  return least;
+}
+
+TEST(AlignmentTracker, ASpacingEndsTracksThatCrowdOlderOnesAndStartsNoneWithinIt) {
+  const Scene s = fast_wave(4);
+  // Seeds every 16 px; a spacing of 40 px keeps at most one in two along each axis.
+  const std::vector<Feature> grid = grid_clear_of_marks(s);
+  AlignmentTracker dense(1.0 / s.seq.calibration.mm_per_px);
+  AlignmentTracker spaced(1.0 / s.seq.calibration.mm_per_px);
+  dense.add_frame(s.seq.frames[0], grid);
+  spaced.add_frame(s.seq.frames[0], grid);
+  dense.add_frame(s.seq.frames[1], {});
+  spaced.add_frame(s.seq.frames[1], {});
+  const int before = spaced.live_tracks();
+  ASSERT_GT(before, 50);
+  EXPECT_EQ(before, dense.live_tracks());
+  EXPECT_LT(least_distance(spaced.last_step()), 20);
+  // From the next frame on: the crowded tracks end, the seeds within the spacing start none.
+  spaced.set_min_spacing_px(40);
+  spaced.add_frame(s.seq.frames[2], grid);
+  const std::vector<Track> steps = spaced.last_step();
+  EXPECT_GE(least_distance(steps), 40);
+  EXPECT_LT(spaced.live_tracks(), before / 2);
+  EXPECT_GT(spaced.live_tracks(), before / 8);  // a grid 40 px apart still, not an empty view
+  // Every survivor is an older track, where the dense tracker has it: to within the correction
+  // of the window's curvature, which reads the neighbours' motion and so changes as they thin.
+  dense.add_frame(s.seq.frames[2], {});
+  std::map<std::int32_t, Track> by_id;
+  for (const auto& t : dense.last_step()) by_id[t.id] = t;
+  for (const auto& t : steps) {
+    ASSERT_TRUE(by_id.count(t.id)) << "track " << t.id << " is not one of the first frame's";
+    EXPECT_NEAR(t.x_px[1], by_id[t.id].x_px[1], 0.5) << "track " << t.id;
+    EXPECT_NEAR(t.y_px[1], by_id[t.id].y_px[1], 0.5) << "track " << t.id;
+  }
+  // Back to every landmark: the seeds start tracks between the spaced ones again.
+  spaced.set_min_spacing_px(0);
+  spaced.add_frame(s.seq.frames[3], grid);
+  EXPECT_GT(spaced.live_tracks(), static_cast<int>(steps.size()));
+}
+
+TEST(AlignmentTracker, ASpacingThatIsNoDistanceIsRefused) {
+  AlignmentTracker tracker(47);
+  for (const double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    try {
+      tracker.set_min_spacing_px(bad);
+      ADD_FAILURE() << "spacing " << bad << " taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a distance"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

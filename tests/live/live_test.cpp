@@ -200,6 +200,18 @@ TEST(LiveRequest, NeighbourSmoothingIsNoneATenthToFiveMillimetresOrChosen) {
   EXPECT_THAT(error_of(r), HasSubstr("--neighbour-sigma"));
 }
 
+TEST(LiveRequest, TheSpacingIsFixedOrFollowsTheSessionsTime) {
+  const tactile::test::TempDir dir("live");
+  auto r = request_for(dir.path());
+  EXPECT_FALSE(tactile::live::resolve(r, OptionSpelling::cli).min_spacing_mm.has_value());
+  r.min_spacing_mm = 0.3;
+  EXPECT_EQ(tactile::live::resolve(r, OptionSpelling::cli).min_spacing_mm, 0.3);
+  r.min_spacing_mm = 6;
+  EXPECT_THAT(error_of(r), HasSubstr("--min-spacing: 6 is out of range: must be from 0 to 5"));
+  r.min_spacing_mm = -0.1;
+  EXPECT_THAT(error_of(r), HasSubstr("--min-spacing"));
+}
+
 TEST(LiveRequest, RecordsOnlyIntoANewOrEmptyFolder) {
   const tactile::test::TempDir dir("live");
   auto r = request_for(dir.path());

@@ -731,6 +731,7 @@ struct AlignmentTracker::State {
   int frames = 0;
   std::int32_t next_id = 0;
   int width_px = 0, height_px = 0;
+  double min_spacing_px = 0;  // set_min_spacing_px
   // Each live track on the heap: a frame where tracks end moves pointers, not kilobytes.
   std::vector<std::unique_ptr<Live>> live;
   std::vector<Track> ended;
@@ -764,6 +765,54 @@ int AlignmentTracker::frames() const {
 int AlignmentTracker::live_tracks() const {
   return static_cast<int>(state_->live.size());
 }
+
+void AlignmentTracker::set_min_spacing_px(double px) {
+  if (!(px >= 0) || !std::isfinite(px)) {
+    throw std::invalid_argument(
+        fmt::format("AlignmentTracker: a spacing of {} px is not a distance (0 or more)", px));
+  }
+  state_->min_spacing_px = px;
+}
+
+namespace {
+
+// Points kept at least a spacing apart, taken one at a time: cells of the spacing's side over
+// the frame (positions off it in the border cells), so that a kept point that is too close lies
+// in the cell of the one asked about or in the eight around it.
+class SpacedPoints {
+ public:
+  SpacedPoints(int width_px, int height_px, double spacing_px)
+      : spacing_px_(spacing_px),
+        cols_(std::max(1, static_cast<int>(width_px / spacing_px) + 1)),
+        rows_(std::max(1, static_cast<int>(height_px / spacing_px) + 1)),
+        cells_(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_)) {}
+
+  // Keeps p where no kept point is closer than the spacing; says whether it did.
+  bool add(const Eigen::Vector2d& p) {
+    const int cx = cell(p.x(), cols_), cy = cell(p.y(), rows_);
+    for (int gy = std::max(0, cy - 1); gy <= std::min(rows_ - 1, cy + 1); ++gy) {
+      for (int gx = std::max(0, cx - 1); gx <= std::min(cols_ - 1, cx + 1); ++gx) {
+        for (const auto& q : cells_[static_cast<std::size_t>(gy * cols_ + gx)]) {
+          if ((q - p).squaredNorm() < spacing_px_ * spacing_px_) return false;
+        }
+      }
+    }
+    cells_[static_cast<std::size_t>(cy * cols_ + cx)].push_back(p);
+    return true;
+  }
+
+ private:
+  int cell(double v, int count) const {
+    if (!(v > 0)) return 0;  // NaN too
+    return std::min(count - 1, static_cast<int>(v / spacing_px_));
+  }
+
+  double spacing_px_;
+  int cols_, rows_;
+  std::vector<std::vector<Eigen::Vector2d>> cells_;
+};
+
+}  // namespace
 
 bool AlignmentTracker::sliding() const {
   const State& s = *state_;
@@ -1120,6 +1169,24 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     ++still;
   }
   s.live.resize(still);
+  // Tracks that crowd older ones end (the live tracks are in the order they started). Kept for
+  // the seeds below.
+  std::optional<SpacedPoints> spaced;
+  if (s.min_spacing_px > 0) {
+    spaced.emplace(s.width_px, s.height_px, s.min_spacing_px);
+    still = 0;
+    for (std::size_t i = 0; i < s.live.size(); ++i) {
+      const Track& t = s.live[i]->track;
+      if (!spaced->add({t.x_px.back(), t.y_px.back()})) {
+        ++s.stats.thinned;
+        s.ended.push_back(std::move(s.live[i]->track));
+        continue;
+      }
+      if (still != i) s.live[still] = std::move(s.live[i]);
+      ++still;
+    }
+    s.live.resize(still);
+  }
   // Seeds found on an earlier frame (a detector slower than the camera) where the skin is now:
   // each moved by the motion of the live tracks around it since that frame (neighbours_motion),
   // or by the whole view's where too few tracks are near. A seed on a landmark already tracked
@@ -1153,7 +1220,15 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
       seed.y_px = to.y();
     }
   }
-  const std::vector<Feature>& seeds = carried.empty() ? found : carried;
+  const std::vector<Feature>& given = carried.empty() ? found : carried;
+  // With a spacing: the seeds clear of the live tracks and of the seeds kept before them.
+  std::vector<Feature> clear_of_others;
+  if (spaced) {
+    for (const Feature& f : given) {
+      if (spaced->add({f.x_px, f.y_px})) clear_of_others.push_back(f);
+    }
+  }
+  const std::vector<Feature>& seeds = spaced ? clear_of_others : given;
   // New tracks only where no live track is: one landmark, one track.
   const double min_separation_px = 0.5 * s.max_offset_px;
   const std::size_t tracked = s.live.size();

@@ -171,6 +171,7 @@ struct RefineStats {
   long cut = 0;      // tracks ended early, where the image did not confirm a frame
   long dropped = 0;  // of which left shorter than min_frames, and removed
   long anchors = 0;  // references renewed on a later frame
+  long thinned = 0;  // streaming tracker: tracks ended where they crowded older ones
   // Streaming tracker: the whole view's median motion per frame (pixels), the frames a point of
   // skin stays in view at that motion (0: the view does not slide) and the shortest track kept.
   double view_motion_px = 0;
@@ -211,6 +212,12 @@ class AlignmentTracker {
   void add_frame(const GrayImage& image, const std::vector<Feature>& seeds, int seeds_frame);
   int frames() const;
   int live_tracks() const;
+  // From the next frame on, no track within `px` of an older live track (the younger ends, as
+  // one the image stopped confirming) and no new track within `px` of a live one or of a seed
+  // started before it; 0: every landmark the seeds give. A consumer that must keep up with a
+  // camera trades the tracks' density for time this way. Throws std::invalid_argument for a
+  // negative or non-finite px.
+  void set_min_spacing_px(double px);
   // Whether the whole view moved into the last frame by more than an alignment may move from
   // its start (max_offset_mm): the skin slides through it and new skin enters every frame.
   bool sliding() const;

@@ -35,6 +35,9 @@ struct LiveRequest {
   // Gaussian reach of the smoothing of each frame's steps across neighbouring tracks (mm; 0:
   // none); unset: chosen by the steps.
   std::optional<double> neighbour_sigma_mm;
+  // Least distance between tracked landmarks (mm; 0: every landmark found); unset: as the
+  // session's time needs (see ResolvedLive).
+  std::optional<double> min_spacing_mm;
 };
 
 const std::vector<OptionRow<LiveRequest>>& live_options();
@@ -66,7 +69,22 @@ struct ResolvedLive {
   int detect_every = 0;
   capture::CausalSmoothing smoothing;
   capture::NeighbourSmoothing neighbour_smoothing;
+  // Unset: every landmark found while the session keeps up, and landmarks spaced further apart
+  // when a frame's tracking, strain and mapping take more than kBusyShare of the camera's period
+  // (closer again below kIdleShare), judged on kFirstDensityFrames frames after kWarmUpFrames,
+  // then every kDensityFrames.
+  std::optional<double> min_spacing_mm;
 };
+
+inline constexpr double kBusyShare = 0.6;
+inline constexpr double kIdleShare = 0.45;
+inline constexpr int kDensityFrames = 30;
+inline constexpr int kFirstDensityFrames = 10;
+// Frames not judged at the start: the first frames' references and the detector's choice make
+// them slower than any that follow.
+inline constexpr int kWarmUpFrames = 10;
+// A landmark a square millimetre: the sparsest the session spaces them on its own.
+inline constexpr double kMaxSpacingMm = 1.0;
 
 // Checks every value and the rules between them (RequestError in the front end's spelling): one
 // of calib and px_per_mm; a mapping that needs no later frame (normalisation none, strain per

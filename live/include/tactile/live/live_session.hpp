@@ -80,6 +80,11 @@ struct LiveSummary {
   double neighbour_sigma_mm = 0;
   int neighbour_choices = 0;
   double neighbour_min_sigma_mm = 0, neighbour_max_sigma_mm = 0;
+  // The least distance between tracked landmarks at the end (mm, 0: every landmark found), how
+  // often the session changed it to keep up with the camera, and the largest it took.
+  double min_spacing_mm = 0;
+  int spacing_changes = 0;
+  double max_spacing_mm = 0;
 };
 
 // What is known once the first frame has arrived.
