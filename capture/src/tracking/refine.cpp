@@ -1157,11 +1157,17 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     l.track.gradient.push_back({l.linear(0, 0), l.linear(0, 1), l.linear(1, 0), l.linear(1, 1)});
   }
   // Ended tracks leave in place, the others keep their order: a frame where none ended moves
-  // nothing.
+  // nothing. With a spacing, the tracks that crowd older ones end too (the live tracks are in the
+  // order they started); the points kept are kept for the seeds below.
+  std::optional<SpacedPoints> spaced;
+  if (s.min_spacing_px > 0) spaced.emplace(s.width_px, s.height_px, s.min_spacing_px);
   std::size_t still = 0;
   for (std::size_t i = 0; i < s.live.size(); ++i) {
-    if (s.live[i]->ended) {
-      ++s.stats.cut;
+    const Track& t = s.live[i]->track;
+    const bool crowding =
+        !s.live[i]->ended && spaced && !spaced->add({t.x_px.back(), t.y_px.back()});
+    if (s.live[i]->ended || crowding) {
+      ++(crowding ? s.stats.thinned : s.stats.cut);
       s.ended.push_back(std::move(s.live[i]->track));
       continue;
     }
@@ -1169,24 +1175,6 @@ void AlignmentTracker::add_frame(const GrayImage& image, const std::vector<Featu
     ++still;
   }
   s.live.resize(still);
-  // Tracks that crowd older ones end (the live tracks are in the order they started). Kept for
-  // the seeds below.
-  std::optional<SpacedPoints> spaced;
-  if (s.min_spacing_px > 0) {
-    spaced.emplace(s.width_px, s.height_px, s.min_spacing_px);
-    still = 0;
-    for (std::size_t i = 0; i < s.live.size(); ++i) {
-      const Track& t = s.live[i]->track;
-      if (!spaced->add({t.x_px.back(), t.y_px.back()})) {
-        ++s.stats.thinned;
-        s.ended.push_back(std::move(s.live[i]->track));
-        continue;
-      }
-      if (still != i) s.live[still] = std::move(s.live[i]);
-      ++still;
-    }
-    s.live.resize(still);
-  }
   // Seeds found on an earlier frame (a detector slower than the camera) where the skin is now:
   // each moved by the motion of the live tracks around it since that frame (neighbours_motion),
   // or by the whole view's where too few tracks are near. A seed on a landmark already tracked
