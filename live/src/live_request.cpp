@@ -54,7 +54,7 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
     t.push_back(rows::number<R>(
         "neighbour_sigma", &R::neighbour_sigma_mm, 0, 5, "mm",
         "Reach (Gaussian sigma) of the smoothing of each frame's steps across neighbouring\n"
-        "tracks, a local quadratic read at each track (no latency added): 0 for none, else 0.1\n"
+        "tracks, a local quadratic read at each track (no look-ahead): 0 for none, else 0.1\n"
         "to 5 (default: chosen by the steps, the reach whose fits best predict tracks left out)"));
     t.push_back(rows::number<R>(
         "min_spacing", &R::min_spacing_mm, 0, 5, "mm",

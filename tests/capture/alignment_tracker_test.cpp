@@ -173,7 +173,7 @@ double least_distance(const std::vector<Track>& steps) {
 }
 
 TEST(AlignmentTracker, ASpacingEndsTracksThatCrowdOlderOnesAndStartsNoneWithinIt) {
-  const Scene s = fast_wave(4);
+  const Scene s = fast_wave(5);
   // Seeds every 16 px; a spacing of 40 px keeps at most one in two along each axis.
   const std::vector<Feature> grid = grid_clear_of_marks(s);
   AlignmentTracker dense(1.0 / s.seq.calibration.mm_per_px);
@@ -203,9 +203,15 @@ TEST(AlignmentTracker, ASpacingEndsTracksThatCrowdOlderOnesAndStartsNoneWithinIt
     EXPECT_NEAR(t.x_px[1], by_id[t.id].x_px[1], 0.5) << "track " << t.id;
     EXPECT_NEAR(t.y_px[1], by_id[t.id].y_px[1], 0.5) << "track " << t.id;
   }
+  // A seed far off any frame (as no detector gives) is not started, and breaks nothing.
+  const int spaced_tracks = spaced.live_tracks();
+  Feature far;
+  far.x_px = far.y_px = 1e300;
+  spaced.add_frame(s.seq.frames[3], {far});
+  EXPECT_LE(spaced.live_tracks(), spaced_tracks);
   // Back to every landmark: the seeds start tracks between the spaced ones again.
   spaced.set_min_spacing_px(0);
-  spaced.add_frame(s.seq.frames[3], grid);
+  spaced.add_frame(s.seq.frames[4], grid);
   EXPECT_GT(spaced.live_tracks(), static_cast<int>(steps.size()));
 }
 

@@ -159,14 +159,16 @@ TEST(NeighbourSmoothing, PositionsNoViewCouldHoldAreRefusedNamingThem) {
         << e.what();
   }
   // A grid of cells over a span this wide would take gigabytes: refused before it is made.
-  steps = steps_of(quadratic, 15, 0, 7);
-  steps[5].x_px[0] = 1e12;
-  try {
-    smooth_steps_across_neighbours(steps, kPxPerMm, 0.4, 12);
-    FAIL() << "a track a billion pixels away was taken";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("far beyond a camera's view"), std::string::npos)
-        << e.what();
+  for (const double far_px : {1e12, 1e300}) {
+    steps = steps_of(quadratic, 15, 0, 7);
+    steps[5].x_px[0] = far_px;
+    try {
+      smooth_steps_across_neighbours(steps, kPxPerMm, 0.4, 12);
+      ADD_FAILURE() << "a track " << far_px << " px away was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("far beyond a camera's view"), std::string::npos)
+          << e.what();
+    }
   }
 }
 

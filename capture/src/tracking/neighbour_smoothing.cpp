@@ -56,15 +56,17 @@ class StepGrid {
     }
     x0_ = min_x;
     y0_ = min_y;
-    cols_ = static_cast<long>((max_x - min_x) / cell_px) + 1;
-    rows_ = static_cast<long>((max_y - min_y) / cell_px) + 1;
     // A view is at most a few thousand pixels a side and a cell a few pixels: a grid larger
-    // than the steps many times over would say the positions are far outside any view.
-    if (cols_ * rows_ > static_cast<long>(64 * n + 1024)) {
+    // than the steps many times over would say the positions are far outside any view (the
+    // cells counted in double precision first, as a span of any size can be).
+    const double cols = (max_x - min_x) / cell_px + 1, rows = (max_y - min_y) / cell_px + 1;
+    if (cols * rows > static_cast<double>(64 * n + 1024)) {
       throw std::invalid_argument(fmt::format(
           "neighbour smoothing: the steps span {:.0f} x {:.0f} px, far beyond a camera's view",
           max_x - min_x, max_y - min_y));
     }
+    cols_ = static_cast<long>(cols);
+    rows_ = static_cast<long>(rows);
     std::vector<long> cell_of(n);
     first_.assign(static_cast<std::size_t>(cols_ * rows_ + 1), 0);
     for (std::size_t i = 0; i < n; ++i) {

@@ -803,8 +803,9 @@ class SpacedPoints {
 
  private:
   int cell(double v, int count) const {
-    if (!(v > 0)) return 0;  // NaN too
-    return std::min(count - 1, static_cast<int>(v / spacing_px_));
+    if (!(v > 0)) return 0;            // NaN too
+    const double c = v / spacing_px_;  // compared before the cast: no overflow far off the frame
+    return c >= count - 1 ? count - 1 : static_cast<int>(c);
   }
 
   double spacing_px_;
