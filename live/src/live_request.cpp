@@ -60,8 +60,8 @@ const std::vector<OptionRow<LiveRequest>>& live_options() {
         "min_spacing", &R::min_spacing_mm, 0, 5, "mm",
         "Least distance between tracked landmarks: 0 for every landmark found (default: every\n"
         "one while the session keeps up with the camera; spaced further apart when a frame's\n"
-        "tracking, strain and mapping take over 60 % of the camera's period, e.g. 640 x 484 at\n"
-        "60 Hz on two cores)"));
+        "tracking, strain and mapping take over 60 % of the camera's period, up to 0.4, e.g.\n"
+        "640 x 484 at 60 Hz on two cores)"));
     return t;
   }();
   return table;

@@ -671,8 +671,18 @@ LiveSummary run_live_from(FrameSource& source_frames, Clock::time_point start,
           const double period_ms = 1000.0 / summary.camera_rate_hz;
           const double before = spacing_mm;
           if (load_ms > kBusyShare * period_ms && tracker->live_tracks() > 0) {
-            const double area_mm2 =
-                static_cast<double>(f.image.width_px) * f.image.height_px / (px_per_mm * px_per_mm);
+            // The area the tracks cover (a print may fill only part of the view).
+            double x0 = f.image.width_px, y0 = f.image.height_px, x1 = 0, y1 = 0;
+            for (const auto& st : steps) {
+              x0 = std::min(x0, st.x_px.back());
+              y0 = std::min(y0, st.y_px.back());
+              x1 = std::max(x1, st.x_px.back());
+              y1 = std::max(y1, st.y_px.back());
+            }
+            const double area_mm2 = x1 > x0 && y1 > y0
+                                        ? (x1 - x0) * (y1 - y0) / (px_per_mm * px_per_mm)
+                                        : static_cast<double>(f.image.width_px) *
+                                              f.image.height_px / (px_per_mm * px_per_mm);
             spacing_mm = std::min(
                 kMaxSpacingMm, spacing_mm == 0 ? 0.9 * std::sqrt(area_mm2 / tracker->live_tracks())
                                                : spacing_mm * 1.15);

@@ -83,8 +83,12 @@ inline constexpr int kFirstDensityFrames = 10;
 // Frames not judged at the start: the first frames' references and the detector's choice make
 // them slower than any that follow.
 inline constexpr int kWarmUpFrames = 10;
-// A landmark a square millimetre: the sparsest the session spaces them on its own.
-inline constexpr double kMaxSpacingMm = 1.0;
+// The sparsest the session spaces landmarks on its own. Further apart the live strain's error
+// rises well past the batch capture's (0.4 mm: 1.28 times it at 640 x 484, about 400 landmarks
+// a frame), and the work that does not depend on the tracks is not saved: a session still
+// behind there drops frames instead (an emulated CPU in the vm tests, 166 ms a frame, spaced
+// them to 0.71 mm and 62 points a frame before this bound).
+inline constexpr double kMaxSpacingMm = 0.4;
 
 // Checks every value and the rules between them (RequestError in the front end's spelling): one
 // of calib and px_per_mm; a mapping that needs no later frame (normalisation none, strain per
